@@ -1,0 +1,5 @@
+//! Geometric primitives every Sphaera crate needs.
+
+mod triangle;
+
+pub use triangle::Triangle;
