@@ -1,1 +1,195 @@
-fn main() {}
+//! Workspace automation for Sphaera, reached through the `cargo xtask` alias.
+//!
+//! ```text
+//! cargo xtask test          every test: unit, cross-crate (`tests/`), doctests
+//! cargo xtask ci            fmt check, clippy -D warnings, tests, docs -D warnings,
+//!                           duplicate-glam check, generated-file check
+//! cargo xtask bench [ARGS]  the criterion benches (ARGS go to `cargo bench`)
+//! cargo xtask charts        run the sphaera-eval experiments, write docs/charts/*.svg + *.csv
+//! cargo xtask charts --check  fail if a chart or its CSV is missing
+//! ```
+
+// A command-line tool reports on the terminal.
+#![allow(clippy::print_stderr, clippy::print_stdout)]
+
+use std::{
+    path::{Path, PathBuf},
+    process::Command,
+    time::Instant,
+};
+
+use anyhow::{Context, Result, bail};
+
+const USAGE: &str = "usage: cargo xtask <test | ci | bench [ARGS..] | charts [--check]>";
+
+fn main() -> Result<()> {
+    let mut args = std::env::args().skip(1);
+    let task = args.next().unwrap_or_default();
+    let rest: Vec<String> = args.collect();
+    let root = project_root();
+    std::env::set_current_dir(&root)
+        .with_context(|| format!("cannot enter the project root {}", root.display()))?;
+    match task.as_str() {
+        "test" => test(),
+        "ci" => ci(),
+        "bench" => bench(&rest),
+        "charts" => charts(rest.iter().any(|a| a == "--check")),
+        "" | "help" | "--help" | "-h" => {
+            eprintln!("{USAGE}");
+            Ok(())
+        }
+        other => bail!("unknown task `{other}`\n{USAGE}"),
+    }
+}
+
+/// The workspace root: the parent of this crate's manifest directory.
+fn project_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+/// Runs `cargo ARGS`, failing with the command line if it fails.
+fn cargo(args: &[&str]) -> Result<()> {
+    cargo_with_env(args, &[])
+}
+
+fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    eprintln!("$ cargo {}", args.join(" "));
+    let started = Instant::now();
+    let status = Command::new(&cargo)
+        .args(args)
+        .envs(env.iter().copied())
+        .status()
+        .with_context(|| format!("cannot run {cargo}"))?;
+    eprintln!(
+        "  ({:.1} s, {})",
+        started.elapsed().as_secs_f64(),
+        if status.success() { "ok" } else { "FAILED" }
+    );
+    if !status.success() {
+        bail!("`cargo {}` failed ({status})", args.join(" "));
+    }
+    Ok(())
+}
+
+/// Every test: unit and integration tests of every crate, the cross-crate tests in
+/// `tests/`, and the doctests (all run by `cargo test`); then the mesh crate again without
+/// its default `parallel` feature, whose results must be identical.
+fn test() -> Result<()> {
+    cargo(&["test", "--workspace", "--locked"])?;
+    cargo(&[
+        "test",
+        "--locked",
+        "-p",
+        "sphaera-mesh",
+        "--no-default-features",
+        "--lib",
+        "--tests",
+    ])
+}
+
+fn ci() -> Result<()> {
+    let started = Instant::now();
+    cargo(&["fmt", "--all", "--check"])?;
+    check_single_glam()?;
+    cargo(&[
+        "clippy",
+        "--workspace",
+        "--all-targets",
+        "--locked",
+        "--",
+        "-D",
+        "warnings",
+    ])?;
+    cargo_with_env(
+        &["doc", "--workspace", "--no-deps", "--locked"],
+        &[("RUSTDOCFLAGS", "-D warnings")],
+    )?;
+    test()?;
+    charts(true)?;
+    eprintln!(
+        "ci passed in {:.0} s",
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// Fails if the dependency graph holds two versions of glam: our `DVec3` must be the one
+/// parry3d-f64 uses, or values cannot cross between the crates.
+fn check_single_glam() -> Result<()> {
+    eprintln!("$ cargo tree --workspace -d -e normal,build,dev --depth 0 --locked");
+    let output = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned()))
+        .args([
+            "tree",
+            "--workspace",
+            "-d",
+            "-e",
+            "normal,build,dev",
+            "--depth",
+            "0",
+            "--locked",
+        ])
+        .output()
+        .context("cannot run cargo tree")?;
+    if !output.status.success() {
+        bail!(
+            "cargo tree failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    let tree = String::from_utf8_lossy(&output.stdout);
+    let glams: Vec<&str> = tree
+        .lines()
+        .filter(|line| line.starts_with("glam v"))
+        .collect();
+    if !glams.is_empty() {
+        bail!(
+            "two versions of glam in the dependency graph ({}): pin `glam` in the root \
+             Cargo.toml to the version parry3d-f64 uses",
+            glams.join(", ")
+        );
+    }
+    eprintln!("  (one glam: ok)");
+    Ok(())
+}
+
+fn bench(args: &[String]) -> Result<()> {
+    let mut full = vec!["bench", "--workspace", "--locked"];
+    full.extend(args.iter().map(String::as_str));
+    cargo(&full)
+}
+
+/// The charts `cargo xtask charts` must produce, each as `docs/charts/NAME.svg` with the
+/// data behind it in `docs/charts/NAME.csv`.
+const CHARTS: &[&str] = &["load_topology_time"];
+
+fn charts(check: bool) -> Result<()> {
+    let dir = Path::new("docs/charts");
+    if check {
+        let missing: Vec<String> = CHARTS
+            .iter()
+            .flat_map(|name| [format!("{name}.svg"), format!("{name}.csv")])
+            .filter(|file| !dir.join(file).is_file())
+            .collect();
+        if !missing.is_empty() {
+            bail!(
+                "missing generated files in docs/charts: {}; run `cargo xtask charts` and commit",
+                missing.join(", ")
+            );
+        }
+        eprintln!("  (charts present: ok)");
+        return Ok(());
+    }
+    cargo(&[
+        "run",
+        "--release",
+        "--locked",
+        "-p",
+        "sphaera-eval",
+        "--",
+        "--out",
+        "docs/charts",
+    ])
+}

@@ -1,1 +1,40 @@
-//! tmp
+//! # Sphaera
+//!
+//! Hierarchical, sphere-based approximation of triangle meshes: fast and certified distance
+//! queries, bounding sphere-trees for collision detection, tolerance-bounded and
+//! silhouette-aware simplification, and HAL trees.
+//!
+//! This crate is the facade: it re-exports the focused Sphaera crates under short module
+//! names, and offers a [`prelude`] with the types almost every user needs. Depend on a
+//! single crate (for example `sphaera-mesh`) if that is all you use.
+//!
+//! | module | crate | what it does |
+//! |---|---|---|
+//! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, winding numbers, surface sampling, procedural test shapes |
+//!
+//! Later capabilities (Meshsweeper distance queries, edge-collapse simplification with
+//! error spheres, medial-axis sphere-trees, HAL trees, silhouette labels) join this table
+//! as their crates land; see `docs/architecture.md` in the repository.
+//!
+//! # Quick start
+//!
+//! ```
+//! use sphaera::prelude::*;
+//!
+//! let torus = sphaera::mesh::shapes::torus(1.0, 0.25, 32, 12)?;
+//! let report = sphaera::mesh::topology::analyze(&torus);
+//! assert!(report.is_closed());
+//! assert_eq!(report.genus(), Some(1));
+//! assert!(torus.bounding_box_diagonal() > 2.0);
+//! # Ok::<(), MeshError>(())
+//! ```
+//!
+//! # Feature flags
+#![doc = document_features::document_features!()]
+
+pub use sphaera_mesh as mesh;
+
+/// The types almost every Sphaera user needs.
+pub mod prelude {
+    pub use sphaera_mesh::{Aabb, DVec3, MeshError, Sphere, TriMesh};
+}

@@ -1,0 +1,124 @@
+//! SVG charts (plotters, SVG backend: no system fonts needed) and the CSV behind each.
+
+use std::{fmt::Write as _, path::Path};
+
+use anyhow::{Context, Result};
+use plotters::prelude::*;
+
+/// One named set of `(x, y)` points.
+pub struct Series {
+    /// Legend label.
+    pub name: String,
+    /// The points; non-positive values are dropped on log axes.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Titles and axes of a chart.
+pub struct ChartSpec<'a> {
+    /// Caption above the plot.
+    pub title: &'a str,
+    /// Label of the x axis.
+    pub x_label: &'a str,
+    /// Label of the y axis.
+    pub y_label: &'a str,
+}
+
+const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];
+
+/// Draws the series as points joined by lines on log–log axes, into `path` (SVG, written
+/// atomically).
+pub fn log_log_chart(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Result<()> {
+    let positive = |&(x, y): &(f64, f64)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite();
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(positive)
+        .collect();
+    let (x_range, y_range) = log_range(&all);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 520)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(spec.title, ("sans-serif", 20))
+            .margin(16)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+        chart
+            .configure_mesh()
+            .x_desc(spec.x_label)
+            .y_desc(spec.y_label)
+            .draw()?;
+        for (i, s) in series.iter().enumerate() {
+            let color = COLORS[i % COLORS.len()];
+            let mut points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(1)))?
+                .label(s.name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
+                });
+            chart.draw_series(
+                points
+                    .into_iter()
+                    .map(|p| Circle::new(p, 3, color.filled())),
+            )?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()?;
+        root.present()?;
+    }
+    write_atomically(path, svg.as_bytes())
+}
+
+/// A range covering `values` on a log axis, padded by a factor of 1.5 each side.
+fn log_range(points: &[(f64, f64)]) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
+    let bounds = |get: fn(&(f64, f64)) -> f64| {
+        let lo = points.iter().map(get).fold(f64::INFINITY, f64::min);
+        let hi = points.iter().map(get).fold(f64::NEG_INFINITY, f64::max);
+        if lo.is_finite() && hi.is_finite() {
+            (lo / 1.5)..(hi * 1.5)
+        } else {
+            1.0..10.0
+        }
+    };
+    (bounds(|p| p.0), bounds(|p| p.1))
+}
+
+/// Writes a CSV table (header + rows; fields must not contain commas) atomically.
+pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<()> {
+    let mut text = header.join(",");
+    text.push('\n');
+    for row in rows {
+        let _ = writeln!(text, "{}", row.join(","));
+    }
+    write_atomically(path, text.as_bytes())
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let dir = path.parent().unwrap_or_else(|| Path::new("."));
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let file_name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let temporary = dir.join(format!(".{file_name}.tmp"));
+    std::fs::write(&temporary, bytes)
+        .with_context(|| format!("cannot write {}", temporary.display()))?;
+    std::fs::rename(&temporary, path)
+        .with_context(|| format!("cannot move {} to {}", temporary.display(), path.display()))
+}
