@@ -62,14 +62,85 @@ fn collect(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) {
         let path = entry.path();
         if path.is_dir() {
             collect(root, &path, files);
-        } else if path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| matches!(e.to_ascii_lowercase().as_str(), "obj" | "ply" | "stl" | "off"))
-        {
+        } else if path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+            matches!(
+                e.to_ascii_lowercase().as_str(),
+                "obj" | "ply" | "stl" | "off"
+            )
+        }) {
             if let Ok(relative) = path.strip_prefix(root) {
                 files.push(relative.to_path_buf());
             }
         }
     }
+}
+
+/// One row of the statistics table in `shared/data/README.md` (computed there by trimesh
+/// and pymeshlab after merging bit-identical vertex positions).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ExpectedStats {
+    /// Path relative to the data folder, e.g. `robots/kuka_iiwa/link_0.obj`.
+    pub file: String,
+    /// Vertex records in the file.
+    pub vertex_records: usize,
+    /// Triangles after loading.
+    pub triangles: usize,
+    /// No boundary edge and no edge with more than two faces.
+    pub closed: bool,
+    /// No non-manifold edge and no non-manifold vertex.
+    pub manifold: bool,
+    /// Connected components.
+    pub components: usize,
+    /// Edges with a single face.
+    pub boundary_edges: usize,
+    /// Genus, given for 2-manifold meshes only.
+    pub genus: Option<i64>,
+    /// Euler characteristic V − E + F of the merged mesh.
+    pub euler_characteristic: i64,
+    /// Bounding-box diagonal of the referenced vertices (4 significant digits).
+    pub bbox_diagonal: f64,
+}
+
+/// Parses the `## Files` table of `README.md` in the data folder.
+///
+/// # Panics
+///
+/// If the README is missing or a row does not parse: the fixture is broken.
+pub fn expected_stats(data: &Path) -> Vec<ExpectedStats> {
+    let readme = std::fs::read_to_string(data.join("README.md"))
+        .unwrap_or_else(|e| panic!("cannot read {}/README.md: {e}", data.display()));
+    let section = readme
+        .split("## Files")
+        .nth(1)
+        .and_then(|rest| rest.split("\n## ").next())
+        .unwrap_or_else(|| panic!("no `## Files` section in the data README"));
+    let number = |s: &str| -> i64 {
+        s.replace(',', "")
+            .parse()
+            .unwrap_or_else(|e| panic!("bad number {s:?} in the data README: {e}"))
+    };
+    section
+        .lines()
+        .filter(|line| line.starts_with("| `"))
+        .map(|line| {
+            let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
+            assert_eq!(cells.len(), 12, "unexpected row in the data README: {line}");
+            let count = |s: &str| usize::try_from(number(s)).unwrap_or(usize::MAX);
+            ExpectedStats {
+                file: cells[0].trim_matches('`').to_owned(),
+                vertex_records: count(cells[3]),
+                triangles: count(cells[4]),
+                closed: cells[5] == "yes",
+                manifold: cells[6] == "yes",
+                components: count(cells[7]),
+                boundary_edges: count(cells[8]),
+                genus: (cells[9] != "n/a").then(|| number(cells[9])),
+                euler_characteristic: number(cells[10]),
+                bbox_diagonal: cells[11]
+                    .replace(',', "")
+                    .parse()
+                    .unwrap_or_else(|e| panic!("bad diagonal in {line}: {e}")),
+            }
+        })
+        .collect()
 }

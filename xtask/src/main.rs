@@ -109,10 +109,7 @@ fn ci() -> Result<()> {
     )?;
     test()?;
     charts(true)?;
-    eprintln!(
-        "ci passed in {:.0} s",
-        started.elapsed().as_secs_f64()
-    );
+    eprintln!("ci passed in {:.0} s", started.elapsed().as_secs_f64());
     Ok(())
 }
 

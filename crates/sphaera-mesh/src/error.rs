@@ -76,18 +76,13 @@ pub enum MeshError {
         #[source]
         source: std::io::Error,
     },
-
     // (io/: add file-format variants here)
-
-
 
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
 
     // (topology/: add variants here)
-
-
 
     // ----------------------------------------------------------------------------------
     // Geometry, inside/outside, sampling and shapes.
