@@ -81,9 +81,39 @@ pub enum MeshError {
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
-
-    // (topology/: add variants here)
-
+    /// A half-edge, vertex or face handle does not exist in this half-edge mesh, or
+    /// refers to an element that a collapse deleted.
+    #[error("{kind} {index} does not exist or was deleted")]
+    InvalidHandle {
+        /// What the handle names: `"half-edge"`, `"vertex"` or `"face"`.
+        kind: &'static str,
+        /// The handle's index.
+        index: u32,
+    },
+    /// An edge collapse was refused because it would break the mesh (see
+    /// [`crate::topology::CollapseRefusal`] for each reason and what to do).
+    #[error("cannot collapse half-edge {halfedge} (vertex {from} into vertex {to}): {reason}")]
+    CollapseRefused {
+        /// The half-edge that was to be collapsed.
+        halfedge: u32,
+        /// Its origin, the vertex that would be removed.
+        from: u32,
+        /// Its target, the vertex that would be kept.
+        to: u32,
+        /// Why the collapse is not allowed.
+        reason: crate::topology::CollapseRefusal,
+    },
+    /// A vertex split was given a collapse record that does not match the mesh: splits
+    /// must undo collapses in exactly the reverse order, on the same mesh.
+    #[error(
+        "the collapse record of vertex {removed} into vertex {kept} does not match the mesh (splits must undo collapses in reverse order)"
+    )]
+    SplitMismatch {
+        /// The vertex the record's collapse removed.
+        removed: u32,
+        /// The vertex the record's collapse kept.
+        kept: u32,
+    },
     // ----------------------------------------------------------------------------------
     // Geometry, inside/outside, sampling and shapes.
     // ----------------------------------------------------------------------------------

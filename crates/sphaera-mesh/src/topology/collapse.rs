@@ -1,0 +1,430 @@
+//! Edge collapse and its exact inverse, the vertex split.
+
+use std::fmt;
+
+use glam::DVec3;
+use smallvec::SmallVec;
+
+use super::halfedge::{
+    DELETED, HalfEdgeId, HalfEdgeMesh, LOCKED, NON_MANIFOLD, NONE, VertexId, next_raw, prev_raw,
+};
+use crate::MeshError;
+
+/// Why [`HalfEdgeMesh::check_collapse`] refuses a collapse.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::topology::CollapseRefusal;
+///
+/// assert_eq!(
+///     CollapseRefusal::LinkCondition.to_string(),
+///     "the endpoints share a neighbour that is not opposite the edge (the collapse would pinch the surface)"
+/// );
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum CollapseRefusal {
+    /// An endpoint is a non-manifold vertex (or a copy of one, or lies on an unpaired
+    /// edge). Repair the mesh first, or accept that these vertices stay.
+    NonManifold,
+    /// An endpoint is locked ([`HalfEdgeMesh::set_locked`]).
+    Locked,
+    /// The link condition fails: the endpoints have a common neighbour other than the
+    /// vertices opposite the edge, so the collapse would glue two sheets together.
+    LinkCondition,
+    /// The edge is interior but both endpoints are on the boundary: the collapse would
+    /// pinch the surface into a non-manifold vertex.
+    BoundaryBridge,
+    /// The collapse would leave a vertex with too few neighbours (fewer than three inside,
+    /// two on the boundary): the component is a tetrahedron, a lone triangle, or the two
+    /// faces of the edge share all three vertices.
+    TooFewNeighbours,
+}
+
+impl fmt::Display for CollapseRefusal {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::NonManifold => "an endpoint is a non-manifold vertex",
+            Self::Locked => "an endpoint is locked",
+            Self::LinkCondition => {
+                "the endpoints share a neighbour that is not opposite the edge (the collapse would pinch the surface)"
+            }
+            Self::BoundaryBridge => {
+                "the edge is interior but both endpoints are on the boundary (the collapse would pinch the surface)"
+            }
+            Self::TooFewNeighbours => {
+                "a vertex would be left with too few neighbours (tetrahedron, lone triangle or doubled face)"
+            }
+        })
+    }
+}
+
+/// Everything [`HalfEdgeMesh::collapse_edge`] changed, so that
+/// [`HalfEdgeMesh::split_vertex`] can undo it exactly (same handles, same links): the
+/// vertex split of a progressive mesh.
+///
+/// # Examples
+///
+/// See [`HalfEdgeMesh::collapse_edge`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct CollapseRecord {
+    halfedge: u32,
+    removed: u32,
+    kept: u32,
+    old_position: DVec3,
+    new_position: DVec3,
+    /// Faces deleted: the face of the half-edge and (interior edge) of its twin.
+    faces: [u32; 2],
+    /// Half-edges whose twin changed, with their old twin.
+    twins: SmallVec<[(u32, u32); 4]>,
+    /// Half-edges whose origin moved from `removed` to `kept`.
+    moved: SmallVec<[u32; 8]>,
+    /// Vertices whose anchor changed, with their old anchor.
+    anchors: SmallVec<[(u32, u32); 3]>,
+}
+
+impl CollapseRecord {
+    /// The collapsed half-edge.
+    pub fn halfedge(&self) -> HalfEdgeId {
+        HalfEdgeId(self.halfedge)
+    }
+
+    /// The vertex the collapse removed (the half-edge's origin); a split restores it.
+    pub fn removed_vertex(&self) -> VertexId {
+        VertexId(self.removed)
+    }
+
+    /// The vertex the collapse kept and moved (the half-edge's target).
+    pub fn kept_vertex(&self) -> VertexId {
+        VertexId(self.kept)
+    }
+
+    /// The kept vertex's position before the collapse.
+    pub fn old_position(&self) -> DVec3 {
+        self.old_position
+    }
+
+    /// The kept vertex's position after the collapse.
+    pub fn new_position(&self) -> DVec3 {
+        self.new_position
+    }
+
+    /// The faces the collapse deleted (one for a boundary edge, two otherwise).
+    pub fn removed_faces(&self) -> impl Iterator<Item = super::FaceId> + '_ {
+        self.faces
+            .iter()
+            .filter(|&&f| f != NONE)
+            .map(|&f| super::FaceId(f))
+    }
+}
+
+impl HalfEdgeMesh {
+    /// Whether [`HalfEdgeMesh::collapse_edge`] would accept `h`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_mesh::{TriMesh, topology::{HalfEdgeMesh, HalfEdgeId}};
+    ///
+    /// // No edge of a tetrahedron can be collapsed.
+    /// let mesh = TriMesh::new(
+    ///     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+    ///     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    /// )?;
+    /// let he = HalfEdgeMesh::from_trimesh(&mesh);
+    /// assert!((0..12).all(|h| !he.can_collapse(HalfEdgeId(h))));
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    pub fn can_collapse(&self, h: HalfEdgeId) -> bool {
+        self.check_collapse(h).is_ok()
+    }
+
+    /// Checks that collapsing `h` (its origin into its target) keeps the mesh a manifold
+    /// of the same topology.
+    ///
+    /// The checks, in order: `h` is live; neither endpoint is non-manifold or locked;
+    /// for an interior edge, not both endpoints are on the boundary; the link condition
+    /// (the common neighbours of the endpoints are exactly the vertices opposite the
+    /// edge); and every vertex keeps at least three neighbours (two on the boundary),
+    /// which refuses the tetrahedron, a lone triangle and a doubled face.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::InvalidHandle`] if `h` is out of range or deleted, and
+    /// [`MeshError::CollapseRefused`] with the [`CollapseRefusal`] otherwise.
+    ///
+    /// # Performance
+    ///
+    /// `O(d²)` in the endpoint valences `d` (small lists, no allocation below 16).
+    pub fn check_collapse(&self, h: HalfEdgeId) -> Result<(), MeshError> {
+        let h = h.0;
+        if h as usize >= self.halfedges.len() || self.faces[(h / 3) as usize].deleted {
+            return Err(MeshError::InvalidHandle {
+                kind: "half-edge",
+                index: h,
+            });
+        }
+        let u = self.halfedges[h as usize].origin;
+        let v = self.halfedges[next_raw(h) as usize].origin;
+        let refuse = |reason| MeshError::CollapseRefused {
+            halfedge: h,
+            from: u,
+            to: v,
+            reason,
+        };
+        let (fu, fv) = (
+            self.vertices[u as usize].flags,
+            self.vertices[v as usize].flags,
+        );
+        if (fu | fv) & NON_MANIFOLD != 0 {
+            return Err(refuse(CollapseRefusal::NonManifold));
+        }
+        if (fu | fv) & LOCKED != 0 {
+            return Err(refuse(CollapseRefusal::Locked));
+        }
+        let twin = self.twin_raw(h);
+        let u_boundary = self.is_boundary_vertex(VertexId(u));
+        let v_boundary = self.is_boundary_vertex(VertexId(v));
+        if twin.is_some() && u_boundary && v_boundary {
+            return Err(refuse(CollapseRefusal::BoundaryBridge));
+        }
+        let w0 = self.halfedges[prev_raw(h) as usize].origin;
+        let w1 = twin.map(|t| self.halfedges[prev_raw(t) as usize].origin);
+        if w1 == Some(w0) {
+            return Err(refuse(CollapseRefusal::TooFewNeighbours));
+        }
+        let ring_u: SmallVec<[u32; 16]> = self.neighbors(VertexId(u)).map(|x| x.0).collect();
+        let ring_v: SmallVec<[u32; 16]> = self.neighbors(VertexId(v)).map(|x| x.0).collect();
+        let mut common = 0;
+        for &x in &ring_u {
+            if ring_v.contains(&x) {
+                if x != w0 && Some(x) != w1 {
+                    return Err(refuse(CollapseRefusal::LinkCondition));
+                }
+                common += 1;
+            }
+        }
+        // Neighbours of the merged vertex: the union minus u and v themselves.
+        let merged = ring_u.len() + ring_v.len() - common - 2;
+        let minimum = |boundary: bool| if boundary { 2 } else { 3 };
+        if merged < minimum(u_boundary || v_boundary) {
+            return Err(refuse(CollapseRefusal::TooFewNeighbours));
+        }
+        for w in std::iter::once(w0).chain(w1) {
+            let valence = self.neighbors(VertexId(w)).count();
+            if valence.saturating_sub(1) < minimum(self.is_boundary_vertex(VertexId(w))) {
+                return Err(refuse(CollapseRefusal::TooFewNeighbours));
+            }
+        }
+        Ok(())
+    }
+
+    /// Collapses half-edge `h`: its origin `u` is removed, its target `v` moves to
+    /// `new_position`, and the one or two faces on the edge are deleted (tombstoned:
+    /// handles of everything else stay valid). Pass `position(target(h))` for a half-edge
+    /// collapse, or an optimal position.
+    ///
+    /// Only topology is checked ([`HalfEdgeMesh::check_collapse`]); geometric checks
+    /// (normal flips, error bounds) belong to the caller.
+    ///
+    /// # Errors
+    ///
+    /// Those of [`HalfEdgeMesh::check_collapse`], and [`MeshError::InvalidParameter`] if
+    /// `new_position` is not finite. The mesh is unchanged on error.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_mesh::{TriMesh, topology::{self, HalfEdgeMesh, HalfEdgeId}};
+    ///
+    /// // An octahedron: collapse one edge, check the result, undo it.
+    /// let p = vec![DVec3::X, -DVec3::X, DVec3::Y, -DVec3::Y, DVec3::Z, -DVec3::Z];
+    /// let t = vec![[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
+    /// let mesh = TriMesh::new(p, t)?;
+    /// let mut he = HalfEdgeMesh::from_trimesh(&mesh);
+    /// let before = he.clone();
+    /// let h = HalfEdgeId(0); // vertex 0 into vertex 2
+    /// let record = he.collapse_edge(h, he.position(he.target(h)))?;
+    /// assert_eq!((he.live_vertex_count(), he.live_face_count()), (5, 6));
+    /// let live = he.to_trimesh();
+    /// let report = topology::analyze(&live.mesh);
+    /// assert!(report.is_closed && report.is_manifold);
+    /// assert_eq!(report.euler_characteristic, 2);
+    ///
+    /// he.split_vertex(&record)?;
+    /// assert_eq!(he, before);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    pub fn collapse_edge(
+        &mut self,
+        h: HalfEdgeId,
+        new_position: DVec3,
+    ) -> Result<CollapseRecord, MeshError> {
+        self.check_collapse(h)?;
+        if !new_position.is_finite() {
+            let value = [new_position.x, new_position.y, new_position.z]
+                .into_iter()
+                .find(|c| !c.is_finite())
+                .unwrap_or(f64::NAN);
+            return Err(MeshError::InvalidParameter {
+                name: "new_position",
+                value,
+                requirement: "finite",
+            });
+        }
+        let h = h.0;
+        let (n0, p0) = (next_raw(h), prev_raw(h));
+        let u = self.halfedges[h as usize].origin;
+        let v = self.halfedges[n0 as usize].origin;
+        let w0 = self.halfedges[p0 as usize].origin;
+        let twin = self.twin_raw(h);
+        let f0 = h / 3;
+        let f1 = twin.map_or(NONE, |t| t / 3);
+        let w1 = twin.map(|t| self.halfedges[prev_raw(t) as usize].origin);
+
+        // Rings before the change: the moved half-edges and the anchor seeds.
+        let moved: SmallVec<[u32; 8]> = self
+            .outgoing(VertexId(u))
+            .map(|x| x.0)
+            .filter(|&x| x / 3 != f0 && x / 3 != f1)
+            .collect();
+        let mut affected: SmallVec<[(u32, SmallVec<[u32; 16]>); 3]> = SmallVec::new();
+        for x in std::iter::once(v).chain(std::iter::once(w0)).chain(w1) {
+            let ring = self
+                .outgoing(VertexId(x))
+                .map(|g| g.0)
+                .filter(|&g| g / 3 != f0 && g / 3 != f1)
+                .collect();
+            affected.push((x, ring));
+        }
+
+        // Glue the outer edges of each deleted face.
+        let mut twins: SmallVec<[(u32, u32); 4]> = SmallVec::new();
+        let mut glue = |mesh: &mut Self, a: u32, b: u32| {
+            let (ta, tb) = (mesh.twin_raw(a), mesh.twin_raw(b));
+            for (x, other) in [(ta, tb), (tb, ta)] {
+                if let Some(x) = x {
+                    twins.push((x, mesh.halfedges[x as usize].twin));
+                    mesh.halfedges[x as usize].twin = other.unwrap_or(NONE);
+                }
+            }
+        };
+        glue(self, n0, p0);
+        if let Some(t) = twin {
+            glue(self, next_raw(t), prev_raw(t));
+        }
+        for &x in &moved {
+            self.halfedges[x as usize].origin = v;
+        }
+        self.faces[f0 as usize].deleted = true;
+        if f1 != NONE {
+            self.faces[f1 as usize].deleted = true;
+        }
+        self.live_face_count -= if f1 == NONE { 1 } else { 2 };
+        self.vertices[u as usize].flags |= DELETED;
+        self.live_vertex_count -= 1;
+        let old_position = self.vertices[v as usize].position;
+        self.vertices[v as usize].position = new_position;
+
+        // Moved half-edges now leave v too, so they seed v's new anchor as well.
+        let mut anchors: SmallVec<[(u32, u32); 3]> = SmallVec::new();
+        for (x, ring) in &affected {
+            let seed = ring
+                .first()
+                .copied()
+                .or_else(|| (*x == v).then(|| moved.first().copied()).flatten());
+            let old = self.vertices[*x as usize].halfedge;
+            anchors.push((*x, old));
+            // The checks guarantee every affected vertex keeps a live face (invariant);
+            // without a seed the vertex would become isolated.
+            self.vertices[*x as usize].halfedge = seed.map_or(NONE, |s| self.fan_anchor(s));
+        }
+
+        Ok(CollapseRecord {
+            halfedge: h,
+            removed: u,
+            kept: v,
+            old_position,
+            new_position,
+            faces: [f0, f1],
+            twins,
+            moved,
+            anchors,
+        })
+    }
+
+    /// Undoes the collapse `record` describes, restoring the removed vertex, the two
+    /// faces, every link and the kept vertex's position exactly as they were (the mesh
+    /// compares equal to its state before the collapse).
+    ///
+    /// Splits must undo collapses in reverse order (last collapsed, first split), as a
+    /// progressive mesh replays them.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::SplitMismatch`] if the record does not fit the mesh's current state
+    /// (a record from another mesh, a split out of order, or a record applied twice); the
+    /// mesh is unchanged on error.
+    ///
+    /// # Examples
+    ///
+    /// See [`HalfEdgeMesh::collapse_edge`].
+    pub fn split_vertex(&mut self, record: &CollapseRecord) -> Result<(), MeshError> {
+        let mismatch = MeshError::SplitMismatch {
+            removed: record.removed,
+            kept: record.kept,
+        };
+        if !self.split_fits(record) {
+            return Err(mismatch);
+        }
+        for &(x, old) in record.anchors.iter().rev() {
+            self.vertices[x as usize].halfedge = old;
+        }
+        self.vertices[record.kept as usize].position = record.old_position;
+        self.vertices[record.removed as usize].flags &= !DELETED;
+        self.live_vertex_count += 1;
+        for &f in record.faces.iter().filter(|&&f| f != NONE) {
+            self.faces[f as usize].deleted = false;
+            self.live_face_count += 1;
+        }
+        for &x in &record.moved {
+            self.halfedges[x as usize].origin = record.removed;
+        }
+        for &(x, old) in record.twins.iter().rev() {
+            self.halfedges[x as usize].twin = old;
+        }
+        Ok(())
+    }
+
+    /// Whether `record` can be undone on the current state (all indices in range, the
+    /// removed vertex and faces deleted, the moved half-edges leaving the kept vertex).
+    fn split_fits(&self, record: &CollapseRecord) -> bool {
+        let vertex_ok = |x: u32| (x as usize) < self.vertices.len();
+        let halfedge_ok = |x: u32| (x as usize) < self.halfedges.len();
+        let live = |x: u32| vertex_ok(x) && self.vertices[x as usize].flags & DELETED == 0;
+        vertex_ok(record.removed)
+            && self.vertices[record.removed as usize].flags & DELETED != 0
+            && live(record.kept)
+            && record.faces[0] != NONE
+            && record
+                .faces
+                .iter()
+                .filter(|&&f| f != NONE)
+                .all(|&f| (f as usize) < self.faces.len() && self.faces[f as usize].deleted)
+            && record.moved.iter().all(|&x| {
+                halfedge_ok(x)
+                    && !self.faces[(x / 3) as usize].deleted
+                    && self.halfedges[x as usize].origin == record.kept
+            })
+            && record.twins.iter().all(|&(x, old)| {
+                halfedge_ok(x) && (old >= super::halfedge::UNPAIRED || halfedge_ok(old))
+            })
+            && record
+                .anchors
+                .iter()
+                .all(|&(x, old)| vertex_ok(x) && (old == NONE || halfedge_ok(old)))
+    }
+}
