@@ -79,19 +79,41 @@ pub enum MeshError {
 
     // (io/: add file-format variants here)
 
-
-
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
 
     // (topology/: add variants here)
 
-
-
     // ----------------------------------------------------------------------------------
     // Geometry, inside/outside, sampling and shapes.
     // ----------------------------------------------------------------------------------
 
     // (geometry/, winding/, sampling.rs, shapes/: add variants here)
+    /// A geometric construction got no input items (points or balls).
+    #[error("{operation} needs at least one input item, got none")]
+    EmptyInput {
+        /// The operation, e.g. `"minimum enclosing ball of points"`.
+        operation: &'static str,
+    },
+    /// An input point or ball centre has a NaN or infinite coordinate.
+    #[error("{operation}: input item {index} has a non-finite coordinate")]
+    NonFiniteInput {
+        /// The operation, e.g. `"minimum enclosing ball of points"`.
+        operation: &'static str,
+        /// Index of the offending item in the input slice.
+        index: usize,
+    },
+    /// An input ball has a negative, NaN or infinite radius.
+    #[error(
+        "{operation}: ball {index} has radius {radius}, but it must be finite and non-negative"
+    )]
+    InvalidRadius {
+        /// The operation, e.g. `"minimum enclosing ball of balls"`.
+        operation: &'static str,
+        /// Index of the offending ball in the input slice.
+        index: usize,
+        /// The radius supplied.
+        radius: f64,
+    },
 }
