@@ -63,7 +63,7 @@ pub fn circumball_of_triangle(a: DVec3, b: DVec3, c: DVec3) -> Option<Sphere> {
     let w = u.cross(v);
     let w_squared = w.length_squared();
     let tolerance = DEGENERACY_TOLERANCE * u.length() * v.length();
-    if !(w_squared > tolerance * tolerance) {
+    if w_squared.is_nan() || w_squared <= tolerance * tolerance {
         return None;
     }
     let offset =
@@ -101,7 +101,7 @@ pub fn circumsphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Option<Sphere> {
     let uv = u.cross(v);
     let triple = u.dot(vw);
     let tolerance = DEGENERACY_TOLERANCE * u.length() * v.length() * w.length();
-    if !(triple.abs() > tolerance) {
+    if triple.is_nan() || triple.abs() <= tolerance {
         return None;
     }
     let offset = (u.length_squared() * vw + v.length_squared() * wu + w.length_squared() * uv)

@@ -127,7 +127,7 @@ pub fn minimum_enclosing_ball_with_support(points: &[DVec3]) -> Result<Enclosing
         else {
             break;
         };
-        if !(next_radius_squared > radius_squared) {
+        if next_radius_squared.is_nan() || next_radius_squared <= radius_squared {
             // No progress: rounding noise; the final pass makes the ball contain everything.
             break;
         }
@@ -271,11 +271,12 @@ mod tests {
             if m[col][col].abs() <= 1e-10 * scale {
                 return None;
             }
-            for row in 0..k {
-                if row != col {
-                    let f = m[row][col] / m[col][col];
-                    for c in col..=k {
-                        m[row][c] -= f * m[col][c];
+            let pivot_row = m[col].clone();
+            for (r, row) in m.iter_mut().enumerate() {
+                if r != col {
+                    let f = row[col] / pivot_row[col];
+                    for (entry, p) in row.iter_mut().zip(&pivot_row).skip(col) {
+                        *entry -= f * p;
                     }
                 }
             }
