@@ -81,42 +81,38 @@ pub enum MeshError {
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
-    /// A half-edge, vertex or face handle does not exist in this half-edge mesh, or
-    /// refers to an element that a collapse deleted.
-    #[error("{kind} {index} does not exist or was deleted")]
-    InvalidHandle {
-        /// What the handle names: `"half-edge"`, `"vertex"` or `"face"`.
-        kind: &'static str,
-        /// The handle's index.
-        index: u32,
-    },
-    /// An edge collapse was refused because it would break the mesh (see
-    /// [`crate::topology::CollapseRefusal`] for each reason and what to do).
-    #[error("cannot collapse half-edge {halfedge} (vertex {from} into vertex {to}): {reason}")]
-    CollapseRefused {
-        /// The half-edge that was to be collapsed.
-        halfedge: u32,
-        /// Its origin, the vertex that would be removed.
-        from: u32,
-        /// Its target, the vertex that would be kept.
-        to: u32,
-        /// Why the collapse is not allowed.
-        reason: crate::topology::CollapseRefusal,
-    },
-    /// A vertex split was given a collapse record that does not match the mesh: splits
-    /// must undo collapses in exactly the reverse order, on the same mesh.
-    #[error(
-        "the collapse record of vertex {removed} into vertex {kept} does not match the mesh (splits must undo collapses in reverse order)"
-    )]
-    SplitMismatch {
-        /// The vertex the record's collapse removed.
-        removed: u32,
-        /// The vertex the record's collapse kept.
-        kept: u32,
-    },
+
+    // (topology/: add variants here)
+
     // ----------------------------------------------------------------------------------
     // Geometry, inside/outside, sampling and shapes.
     // ----------------------------------------------------------------------------------
 
     // (geometry/, winding/, sampling.rs, shapes/: add variants here)
+    /// A geometric construction got no input items (points or balls).
+    #[error("{operation} needs at least one input item, got none")]
+    EmptyInput {
+        /// The operation, e.g. `"minimum enclosing ball of points"`.
+        operation: &'static str,
+    },
+    /// An input point or ball centre has a NaN or infinite coordinate.
+    #[error("{operation}: input item {index} has a non-finite coordinate")]
+    NonFiniteInput {
+        /// The operation, e.g. `"minimum enclosing ball of points"`.
+        operation: &'static str,
+        /// Index of the offending item in the input slice.
+        index: usize,
+    },
+    /// An input ball has a negative, NaN or infinite radius.
+    #[error(
+        "{operation}: ball {index} has radius {radius}, but it must be finite and non-negative"
+    )]
+    InvalidRadius {
+        /// The operation, e.g. `"minimum enclosing ball of balls"`.
+        operation: &'static str,
+        /// Index of the offending ball in the input slice.
+        index: usize,
+        /// The radius supplied.
+        radius: f64,
+    },
 }
