@@ -79,19 +79,44 @@ pub enum MeshError {
 
     // (io/: add file-format variants here)
 
-
-
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
 
     // (topology/: add variants here)
 
-
-
     // ----------------------------------------------------------------------------------
     // Geometry, inside/outside, sampling and shapes.
     // ----------------------------------------------------------------------------------
 
     // (geometry/, winding/, sampling.rs, shapes/: add variants here)
+    // winding
+    /// The mesh has more triangles than a `u32` index can address.
+    #[error("the mesh has {count} triangles, more than a u32 index can address")]
+    TooManyTriangles {
+        /// Number of triangles supplied.
+        count: usize,
+    },
+    /// Inside/outside is not meaningful: the mesh does not enclose a volume (for example a
+    /// lone open sheet), as measured by `winding::WindingNumber::check_solid`.
+    #[error(
+        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding}, below {threshold} (is it an open sheet?)"
+    )]
+    NotSolid {
+        /// The largest `|w|` found at the probe points next to the surface (about ½ for a
+        /// sheet, 1 for a solid).
+        max_abs_winding: f64,
+        /// The smallest value accepted.
+        threshold: f64,
+    },
+    /// The mesh encloses a volume but its triangles face inward, so the winding number is
+    /// −1 inside and every point reads as outside.
+    #[error(
+        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding} instead of about 1 (flip the triangles)"
+    )]
+    InwardOrientation {
+        /// The median winding number just behind the probe triangles (about 0 when every
+        /// triangle faces inward).
+        median_inner_winding: f64,
+    },
 }
