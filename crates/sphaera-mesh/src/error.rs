@@ -89,30 +89,33 @@ pub enum MeshError {
     // ----------------------------------------------------------------------------------
 
     // (geometry/, winding/, sampling.rs, shapes/: add variants here)
-    /// A geometric construction got no input items (points or balls).
-    #[error("{operation} needs at least one input item, got none")]
-    EmptyInput {
-        /// The operation, e.g. `"minimum enclosing ball of points"`.
-        operation: &'static str,
+    // winding
+    /// The mesh has more triangles than a `u32` index can address.
+    #[error("the mesh has {count} triangles, more than a u32 index can address")]
+    TooManyTriangles {
+        /// Number of triangles supplied.
+        count: usize,
     },
-    /// An input point or ball centre has a NaN or infinite coordinate.
-    #[error("{operation}: input item {index} has a non-finite coordinate")]
-    NonFiniteInput {
-        /// The operation, e.g. `"minimum enclosing ball of points"`.
-        operation: &'static str,
-        /// Index of the offending item in the input slice.
-        index: usize,
-    },
-    /// An input ball has a negative, NaN or infinite radius.
+    /// Inside/outside is not meaningful: the mesh does not enclose a volume (for example a
+    /// lone open sheet), as measured by `winding::WindingNumber::check_solid`.
     #[error(
-        "{operation}: ball {index} has radius {radius}, but it must be finite and non-negative"
+        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding}, below {threshold} (is it an open sheet?)"
     )]
-    InvalidRadius {
-        /// The operation, e.g. `"minimum enclosing ball of balls"`.
-        operation: &'static str,
-        /// Index of the offending ball in the input slice.
-        index: usize,
-        /// The radius supplied.
-        radius: f64,
+    NotSolid {
+        /// The largest `|w|` found at the probe points next to the surface (about ½ for a
+        /// sheet, 1 for a solid).
+        max_abs_winding: f64,
+        /// The smallest value accepted.
+        threshold: f64,
+    },
+    /// The mesh encloses a volume but its triangles face inward, so the winding number is
+    /// −1 inside and every point reads as outside.
+    #[error(
+        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding} instead of about 1 (flip the triangles)"
+    )]
+    InwardOrientation {
+        /// The median winding number just behind the probe triangles (about 0 when every
+        /// triangle faces inward).
+        median_inner_winding: f64,
     },
 }

@@ -1,0 +1,227 @@
+//! The bounding-volume hierarchy of [`WindingNumber`](super::WindingNumber): a binary tree
+//! over the triangles with, per node, the far-field expansion of its triangles' area-weighted
+//! normals.
+
+use glam::{DMat3, DVec3};
+
+use crate::TriMesh;
+
+/// Most triangles in a leaf.
+pub(crate) const LEAF_SIZE: usize = 8;
+
+/// One node of the tree. Nodes are stored depth-first: the left child of an inner node is
+/// the next node, the right child is at `first`.
+#[derive(Clone, Debug)]
+pub(crate) struct Node {
+    /// Expansion centre: the area-weighted mean of the triangle centroids (their plain mean
+    /// when the area is zero).
+    pub(crate) center: DVec3,
+    /// Largest distance from `center` to a corner of the node's triangles.
+    pub(crate) radius: f64,
+    /// Total area of the node's triangles.
+    pub(crate) area: f64,
+    /// `Σ area_t · n_t`: the dipole moment.
+    pub(crate) normal_sum: DVec3,
+    /// `Σ_t (centroid_t − center) ⊗ N_t` with `N_t = area_t · n_t` (entry `(j, k)` is
+    /// `d_j N_k`): the moment of the second-order term.
+    pub(crate) moment: DMat3,
+    /// `Q[i] = Σ_t N_t,i ∫_t (p − center)(p − center)ᵀ dA / area_t`: the moments of the
+    /// third-order term (each matrix symmetric).
+    pub(crate) quadratic_moment: [DMat3; 3],
+    /// `2 u + v` with `u_k = Σ_i Q[i]_(i,k)` and `v_i = trace Q[i]`: the contractions of
+    /// `quadratic_moment` the third-order term needs.
+    pub(crate) quadratic_contraction: DVec3,
+    /// Leaf: index of the first triangle in the reordered triangle array. Inner node: index
+    /// of the right child.
+    pub(crate) first: u32,
+    /// Leaf: number of triangles (at least one). Inner node: zero.
+    pub(crate) count: u32,
+}
+
+/// The tree and the triangle corners, reordered so that each leaf's triangles are
+/// contiguous.
+#[derive(Clone, Debug)]
+pub(crate) struct Tree {
+    pub(crate) nodes: Vec<Node>,
+    pub(crate) corners: Vec<[DVec3; 3]>,
+}
+
+/// Per-triangle data used during the build.
+struct Item {
+    centroid: DVec3,
+    /// `area · unit normal`, that is half the scaled normal.
+    area_normal: DVec3,
+    area: f64,
+    /// `∫_t (p − centroid)(p − centroid)ᵀ dA / area`, which is
+    /// `(1/12) Σ_corners (v − centroid)(v − centroid)ᵀ`.
+    covariance: DMat3,
+    corners: [DVec3; 3],
+}
+
+impl Tree {
+    /// Builds the tree. `mesh` must have at least one triangle and fewer than `u32::MAX`
+    /// (the caller checks both).
+    pub(crate) fn build(mesh: &TriMesh) -> Self {
+        let items: Vec<Item> = mesh
+            .triangle_iter()
+            .map(|t| {
+                let area_normal = 0.5 * t.scaled_normal();
+                let centroid = t.centroid();
+                let covariance = t
+                    .corners()
+                    .iter()
+                    .map(|&v| outer(v - centroid, v - centroid))
+                    .fold(DMat3::ZERO, |acc, m| acc + m)
+                    * (1.0 / 12.0);
+                Item {
+                    centroid,
+                    area_normal,
+                    area: area_normal.length(),
+                    covariance,
+                    corners: t.corners(),
+                }
+            })
+            .collect();
+        let mut order: Vec<u32> = (0..items.len())
+            .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
+            .collect();
+        let mut nodes = Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1);
+        build_node(&items, &mut order, 0, &mut nodes);
+        let corners = order.iter().map(|&i| items[i as usize].corners).collect();
+        Self { nodes, corners }
+    }
+}
+
+/// Builds the subtree over `order` (whose first element sits at `offset` in the final
+/// triangle order), appends its nodes depth-first, and returns nothing: the subtree's root
+/// is the first node appended.
+fn build_node(items: &[Item], order: &mut [u32], offset: usize, nodes: &mut Vec<Node>) {
+    let node_index = nodes.len();
+    nodes.push(expansion_of(items, order));
+    if order.len() <= LEAF_SIZE {
+        let node = &mut nodes[node_index];
+        node.first = u32::try_from(offset).unwrap_or(u32::MAX);
+        node.count = u32::try_from(order.len()).unwrap_or(u32::MAX);
+        return;
+    }
+    // Median split of the centroids along the longest axis of their bounding box; ties are
+    // broken by triangle index, so the build is deterministic.
+    let bounds = crate::Aabb::from_points(order.iter().map(|&i| items[i as usize].centroid));
+    let axis = bounds.longest_axis();
+    let mid = order.len() / 2;
+    order.select_nth_unstable_by(mid, |&a, &b| {
+        let (ca, cb) = (items[a as usize].centroid, items[b as usize].centroid);
+        ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
+    });
+    let (left, right) = order.split_at_mut(mid);
+    build_node(items, left, offset, nodes);
+    let right_index = nodes.len();
+    build_node(items, right, offset + mid, nodes);
+    let node = &mut nodes[node_index];
+    node.first = u32::try_from(right_index).unwrap_or(u32::MAX);
+    node.count = 0;
+}
+
+/// The expansion (centre, radius, moments) of the triangles in `order`.
+fn expansion_of(items: &[Item], order: &[u32]) -> Node {
+    let mut area = 0.0;
+    let mut weighted = DVec3::ZERO;
+    let mut plain = DVec3::ZERO;
+    let mut normal_sum = DVec3::ZERO;
+    for &i in order {
+        let item = &items[i as usize];
+        area += item.area;
+        weighted += item.area * item.centroid;
+        plain += item.centroid;
+        normal_sum += item.area_normal;
+    }
+    // `order` is never empty (the median split leaves at least LEAF_SIZE / 2 on each side).
+    let count = order.len().max(1) as f64;
+    let center = if area > 0.0 && (weighted / area).is_finite() {
+        weighted / area
+    } else {
+        plain / count
+    };
+    let mut moment = DMat3::ZERO;
+    let mut quadratic_moment = [DMat3::ZERO; 3];
+    let mut radius_squared: f64 = 0.0;
+    for &i in order {
+        let item = &items[i as usize];
+        let d = item.centroid - center;
+        let n = item.area_normal;
+        moment += outer(d, n);
+        let second = item.covariance + outer(d, d);
+        for (q, n_i) in quadratic_moment.iter_mut().zip(n.to_array()) {
+            *q += second * n_i;
+        }
+        for corner in item.corners {
+            radius_squared = radius_squared.max(corner.distance_squared(center));
+        }
+    }
+    let [q0, q1, q2] = quadratic_moment;
+    let u = DVec3::new(q0.x_axis.x, q0.y_axis.x, q0.z_axis.x)
+        + DVec3::new(q1.x_axis.y, q1.y_axis.y, q1.z_axis.y)
+        + DVec3::new(q2.x_axis.z, q2.y_axis.z, q2.z_axis.z);
+    let v = DVec3::new(trace(&q0), trace(&q1), trace(&q2));
+    Node {
+        center,
+        radius: radius_squared.sqrt(),
+        area,
+        normal_sum,
+        moment,
+        quadratic_moment,
+        quadratic_contraction: 2.0 * u + v,
+        first: 0,
+        count: 0,
+    }
+}
+
+/// The outer product `a bᵀ` (entry `(j, k)` is `a_j b_k`).
+fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
+/// The trace of `m`.
+pub(crate) fn trace(m: &DMat3) -> f64 {
+    m.x_axis.x + m.y_axis.y + m.z_axis.z
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::winding::test_meshes;
+
+    #[test]
+    fn leaves_partition_the_triangles_and_radii_cover_them() {
+        let mesh = test_meshes::torus(20, 10);
+        let tree = Tree::build(&mesh);
+        assert_eq!(tree.corners.len(), mesh.triangle_count());
+        let mut covered = vec![false; tree.corners.len()];
+        for (index, node) in tree.nodes.iter().enumerate() {
+            if node.count == 0 {
+                assert!(node.first as usize > index + 1);
+                continue;
+            }
+            assert!(node.count as usize <= LEAF_SIZE);
+            let range = node.first as usize..(node.first + node.count) as usize;
+            for t in range {
+                assert!(!covered[t]);
+                covered[t] = true;
+                for corner in tree.corners[t] {
+                    assert!(corner.distance(node.center) <= node.radius * (1.0 + 1e-12));
+                }
+            }
+        }
+        assert!(covered.iter().all(|&c| c));
+        // The root's dipole moment of a closed surface vanishes.
+        assert!(tree.nodes[0].normal_sum.length() < 1e-12);
+    }
+
+    #[test]
+    fn build_is_deterministic() {
+        let mesh = test_meshes::uv_sphere(12, 24);
+        let (a, b) = (Tree::build(&mesh), Tree::build(&mesh));
+        assert_eq!(a.corners, b.corners);
+        assert_eq!(a.nodes.len(), b.nodes.len());
+    }
+}
