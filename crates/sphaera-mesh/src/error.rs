@@ -79,19 +79,37 @@ pub enum MeshError {
 
     // (io/: add file-format variants here)
 
-
-
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
 
     // (topology/: add variants here)
 
-
-
     // ----------------------------------------------------------------------------------
     // Geometry, inside/outside, sampling and shapes.
     // ----------------------------------------------------------------------------------
 
     // (geometry/, winding/, sampling.rs, shapes/: add variants here)
+
+    // sampling and shapes
+    /// A procedural shape's parameters ask for more vertices than the shape builders allow.
+    #[error(
+        "the shape `{shape}` would have about {vertices} vertices, more than the limit of {limit}; lower the resolution or make the proportions less extreme"
+    )]
+    ShapeTooLarge {
+        /// The shape's name, e.g. `"torus"`.
+        shape: &'static str,
+        /// The estimated number of vertices.
+        vertices: f64,
+        /// The largest number of vertices a shape builder produces.
+        limit: usize,
+    },
+    /// The triangles of a mesh to be sampled have zero total area.
+    #[error(
+        "the mesh's {triangle_count} triangles have zero total area, so it has no surface to sample"
+    )]
+    ZeroSurfaceArea {
+        /// Number of triangles in the mesh.
+        triangle_count: usize,
+    },
 }
