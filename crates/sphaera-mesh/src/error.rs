@@ -89,33 +89,26 @@ pub enum MeshError {
     // ----------------------------------------------------------------------------------
 
     // (geometry/, winding/, sampling.rs, shapes/: add variants here)
-    // winding
-    /// The mesh has more triangles than a `u32` index can address.
-    #[error("the mesh has {count} triangles, more than a u32 index can address")]
-    TooManyTriangles {
-        /// Number of triangles supplied.
-        count: usize,
-    },
-    /// Inside/outside is not meaningful: the mesh does not enclose a volume (for example a
-    /// lone open sheet), as measured by `winding::WindingNumber::check_solid`.
+
+    // sampling and shapes
+    /// A procedural shape's parameters ask for more vertices than the shape builders allow.
     #[error(
-        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding}, below {threshold} (is it an open sheet?)"
+        "the shape `{shape}` would have about {vertices} vertices, more than the limit of {limit}; lower the resolution or make the proportions less extreme"
     )]
-    NotSolid {
-        /// The largest `|w|` found at the probe points next to the surface (about ½ for a
-        /// sheet, 1 for a solid).
-        max_abs_winding: f64,
-        /// The smallest value accepted.
-        threshold: f64,
+    ShapeTooLarge {
+        /// The shape's name, e.g. `"torus"`.
+        shape: &'static str,
+        /// The estimated number of vertices.
+        vertices: f64,
+        /// The largest number of vertices a shape builder produces.
+        limit: usize,
     },
-    /// The mesh encloses a volume but its triangles face inward, so the winding number is
-    /// −1 inside and every point reads as outside.
+    /// The triangles of a mesh to be sampled have zero total area.
     #[error(
-        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding} instead of about 1 (flip the triangles)"
+        "the mesh's {triangle_count} triangles have zero total area, so it has no surface to sample"
     )]
-    InwardOrientation {
-        /// The median winding number just behind the probe triangles (about 0 when every
-        /// triangle faces inward).
-        median_inner_winding: f64,
+    ZeroSurfaceArea {
+        /// Number of triangles in the mesh.
+        triangle_count: usize,
     },
 }
