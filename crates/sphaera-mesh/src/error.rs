@@ -81,16 +81,105 @@ pub enum MeshError {
     // ----------------------------------------------------------------------------------
     // Topology (topology/).
     // ----------------------------------------------------------------------------------
-
-    // (topology/: add variants here)
+    /// A half-edge, vertex or face handle does not exist in this half-edge mesh, or
+    /// refers to an element that a collapse deleted.
+    #[error("{kind} {index} does not exist or was deleted")]
+    InvalidHandle {
+        /// What the handle names: `"half-edge"`, `"vertex"` or `"face"`.
+        kind: &'static str,
+        /// The handle's index.
+        index: u32,
+    },
+    /// An edge collapse was refused because it would break the mesh (see
+    /// [`crate::topology::CollapseRefusal`] for each reason and what to do).
+    #[error("cannot collapse half-edge {halfedge} (vertex {from} into vertex {to}): {reason}")]
+    CollapseRefused {
+        /// The half-edge that was to be collapsed.
+        halfedge: u32,
+        /// Its origin, the vertex that would be removed.
+        from: u32,
+        /// Its target, the vertex that would be kept.
+        to: u32,
+        /// Why the collapse is not allowed.
+        reason: crate::topology::CollapseRefusal,
+    },
+    /// A vertex split was given a collapse record that does not match the mesh: splits
+    /// must undo collapses in exactly the reverse order, on the same mesh.
+    #[error(
+        "the collapse record of vertex {removed} into vertex {kept} does not match the mesh (splits must undo collapses in reverse order)"
+    )]
+    SplitMismatch {
+        /// The vertex the record's collapse removed.
+        removed: u32,
+        /// The vertex the record's collapse kept.
+        kept: u32,
+    },
 
     // ----------------------------------------------------------------------------------
-    // Geometry, inside/outside, sampling and shapes.
+    // Geometry (geometry/).
     // ----------------------------------------------------------------------------------
+    /// A geometric construction got no input items (points or balls).
+    #[error("{operation} needs at least one input item, got none")]
+    EmptyInput {
+        /// The operation, e.g. `"minimum enclosing ball of points"`.
+        operation: &'static str,
+    },
+    /// An input point or ball centre has a NaN or infinite coordinate.
+    #[error("{operation}: input item {index} has a non-finite coordinate")]
+    NonFiniteInput {
+        /// The operation, e.g. `"minimum enclosing ball of points"`.
+        operation: &'static str,
+        /// Index of the offending item in the input slice.
+        index: usize,
+    },
+    /// An input ball has a negative, NaN or infinite radius.
+    #[error(
+        "{operation}: ball {index} has radius {radius}, but it must be finite and non-negative"
+    )]
+    InvalidRadius {
+        /// The operation, e.g. `"minimum enclosing ball of balls"`.
+        operation: &'static str,
+        /// Index of the offending ball in the input slice.
+        index: usize,
+        /// The radius supplied.
+        radius: f64,
+    },
 
-    // (geometry/, winding/, sampling.rs, shapes/: add variants here)
+    // ----------------------------------------------------------------------------------
+    // Inside/outside (winding/).
+    // ----------------------------------------------------------------------------------
+    /// The mesh has more triangles than a `u32` index can address.
+    #[error("the mesh has {count} triangles, more than a u32 index can address")]
+    TooManyTriangles {
+        /// Number of triangles supplied.
+        count: usize,
+    },
+    /// Inside/outside is not meaningful: the mesh does not enclose a volume (for example a
+    /// lone open sheet), as measured by `winding::WindingNumber::check_solid`.
+    #[error(
+        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding}, below {threshold} (is it an open sheet?)"
+    )]
+    NotSolid {
+        /// The largest `|w|` found at the probe points next to the surface (about ½ for a
+        /// sheet, 1 for a solid).
+        max_abs_winding: f64,
+        /// The smallest value accepted.
+        threshold: f64,
+    },
+    /// The mesh encloses a volume but its triangles face inward, so the winding number is
+    /// −1 inside and every point reads as outside.
+    #[error(
+        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding} instead of about 1 (flip the triangles)"
+    )]
+    InwardOrientation {
+        /// The median winding number just behind the probe triangles (about 0 when every
+        /// triangle faces inward).
+        median_inner_winding: f64,
+    },
 
-    // sampling and shapes
+    // ----------------------------------------------------------------------------------
+    // Sampling and shapes (sampling/, shapes/).
+    // ----------------------------------------------------------------------------------
     /// A procedural shape's parameters ask for more vertices than the shape builders allow.
     #[error(
         "the shape `{shape}` would have about {vertices} vertices, more than the limit of {limit}; lower the resolution or make the proportions less extreme"
