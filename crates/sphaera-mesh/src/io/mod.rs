@@ -59,9 +59,11 @@
 //!   non-planar and non-convex polygons);
 //! - if the polygon, projected on that plane, is convex it is fanned from its first vertex;
 //! - otherwise it is **ear-clipped** in the plane, which never produces overlapping
-//!   triangles for a simple (non-self-intersecting) outline;
+//!   triangles for a simple (non-self-intersecting) outline; vertices collinear with their
+//!   neighbours are clipped last, as zero-area triangles, when no proper ear is left;
 //! - if ear clipping fails (self-intersecting outline, all vertices collinear, or more than
-//!   4,096 vertices) the polygon is fanned from its first vertex.
+//!   1,024 vertices, since ear clipping is cubic in the worst case) the polygon is fanned
+//!   from its first vertex.
 //!
 //! [`LoadReport`] counts the polygons triangulated, the non-planar ones (a vertex farther
 //! than 10⁻⁶ × the polygon's radius from the plane), the non-convex ones and the fan

@@ -20,7 +20,7 @@ use crate::{MeshError, TriMesh};
 
 /// Non-convex polygons larger than this are fanned rather than ear-clipped (ear clipping
 /// is quadratic or worse in the vertex count).
-pub(crate) const MAX_EAR_CLIP_VERTICES: usize = 4096;
+pub(crate) const MAX_EAR_CLIP_VERTICES: usize = 1024;
 
 /// Relative distance from the best-fit plane above which a polygon counts as non-planar.
 const PLANARITY_TOLERANCE: f64 = 1e-6;
@@ -84,7 +84,7 @@ pub(crate) fn triangulate(points: &[DVec3], out: &mut Vec<[usize; 3]>) -> Polygo
         fan(n, out);
         return shape;
     }
-    if n > MAX_EAR_CLIP_VERTICES || !ear_clip(&flat, out) {
+    if n > MAX_EAR_CLIP_VERTICES || !ear_clip(&flat, area_tolerance, out) {
         shape.fan_fallback = true;
         fan(n, out);
     }
@@ -96,9 +96,10 @@ fn fan(n: usize, out: &mut Vec<[usize; 3]>) {
     out.extend((1..n - 1).map(|i| [0, i, i + 1]));
 }
 
-/// Ear clipping of a counter-clockwise polygon. On failure `out` is left as it was and
+/// Ear clipping of a counter-clockwise polygon (`area_tolerance` decides which vertices
+/// count as collinear with their neighbours). On failure `out` is left as it was and
 /// `false` is returned.
-fn ear_clip(flat: &[DVec2], out: &mut Vec<[usize; 3]>) -> bool {
+fn ear_clip(flat: &[DVec2], area_tolerance: f64, out: &mut Vec<[usize; 3]>) -> bool {
     let start = out.len();
     let mut ring: Vec<usize> = (0..flat.len()).collect();
     let mut i = 0;
@@ -106,8 +107,25 @@ fn ear_clip(flat: &[DVec2], out: &mut Vec<[usize; 3]>) -> bool {
     while ring.len() > 3 {
         let m = ring.len();
         if since_last_ear > m {
-            out.truncate(start);
-            return false;
+            // No strictly convex empty ear: clip a vertex collinear with its neighbours
+            // (a zero-area triangle that changes nothing), or give up.
+            let collinear = (0..m).find(|&k| {
+                let (a, b, c) = (
+                    flat[ring[(k + m - 1) % m]],
+                    flat[ring[k]],
+                    flat[ring[(k + 1) % m]],
+                );
+                (b - a).perp_dot(c - b).abs() <= area_tolerance
+            });
+            let Some(k) = collinear else {
+                out.truncate(start);
+                return false;
+            };
+            out.push([ring[(k + m - 1) % m], ring[k], ring[(k + 1) % m]]);
+            ring.remove(k);
+            since_last_ear = 0;
+            i = k % ring.len();
+            continue;
         }
         let (ia, ib, ic) = (ring[(i + m - 1) % m], ring[i % m], ring[(i + 1) % m]);
         let (a, b, c) = (flat[ia], flat[ib], flat[ic]);
@@ -295,6 +313,29 @@ mod tests {
         let mut out = Vec::new();
         assert!(triangulate(&quad, &mut out).non_planar);
         assert_eq!(out.len(), 2);
+    }
+
+    #[test]
+    fn non_convex_polygon_with_collinear_vertices_is_ear_clipped() {
+        // An L whose long edges carry midpoints (T-junction style CAD output).
+        let l = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::new(0.0, 2.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let mut out = Vec::new();
+        let shape = triangulate(&l, &mut out);
+        assert!(shape.non_convex && !shape.fan_fallback);
+        assert_eq!(out.len(), 6);
+        for &[a, b, c] in &out {
+            assert!((l[b] - l[a]).cross(l[c] - l[a]).z >= 0.0);
+        }
+        assert!((area(&l, &out).z - 3.0).abs() < 1e-12);
     }
 
     #[test]

@@ -398,4 +398,42 @@ mod tests {
             }
         ));
     }
+
+    proptest::proptest! {
+        /// Welding against brute force: every facet reads back with its own corner
+        /// positions, and the vertex count is the number of distinct positions.
+        #[test]
+        fn welding_matches_brute_force(
+            facets in proptest::collection::vec(
+                proptest::array::uniform3(proptest::array::uniform3(-2i8..3)),
+                0..40,
+            )
+        ) {
+            let triangles: Vec<[[f32; 3]; 3]> = facets
+                .iter()
+                .map(|f| f.map(|c| c.map(|v| f32::from(v) * 0.5)))
+                .collect();
+            let loaded = read_stl(&binary(&triangles, b"")).unwrap();
+            let mesh = &loaded.mesh;
+            proptest::prop_assert_eq!(mesh.triangle_count(), triangles.len());
+            for (t, facet) in mesh.triangles().iter().zip(&triangles) {
+                for (&v, corner) in t.iter().zip(facet) {
+                    let expected = DVec3::from_array(corner.map(f64::from));
+                    proptest::prop_assert!(mesh.positions()[v as usize] == expected);
+                }
+            }
+            let mut distinct: Vec<[i64; 3]> = triangles
+                .iter()
+                .flatten()
+                .map(|c| c.map(|v| (v * 2.0) as i64))
+                .collect();
+            distinct.sort_unstable();
+            distinct.dedup();
+            proptest::prop_assert_eq!(mesh.vertex_count(), distinct.len());
+            proptest::prop_assert_eq!(
+                loaded.report.welded_vertices,
+                3 * triangles.len() - distinct.len()
+            );
+        }
+    }
 }

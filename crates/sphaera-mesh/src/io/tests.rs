@@ -467,3 +467,60 @@ proptest! {
         let _ = read_from_bytes(&bytes, *format);
     }
 }
+
+#[test]
+fn non_convex_and_non_planar_polygons_are_reported() {
+    // An L-shaped hexagon (non-convex) and a bent quad (non-planar).
+    let obj = b"v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 0 0 1\nv 1 0 1\nv 1 1 1.5\nv 0 1 1\n\
+        f 1 2 3 4 5 6\nf 7 8 9 10\nf 1 2 3\n";
+    let loaded = read_from_bytes(obj, Format::Obj).unwrap();
+    let report = loaded.report;
+    assert_eq!(report.faces_in_file, 3);
+    assert_eq!(report.polygons_triangulated, 2);
+    assert_eq!(report.non_convex_polygons, 1);
+    assert_eq!(report.non_planar_polygons, 1);
+    assert_eq!(report.fan_fallbacks, 0);
+    assert_eq!(loaded.mesh.triangle_count(), 4 + 2 + 1);
+    // Polygon triangles stay in place: the last triangle is the last face.
+    assert_eq!(loaded.mesh.triangles()[6], [0, 1, 2]);
+    // The L is covered without overlap: its triangles' areas add up to 3.
+    let l_area: f64 = loaded.mesh.triangle_iter().take(4).map(|t| t.area()).sum();
+    assert!((l_area - 3.0).abs() < 1e-12);
+}
+
+fn finite_f64() -> impl Strategy<Value = f64> {
+    any::<f64>().prop_filter("finite", |v| v.is_finite())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Writing then reading gives the same mesh, bit for bit, in OBJ and both PLY
+    /// encodings, for arbitrary finite coordinates (subnormals, -0.0, 1e308...).
+    #[test]
+    fn write_then_read_is_identity(
+        coords in prop::collection::vec([finite_f64(), finite_f64(), finite_f64()], 3..12),
+        picks in prop::collection::vec([any::<u32>(), any::<u32>(), any::<u32>()], 0..16),
+    ) {
+        let n = coords.len() as u32;
+        let mesh = TriMesh::new(
+            coords.iter().map(|c| DVec3::from_array(*c)).collect(),
+            picks.iter().map(|t| t.map(|i| i % n)).collect(),
+        ).unwrap();
+        let bits = |m: &TriMesh| -> Vec<u64> {
+            m.positions().iter().flat_map(|p| p.to_array().map(f64::to_bits)).collect()
+        };
+        let mut obj = Vec::new();
+        write_obj_to(&mut obj, &mesh).unwrap();
+        let back = read_from_bytes(&obj, Format::Obj).unwrap().mesh;
+        prop_assert_eq!(bits(&back), bits(&mesh));
+        prop_assert_eq!(back.triangles(), mesh.triangles());
+        for encoding in [PlyEncoding::Ascii, PlyEncoding::BinaryLittleEndian] {
+            let mut ply = Vec::new();
+            write_ply_to(&mut ply, &mesh, encoding, None).unwrap();
+            let back = read_from_bytes(&ply, Format::Ply).unwrap().mesh;
+            prop_assert_eq!(bits(&back), bits(&mesh));
+            prop_assert_eq!(back.triangles(), mesh.triangles());
+        }
+    }
+}
