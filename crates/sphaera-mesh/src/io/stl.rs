@@ -53,7 +53,9 @@ pub(crate) fn starts_with_solid(bytes: &[u8]) -> bool {
         .iter()
         .position(|b| !b.is_ascii_whitespace())
         .unwrap_or(bytes.len());
-    bytes[start..].starts_with(b"solid")
+    bytes
+        .get(start..start + 5)
+        .is_some_and(|word| word.eq_ignore_ascii_case(b"solid"))
 }
 
 /// Merges bit-identical positions.
@@ -219,6 +221,16 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
         let at = Location::Line(line);
         let mut toks = tokens(content);
         let Some(keyword) = toks.next() else { continue };
+        // Keywords are matched case-insensitively (some CAD exporters write `FACET NORMAL`).
+        let mut lower = [0u8; 8];
+        let keyword_lower: &[u8] = match lower.get_mut(..keyword.len()) {
+            Some(buffer) => {
+                buffer.copy_from_slice(keyword);
+                buffer.make_ascii_lowercase();
+                buffer
+            }
+            None => keyword,
+        };
         let unexpected = |expected: &'static str, found: &[u8]| {
             error(
                 at,
@@ -228,12 +240,15 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 },
             )
         };
-        match keyword {
+        match keyword_lower {
             b"solid" if open_loop.is_none() => seen_solid = true,
             _ if !seen_solid => return Err(error(at, ParseReason::BadMagic { expected: "solid" })),
             b"endsolid" if open_loop.is_none() => seen_solid = false,
             b"facet" => {
-                if toks.next() == Some(b"normal") {
+                if toks
+                    .next()
+                    .is_some_and(|t| t.eq_ignore_ascii_case(b"normal"))
+                {
                     read_xyz(&mut toks, at)?;
                 }
             }
@@ -265,10 +280,10 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 None => return Err(unexpected("`outer loop` before `endloop`", keyword)),
             },
             b"endfacet" if open_loop.is_none() => {}
-            other => {
+            _ => {
                 return Err(unexpected(
                     "an STL keyword (solid, facet, outer, vertex, endloop, endfacet, endsolid)",
-                    other,
+                    keyword,
                 ));
             }
         }
@@ -366,6 +381,13 @@ mod tests {
         assert_eq!(loaded.mesh.vertex_count(), 4);
         assert_eq!(loaded.mesh.triangles(), &[[0, 1, 2], [0, 2, 3]]);
         assert_eq!(loaded.report.welded_vertices, 2);
+    }
+
+    #[test]
+    fn ascii_keywords_are_case_insensitive() {
+        let text = b"SOLID part\nFACET NORMAL 0 0 1\nOUTER LOOP\nVERTEX 0 0 0\nVERTEX 1 0 0\nVERTEX 0 1 0\nENDLOOP\nENDFACET\nENDSOLID part\n";
+        let loaded = read_stl(text).unwrap();
+        assert_eq!(loaded.mesh.triangle_count(), 1);
     }
 
     #[test]
