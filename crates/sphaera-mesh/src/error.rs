@@ -76,7 +76,44 @@ pub enum MeshError {
         #[source]
         source: std::io::Error,
     },
-    // (io/: add file-format variants here)
+
+    /// A mesh file (or byte buffer) is malformed: the data do not follow the format, or they
+    /// describe invalid geometry (a NaN coordinate, an index out of range, a face with fewer
+    /// than three vertices).
+    ///
+    /// `location` is a 1-based line for text formats and a 0-based byte offset for binary
+    /// ones; `reason` is a structured [`crate::io::ParseReason`].
+    #[error(
+        "malformed {format} data{} at {location}: {reason}",
+        crate::io::describe_path(path.as_deref())
+    )]
+    Parse {
+        /// The file, when the data came from one ([`crate::io::read`] fills it in).
+        path: Option<PathBuf>,
+        /// The format the data were parsed as.
+        format: crate::io::Format,
+        /// Where in the data the problem is.
+        location: crate::io::Location,
+        /// What is wrong.
+        reason: crate::io::ParseReason,
+    },
+    /// The mesh format of a file could not be determined: its extension is not one of
+    /// `obj`, `ply`, `stl`, `off` (in any case), and its content does not look like any of
+    /// them.
+    #[error(
+        "cannot tell the mesh format{}: the extension is not obj, ply, stl or off and the content is not recognised",
+        crate::io::describe_path(path.as_deref())
+    )]
+    UnknownFormat {
+        /// The file, when the data came from one.
+        path: Option<PathBuf>,
+    },
+    /// Writing this format is not supported (only OBJ and PLY are written).
+    #[error("writing {format} files is not supported (write obj or ply instead)")]
+    UnsupportedWriteFormat {
+        /// The requested format.
+        format: crate::io::Format,
+    },
 
     // ----------------------------------------------------------------------------------
     // Topology (topology/).

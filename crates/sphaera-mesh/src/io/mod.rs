@@ -1,1 +1,369 @@
-//! (in progress)
+//! Reading and writing mesh files: OBJ, PLY, STL and OFF in; OBJ and PLY out.
+//!
+//! # Quick start
+//!
+//! ```
+//! use sphaera_mesh::{DVec3, TriMesh, io};
+//!
+//! // A unit square as two triangles.
+//! let mesh = TriMesh::new(
+//!     vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::new(0.1, 0.7, 1e-9)],
+//!     vec![[0, 1, 2], [0, 2, 3]],
+//! )?;
+//!
+//! let dir = std::env::temp_dir().join(format!("sphaera-io-doc-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir)?;
+//! let obj = dir.join("square.obj");
+//! let ply = dir.join("square.ply");
+//! io::write_obj(&obj, &mesh)?;
+//! io::write_ply(&ply, &mesh, io::PlyEncoding::BinaryLittleEndian, None)?;
+//!
+//! // Both read back bit-identical (OBJ coordinates are written in shortest round-trip form).
+//! assert_eq!(io::load(&obj)?, mesh);
+//! let loaded = io::read(&ply)?;
+//! assert_eq!(loaded.mesh, mesh);
+//! assert_eq!(loaded.report.format, io::Format::Ply);
+//! assert_eq!(loaded.report.faces_in_file, 2);
+//! std::fs::remove_dir_all(&dir)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Formats read
+//!
+//! | format | what is read | ignored |
+//! |---|---|---|
+//! | OBJ | `v` (first three numbers), `f` in the forms `v`, `v/vt`, `v//vn`, `v/vt/vn`, 1-based or negative (relative) indices, forward references, `\` line continuations | `vt`, `vn`, `g`, `o`, `s`, `usemtl`, `mtllib`, `l`, `p`, comments and every other statement |
+//! | PLY | `ascii`, `binary_little_endian`, `binary_big_endian`; `vertex` `x y z` of any numeric type (`float`, `double`, `int`, `uchar`..., and the `float32`-style names); `face` list `vertex_indices` or `vertex_index` with any count and index types | every other property (lists included) and element |
+//! | STL | ASCII and binary; positions are welded (see below) | normals, attribute bytes, solid names |
+//! | OFF | `OFF` and its `ST`/`C`/`N` prefixed variants, counts on the keyword line or the next, `#` comments | vertex colours/normals, face colours, the edge count |
+//!
+//! [`read`] picks the format from the file extension (`obj`, `ply`, `stl`, `off`, in any
+//! case) and falls back to [`Format::sniff`]ing the content for other extensions.
+//! [`read_from_bytes`] parses a buffer in a given format.
+//!
+//! Binary STL detection: a binary STL is `84 + 50 n` bytes for `n` facets. Files of
+//! exactly that size are binary even when they start with `solid` (many exporters do
+//! that); other files starting with `solid` are ASCII; everything else is binary.
+//! **STL welding**: STL has no shared vertices, so positions with bit-identical
+//! coordinates (`-0.0` = `0.0`) are merged on read, in order of first appearance, and
+//! [`LoadReport::welded_vertices`] counts the merged records. Nothing is merged by
+//! distance, and no other format is welded: unreferenced vertices, duplicate positions and
+//! degenerate faces are kept as in the file (repairs are an explicit, separate step).
+//!
+//! # Polygons
+//!
+//! A face with `n > 3` vertices becomes `n - 2` triangles, in place (its triangles follow
+//! the previous face's), oriented like the polygon:
+//!
+//! - the polygon's plane is its Newell normal through the vertex centroid (well defined for
+//!   non-planar and non-convex polygons);
+//! - if the polygon, projected on that plane, is convex it is fanned from its first vertex;
+//! - otherwise it is **ear-clipped** in the plane, which never produces overlapping
+//!   triangles for a simple (non-self-intersecting) outline; vertices collinear with their
+//!   neighbours are clipped last, as zero-area triangles, when no proper ear is left;
+//! - if ear clipping fails (self-intersecting outline, all vertices collinear, or more than
+//!   1,024 vertices, since ear clipping is cubic in the worst case) the polygon is fanned
+//!   from its first vertex.
+//!
+//! [`LoadReport`] counts the polygons triangulated, the non-planar ones (a vertex farther
+//! than 10⁻⁶ × the polygon's radius from the plane), the non-convex ones and the fan
+//! fallbacks, so a caller can reject files that needed the fallback. Faces with fewer than
+//! three vertices are an error.
+//!
+//! # Errors and where they point
+//!
+//! A malformed file gives [`MeshError::Parse`] with the [`Format`], a [`Location`] — the
+//! 1-based **line** for text formats (OBJ, ASCII PLY and every PLY header, ASCII STL, OFF)
+//! or the 0-based **byte offset** for binary PLY and STL — and a structured
+//! [`ParseReason`] (expected and found counts, the offending token, the index and the vertex
+//! count...). Invalid geometry is caught while parsing, so it points at the line too:
+//! NaN or infinite coordinates ([`ParseReason::NonFiniteCoordinate`]), indices out of range
+//! (including `0` in OBJ, which is 1-based), faces with fewer than three vertices. Files
+//! that end early ([`ParseReason::MissingRecords`], [`ParseReason::SizeMismatch`]) and
+//! empty files ([`ParseReason::EmptyFile`]) are errors too. No input makes a reader panic
+//! (this is property-tested with random bytes and random truncations).
+//!
+//! ```
+//! use sphaera_mesh::io::{Format, Location, ParseReason, read_from_bytes};
+//! use sphaera_mesh::MeshError;
+//!
+//! let err = read_from_bytes(b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", Format::Obj).unwrap_err();
+//! assert_eq!(
+//!     err.to_string(),
+//!     "malformed OBJ data at line 4: vertex index 4 is out of range: the file has 3 vertices"
+//! );
+//! assert!(matches!(
+//!     err,
+//!     MeshError::Parse { location: Location::Line(4), reason: ParseReason::IndexOutOfRange { index: 4, .. }, .. }
+//! ));
+//! ```
+//!
+//! # Writing
+//!
+//! [`write_obj`] and [`write_ply`] (ASCII or binary little-endian, with optional per-vertex
+//! RGB colours from [`colormap`]) write **atomically**: to a temporary file in the target's
+//! directory, `fsync`ed, then renamed over the target, so an interrupted run never leaves
+//! half a file where the user's data was ([`write_atomic`] is public for other formats).
+//! Coordinates are written exactly: binary PLY as `double`, text in shortest round-trip
+//! form, so writing then reading gives the same mesh bit for bit. [`save`] picks the
+//! format from the extension.
+//!
+//! # Performance
+//!
+//! Files are read whole into memory and parsed as bytes (no per-line allocation, no hash
+//! map except STL welding). The 871,414-triangle ASCII `dragon_vrip.ply` (33 MB) loads in
+//! about 0.3 s in release mode on the reference 2-core machine.
+
+pub mod colormap;
+mod obj;
+mod off;
+mod parse_error;
+mod ply;
+mod polygon;
+mod stl;
+mod text;
+mod write;
+
+#[cfg(test)]
+mod data_tests;
+#[cfg(test)]
+mod tests;
+
+use std::fmt;
+use std::path::Path;
+
+pub(crate) use parse_error::describe_path;
+pub use parse_error::{Location, ParseReason};
+pub use write::{
+    PlyEncoding, save, write_atomic, write_obj, write_obj_to, write_ply, write_ply_to,
+};
+
+use crate::{MeshError, TriMesh};
+
+/// A mesh file format.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::io::Format;
+///
+/// assert_eq!(Format::from_extension("PLY"), Some(Format::Ply));
+/// assert_eq!(Format::sniff(b"OFF\n3 1 0\n"), Some(Format::Off));
+/// assert_eq!(Format::Stl.to_string(), "STL");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Format {
+    /// Wavefront OBJ (text).
+    Obj,
+    /// Stanford PLY (ASCII or binary).
+    Ply,
+    /// Stereolithography STL (ASCII or binary).
+    Stl,
+    /// Object File Format (text).
+    Off,
+}
+
+impl Format {
+    /// The format an extension names (`obj`, `ply`, `stl`, `off`, in any case, without the
+    /// dot).
+    pub fn from_extension(extension: &str) -> Option<Self> {
+        match extension.to_ascii_lowercase().as_str() {
+            "obj" => Some(Self::Obj),
+            "ply" => Some(Self::Ply),
+            "stl" => Some(Self::Stl),
+            "off" => Some(Self::Off),
+            _ => None,
+        }
+    }
+
+    /// The format a path's extension names.
+    pub fn from_path(path: &Path) -> Option<Self> {
+        Self::from_extension(path.extension()?.to_str()?)
+    }
+
+    /// The usual (lowercase) extension.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Self::Obj => "obj",
+            Self::Ply => "ply",
+            Self::Stl => "stl",
+            Self::Off => "off",
+        }
+    }
+
+    /// Guesses the format from the content: `ply` magic, an OFF keyword, a binary STL of
+    /// consistent size or an ASCII STL starting with `solid`, or a first statement that is
+    /// an OBJ keyword (`v`, `vt`, `vn`, `f`, `o`, `g`, `s`, `mtllib`, `usemtl`).
+    ///
+    /// # Performance
+    ///
+    /// Looks at the first few lines only.
+    pub fn sniff(bytes: &[u8]) -> Option<Self> {
+        let first = text::Lines::new(bytes, 1)
+            .map(|(_, line)| text::strip_comment(line))
+            .find(|line| !text::is_blank(line))
+            .and_then(|line| text::tokens(line).next());
+        if bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n") {
+            return Some(Self::Ply);
+        }
+        if first.and_then(off::header_keyword).is_some() {
+            return Some(Self::Off);
+        }
+        if let Some(count) = bytes.get(80..84) {
+            let n = u64::from(u32::from_le_bytes([count[0], count[1], count[2], count[3]]));
+            if 84 + 50 * n == bytes.len() as u64 {
+                return Some(Self::Stl);
+            }
+        }
+        if stl::starts_with_solid(bytes) {
+            return Some(Self::Stl);
+        }
+        match first {
+            Some(b"v" | b"vt" | b"vn" | b"f" | b"o" | b"g" | b"s" | b"mtllib" | b"usemtl") => {
+                Some(Self::Obj)
+            }
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Obj => "OBJ",
+            Self::Ply => "PLY",
+            Self::Stl => "STL",
+            Self::Off => "OFF",
+        })
+    }
+}
+
+/// What a reader found in a file besides the mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct LoadReport {
+    /// The format read.
+    pub format: Format,
+    /// Vertex records in the file: OBJ `v` lines, the PLY/OFF header count, or three per
+    /// STL facet (before welding).
+    pub vertex_records: usize,
+    /// Face records in the file (before triangulation).
+    pub faces_in_file: usize,
+    /// Faces with more than three vertices, split into triangles.
+    pub polygons_triangulated: usize,
+    /// Of those, the ones that are not convex in their best-fit plane (ear-clipped).
+    pub non_convex_polygons: usize,
+    /// Of those, the ones whose vertices are not on a common plane (within 10⁻⁶ of their
+    /// radius).
+    pub non_planar_polygons: usize,
+    /// Of those, the ones ear clipping could not handle, fanned from their first vertex
+    /// instead (their triangles may overlap).
+    pub fan_fallbacks: usize,
+    /// STL only: vertex records merged into an earlier bit-identical position.
+    pub welded_vertices: usize,
+}
+
+/// A mesh read from a file, with the [`LoadReport`] of what was in it.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct LoadedMesh {
+    /// The triangle mesh.
+    pub mesh: TriMesh,
+    /// What the reader found.
+    pub report: LoadReport,
+}
+
+/// Reads a mesh file, choosing the reader from the extension (case-insensitive `obj`,
+/// `ply`, `stl`, `off`) or, for any other extension, from the content
+/// ([`Format::sniff`]).
+///
+/// # Examples
+///
+/// See the [module documentation](crate::io).
+///
+/// # Errors
+///
+/// - [`MeshError::Io`] if the file cannot be read;
+/// - [`MeshError::UnknownFormat`] if neither the extension nor the content tells the
+///   format;
+/// - [`MeshError::Parse`], with this `path`, if the file is malformed (see the module
+///   docs for the locations and reasons).
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// Reads the whole file into memory, then parses it in one pass; about 0.3 s for the
+/// 33 MB ASCII `dragon_vrip.ply` in release mode.
+pub fn read(path: impl AsRef<Path>) -> Result<LoadedMesh, MeshError> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let format = Format::from_path(path)
+        .or_else(|| Format::sniff(&bytes))
+        .ok_or_else(|| MeshError::UnknownFormat {
+            path: Some(path.to_path_buf()),
+        })?;
+    read_from_bytes(&bytes, format).map_err(|error| match error {
+        MeshError::Parse {
+            format,
+            location,
+            reason,
+            ..
+        } => MeshError::Parse {
+            path: Some(path.to_path_buf()),
+            format,
+            location,
+            reason,
+        },
+        other => other,
+    })
+}
+
+/// Reads a mesh file and keeps only the mesh (see [`read`]).
+///
+/// # Examples
+///
+/// See the [module documentation](crate::io).
+///
+/// # Errors
+///
+/// As [`read`].
+pub fn load(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
+    read(path).map(|loaded| loaded.mesh)
+}
+
+/// Parses a mesh from bytes in the given format.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::io::{Format, read_from_bytes};
+///
+/// let quad = b"OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+/// let loaded = read_from_bytes(quad, Format::Off)?;
+/// assert_eq!(loaded.mesh.triangles(), &[[0, 1, 2], [0, 2, 3]]);
+/// assert_eq!(loaded.report.polygons_triangulated, 1);
+/// # Ok::<(), sphaera_mesh::MeshError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`MeshError::Parse`] (without a path) if the data are malformed.
+///
+/// # Panics
+///
+/// Never.
+pub fn read_from_bytes(bytes: &[u8], format: Format) -> Result<LoadedMesh, MeshError> {
+    match format {
+        Format::Obj => obj::read_obj(bytes),
+        Format::Ply => ply::read_ply(bytes),
+        Format::Stl => stl::read_stl(bytes),
+        Format::Off => off::read_off(bytes),
+    }
+}
