@@ -1,6 +1,6 @@
 //! Procedural closed test shapes with a resolution parameter.
 //!
-//! Every builder returns a closed, consistently outward-oriented, 2-manifold [`TriMesh`]
+//! Every builder returns a closed, consistently outward-oriented, 2-manifold [`TriMesh`](crate::TriMesh)
 //! without degenerate or duplicate triangles and without unreferenced vertices, centred
 //! near the origin. The set is the one the sphere-tree paper (Bradshaw and O'Sullivan,
 //! "Adaptive medial-axis approximation for sphere-tree construction", 2004) evaluates on —
