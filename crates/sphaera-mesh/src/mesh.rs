@@ -111,9 +111,10 @@ impl TriMesh {
     /// Unreferenced vertices (the Stanford bunny has 1,113) are ignored, so the box and its
     /// diagonal describe the surface.
     pub fn bounding_box(&self) -> Aabb {
-        self.triangles.iter().flatten().fold(Aabb::EMPTY, |b, &v| {
-            b.grown_by_point(self.positions[v as usize])
-        })
+        self.triangles
+            .iter()
+            .flatten()
+            .fold(Aabb::EMPTY, |b, &v| b.grown_by_point(self.positions[v as usize]))
     }
 
     /// Length of [`TriMesh::bounding_box`]'s diagonal: the scale relative errors refer to.
@@ -210,10 +211,7 @@ mod tests {
     #[test]
     fn infinite_coordinate_is_rejected() {
         let err = TriMesh::new(vec![DVec3::new(0.0, 0.0, f64::INFINITY)], vec![]).unwrap_err();
-        assert!(matches!(
-            err,
-            MeshError::NonFiniteCoordinate { axis: 'z', .. }
-        ));
+        assert!(matches!(err, MeshError::NonFiniteCoordinate { axis: 'z', .. }));
     }
 
     #[test]
@@ -236,16 +234,12 @@ mod tests {
             vec![[0, 1, 2]],
         )
         .unwrap();
-        assert_eq!(
-            mesh.bounding_box(),
-            Aabb::new(DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0))
-        );
+        assert_eq!(mesh.bounding_box(), Aabb::new(DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0)));
     }
 
     #[test]
     fn set_positions_keeps_mesh_on_error() {
-        let mut mesh =
-            TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
+        let mut mesh = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
         let before = mesh.clone();
         assert!(mesh.set_positions(vec![DVec3::ZERO]).is_err());
         assert!(
