@@ -49,8 +49,8 @@
 //! `O(T + k n log n)`, dominated by the neighbour search (parallel with the `parallel`
 //! feature) and the elimination heap (an indexed max-heap with decrease-key). Measured on
 //! the shared 2-core development machine, release build, a 69,360-triangle torus
-//! (`shapes::torus(1.0, 0.3, 340)`): 100,000 random samples in about 65 ms, 100,000
-//! Poisson-disk samples in about 1.4 s of CPU time (2.2 s wall under load), reaching a
+//! (`shapes::torus(1.0, 0.3, 340)`): 100,000 random samples in 30 to 65 ms, 100,000
+//! Poisson-disk samples in about 1.4 s of CPU time (1.9 to 2.2 s wall), reaching a
 //! relative minimum distance of 0.69.
 
 mod grid;

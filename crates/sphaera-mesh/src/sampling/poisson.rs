@@ -80,6 +80,13 @@ impl PoissonDiskSamples {
 /// with the `parallel` feature and gives the same result without it. `n = 0` gives an
 /// empty set.
 ///
+/// Distances are Euclidean, so the method assumes the ideal spacing is well below the
+/// thickness of the shape's thin parts: with 100 points on a tube whose wall is 0.4 times
+/// the ideal spacing, points on opposite walls crowd each other and the weight limiting
+/// (all distances below `0.59 d_max` weigh the same) can no longer tell near from very
+/// near — the set is still exactly `n` points, but `relative_min_distance` drops to a few
+/// percent. Ask for more points, or check [`PoissonDiskSamples::relative_min_distance`].
+///
 /// # Examples
 ///
 /// ```

@@ -44,7 +44,7 @@ use crate::{MeshError, TriMesh};
 /// # Performance
 ///
 /// `O(T + n log T)` for `T` triangles, single-threaded (a single random stream keeps it
-/// reproducible): about 65 ms for 100,000 points on 69,360 triangles (release build).
+/// reproducible): 30 to 65 ms for 100,000 points on 69,360 triangles (release build).
 pub fn random(mesh: &TriMesh, n: usize, seed: u64) -> Result<Vec<SurfaceSample>, MeshError> {
     check_count("n", n)?;
     let table = AreaTable::new(mesh)?;

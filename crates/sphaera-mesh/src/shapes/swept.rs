@@ -33,6 +33,10 @@ use crate::{MeshError, TriMesh};
 /// [`MeshError::InvalidParameter`] if a radius is not finite and positive,
 /// `tube_radius ≥ bend_radius` (the tube would intersect itself) or `resolution < 3`;
 /// [`MeshError::ShapeTooLarge`] beyond [`super::MAX_VERTICES`].
+///
+/// # Panics
+///
+/// Never.
 pub fn s_tube(tube_radius: f64, bend_radius: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("tube_radius", tube_radius)?;
     check_positive("bend_radius", bend_radius)?;
