@@ -181,7 +181,7 @@ pub fn poisson_disk_with(
     let samples: Vec<SurfaceSample> = keep.into_iter().map(|i| candidates[i]).collect();
     let positions: Vec<DVec3> = samples.iter().map(|s| s.position).collect();
     Ok(PoissonDiskSamples {
-        min_distance: min_distance(&positions, 0.5 * ideal_spacing),
+        min_distance: min_distance(&positions, ideal_spacing),
         samples,
         ideal_spacing,
     })

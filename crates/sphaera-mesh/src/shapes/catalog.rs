@@ -8,6 +8,8 @@ use crate::{MeshError, TriMesh};
 
 /// A procedural test shape with its parameters; [`Shape::build`] makes the mesh.
 ///
+/// Non-exhaustive: more shapes may be added, so a `match` needs a wildcard arm.
+///
 /// # Examples
 ///
 /// ```
@@ -28,6 +30,7 @@ use crate::{MeshError, TriMesh};
 /// # Ok::<(), sphaera_mesh::MeshError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Shape {
     /// [`super::cube`].
     Cube {
