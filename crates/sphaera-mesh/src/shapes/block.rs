@@ -24,6 +24,10 @@ use crate::{MeshError, TriMesh};
 ///
 /// [`MeshError::InvalidParameter`] if `size` is not finite and positive or
 /// `resolution` is 0; [`MeshError::ShapeTooLarge`] beyond [`super::MAX_VERTICES`].
+///
+/// # Panics
+///
+/// Never.
 pub fn cube(size: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("size", size)?;
     check_resolution(resolution, 1, "at least 1")?;
@@ -53,6 +57,10 @@ pub fn cube(size: f64, resolution: usize) -> Result<TriMesh, MeshError> {
 ///
 /// [`MeshError::InvalidParameter`] if a size is not finite and positive,
 /// `arm_width ≥ leg_length` or `resolution` is 0; [`MeshError::ShapeTooLarge`].
+///
+/// # Panics
+///
+/// Never.
 pub fn l_block(
     leg_length: f64,
     arm_width: f64,

@@ -8,6 +8,8 @@ use crate::{MeshError, TriMesh};
 
 /// A procedural test shape with its parameters; [`Shape::build`] makes the mesh.
 ///
+/// Non-exhaustive: more shapes may be added, so a `match` needs a wildcard arm.
+///
 /// # Examples
 ///
 /// ```
@@ -28,6 +30,7 @@ use crate::{MeshError, TriMesh};
 /// # Ok::<(), sphaera_mesh::MeshError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum Shape {
     /// [`super::cube`].
     Cube {
@@ -156,6 +159,25 @@ impl Shape {
         }
     }
 
+    /// The smallest `resolution` [`Shape::build`] accepts: 1 for the cube and the L block,
+    /// 3 for the round shapes.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes::DEFAULT_SHAPES;
+    /// for shape in &DEFAULT_SHAPES {
+    ///     assert!(shape.build(shape.min_resolution()).is_ok());
+    ///     assert!(shape.build(shape.min_resolution() - 1).is_err());
+    /// }
+    /// ```
+    pub fn min_resolution(&self) -> usize {
+        match self {
+            Self::Cube { .. } | Self::LBlock { .. } => 1,
+            _ => 3,
+        }
+    }
+
     /// The genus of the surface: 1 for the torus and the thick tube, 0 otherwise.
     pub fn genus(&self) -> u32 {
         match self {
@@ -220,6 +242,10 @@ impl Shape {
     ///
     /// As the builder: [`MeshError::InvalidParameter`] for bad sizes or a too small
     /// resolution, [`MeshError::ShapeTooLarge`] beyond [`super::MAX_VERTICES`].
+    ///
+    /// # Panics
+    ///
+    /// Never.
     pub fn build(&self, resolution: usize) -> Result<TriMesh, MeshError> {
         match *self {
             Self::Cube { size } => super::cube(size, resolution),

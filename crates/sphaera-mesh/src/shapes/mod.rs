@@ -1,6 +1,6 @@
 //! Procedural closed test shapes with a resolution parameter.
 //!
-//! Every builder returns a closed, consistently outward-oriented, 2-manifold [`TriMesh`]
+//! Every builder returns a closed, consistently outward-oriented, 2-manifold [`TriMesh`](crate::TriMesh)
 //! without degenerate or duplicate triangles and without unreferenced vertices, centred
 //! near the origin. The set is the one the sphere-tree paper (Bradshaw and O'Sullivan,
 //! "Adaptive medial-axis approximation for sphere-tree construction", 2004) evaluates on —
@@ -61,6 +61,12 @@
 //! itself (a torus's minor radius not below its major radius, ...);
 //! [`MeshError::ShapeTooLarge`] when the resolution and proportions would need more than
 //! [`MAX_VERTICES`] vertices.
+//!
+//! # Performance
+//!
+//! Linear in the output: a round shape at resolution `r` has about `r²/2` to `r²`
+//! vertices times its proportions (a 69,360-triangle torus, `torus(1.0, 0.3, 340)`, builds
+//! in a few milliseconds). The builders are single-threaded and deterministic.
 
 mod block;
 mod catalog;

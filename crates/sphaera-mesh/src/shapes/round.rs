@@ -42,6 +42,10 @@ fn check_round(
 ///
 /// [`MeshError::InvalidParameter`] if `radius` is not finite and positive or
 /// `resolution < 3`; [`MeshError::ShapeTooLarge`] beyond [`super::MAX_VERTICES`].
+///
+/// # Panics
+///
+/// Never.
 pub fn sphere(radius: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("radius", radius)?;
     check_round("sphere", resolution, resolution as f64 / 2.0 + 2.0)?;
@@ -69,6 +73,10 @@ pub fn sphere(radius: f64, resolution: usize) -> Result<TriMesh, MeshError> {
 /// # Errors
 ///
 /// As [`sphere`], for each semi-axis (`semi_axes.x`, `.y`, `.z`).
+///
+/// # Panics
+///
+/// Never.
 pub fn ellipsoid(semi_axes: DVec3, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("semi_axes.x", semi_axes.x)?;
     check_positive("semi_axes.y", semi_axes.y)?;
@@ -101,6 +109,10 @@ pub fn ellipsoid(semi_axes: DVec3, resolution: usize) -> Result<TriMesh, MeshErr
 ///
 /// [`MeshError::InvalidParameter`] if `radius` is not finite and positive, `length` not
 /// finite and non-negative, or `resolution < 3`; [`MeshError::ShapeTooLarge`].
+///
+/// # Panics
+///
+/// Never.
 pub fn capsule(radius: f64, length: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("radius", radius)?;
     check_non_negative("length", length)?;
@@ -140,6 +152,10 @@ pub fn capsule(radius: f64, length: f64, resolution: usize) -> Result<TriMesh, M
 ///
 /// [`MeshError::InvalidParameter`] if `radius` or `height` is not finite and positive or
 /// `resolution < 3`; [`MeshError::ShapeTooLarge`].
+///
+/// # Panics
+///
+/// Never.
 pub fn cylinder(radius: f64, height: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("radius", radius)?;
     check_positive("height", height)?;
@@ -178,6 +194,10 @@ pub fn cylinder(radius: f64, height: f64, resolution: usize) -> Result<TriMesh, 
 ///
 /// [`MeshError::InvalidParameter`] if `radius` or `height` is not finite and positive or
 /// `resolution < 3`; [`MeshError::ShapeTooLarge`].
+///
+/// # Panics
+///
+/// Never.
 pub fn cone(radius: f64, height: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("radius", radius)?;
     check_positive("height", height)?;
@@ -211,6 +231,10 @@ pub fn cone(radius: f64, height: f64, resolution: usize) -> Result<TriMesh, Mesh
 /// [`MeshError::InvalidParameter`] if a radius is not finite and positive,
 /// `minor_radius ≥ major_radius` (the surface would intersect itself) or
 /// `resolution < 3`; [`MeshError::ShapeTooLarge`].
+///
+/// # Panics
+///
+/// Never.
 pub fn torus(
     major_radius: f64,
     minor_radius: f64,
@@ -256,6 +280,10 @@ pub fn torus(
 ///
 /// [`MeshError::InvalidParameter`] if a size is not finite and positive,
 /// `inner_radius ≥ outer_radius` or `resolution < 3`; [`MeshError::ShapeTooLarge`].
+///
+/// # Panics
+///
+/// Never.
 pub fn thick_tube(
     inner_radius: f64,
     outer_radius: f64,

@@ -33,6 +33,10 @@ use crate::{MeshError, TriMesh};
 /// [`MeshError::InvalidParameter`] if a radius is not finite and positive,
 /// `tube_radius ≥ bend_radius` (the tube would intersect itself) or `resolution < 3`;
 /// [`MeshError::ShapeTooLarge`] beyond [`super::MAX_VERTICES`].
+///
+/// # Panics
+///
+/// Never.
 pub fn s_tube(tube_radius: f64, bend_radius: f64, resolution: usize) -> Result<TriMesh, MeshError> {
     check_positive("tube_radius", tube_radius)?;
     check_positive("bend_radius", bend_radius)?;
@@ -51,8 +55,9 @@ pub fn s_tube(tube_radius: f64, bend_radius: f64, resolution: usize) -> Result<T
     let half = pieces(PI * bend_radius, spacing);
     let mut rings = Vec::with_capacity(2 * cap + 2 * half + 2);
 
-    // A ring of the tube at centre-curve point `c` with unit tangent `t`: the frame
-    // (n, z) with n = z × t... chosen so that n × z = t, which is the loft's convention.
+    // The ring of the tube at centre-curve point `c` with unit tangent `t`, spanned by the
+    // in-plane normal `u = (−t.y, t.x, 0)` and `v = z`: `u × v = t`, the loft's convention
+    // for outward triangles.
     let ring_at = |c: DVec2, t: DVec2, radius: f64| Ring {
         center: c.extend(0.0),
         u: DVec3::new(-t.y, t.x, 0.0),
