@@ -60,17 +60,16 @@ fn collect(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) {
     };
     for entry in entries.flatten() {
         let path = entry.path();
-        if path.is_dir() {
-            collect(root, &path, files);
-        } else if path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+        let is_mesh = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
             matches!(
                 e.to_ascii_lowercase().as_str(),
                 "obj" | "ply" | "stl" | "off"
             )
-        }) {
-            if let Ok(relative) = path.strip_prefix(root) {
-                files.push(relative.to_path_buf());
-            }
+        });
+        if path.is_dir() {
+            collect(root, &path, files);
+        } else if is_mesh && let Ok(relative) = path.strip_prefix(root) {
+            files.push(relative.to_path_buf());
         }
     }
 }

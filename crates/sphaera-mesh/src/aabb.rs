@@ -40,9 +40,7 @@ impl Aabb {
 
     /// The smallest box containing every point ([`Aabb::EMPTY`] for no points).
     pub fn from_points(points: impl IntoIterator<Item = DVec3>) -> Self {
-        points
-            .into_iter()
-            .fold(Self::EMPTY, |b, p| b.grown_by_point(p))
+        points.into_iter().fold(Self::EMPTY, Self::grown_by_point)
     }
 
     /// Whether the box contains no point.
@@ -130,6 +128,7 @@ impl Default for Aabb {
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // the expected values are exact in binary
 mod tests {
     use super::*;
 

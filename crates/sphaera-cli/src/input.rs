@@ -1,0 +1,55 @@
+//! Reading the mesh a subcommand works on: a file, or the embedded default mesh.
+
+use std::{path::Path, time::Instant};
+
+use anyhow::{Context, Result};
+use sphaera::mesh::io::{self, Format, LoadedMesh};
+
+use crate::progress;
+
+/// The default mesh: the public-domain low-resolution Stanford bunny (npm `bunny` 1.0.1),
+/// closed, genus 0, 3,674 triangles.
+const EMBEDDED_BUNNY: &[u8] = include_bytes!("../assets/bunny_lowres.obj");
+
+/// The name shown for the embedded mesh.
+pub const EMBEDDED_NAME: &str = "<embedded bunny_lowres.obj>";
+
+/// A mesh read for a subcommand, with where it came from and how long reading took.
+pub struct Input {
+    /// The file name, or [`EMBEDDED_NAME`].
+    pub source: String,
+    /// The mesh and the reader's report.
+    pub loaded: LoadedMesh,
+    /// Seconds spent reading and parsing.
+    pub seconds: f64,
+}
+
+/// Reads `path`, or the embedded bunny when `path` is `None`, with a spinner on stderr.
+///
+/// # Errors
+///
+/// When the file cannot be read or parsed; the message names the file and, for malformed
+/// data, the line or byte offset.
+pub fn read_mesh(path: Option<&Path>, quiet: bool) -> Result<Input> {
+    let started = Instant::now();
+    let (source, loaded) = match path {
+        Some(path) => {
+            let source = path.display().to_string();
+            let spinner = progress::spinner(quiet, &format!("reading {source}"));
+            let loaded = io::read(path);
+            spinner.finish_and_clear();
+            let loaded = loaded.with_context(|| format!("cannot load {source}"))?;
+            (source, loaded)
+        }
+        None => (
+            EMBEDDED_NAME.to_owned(),
+            io::read_from_bytes(EMBEDDED_BUNNY, Format::Obj)
+                .context("cannot parse the embedded bunny")?,
+        ),
+    };
+    Ok(Input {
+        source,
+        loaded,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
