@@ -1,26 +1,50 @@
-//! tmp
-#![allow(missing_docs)]
-use plotters::prelude::*;
-fn main() -> anyhow::Result<()> {
-    let root = SVGBackend::new("/tmp/t.svg", (640, 480)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption("Load time", ("sans-serif", 20))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d((1e2f64..1e6f64).log_scale(), 0f64..2f64)?;
-    chart
-        .configure_mesh()
-        .x_desc("triangles")
-        .y_desc("seconds")
-        .draw()?;
-    chart.draw_series(PointSeries::of_element(
-        vec![(1e3, 0.5), (1e5, 1.0)],
-        4,
-        &RED,
-        &|c, s, st| EmptyElement::at(c) + Circle::new((0, 0), s, st.filled()),
-    ))?;
-    root.present()?;
+//! `sphaera-eval`: Sphaera's speed-versus-accuracy experiments.
+//!
+//! Each experiment measures one capability over the real meshes in `../shared/data` and
+//! writes a chart (`docs/charts/NAME.svg`) with the data behind it (`NAME.csv`). Run all of
+//! them with `cargo xtask charts`, or directly:
+//!
+//! ```text
+//! cargo run --release -p sphaera-eval -- --out docs/charts [--only NAME]
+//! ```
+//!
+//! Timings are the minimum of several runs, on whatever machine runs them; the figures in
+//! `docs/benchmarks.md` say which machine that was.
+
+// An experiment runner reports on the terminal.
+#![allow(clippy::print_stdout, clippy::print_stderr)]
+
+mod chart;
+mod experiments;
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+
+fn main() -> Result<()> {
+    let mut out = PathBuf::from("docs/charts");
+    let mut only: Option<String> = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--out" => out = args.next().context("--out needs a folder")?.into(),
+            "--only" => only = Some(args.next().context("--only needs an experiment name")?),
+            "--help" | "-h" => {
+                println!("usage: sphaera-eval [--out DIR] [--only NAME]");
+                println!("experiments: {}", experiments::NAMES.join(", "));
+                return Ok(());
+            }
+            other => bail!("unknown argument `{other}` (try --help)"),
+        }
+    }
+    let Some(data) = sphaera_tests::data_dir("sphaera-eval") else {
+        bail!("the experiments need the shared meshes (set SPHAERA_DATA)");
+    };
+    for name in experiments::NAMES {
+        if only.as_deref().is_none_or(|o| o == *name) {
+            eprintln!("== {name}");
+            experiments::run(name, &data, &out)?;
+        }
+    }
     Ok(())
 }

@@ -1,0 +1,35 @@
+//! The experiments, one module each.
+
+mod load_topology;
+
+use std::path::Path;
+
+use anyhow::{Result, bail};
+
+/// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
+/// `NAME.svg` and `NAME.csv`.
+pub const NAMES: &[&str] = &[load_topology::NAME];
+
+/// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
+pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
+    match name {
+        load_topology::NAME => load_topology::run(data, out),
+        other => bail!("no experiment named `{other}`"),
+    }
+}
+
+/// The shortest of `runs` timings of `f`, in seconds, with the last result.
+pub fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Result<(f64, T)> {
+    let mut best = f64::INFINITY;
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let started = std::time::Instant::now();
+        let value = f()?;
+        best = best.min(started.elapsed().as_secs_f64());
+        last = Some(value);
+    }
+    match last {
+        Some(value) => Ok((best, value)),
+        None => bail!("no run"),
+    }
+}
