@@ -21,10 +21,10 @@
 //! ```
 //! use sphaera::prelude::*;
 //!
-//! let torus = sphaera::mesh::shapes::torus(1.0, 0.25, 32, 12)?;
+//! let torus: TriMesh = sphaera::mesh::shapes::torus(1.0, 0.25, 32)?;
 //! let report = sphaera::mesh::topology::analyze(&torus);
-//! assert!(report.is_closed());
-//! assert_eq!(report.genus(), Some(1));
+//! assert!(report.is_closed);
+//! assert_eq!(report.genus, Some(1));
 //! assert!(torus.bounding_box_diagonal() > 2.0);
 //! # Ok::<(), MeshError>(())
 //! ```
