@@ -116,7 +116,8 @@
 //! [`MeshError::InwardOrientation`](crate::MeshError::InwardOrientation) when the triangles
 //! face inward; [`WindingNumber::solidity`] returns the measurements ([`SolidityReport`]).
 //! The open Stanford bunny (five holes) and the non-manifold dragon pass with median
-//! `w ≈ 0.99` behind their triangles.
+//! `w ≈ 0.99` behind their triangles; at the centre of the bunny's bounding box,
+//! `w = 0.9915` (brute force; 0.9929 with the default options).
 //!
 //! # Performance
 //!
