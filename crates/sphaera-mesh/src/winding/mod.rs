@@ -121,17 +121,18 @@
 //!
 //! # Performance
 //!
-//! Release build, one core of a shared 2-core machine, uniformly random query points in
-//! the bounding box, default options (scratch benchmark, not committed; numbers vary by
-//! about 30% with the machine's load):
+//! Release build on a shared 2-core machine, uniformly random query points in the bounding
+//! box, default options; queries per second on one core (`is_inside`,
+//! `is_inside_certified`) and on both cores (`classify`). Scratch benchmark, not committed;
+//! the numbers vary by about 30% with the machine's load:
 //!
-//! | mesh | triangles | build | `is_inside` | `is_inside_certified` |
-//! |---|---:|---:|---:|---:|
-//! | torus | 69,696 | 0.03–0.04 s | 280,000 /s | 60,000 /s |
-//! | Stanford bunny (open) | 69,451 | 0.04 s | 330,000 /s | 72,000 /s |
-//! | dragon `_res2` (non-manifold) | 202,520 | 0.17 s | 196,000 /s | 15,000 /s |
-//! | torus | 871,200 | 0.7 s | 180,000 /s | 27,000 /s |
-//! | dragon (full) | 871,414 | 1.1 s | 107,000–160,000 /s | 9,600 /s |
+//! | mesh | triangles | build | `is_inside` | `classify` (2 cores) | `is_inside_certified` |
+//! |---|---:|---:|---:|---:|---:|
+//! | torus | 69,696 | 0.04 s | 260,000 /s | 490,000 /s | 58,000 /s |
+//! | Stanford bunny (open) | 69,451 | 0.04 s | 310,000 /s | 580,000 /s | 69,000 /s |
+//! | dragon `_res2` (non-manifold) | 202,520 | 0.17 s | 200,000 /s | 310,000 /s | 13,000 /s |
+//! | torus | 871,200 | 0.7 s | 186,000 /s | 320,000 /s | 27,000 /s |
+//! | dragon (full) | 871,414 | 1.1–1.3 s | 102,000 /s | 143,000 /s | 8,200 /s |
 //!
 //! For comparison, [`winding_number_brute`] takes about 20 ns per triangle, that is about
 //! 700 queries per second at 70k triangles. Query cost grows with `beta` (third order,
