@@ -194,7 +194,7 @@ pub enum MeshError {
     /// Inside/outside is not meaningful: the mesh does not enclose a volume (for example a
     /// lone open sheet), as measured by `winding::WindingNumber::check_solid`.
     #[error(
-        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding}, below {threshold} (is it an open sheet?)"
+        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding:.3}, below {threshold} (is it an open sheet?)"
     )]
     NotSolid {
         /// The largest `|w|` found at the probe points next to the surface (about ½ for a
@@ -206,7 +206,7 @@ pub enum MeshError {
     /// The mesh encloses a volume but its triangles face inward, so the winding number is
     /// −1 inside and every point reads as outside.
     #[error(
-        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding} instead of about 1 (flip the triangles)"
+        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding:.3} instead of about 1 (flip the triangles)"
     )]
     InwardOrientation {
         /// The median winding number just behind the probe triangles (about 0 when every

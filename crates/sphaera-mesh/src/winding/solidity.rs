@@ -108,7 +108,10 @@ impl WindingNumber {
     /// ([`SolidityReport::max_abs_winding`] at least [`SOLID_THRESHOLD`] = 0.75) and is
     /// oriented outward ([`SolidityReport::median_inner_winding`] at least
     /// [`INWARD_THRESHOLD`] = 0.25). Open scans with small holes pass; lone sheets, loose
-    /// open patches and inward-oriented meshes fail.
+    /// open patches and inward-oriented meshes fail. The criterion is deliberately simple:
+    /// a surface that wraps around a region enough for `|w|` to reach 0.75 somewhere passes
+    /// (a hemispherical bowl reaches about 0.85 near its pole, so it passes, and its
+    /// "inside" is the part of the ball where `w > ½`).
     ///
     /// # Errors
     ///
@@ -206,6 +209,31 @@ mod tests {
         let mesh = test_meshes::uv_sphere_with_hole(24, 48, 1.0, 3);
         let report = WindingNumber::new(&mesh).unwrap().check_solid().unwrap();
         assert!(report.median_inner_winding > 0.9, "{report:?}");
+    }
+
+    #[test]
+    fn hemisphere_bowl_passes_and_its_numbers_are_as_documented() {
+        let bowl = test_meshes::uv_sphere_with_hole(16, 32, 1.0, 8);
+        let report = WindingNumber::new(&bowl).unwrap().check_solid().unwrap();
+        assert!(
+            report.max_abs_winding > 0.8 && report.max_abs_winding < 0.95,
+            "{report:?}"
+        );
+    }
+
+    #[test]
+    fn not_solid_message_says_what_is_wrong() {
+        let sheet = test_meshes::flat_sheet(2);
+        let err = WindingNumber::new(&sheet)
+            .unwrap()
+            .check_solid()
+            .unwrap_err();
+        let message = err.to_string();
+        assert!(
+            message.starts_with("the mesh does not enclose a volume"),
+            "{message}"
+        );
+        assert!(message.contains("below 0.75"), "{message}");
     }
 
     #[test]

@@ -128,7 +128,19 @@ proptest! {
             (estimate.value - brute).abs() <= DEFAULT_TOLERANCE,
             "{name} at {p}: {} vs {brute}", estimate.value
         );
+        // Away from the surface the classification is the exact one, and on closed shapes
+        // it is the ray-parity one.
+        prop_assert_eq!(winding.is_inside(p), brute > 0.5);
+        if shape % shapes.len() < 5 {
+            prop_assert_eq!(inside_by_ray_parity(mesh, p), Some(winding.is_inside(p)));
+        }
     }
+}
+
+#[test]
+fn evaluator_is_send_and_sync() {
+    fn check<T: Send + Sync + Clone>() {}
+    check::<WindingNumber>();
 }
 
 #[test]

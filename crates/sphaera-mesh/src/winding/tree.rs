@@ -95,6 +95,10 @@ impl Tree {
 /// Builds the subtree over `order` (whose first element sits at `offset` in the final
 /// triangle order), appends its nodes depth-first, and returns nothing: the subtree's root
 /// is the first node appended.
+///
+/// Indexing here cannot fail, by invariant: `order` holds indices into `items`, and
+/// `node_index` was pushed just before. The recursion depth is `log2(n / LEAF_SIZE) + 1`
+/// (the median split halves every range).
 fn build_node(items: &[Item], order: &mut [u32], offset: usize, nodes: &mut Vec<Node>) {
     let node_index = nodes.len();
     nodes.push(expansion_of(items, order));
