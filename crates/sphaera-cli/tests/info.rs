@@ -96,3 +96,49 @@ fn info_on_garbage_bytes_fails_cleanly() {
     );
     assert!(stderr(&output).starts_with("error:"));
 }
+
+/// `sphaera info --json` on every mesh of `shared/data` reports what the data README's
+/// table says (closed, 2-manifold, genus, boundary edges, components, χ, counts).
+#[test]
+fn info_json_matches_the_data_readme_for_every_shared_mesh() {
+    let Some(data) =
+        sphaera_tests::data_dir("info_json_matches_the_data_readme_for_every_shared_mesh")
+    else {
+        return;
+    };
+    let mut failures = Vec::new();
+    for expected in sphaera_tests::expected_stats(&data) {
+        let path = data.join(&expected.file);
+        let output = sphaera(&["info", "--quiet", "--json", path.to_str().unwrap()]);
+        if !output.status.success() {
+            failures.push(format!("{}: {}", expected.file, stderr(&output)));
+            continue;
+        }
+        let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("valid JSON");
+        let topology = &json["topology"];
+        let got = (
+            json["vertex_records"].as_u64(),
+            json["triangles"].as_u64(),
+            topology["closed"].as_bool(),
+            topology["manifold"].as_bool(),
+            topology["components"].as_u64(),
+            topology["boundary_edges"].as_u64(),
+            topology["genus"].as_i64(),
+            topology["euler_characteristic"].as_i64(),
+        );
+        let want = (
+            Some(expected.vertex_records as u64),
+            Some(expected.triangles as u64),
+            Some(expected.closed),
+            Some(expected.manifold),
+            Some(expected.components as u64),
+            Some(expected.boundary_edges as u64),
+            expected.genus,
+            Some(expected.euler_characteristic),
+        );
+        if got != want {
+            failures.push(format!("{}: got {got:?}, README {want:?}", expected.file));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
