@@ -10,7 +10,7 @@ use clap::{Args, Parser, Subcommand};
 /// (public domain, 3,674 triangles) is used instead. Supported formats: OBJ, PLY (ASCII
 /// and binary), STL (ASCII and binary), OFF.
 #[derive(Debug, Parser)]
-#[command(name = "sphaera", version, about, long_about = None)]
+#[command(name = "sphaera", version)]
 pub struct Cli {
     /// Hide progress bars.
     #[arg(long, short, global = true)]

@@ -38,7 +38,8 @@ pub fn read_mesh(path: Option<&Path>, quiet: bool) -> Result<Input> {
             let spinner = progress::spinner(quiet, &format!("reading {source}"));
             let loaded = io::read(path);
             spinner.finish_and_clear();
-            let loaded = loaded.with_context(|| format!("cannot load {source}"))?;
+            // The error names the file (and the line or byte offset when it is malformed).
+            let loaded = loaded?;
             (source, loaded)
         }
         None => (
