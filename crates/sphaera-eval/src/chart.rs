@@ -42,9 +42,8 @@ const COLORS: [RGBColor; 6] = [
     RGBColor(140, 86, 75),
 ];
 
-/// Draws the series as points joined by lines on log–log axes, into `path` (SVG, written
-/// atomically).
-pub fn log_log_chart(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Result<()> {
+/// Draws the series as points on log–log axes, into `path` (SVG, written atomically).
+pub fn log_log_scatter(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Result<()> {
     let positive = |&(x, y): &(f64, f64)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite();
     let all: Vec<(f64, f64)> = series
         .iter()
@@ -66,22 +65,20 @@ pub fn log_log_chart(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Re
             .configure_mesh()
             .x_desc(spec.x_label)
             .y_desc(spec.y_label)
+            .x_label_formatter(&|v| tick_label(*v))
+            .y_label_formatter(&|v| tick_label(*v))
             .draw()?;
         for (i, s) in series.iter().enumerate() {
             let color = COLORS[i % COLORS.len()];
-            let mut points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
             chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(1)))?
+                .draw_series(
+                    points
+                        .into_iter()
+                        .map(|p| Circle::new(p, 3, color.filled())),
+                )?
                 .label(s.name.as_str())
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2))
-                });
-            chart.draw_series(
-                points
-                    .into_iter()
-                    .map(|p| Circle::new(p, 3, color.filled())),
-            )?;
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
         }
         chart
             .configure_series_labels()
@@ -92,6 +89,27 @@ pub fn log_log_chart(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Re
         root.present()?;
     }
     write_atomically(path, svg.as_bytes())
+}
+
+/// A short label for a tick on a log axis: powers of ten as `0.001`, `100`, `1e-6`.
+fn tick_label(v: f64) -> String {
+    if v <= 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let exponent = v.log10().round();
+    let is_power_of_ten = (v / 10f64.powf(exponent) - 1.0).abs() < 1e-9;
+    if is_power_of_ten {
+        // The exponent of a finite positive f64 is within ±324.
+        let e = exponent as i32;
+        match e {
+            -3..=-1 => format!("{:.*}", e.unsigned_abs() as usize, v),
+            0..=6 => format!("{}", 10i64.pow(e.unsigned_abs())),
+            _ => format!("1e{e}"),
+        }
+    } else {
+        let text = format!("{v:.3}");
+        text.trim_end_matches('0').trim_end_matches('.').to_owned()
+    }
 }
 
 /// A range covering `values` on a log axis, padded by a factor of 1.5 each side.
@@ -125,4 +143,20 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     sphaera::mesh::io::write_atomic(path, |w| std::io::Write::write_all(w, bytes))?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_labels_are_short() {
+        assert_eq!(tick_label(0.001), "0.001");
+        assert_eq!(tick_label(0.1), "0.1");
+        assert_eq!(tick_label(1.0), "1");
+        assert_eq!(tick_label(1e6), "1000000");
+        assert_eq!(tick_label(1e-6), "1e-6");
+        assert_eq!(tick_label(99.999_999_999_9e-6), "1e-4");
+        assert_eq!(tick_label(2.5), "2.5");
+    }
 }

@@ -9,7 +9,7 @@ use sphaera::mesh::{
 };
 
 use super::min_time;
-use crate::chart::{ChartSpec, Series, log_log_chart, write_csv};
+use crate::chart::{ChartSpec, Series, log_log_scatter, write_csv};
 
 /// The experiment's name: its files are `load_topology_time.{svg,csv}`.
 pub const NAME: &str = "load_topology_time";
@@ -59,7 +59,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
         ],
         &rows,
     )?;
-    log_log_chart(
+    log_log_scatter(
         &out.join(format!("{NAME}.svg")),
         &ChartSpec {
             title: "Reading a mesh and building its topology (every mesh in shared/data)",
