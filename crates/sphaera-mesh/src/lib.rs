@@ -110,6 +110,8 @@ mod mesh;
 pub mod sampling;
 pub mod shapes;
 mod sphere;
+#[cfg(test)]
+mod test_meshes;
 pub mod topology;
 pub mod winding;
 

@@ -148,8 +148,6 @@ mod ray_parity;
 mod solid_angle;
 mod solidity;
 #[cfg(test)]
-mod test_meshes;
-#[cfg(test)]
 mod tests;
 mod tree;
 

@@ -130,7 +130,7 @@ fn count_crossings(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::winding::test_meshes;
+    use crate::test_meshes;
 
     #[test]
     fn directions_are_not_degenerate() {
@@ -152,7 +152,7 @@ mod tests {
 
     #[test]
     fn points_on_the_surface_are_ambiguous() {
-        let cube = test_meshes::cube();
+        let cube = test_meshes::unit_cube();
         for p in [
             DVec3::new(0.5, 0.3, 0.0),
             DVec3::new(1.0, 1.0, 0.2),
@@ -165,7 +165,7 @@ mod tests {
     #[test]
     fn rays_through_edges_and_corners_are_recast() {
         // Points from which the first direction passes exactly through a cube corner or edge.
-        let cube = test_meshes::cube();
+        let cube = test_meshes::unit_cube();
         let d = DVec3::from(DIRECTIONS[0]).normalize();
         for corner in [DVec3::ONE, DVec3::new(1.0, 1.0, 0.5)] {
             let inside = corner - 0.3 * d;
@@ -177,7 +177,7 @@ mod tests {
 
     #[test]
     fn non_finite_and_empty_inputs() {
-        let cube = test_meshes::cube();
+        let cube = test_meshes::unit_cube();
         assert_eq!(inside_by_ray_parity(&cube, DVec3::NAN), None);
         assert_eq!(
             inside_by_ray_parity(&TriMesh::default(), DVec3::ZERO),

@@ -103,7 +103,7 @@ pub fn winding_number_brute(mesh: &TriMesh, p: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::winding::test_meshes;
+    use crate::test_meshes;
     use proptest::prelude::*;
 
     #[test]

@@ -165,7 +165,7 @@ impl WindingNumber {
 mod tests {
     use super::*;
     use crate::TriMesh;
-    use crate::winding::test_meshes;
+    use crate::{shapes, test_meshes};
 
     #[test]
     fn closed_shapes_are_solid() {
@@ -178,7 +178,7 @@ mod tests {
 
     #[test]
     fn flat_sheet_is_not_solid() {
-        let sheet = test_meshes::flat_sheet(20);
+        let sheet = test_meshes::unit_sheet(20);
         let err = WindingNumber::new(&sheet)
             .unwrap()
             .check_solid()
@@ -194,7 +194,7 @@ mod tests {
 
     #[test]
     fn inward_oriented_sphere_is_reported() {
-        let (positions, triangles) = test_meshes::uv_sphere(10, 20).into_parts();
+        let (positions, triangles) = shapes::sphere(1.0, 20).unwrap().into_parts();
         let flipped = triangles.into_iter().map(|[a, b, c]| [a, c, b]).collect();
         let mesh = TriMesh::new(positions, flipped).unwrap();
         let err = WindingNumber::new(&mesh)
@@ -206,14 +206,14 @@ mod tests {
 
     #[test]
     fn sphere_with_a_hole_is_still_solid() {
-        let mesh = test_meshes::uv_sphere_with_hole(24, 48, 1.0, 3);
+        let mesh = test_meshes::sphere_with_hole(48, 22.5);
         let report = WindingNumber::new(&mesh).unwrap().check_solid().unwrap();
         assert!(report.median_inner_winding > 0.9, "{report:?}");
     }
 
     #[test]
     fn hemisphere_bowl_passes_and_its_numbers_are_as_documented() {
-        let bowl = test_meshes::uv_sphere_with_hole(16, 32, 1.0, 8);
+        let bowl = test_meshes::sphere_with_hole(32, 90.0);
         let report = WindingNumber::new(&bowl).unwrap().check_solid().unwrap();
         assert!(
             report.max_abs_winding > 0.8 && report.max_abs_winding < 0.95,
@@ -223,7 +223,7 @@ mod tests {
 
     #[test]
     fn not_solid_message_says_what_is_wrong() {
-        let sheet = test_meshes::flat_sheet(2);
+        let sheet = test_meshes::unit_sheet(2);
         let err = WindingNumber::new(&sheet)
             .unwrap()
             .check_solid()

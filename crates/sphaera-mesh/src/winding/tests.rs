@@ -8,9 +8,8 @@ use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::test_meshes;
 use super::*;
-use crate::TriMesh;
+use crate::{TriMesh, shapes, test_meshes};
 
 /// Distance from `p` to the triangle `a`, `b`, `c` (test reference).
 fn distance_to_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
@@ -45,23 +44,17 @@ fn distance_to_mesh(mesh: &TriMesh, p: DVec3) -> f64 {
 /// The closed shapes, an open sphere, a flat sheet and two nested spheres.
 fn all_shapes() -> Vec<(&'static str, TriMesh)> {
     let mut shapes = test_meshes::closed_shapes();
-    shapes.push((
-        "open sphere",
-        test_meshes::uv_sphere_with_hole(16, 32, 1.0, 4),
-    ));
-    shapes.push(("sheet", test_meshes::flat_sheet(12)));
+    shapes.push(("open sphere", test_meshes::sphere_with_hole(32, 45.0)));
+    shapes.push(("sheet", test_meshes::unit_sheet(12)));
     shapes.push(("nested spheres", nested_spheres()));
     shapes
 }
 
 fn nested_spheres() -> TriMesh {
-    let (mut positions, mut triangles) = test_meshes::uv_sphere(12, 24).into_parts();
-    let (inner_positions, inner_triangles) =
-        test_meshes::uv_sphere_with_hole(8, 16, 0.5, 0).into_parts();
-    let offset = u32::try_from(positions.len()).unwrap();
-    positions.extend(inner_positions);
-    triangles.extend(inner_triangles.into_iter().map(|t| t.map(|i| i + offset)));
-    TriMesh::new(positions, triangles).unwrap()
+    test_meshes::union(
+        &shapes::sphere(1.0, 24).unwrap(),
+        &shapes::sphere(0.5, 16).unwrap(),
+    )
 }
 
 /// `count` random points in the mesh's bounding box grown by 30% on each side, with their
@@ -235,7 +228,7 @@ fn batch_queries_equal_single_queries_bit_for_bit() {
 fn open_sphere_with_a_small_hole_is_about_one_inside() {
     // The hole is the cap above 22.5° from the pole; from the centre it subtends
     // 2π (1 − cos 22.5°) ≈ 0.478 sr, so w(0) ≈ 1 − 0.038.
-    let mesh = test_meshes::uv_sphere_with_hole(16, 32, 1.0, 2);
+    let mesh = test_meshes::sphere_with_hole(32, 22.5);
     let winding = WindingNumber::new(&mesh).unwrap();
     let centre = winding.winding_number(DVec3::ZERO);
     assert!((centre - 0.962).abs() < 1e-2, "{centre}");
@@ -273,7 +266,7 @@ fn flat_sheet_winding_stays_within_one_half() {
 
 #[test]
 fn inward_oriented_mesh_has_winding_minus_one_inside() {
-    let (positions, triangles) = test_meshes::cube().into_parts();
+    let (positions, triangles) = test_meshes::unit_cube().into_parts();
     let flipped = triangles.into_iter().map(|[a, b, c]| [a, c, b]).collect();
     let mesh = TriMesh::new(positions, flipped).unwrap();
     let winding = WindingNumber::new(&mesh).unwrap();
@@ -294,7 +287,7 @@ fn non_finite_points_are_nan_and_outside() {
 
 #[test]
 fn invalid_parameters_are_rejected() {
-    let mesh = test_meshes::cube();
+    let mesh = test_meshes::unit_cube();
     for beta in [1.0, 0.5, -2.0, f64::NAN, f64::NEG_INFINITY] {
         let options = WindingOptions {
             beta,

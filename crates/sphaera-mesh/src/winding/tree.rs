@@ -193,11 +193,11 @@ pub(crate) fn trace(m: &DMat3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::winding::test_meshes;
+    use crate::shapes;
 
     #[test]
     fn leaves_partition_the_triangles_and_radii_cover_them() {
-        let mesh = test_meshes::torus(20, 10);
+        let mesh = shapes::torus(1.0, 0.35, 20).unwrap();
         let tree = Tree::build(&mesh);
         assert_eq!(tree.corners.len(), mesh.triangle_count());
         let mut covered = vec![false; tree.corners.len()];
@@ -223,7 +223,7 @@ mod tests {
 
     #[test]
     fn build_is_deterministic() {
-        let mesh = test_meshes::uv_sphere(12, 24);
+        let mesh = shapes::sphere(1.0, 24).unwrap();
         let (a, b) = (Tree::build(&mesh), Tree::build(&mesh));
         assert_eq!(a.corners, b.corners);
         assert_eq!(a.nodes.len(), b.nodes.len());
