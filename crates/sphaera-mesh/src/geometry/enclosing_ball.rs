@@ -9,6 +9,7 @@
 //! support set plus that point (at most five points, solved exactly by trying every subset
 //! of at most four of them as the boundary set). The radius grows strictly at every step and
 //! only finitely many support sets exist, so the loop ends; no recursion, no randomness.
+//! The loop is shared with the ball-of-balls method (`enclosing_ball_core`).
 //!
 //! Every candidate ball is scored by the largest distance from its centre to the five
 //! points, never by its own circumradius, so nearly degenerate (collinear, coplanar) boundary
@@ -20,14 +21,11 @@ use smallvec::SmallVec;
 use super::circumsphere::{
     ball_through_two_points, circumball_of_triangle, circumsphere, covering_radius,
 };
+use super::enclosing_ball_core::{self, Item};
 use crate::{MeshError, Sphere};
 
 /// The name used in error messages.
 const OPERATION: &str = "minimum enclosing ball of points";
-
-/// Bound on the number of pivot steps; never reached in practice (a few dozen steps are
-/// typical even for 100,000 points), it only guards against pathological rounding cycles.
-const MAX_PIVOT_STEPS: usize = 100_000;
 
 /// A minimum enclosing ball with the input points that determine it.
 #[derive(Clone, Debug, PartialEq)]
@@ -102,105 +100,34 @@ pub fn minimum_enclosing_ball(points: &[DVec3]) -> Result<Sphere, MeshError> {
 ///
 /// Never.
 pub fn minimum_enclosing_ball_with_support(points: &[DVec3]) -> Result<EnclosingBall, MeshError> {
-    let Some(&first) = points.first() else {
-        return Err(MeshError::EmptyInput {
-            operation: OPERATION,
-        });
-    };
     if let Some(index) = points.iter().position(|p| !p.is_finite()) {
         return Err(MeshError::NonFiniteInput {
             operation: OPERATION,
             index,
         });
     }
-    let mut support: SmallVec<[usize; 4]> = SmallVec::new();
-    support.push(0);
-    let mut center = first;
-    let mut radius_squared = 0.0;
-    for _ in 0..MAX_PIVOT_STEPS {
-        let (far, far_squared) = farthest(points, center);
-        if far_squared <= radius_squared {
-            break;
-        }
-        let Some((next_support, next_center, next_radius_squared)) =
-            best_ball_with(points, &support, far)
-        else {
-            break;
-        };
-        if next_radius_squared.is_nan() || next_radius_squared <= radius_squared {
-            // No progress: rounding noise; the final pass makes the ball contain everything.
-            break;
-        }
-        support = next_support;
-        center = next_center;
-        radius_squared = next_radius_squared;
-    }
-    // The radius is the largest distance from the centre, so every point is inside.
-    let (_, far_squared) = farthest(points, center);
-    let radius = covering_radius(far_squared);
-    support.sort_unstable();
-    Ok(EnclosingBall {
-        sphere: Sphere::new(center, radius),
-        support,
+    enclosing_ball_core::solve(points).ok_or(MeshError::EmptyInput {
+        operation: OPERATION,
     })
 }
 
-/// The index of the first point farthest from `center`, and its squared distance.
-fn farthest(points: &[DVec3], center: DVec3) -> (usize, f64) {
-    let mut best = (0, -1.0);
-    for (index, p) in points.iter().enumerate() {
-        let d = p.distance_squared(center);
-        if d > best.1 {
-            best = (index, d);
-        }
+/// A point is an item whose extent is its squared distance from the centre.
+impl Item for DVec3 {
+    fn extent_from(&self, center: DVec3) -> f64 {
+        self.distance_squared(center)
     }
-    best
-}
 
-/// The smallest enclosing ball of `support ∪ {extra}` (at most five points), found by
-/// scoring the circumball of every subset of at most four points by the largest squared
-/// distance from its centre to all five. Returns the chosen subset, centre and score.
-fn best_ball_with(
-    points: &[DVec3],
-    support: &[usize],
-    extra: usize,
-) -> Option<(SmallVec<[usize; 4]>, DVec3, f64)> {
-    let mut candidates: SmallVec<[usize; 5]> = SmallVec::from_slice(support);
-    candidates.push(extra);
-    let mut set: SmallVec<[DVec3; 5]> = SmallVec::new();
-    for &index in &candidates {
-        set.push(*points.get(index)?);
+    fn center(&self) -> DVec3 {
+        *self
     }
-    let mut best: Option<(u32, DVec3, f64)> = None;
-    for mask in 1u32..(1 << set.len()) {
-        if mask.count_ones() > 4 {
-            continue;
-        }
-        let chosen: SmallVec<[DVec3; 4]> = set
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| mask & (1 << i) != 0)
-            .map(|(_, &p)| p)
-            .collect();
-        let Some(center) = circumcenter(&chosen) else {
-            continue;
-        };
-        let score = set
-            .iter()
-            .map(|p| p.distance_squared(center))
-            .fold(0.0, f64::max);
-        if best.is_none_or(|(_, _, best_score)| score < best_score) {
-            best = Some((mask, center, score));
-        }
+
+    fn boundary_centers(boundary: &[Self]) -> SmallVec<[DVec3; 2]> {
+        circumcenter(boundary).into_iter().collect()
     }
-    let (mask, center, score) = best?;
-    let subset = candidates
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| mask & (1 << i) != 0)
-        .map(|(_, &index)| index)
-        .collect();
-    Some((subset, center, score))
+
+    fn radius_for_extent(extent: f64) -> f64 {
+        covering_radius(extent)
+    }
 }
 
 /// The centre of the smallest ball with all of `points` (1 to 4) on its boundary, or `None`

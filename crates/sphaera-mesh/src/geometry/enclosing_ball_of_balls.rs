@@ -18,13 +18,11 @@ use glam::DVec3;
 use smallvec::SmallVec;
 
 use super::EnclosingBall;
+use super::enclosing_ball_core::{self, Item};
 use crate::{MeshError, Sphere};
 
 /// The name used in error messages.
 const OPERATION: &str = "minimum enclosing ball of balls";
-
-/// Bound on the number of pivot steps; it only guards against pathological rounding cycles.
-const MAX_PIVOT_STEPS: usize = 100_000;
 
 /// The smallest ball containing all `balls`.
 ///
@@ -92,11 +90,6 @@ pub fn minimum_enclosing_ball_of_balls(balls: &[Sphere]) -> Result<Sphere, MeshE
 pub fn minimum_enclosing_ball_of_balls_with_support(
     balls: &[Sphere],
 ) -> Result<EnclosingBall, MeshError> {
-    let Some(&first) = balls.first() else {
-        return Err(MeshError::EmptyInput {
-            operation: OPERATION,
-        });
-    };
     for (index, ball) in balls.iter().enumerate() {
         if !ball.center.is_finite() {
             return Err(MeshError::NonFiniteInput {
@@ -112,32 +105,8 @@ pub fn minimum_enclosing_ball_of_balls_with_support(
             });
         }
     }
-    let mut support: SmallVec<[usize; 4]> = SmallVec::new();
-    support.push(0);
-    let mut center = first.center;
-    let mut radius = first.radius;
-    for _ in 0..MAX_PIVOT_STEPS {
-        let (far, reach) = farthest(balls, center);
-        if reach <= radius {
-            break;
-        }
-        let Some((next_support, next_center, next_radius)) = best_ball_with(balls, &support, far)
-        else {
-            break;
-        };
-        if next_radius.is_nan() || next_radius <= radius {
-            break;
-        }
-        support = next_support;
-        center = next_center;
-        radius = next_radius;
-    }
-    // The radius is the largest reach from the centre, so every ball is inside.
-    let (_, reach) = farthest(balls, center);
-    support.sort_unstable();
-    Ok(EnclosingBall {
-        sphere: Sphere::new(center, reach),
-        support,
+    enclosing_ball_core::solve(balls).ok_or(MeshError::EmptyInput {
+        operation: OPERATION,
     })
 }
 
@@ -146,58 +115,24 @@ fn reach(center: DVec3, ball: &Sphere) -> f64 {
     ball.center.distance(center) + ball.radius
 }
 
-/// The index of the first ball reaching farthest from `center`, and its reach.
-fn farthest(balls: &[Sphere], center: DVec3) -> (usize, f64) {
-    let mut best = (0, f64::NEG_INFINITY);
-    for (index, ball) in balls.iter().enumerate() {
-        let r = reach(center, ball);
-        if r > best.1 {
-            best = (index, r);
-        }
+/// A ball is an item whose extent is its reach from the centre; the boundary centres are
+/// those of the balls internally tangent to the boundary set (up to two per set).
+impl Item for Sphere {
+    fn extent_from(&self, center: DVec3) -> f64 {
+        reach(center, self)
     }
-    best
-}
 
-/// The smallest enclosing ball of `support ∪ {extra}` (at most five balls): every subset of
-/// at most four balls proposes up to two tangent centres, each scored by the largest reach
-/// of all five. Returns the chosen subset, centre and score.
-fn best_ball_with(
-    balls: &[Sphere],
-    support: &[usize],
-    extra: usize,
-) -> Option<(SmallVec<[usize; 4]>, DVec3, f64)> {
-    let mut candidates: SmallVec<[usize; 5]> = SmallVec::from_slice(support);
-    candidates.push(extra);
-    let mut set: SmallVec<[Sphere; 5]> = SmallVec::new();
-    for &index in &candidates {
-        set.push(*balls.get(index)?);
+    fn center(&self) -> DVec3 {
+        self.center
     }
-    let mut best: Option<(u32, DVec3, f64)> = None;
-    for mask in 1u32..(1 << set.len()) {
-        if mask.count_ones() > 4 {
-            continue;
-        }
-        let chosen: SmallVec<[Sphere; 4]> = set
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| mask & (1 << i) != 0)
-            .map(|(_, &b)| b)
-            .collect();
-        for center in tangent_centers(&chosen) {
-            let score = set.iter().map(|b| reach(center, b)).fold(0.0, f64::max);
-            if best.is_none_or(|(_, _, best_score)| score < best_score) {
-                best = Some((mask, center, score));
-            }
-        }
+
+    fn boundary_centers(boundary: &[Self]) -> SmallVec<[DVec3; 2]> {
+        tangent_centers(boundary)
     }
-    let (mask, center, score) = best?;
-    let subset = candidates
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| mask & (1 << i) != 0)
-        .map(|(_, &index)| index)
-        .collect();
-    Some((subset, center, score))
+
+    fn radius_for_extent(extent: f64) -> f64 {
+        extent
+    }
 }
 
 /// Candidate centres (in the affine hull of the centres) of balls internally tangent to all

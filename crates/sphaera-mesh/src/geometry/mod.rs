@@ -38,6 +38,7 @@
 mod circumsphere;
 mod closest_point;
 mod enclosing_ball;
+mod enclosing_ball_core;
 mod enclosing_ball_of_balls;
 mod ray;
 mod segment_segment;
