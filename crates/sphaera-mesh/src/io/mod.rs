@@ -114,6 +114,7 @@
 //! map except STL welding). The 871,414-triangle ASCII `dragon_vrip.ply` (33 MB) loads in
 //! about 0.3 s in release mode on the reference 2-core machine.
 
+mod builder;
 pub mod colormap;
 mod obj;
 mod off;

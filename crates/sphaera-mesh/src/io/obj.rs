@@ -8,11 +8,9 @@
 
 use std::borrow::Cow;
 
-use glam::DVec3;
-
+use super::builder::MeshBuilder;
 use super::parse_error::token_text;
-use super::polygon::MeshBuilder;
-use super::text::{Lines, is_blank, parse_f64, parse_i64, strip_comment, tokens};
+use super::text::{Lines, is_blank, parse_i64, parse_xyz, strip_comment, tokens};
 use super::{Format, LoadedMesh, Location, ParseReason};
 use crate::MeshError;
 
@@ -76,51 +74,9 @@ pub(crate) fn read_obj(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
         match keyword {
             b"v" => {
                 any_record = true;
-                let vertex = builder.positions.len();
-                let mut xyz = [0.0; 3];
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let Some(tok) = toks.next() else {
-                        return Err(error(
-                            line,
-                            ParseReason::MissingValues {
-                                expected: 3,
-                                found: k,
-                            },
-                        ));
-                    };
-                    *slot = parse_f64(tok).ok_or_else(|| {
-                        error(
-                            line,
-                            ParseReason::InvalidNumber {
-                                expected: "a floating-point coordinate",
-                                found: token_text(tok),
-                            },
-                        )
-                    })?;
-                }
-                if let Some((axis, &value)) = ['x', 'y', 'z']
-                    .iter()
-                    .zip(&xyz)
-                    .find(|(_, v)| !v.is_finite())
-                {
-                    return Err(error(
-                        line,
-                        ParseReason::NonFiniteCoordinate {
-                            vertex,
-                            axis: *axis,
-                            value,
-                        },
-                    ));
-                }
-                if vertex >= u32::MAX as usize {
-                    return Err(error(
-                        line,
-                        ParseReason::TooManyVertices {
-                            count: vertex as u64 + 1,
-                        },
-                    ));
-                }
-                builder.positions.push(DVec3::from_array(xyz));
+                parse_xyz(&mut toks)
+                    .and_then(|xyz| builder.push_vertex(xyz))
+                    .map_err(|reason| error(line, reason))?;
             }
             b"f" | b"fo" => {
                 any_record = true;
@@ -172,13 +128,9 @@ pub(crate) fn read_obj(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                     // Both branches bound `resolved` below u32::MAX (checked above).
                     face.push(u32::try_from(resolved).unwrap_or(u32::MAX));
                 }
-                if face.len() < 3 {
-                    return Err(error(
-                        line,
-                        ParseReason::TooFewFaceVertices { count: face.len() },
-                    ));
-                }
-                builder.push_face(&face);
+                builder
+                    .push_face(&face)
+                    .map_err(|reason| error(line, reason))?;
             }
             _ => {}
         }
@@ -210,12 +162,7 @@ mod tests {
     use super::*;
 
     fn reason(bytes: &[u8]) -> (Location, ParseReason) {
-        match read_obj(bytes) {
-            Err(MeshError::Parse {
-                location, reason, ..
-            }) => (location, reason),
-            other => panic!("expected a parse error, got {other:?}"),
-        }
+        super::super::tests::parse_error(bytes, Format::Obj)
     }
 
     #[test]

@@ -8,11 +8,9 @@
 //! ignored). `#` starts a comment. Binary OFF and 4D/`nOFF` variants are refused with
 //! [`ParseReason::Unsupported`].
 
-use glam::DVec3;
-
+use super::builder::MeshBuilder;
 use super::parse_error::token_text;
-use super::polygon::MeshBuilder;
-use super::text::{Lines, is_blank, parse_f64, parse_i64, strip_comment, tokens};
+use super::text::{Lines, is_blank, parse_i64, parse_xyz, strip_comment, tokens};
 use super::{Format, LoadedMesh, Location, ParseReason};
 use crate::MeshError;
 
@@ -146,43 +144,9 @@ pub(crate) fn read_off(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
             return Err(missing("vertex", vertex_count, vertex, last_line));
         };
         last_line = line;
-        let mut xyz = [0.0; 3];
-        let mut toks = tokens(content);
-        for (k, slot) in xyz.iter_mut().enumerate() {
-            let Some(tok) = toks.next() else {
-                return Err(error(
-                    line,
-                    ParseReason::MissingValues {
-                        expected: 3,
-                        found: k,
-                    },
-                ));
-            };
-            *slot = parse_f64(tok).ok_or_else(|| {
-                error(
-                    line,
-                    ParseReason::InvalidNumber {
-                        expected: "a floating-point coordinate",
-                        found: token_text(tok),
-                    },
-                )
-            })?;
-        }
-        if let Some((axis, &value)) = ['x', 'y', 'z']
-            .iter()
-            .zip(&xyz)
-            .find(|(_, v)| !v.is_finite())
-        {
-            return Err(error(
-                line,
-                ParseReason::NonFiniteCoordinate {
-                    vertex,
-                    axis: *axis,
-                    value,
-                },
-            ));
-        }
-        builder.positions.push(DVec3::from_array(xyz));
+        parse_xyz(&mut tokens(content))
+            .and_then(|xyz| builder.push_vertex(xyz))
+            .map_err(|reason| error(line, reason))?;
     }
     let mut face: Vec<u32> = Vec::with_capacity(8);
     for index in 0..face_count {
@@ -237,7 +201,9 @@ pub(crate) fn read_off(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 }
             }
         }
-        builder.push_face(&face);
+        builder
+            .push_face(&face)
+            .map_err(|reason| error(line, reason))?;
     }
     builder.finish(MeshBuilder::report(Format::Off, vertex_count))
 }
@@ -247,12 +213,7 @@ mod tests {
     use super::*;
 
     fn parse_error(bytes: &[u8]) -> (Location, ParseReason) {
-        match read_off(bytes) {
-            Err(MeshError::Parse {
-                location, reason, ..
-            }) => (location, reason),
-            other => panic!("expected a parse error, got {other:?}"),
-        }
+        super::super::tests::parse_error(bytes, Format::Off)
     }
 
     #[test]

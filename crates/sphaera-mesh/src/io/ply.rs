@@ -6,10 +6,8 @@
 //! (normals, colours, confidence, lists) and every other element (edges, materials,
 //! tristrips...) is read past and ignored. Elements may come in any order.
 
-use glam::DVec3;
-
+use super::builder::MeshBuilder;
 use super::parse_error::token_text;
-use super::polygon::MeshBuilder;
 use super::text::{Lines, is_blank, parse_f64, parse_i64, tokens};
 use super::{Format, LoadedMesh, Location, ParseReason};
 use crate::MeshError;
@@ -249,18 +247,23 @@ trait Source {
     /// A list length: a non-negative integer.
     fn list_len(&mut self, ty: Scalar) -> Result<usize, MeshError> {
         let value = self.value(ty)?;
-        if (0.0..1e15).contains(&value) && value.fract() <= 0.0 {
-            // Integral and well inside usize; the cast is exact.
-            Ok(value as usize)
-        } else {
-            Err(error(
-                self.location(),
-                ParseReason::InvalidCount {
-                    what: "list length",
-                    value,
-                },
-            ))
-        }
+        list_length(value, self.location())
+    }
+}
+
+/// `value` as a list length (a non-negative integer), or an error at `at`.
+fn list_length(value: f64, at: Location) -> Result<usize, MeshError> {
+    if (0.0..1e15).contains(&value) && value.fract() <= 0.0 {
+        // Integral and well inside usize; the cast is exact.
+        Ok(value as usize)
+    } else {
+        Err(error(
+            at,
+            ParseReason::InvalidCount {
+                what: "list length",
+                value,
+            },
+        ))
     }
 }
 
@@ -348,19 +351,9 @@ impl Source for AsciiSource<'_> {
 
     fn list_len(&mut self, ty: Scalar) -> Result<usize, MeshError> {
         let value = self.value(ty)?;
-        if (0.0..1e15).contains(&value) && value.fract() <= 0.0 {
-            let len = value as usize;
-            self.needed += len;
-            Ok(len)
-        } else {
-            Err(error(
-                self.location(),
-                ParseReason::InvalidCount {
-                    what: "list length",
-                    value,
-                },
-            ))
-        }
+        let len = list_length(value, self.location())?;
+        self.needed += len;
+        Ok(len)
     }
 
     fn end(&mut self) -> Result<(), MeshError> {
@@ -538,21 +531,9 @@ fn read_body<S: Source>(
                     }
                 }
                 src.end()?;
-                if let Some((axis, &value)) = ['x', 'y', 'z']
-                    .iter()
-                    .zip(&xyz)
-                    .find(|(_, v)| !v.is_finite())
-                {
-                    return Err(error(
-                        src.location(),
-                        ParseReason::NonFiniteCoordinate {
-                            vertex,
-                            axis: *axis,
-                            value,
-                        },
-                    ));
-                }
-                builder.positions.push(DVec3::from_array(xyz));
+                builder
+                    .push_vertex(xyz)
+                    .map_err(|reason| error(src.location(), reason))?;
             }
         } else if Some(e) == face_element {
             let list = property_index(element, &[b"vertex_indices", b"vertex_index"])
@@ -606,13 +587,9 @@ fn read_body<S: Source>(
                     }
                 }
                 src.end()?;
-                if face.len() < 3 {
-                    return Err(error(
-                        src.location(),
-                        ParseReason::TooFewFaceVertices { count: face.len() },
-                    ));
-                }
-                builder.push_face(&face);
+                builder
+                    .push_face(&face)
+                    .map_err(|reason| error(src.location(), reason))?;
             }
         } else if !element.properties.is_empty() {
             // (An element without properties has empty records: nothing to read past.)

@@ -1,4 +1,5 @@
-//! Triangulation of polygonal faces, and the builder every reader feeds.
+//! Triangulation of polygonal faces (the readers feed them through
+//! [`MeshBuilder`](super::builder::MeshBuilder)).
 //!
 //! A face with `n > 3` vertices becomes `n - 2` triangles:
 //!
@@ -11,12 +12,9 @@
 //! 4. when ear clipping fails (self-intersecting outline, zero Newell normal, more than
 //!    [`MAX_EAR_CLIP_VERTICES`] vertices), the polygon is fanned from its first vertex.
 //!
-//! Each case is counted in the [`LoadReport`].
+//! Each case is counted in the [`LoadReport`](super::LoadReport).
 
 use glam::{DVec2, DVec3};
-
-use super::{Format, LoadReport, LoadedMesh};
-use crate::{MeshError, TriMesh};
 
 /// Non-convex polygons larger than this are fanned rather than ear-clipped (ear clipping
 /// is quadratic or worse in the vertex count).
@@ -158,111 +156,6 @@ fn inside_or_on(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> bool {
     (b - a).perp_dot(p - a) >= 0.0
         && (c - b).perp_dot(p - b) >= 0.0
         && (a - c).perp_dot(p - c) >= 0.0
-}
-
-/// A polygon whose triangulation waits for all positions to be known.
-struct PendingPolygon {
-    /// First triangle slot reserved for it.
-    slot: usize,
-    /// Its vertex indices in `MeshBuilder::pending_indices`.
-    start: usize,
-    len: usize,
-}
-
-/// Collects positions and faces while a reader parses, then triangulates and validates.
-///
-/// Readers check every index against the vertex count before calling [`Self::push_face`]
-/// (so errors carry the file location); [`Self::finish`] still validates through
-/// [`TriMesh::new`].
-#[derive(Default)]
-pub(crate) struct MeshBuilder {
-    pub(crate) positions: Vec<DVec3>,
-    triangles: Vec<[u32; 3]>,
-    pending: Vec<PendingPolygon>,
-    pending_indices: Vec<u32>,
-    /// Face records read.
-    pub(crate) faces: usize,
-}
-
-impl MeshBuilder {
-    /// Adds a face of at least three vertex indices (shorter faces are the reader's error).
-    pub(crate) fn push_face(&mut self, indices: &[u32]) {
-        self.faces += 1;
-        match *indices {
-            [a, b, c] => self.triangles.push([a, b, c]),
-            _ if indices.len() > 3 => {
-                self.pending.push(PendingPolygon {
-                    slot: self.triangles.len(),
-                    start: self.pending_indices.len(),
-                    len: indices.len(),
-                });
-                self.pending_indices.extend_from_slice(indices);
-                let placeholders = indices.len() - 2;
-                self.triangles
-                    .extend(std::iter::repeat_n([0, 0, 0], placeholders));
-            }
-            _ => {}
-        }
-    }
-
-    /// Reserves room for about `faces` triangles.
-    pub(crate) fn reserve_triangles(&mut self, faces: usize) {
-        self.triangles.reserve(faces);
-    }
-
-    /// Triangulates the polygons and builds the mesh. `report` comes in with the format's
-    /// own counts; the polygon counts are filled in here.
-    pub(crate) fn finish(mut self, mut report: LoadReport) -> Result<LoadedMesh, MeshError> {
-        report.faces_in_file = self.faces;
-        let mut points = Vec::new();
-        let mut local = Vec::new();
-        for polygon in &self.pending {
-            let Some(indices) = self
-                .pending_indices
-                .get(polygon.start..polygon.start + polygon.len)
-            else {
-                continue;
-            };
-            points.clear();
-            for &i in indices {
-                // Readers check indices before `push_face`; a bad one is still handled
-                // (TriMesh::new reports it) rather than panicking.
-                points.push(
-                    self.positions
-                        .get(i as usize)
-                        .copied()
-                        .unwrap_or(DVec3::ZERO),
-                );
-            }
-            local.clear();
-            let shape = triangulate(&points, &mut local);
-            report.polygons_triangulated += 1;
-            report.non_planar_polygons += usize::from(shape.non_planar);
-            report.non_convex_polygons += usize::from(shape.non_convex);
-            report.fan_fallbacks += usize::from(shape.fan_fallback);
-            for (k, tri) in local.iter().enumerate() {
-                if let Some(slot) = self.triangles.get_mut(polygon.slot + k) {
-                    *slot = tri.map(|j| indices.get(j).copied().unwrap_or(0));
-                }
-            }
-        }
-        let mesh = TriMesh::new(self.positions, self.triangles)?;
-        Ok(LoadedMesh { mesh, report })
-    }
-
-    /// A report with the format's counts, for [`Self::finish`].
-    pub(crate) fn report(format: Format, vertex_records: usize) -> LoadReport {
-        LoadReport {
-            format,
-            vertex_records,
-            faces_in_file: 0,
-            polygons_triangulated: 0,
-            non_convex_polygons: 0,
-            non_planar_polygons: 0,
-            fan_fallbacks: 0,
-            welded_vertices: 0,
-        }
-    }
 }
 
 #[cfg(test)]

@@ -21,9 +21,9 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use super::builder::{MeshBuilder, finite_point};
 use super::parse_error::token_text;
-use super::polygon::MeshBuilder;
-use super::text::{Lines, is_blank, parse_f64, tokens};
+use super::text::{Lines, is_blank, parse_xyz, tokens};
 use super::{Format, LoadedMesh, Location, ParseReason};
 use crate::MeshError;
 
@@ -102,24 +102,6 @@ impl Welder {
     }
 }
 
-fn check_finite(p: DVec3, vertex: usize, location: Location) -> Result<(), MeshError> {
-    match ['x', 'y', 'z']
-        .into_iter()
-        .zip(p.to_array())
-        .find(|(_, v)| !v.is_finite())
-    {
-        Some((axis, value)) => Err(error(
-            location,
-            ParseReason::NonFiniteCoordinate {
-                vertex,
-                axis,
-                value,
-            },
-        )),
-        None => Ok(()),
-    }
-}
-
 /// Parses STL data, binary or ASCII.
 pub(crate) fn read_stl(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     if is_blank(bytes) {
@@ -165,8 +147,8 @@ fn read_binary(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 let raw = [record[at], record[at + 1], record[at + 2], record[at + 3]];
                 *value = f64::from(f32::from_le_bytes(raw));
             }
-            let p = DVec3::from_array(xyz);
-            check_finite(p, 3 * facet + corner, Location::Byte(offset + base as u64))?;
+            let p = finite_point(xyz, 3 * facet + corner)
+                .map_err(|reason| error(Location::Byte(offset + base as u64), reason))?;
             *slot = welder.index(p).ok_or_else(|| {
                 error(
                     Location::Byte(offset),
@@ -176,38 +158,12 @@ fn read_binary(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 )
             })?;
         }
-        welder.builder.push_face(&face);
+        welder
+            .builder
+            .push_face(&face)
+            .map_err(|reason| error(Location::Byte(offset), reason))?;
     }
     welder.finish()
-}
-
-/// Three floating-point numbers from `toks`.
-fn read_xyz<'a>(
-    toks: &mut impl Iterator<Item = &'a [u8]>,
-    at: Location,
-) -> Result<[f64; 3], MeshError> {
-    let mut xyz = [0.0; 3];
-    for (k, slot) in xyz.iter_mut().enumerate() {
-        let tok = toks.next().ok_or_else(|| {
-            error(
-                at,
-                ParseReason::MissingValues {
-                    expected: 3,
-                    found: k,
-                },
-            )
-        })?;
-        *slot = parse_f64(tok).ok_or_else(|| {
-            error(
-                at,
-                ParseReason::InvalidNumber {
-                    expected: "a floating-point coordinate",
-                    found: token_text(tok),
-                },
-            )
-        })?;
-    }
-    Ok(xyz)
 }
 
 fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
@@ -249,7 +205,7 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                     .next()
                     .is_some_and(|t| t.eq_ignore_ascii_case(b"normal"))
                 {
-                    read_xyz(&mut toks, at)?;
+                    parse_xyz(&mut toks).map_err(|reason| error(at, reason))?;
                 }
             }
             b"outer" if open_loop.is_none() => {
@@ -257,8 +213,9 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 face.clear();
             }
             b"vertex" if open_loop.is_some() => {
-                let p = DVec3::from_array(read_xyz(&mut toks, at)?);
-                check_finite(p, welder.records, at)?;
+                let p = parse_xyz(&mut toks)
+                    .and_then(|xyz| finite_point(xyz, welder.records))
+                    .map_err(|reason| error(at, reason))?;
                 let index = welder.index(p).ok_or_else(|| {
                     error(
                         at,
@@ -270,13 +227,10 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 face.push(index);
             }
             b"endloop" => match open_loop.take() {
-                Some(start) if face.len() < 3 => {
-                    return Err(error(
-                        Location::Line(start),
-                        ParseReason::TooFewFaceVertices { count: face.len() },
-                    ));
-                }
-                Some(_) => welder.builder.push_face(&face),
+                Some(start) => welder
+                    .builder
+                    .push_face(&face)
+                    .map_err(|reason| error(Location::Line(start), reason))?,
                 None => return Err(unexpected("`outer loop` before `endloop`", keyword)),
             },
             b"endfacet" if open_loop.is_none() => {}

@@ -5,7 +5,9 @@ use proptest::prelude::*;
 
 use super::*;
 
-fn parse_error(bytes: &[u8], format: Format) -> (Location, ParseReason) {
+/// The location and reason of the parse error `bytes` must give as `format` (also used by
+/// the readers' own tests).
+pub(super) fn parse_error(bytes: &[u8], format: Format) -> (Location, ParseReason) {
     match read_from_bytes(bytes, format) {
         Err(MeshError::Parse {
             location, reason, ..

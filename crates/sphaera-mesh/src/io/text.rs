@@ -3,6 +3,9 @@
 //! The readers never build a `String` per line: they walk the file's bytes and parse
 //! numbers straight from token slices.
 
+use super::ParseReason;
+use super::parse_error::token_text;
+
 /// Iterator over the lines of a buffer: yields `(line_number, line)` with 1-based line
 /// numbers and the `\n` (and a trailing `\r`) removed.
 pub(crate) struct Lines<'a> {
@@ -75,6 +78,31 @@ pub(crate) fn is_blank(line: &[u8]) -> bool {
 /// error names the vertex).
 pub(crate) fn parse_f64(token: &[u8]) -> Option<f64> {
     std::str::from_utf8(token).ok()?.parse().ok()
+}
+
+/// The next three tokens of `toks` as floating-point coordinates (later tokens are left
+/// unread).
+///
+/// Refuses a missing token ([`ParseReason::MissingValues`]) and one that is not a number
+/// ([`ParseReason::InvalidNumber`]); NaN and infinities parse (see [`parse_f64`]).
+#[inline]
+pub(crate) fn parse_xyz<'a>(
+    toks: &mut impl Iterator<Item = &'a [u8]>,
+) -> Result<[f64; 3], ParseReason> {
+    let mut xyz = [0.0; 3];
+    for (k, slot) in xyz.iter_mut().enumerate() {
+        let Some(tok) = toks.next() else {
+            return Err(ParseReason::MissingValues {
+                expected: 3,
+                found: k,
+            });
+        };
+        *slot = parse_f64(tok).ok_or_else(|| ParseReason::InvalidNumber {
+            expected: "a floating-point coordinate",
+            found: token_text(tok),
+        })?;
+    }
+    Ok(xyz)
 }
 
 /// A decimal integer with an optional sign; `None` on anything else or on overflow.
