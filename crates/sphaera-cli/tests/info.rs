@@ -142,3 +142,21 @@ fn info_json_matches_the_data_readme_for_every_shared_mesh() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+#[test]
+fn info_on_a_mesh_without_triangles_reports_no_surface() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("points.obj");
+    std::fs::write(&path, "v 0 0 0\nv 1 0 0\n").unwrap();
+    let output = sphaera(&["info", path.to_str().unwrap(), "--json"]);
+    assert!(output.status.success(), "stderr: {}", stderr(&output));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("valid JSON");
+    assert_eq!(json["triangles"], 0);
+    assert!(json["bounding_box"].is_null());
+    assert_eq!(json["surface_area"].as_f64(), Some(0.0));
+    assert!(json["surface_area"].as_f64().unwrap().is_sign_positive());
+    assert_eq!(json["topology"]["closed"], false);
+    assert!(json["topology"]["genus"].is_null());
+    let text = stdout(&sphaera(&["info", path.to_str().unwrap()]));
+    assert!(text.contains("none (no triangles)"), "{text}");
+}

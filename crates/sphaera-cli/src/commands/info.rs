@@ -32,7 +32,8 @@ struct Info {
     non_convex_polygons: usize,
     /// Bit-identical STL corners merged on read.
     welded_on_read: usize,
-    bounding_box: BoundingBox,
+    /// `null` for a mesh without triangles.
+    bounding_box: Option<BoundingBox>,
     surface_area: f64,
     topology: Topology,
     seconds: Seconds,
@@ -120,11 +121,11 @@ impl Info {
             polygons_triangulated: load.polygons_triangulated,
             non_convex_polygons: load.non_convex_polygons,
             welded_on_read: load.welded_vertices,
-            bounding_box: BoundingBox {
+            bounding_box: (!bbox.is_empty()).then(|| BoundingBox {
                 min: bbox.min.to_array(),
                 max: bbox.max.to_array(),
                 diagonal: bbox.diagonal(),
-            },
+            }),
             surface_area: mesh.surface_area(),
             topology: Topology {
                 merged_vertices: topology.merged_vertex_count,
@@ -152,7 +153,6 @@ impl Info {
 
     fn to_text(&self) -> String {
         let t = &self.topology;
-        let b = &self.bounding_box;
         let genus = t.genus.map_or_else(
             || "n/a (not an oriented 2-manifold)".to_owned(),
             |g| g.to_string(),
@@ -174,11 +174,13 @@ impl Info {
                 thousands(self.non_convex_polygons)
             ),
             format!("edges           {}", thousands(t.edges)),
-            format!(
-                "bounding box    [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]",
-                b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2]
-            ),
-            format!("diagonal        {:.6}", b.diagonal),
+            match &self.bounding_box {
+                Some(b) => format!(
+                    "bounding box    [{:.6}, {:.6}, {:.6}] .. [{:.6}, {:.6}, {:.6}]\ndiagonal        {:.6}",
+                    b.min[0], b.min[1], b.min[2], b.max[0], b.max[1], b.max[2], b.diagonal
+                ),
+                None => "bounding box    none (no triangles)".to_owned(),
+            },
             format!("surface area    {:.6}", self.surface_area),
             format!("closed          {}", yes_no(t.closed)),
             format!(
