@@ -162,6 +162,59 @@ fn bench(args: &[String]) -> Result<()> {
 /// data behind it in `docs/charts/NAME.csv`.
 const CHARTS: &[&str] = &["load_topology_time"];
 
+/// Fails if a mesh of `../shared/data` is missing from the chart's CSV (first column):
+/// the chart is stale and must be regenerated. Skipped when the data folder is absent.
+fn check_chart_covers_every_mesh(csv: &Path) -> Result<()> {
+    let data = std::env::var_os("SPHAERA_DATA").map_or_else(
+        || Path::new("..").join("shared").join("data"),
+        PathBuf::from,
+    );
+    if !data.is_dir() {
+        eprintln!("  (no {}: chart coverage not checked)", data.display());
+        return Ok(());
+    }
+    let text =
+        std::fs::read_to_string(csv).with_context(|| format!("cannot read {}", csv.display()))?;
+    let charted: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .filter_map(|line| line.split(',').next())
+        .collect();
+    let mut missing = Vec::new();
+    let mut folders = vec![data.clone()];
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(&folder)
+            .with_context(|| format!("cannot list {}", folder.display()))?
+        {
+            let path = entry?.path();
+            let is_mesh = path.extension().and_then(|e| e.to_str()).is_some_and(|e| {
+                matches!(
+                    e.to_ascii_lowercase().as_str(),
+                    "obj" | "ply" | "stl" | "off"
+                )
+            });
+            if path.is_dir() {
+                folders.push(path);
+            } else if is_mesh {
+                let relative = path.strip_prefix(&data).unwrap_or(&path);
+                let name = relative.to_string_lossy().replace('\\', "/");
+                if !charted.contains(&name.as_str()) {
+                    missing.push(name);
+                }
+            }
+        }
+    }
+    if !missing.is_empty() {
+        missing.sort();
+        bail!(
+            "{} does not chart {}; run `cargo xtask charts` and commit",
+            csv.display(),
+            missing.join(", ")
+        );
+    }
+    Ok(())
+}
+
 fn charts(check: bool) -> Result<()> {
     let dir = Path::new("docs/charts");
     if check {
@@ -176,6 +229,7 @@ fn charts(check: bool) -> Result<()> {
                 missing.join(", ")
             );
         }
+        check_chart_covers_every_mesh(&dir.join("load_topology_time.csv"))?;
         eprintln!("  (charts present: ok)");
         return Ok(());
     }
