@@ -43,7 +43,12 @@
 //!
 //! Binary STL detection: a binary STL is `84 + 50 n` bytes for `n` facets. Files of
 //! exactly that size are binary even when they start with `solid` (many exporters do
-//! that); other files starting with `solid` are ASCII; everything else is binary.
+//! that); other files are ASCII only if they start with `solid`, their first 512 bytes
+//! are text (no NUL or other control byte) and hold `facet` or `endsolid` (or are the
+//! whole file); everything else is binary, so a truncated binary file is a size error,
+//! never an empty mesh. A binary file may carry fewer than 50 bytes of trailing padding
+//! (ignored); a longer tail, which could hold unannounced facets, is an error. An ASCII
+//! file must end with `endsolid` and hold no binary bytes.
 //! **STL welding**: STL has no shared vertices, so positions with bit-identical
 //! coordinates (`-0.0` = `0.0`) are merged on read, in order of first appearance, and
 //! [`LoadReport::welded_vertices`] counts the merged records. Nothing is merged by

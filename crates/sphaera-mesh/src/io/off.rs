@@ -168,13 +168,22 @@ pub(crate) fn read_off(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
             continue; // Unreachable: blank lines were filtered out.
         };
         let n = parse_i64(n_tok).ok_or_else(|| invalid(n_tok, "a face vertex count"))?;
+        // Each index takes at least two bytes (a digit and a separator), so a count above
+        // the line's length cannot be honoured: it is invalid, not a list of missing values.
+        let n = match usize::try_from(n) {
+            Ok(n) if n <= content.len() => n,
+            _ => {
+                return Err(error(
+                    line,
+                    ParseReason::InvalidCount {
+                        what: "face vertex count",
+                        value: n as f64,
+                    },
+                ));
+            }
+        };
         if n < 3 {
-            return Err(error(
-                line,
-                ParseReason::TooFewFaceVertices {
-                    count: usize::try_from(n).unwrap_or(0),
-                },
-            ));
+            return Err(error(line, ParseReason::TooFewFaceVertices { count: n }));
         }
         face.clear();
         for k in 0..n {
@@ -182,8 +191,8 @@ pub(crate) fn read_off(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 return Err(error(
                     line,
                     ParseReason::MissingValues {
-                        expected: usize::try_from(n).unwrap_or(usize::MAX).saturating_add(1),
-                        found: usize::try_from(k).unwrap_or(usize::MAX).saturating_add(1),
+                        expected: n + 1,
+                        found: k + 1,
                     },
                 ));
             };
@@ -286,6 +295,35 @@ mod tests {
         assert_eq!(
             parse_error(b"  \n"),
             (Location::Line(1), ParseReason::EmptyFile)
+        );
+    }
+
+    #[test]
+    fn negative_or_huge_face_vertex_counts_are_invalid_counts() {
+        let head = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+        for (face, value) in [("-3 0 1 2", -3.0), ("9200000000000000000 0 1 2", 9.2e18)] {
+            assert_eq!(
+                parse_error(format!("{head}{face}\n").as_bytes()),
+                (
+                    Location::Line(6),
+                    ParseReason::InvalidCount {
+                        what: "face vertex count",
+                        value
+                    }
+                ),
+                "{face}"
+            );
+        }
+        // A count the line could hold is a list of missing values.
+        assert_eq!(
+            parse_error(format!("{head}5 0 1 2\n").as_bytes()),
+            (
+                Location::Line(6),
+                ParseReason::MissingValues {
+                    expected: 6,
+                    found: 4
+                }
+            )
         );
     }
 }

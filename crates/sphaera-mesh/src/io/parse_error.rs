@@ -148,6 +148,31 @@ pub enum ParseReason {
         /// The offending value.
         value: f64,
     },
+    /// A binary STL facet has a NaN or infinite coordinate.
+    #[error("facet {facet}, corner {corner} has a non-finite {axis} coordinate ({value})")]
+    NonFiniteFacetCoordinate {
+        /// 0-based index of the facet (in file order).
+        facet: usize,
+        /// 0-based corner of the facet: 0, 1 or 2.
+        corner: usize,
+        /// The axis: `'x'`, `'y'` or `'z'`.
+        axis: char,
+        /// The offending value.
+        value: f64,
+    },
+    /// A face's vertex index is not a non-negative integer (a float-typed PLY index that
+    /// is NaN, infinite or fractional).
+    #[error("vertex index {value} is not an integer")]
+    NonIntegerIndex {
+        /// The value found.
+        value: f64,
+    },
+    /// Text data contain a byte no text file holds (NUL or another control character).
+    #[error("unexpected binary byte {byte:#04x} in text data")]
+    BinaryByte {
+        /// The byte found.
+        byte: u8,
+    },
     /// A face refers to a vertex that does not exist.
     #[error("vertex index {index} is out of range: the file has {vertex_count} vertices")]
     IndexOutOfRange {

@@ -450,7 +450,7 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     match header.encoding {
         Encoding::Ascii => read_body(
             &header,
-            bytes.len(),
+            body.len(),
             AsciiSource {
                 lines: Lines::new(body, header.body_line),
                 line: header.body_line,
@@ -461,7 +461,7 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
         ),
         Encoding::LittleEndian | Encoding::BigEndian => read_body(
             &header,
-            bytes.len(),
+            body.len(),
             BinarySource {
                 bytes,
                 pos: header.body_start,
@@ -475,6 +475,20 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     }
 }
 
+/// Why `value` is not a valid vertex index (kept out of the face loop).
+#[cold]
+fn bad_index(value: f64, vertex_count: usize) -> ParseReason {
+    if value.is_finite() && value.fract().abs() <= 0.0 {
+        // An integer; `as` saturates beyond the i64 range, which is out of range anyway.
+        ParseReason::IndexOutOfRange {
+            index: value as i64,
+            vertex_count,
+        }
+    } else {
+        ParseReason::NonIntegerIndex { value }
+    }
+}
+
 fn property_index(element: &Element, names: &[&[u8]]) -> Option<usize> {
     element
         .properties
@@ -484,16 +498,19 @@ fn property_index(element: &Element, names: &[&[u8]]) -> Option<usize> {
 
 fn read_body<S: Source>(
     header: &Header,
-    total_bytes: usize,
+    body_bytes: usize,
     mut src: S,
 ) -> Result<LoadedMesh, MeshError> {
     let vertex_element = header.elements.iter().position(|e| e.name == b"vertex");
     let face_element = header.elements.iter().position(|e| e.name == b"face");
     let vertex_count = vertex_element.map_or(0, |i| header.elements[i].count);
+    // Reserve no more than the body could hold (a header may announce 2^60 records):
+    // a vertex takes at least 3 bytes (three `uchar`s, or `0 0 0` less separators), a face
+    // at least 4 (a `uchar` count and three `uchar` indices).
     let mut builder = MeshBuilder::default();
-    builder.positions.reserve(vertex_count.min(total_bytes / 6));
+    builder.positions.reserve(vertex_count.min(body_bytes / 3));
     if let Some(f) = face_element {
-        builder.reserve_triangles(header.elements[f].count.min(total_bytes / 8));
+        builder.reserve_triangles(header.elements[f].count.min(body_bytes / 4));
     }
     let mut face: Vec<u32> = Vec::with_capacity(8);
     for (e, element) in header.elements.iter().enumerate() {
@@ -562,25 +579,16 @@ fn read_body<S: Source>(
                                 if k != list {
                                     continue;
                                 }
-                                if !(value >= 0.0 && value < vertex_count as f64) {
+                                if !(value >= 0.0
+                                    && value < vertex_count as f64
+                                    && value.fract() <= 0.0)
+                                {
                                     return Err(error(
                                         src.location(),
-                                        ParseReason::IndexOutOfRange {
-                                            index: value as i64,
-                                            vertex_count,
-                                        },
+                                        bad_index(value, vertex_count),
                                     ));
                                 }
-                                if value.fract() > 0.0 {
-                                    return Err(error(
-                                        src.location(),
-                                        ParseReason::InvalidNumber {
-                                            expected: "an integer vertex index",
-                                            found: value.to_string(),
-                                        },
-                                    ));
-                                }
-                                // In range of a u32 vertex count, so the cast is exact.
+                                // An integer in range of a u32 vertex count: the cast is exact.
                                 face.push(value as u32);
                             }
                         }

@@ -3,9 +3,22 @@
 //! **Binary or ASCII?** A binary STL is an 80-byte header, a little-endian `u32` facet
 //! count `n`, and `n` records of 50 bytes, so its size is `84 + 50 n`. Binary exporters
 //! often start the free-form header with `solid`, so the keyword alone proves nothing.
-//! The rule is: data whose size is exactly `84 + 50 n` are binary; otherwise data that
-//! start with `solid` (after whitespace) are ASCII; otherwise they are binary, and a size
-//! below `84 + 50 n` is a truncation error (extra trailing bytes are ignored).
+//! The rule is: data whose size is exactly `84 + 50 n` are binary; otherwise data are
+//! ASCII only if they start with `solid` (after whitespace) **and** their first
+//! [`TEXT_WINDOW`] bytes are text (no NUL or other control byte besides whitespace)
+//! **and** those bytes hold the keyword `facet` or `endsolid` (or are the whole file);
+//! everything else is binary. So a truncated binary file whose header starts with `solid`
+//! gets a size error, never an empty mesh.
+//!
+//! **Size of a binary file.** Fewer than `84 + 50 n` bytes is a truncation error
+//! ([`ParseReason::SizeMismatch`] at the end of the data). A tail of fewer than 50 extra
+//! bytes (padding some exporters add) is ignored; a tail of 50 bytes or more could hold
+//! facets the count does not announce, so it is a [`ParseReason::SizeMismatch`] error at
+//! the first extra byte rather than data silently dropped.
+//!
+//! **ASCII checks.** An ASCII file must end its solid with `endsolid`, and must not hold
+//! binary bytes ([`ParseReason::BinaryByte`]), so a binary blob that happens to start with
+//! `solid` is never read as an empty ASCII solid.
 //!
 //! **Welding.** STL stores three positions per facet and no indices. The reader merges
 //! positions whose coordinates are bit-identical (with `-0.0` taken as `0.0`), in order of
@@ -36,6 +49,23 @@ fn error(location: Location, reason: ParseReason) -> MeshError {
     }
 }
 
+/// How many leading bytes the ASCII/binary decision looks at.
+pub(crate) const TEXT_WINDOW: usize = 512;
+
+/// Whether `byte` can appear in a text file: printable, whitespace, or non-ASCII (UTF-8
+/// names); NUL and the other control bytes cannot.
+#[inline]
+pub(crate) fn is_text_byte(byte: u8) -> bool {
+    byte >= 0x20 && byte != 0x7f || matches!(byte, b'\t' | b'\n' | b'\r' | 0x0b | 0x0c)
+}
+
+/// Whether `haystack` contains `word`, ignoring ASCII case.
+fn contains_keyword(haystack: &[u8], word: &[u8]) -> bool {
+    haystack
+        .windows(word.len())
+        .any(|w| w.eq_ignore_ascii_case(word))
+}
+
 /// Whether the data are binary STL (see the module docs for the rule).
 pub(crate) fn is_binary(bytes: &[u8]) -> bool {
     if let Some(count) = bytes.get(80..84) {
@@ -44,7 +74,13 @@ pub(crate) fn is_binary(bytes: &[u8]) -> bool {
             return true;
         }
     }
-    !starts_with_solid(bytes)
+    let window = &bytes[..bytes.len().min(TEXT_WINDOW)];
+    let ascii = starts_with_solid(bytes)
+        && window.iter().all(|&b| is_text_byte(b))
+        && (window.len() == bytes.len()
+            || contains_keyword(window, b"facet")
+            || contains_keyword(window, b"endsolid"));
+    !ascii
 }
 
 /// Whether the data start (after whitespace) with the keyword `solid`.
@@ -56,6 +92,24 @@ pub(crate) fn starts_with_solid(bytes: &[u8]) -> bool {
     bytes
         .get(start..start + 5)
         .is_some_and(|word| word.eq_ignore_ascii_case(b"solid"))
+}
+
+/// [`ParseReason::NonFiniteFacetCoordinate`] for corner `corner` of facet `facet`, if a
+/// coordinate of `xyz` is NaN or infinite.
+#[inline]
+fn finite_corner(xyz: [f64; 3], facet: usize, corner: usize) -> Result<DVec3, ParseReason> {
+    match finite_point(xyz, 0) {
+        Ok(p) => Ok(p),
+        Err(ParseReason::NonFiniteCoordinate { axis, value, .. }) => {
+            Err(ParseReason::NonFiniteFacetCoordinate {
+                facet,
+                corner,
+                axis,
+                value,
+            })
+        }
+        Err(other) => Err(other),
+    }
 }
 
 /// Merges bit-identical positions.
@@ -126,13 +180,18 @@ fn read_binary(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
     };
     let n = u32::from_le_bytes([count[0], count[1], count[2], count[3]]) as usize;
     let expected = 84 + 50 * n as u64;
-    if (bytes.len() as u64) < expected {
+    let found = bytes.len() as u64;
+    if found < expected {
         return Err(error(
-            Location::Byte(bytes.len() as u64),
-            ParseReason::SizeMismatch {
-                expected,
-                found: bytes.len() as u64,
-            },
+            Location::Byte(found),
+            ParseReason::SizeMismatch { expected, found },
+        ));
+    }
+    if found - expected >= 50 {
+        // Room for facets the count does not announce: refuse rather than drop them.
+        return Err(error(
+            Location::Byte(expected),
+            ParseReason::SizeMismatch { expected, found },
         ));
     }
     let mut welder = Welder::new(n);
@@ -147,7 +206,7 @@ fn read_binary(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 let raw = [record[at], record[at + 1], record[at + 2], record[at + 3]];
                 *value = f64::from(f32::from_le_bytes(raw));
             }
-            let p = finite_point(xyz, 3 * facet + corner)
+            let p = finite_corner(xyz, facet, corner)
                 .map_err(|reason| error(Location::Byte(offset + base as u64), reason))?;
             *slot = welder.index(p).ok_or_else(|| {
                 error(
@@ -167,13 +226,23 @@ fn read_binary(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
 }
 
 fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
+    if let Some(at) = bytes.iter().position(|&b| !is_text_byte(b)) {
+        let line = 1 + bytes[..at].iter().filter(|&&b| b == b'\n').count();
+        return Err(error(
+            Location::Line(line),
+            ParseReason::BinaryByte { byte: bytes[at] },
+        ));
+    }
     let mut welder = Welder::new(bytes.len() / 250);
     let lines = Lines::new(bytes, 1);
     let mut face: Vec<u32> = Vec::with_capacity(4);
     // Line of the current `outer loop`, if one is open.
     let mut open_loop: Option<usize> = None;
     let mut seen_solid = false;
+    let mut ended = false;
+    let mut last_line = 1;
     for (line, content) in lines {
+        last_line = line;
         let at = Location::Line(line);
         let mut toks = tokens(content);
         let Some(keyword) = toks.next() else { continue };
@@ -197,9 +266,15 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
             )
         };
         match keyword_lower {
-            b"solid" if open_loop.is_none() => seen_solid = true,
+            b"solid" if open_loop.is_none() => {
+                seen_solid = true;
+                ended = false;
+            }
             _ if !seen_solid => return Err(error(at, ParseReason::BadMagic { expected: "solid" })),
-            b"endsolid" if open_loop.is_none() => seen_solid = false,
+            b"endsolid" if open_loop.is_none() => {
+                seen_solid = false;
+                ended = true;
+            }
             b"facet" => {
                 if toks
                     .next()
@@ -213,8 +288,9 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
                 face.clear();
             }
             b"vertex" if open_loop.is_some() => {
+                let facet = welder.builder.faces;
                 let p = parse_xyz(&mut toks)
-                    .and_then(|xyz| finite_point(xyz, welder.records))
+                    .and_then(|xyz| finite_corner(xyz, facet, face.len()))
                     .map_err(|reason| error(at, reason))?;
                 let index = welder.index(p).ok_or_else(|| {
                     error(
@@ -247,6 +323,14 @@ fn read_ascii(bytes: &[u8]) -> Result<LoadedMesh, MeshError> {
             Location::Line(start),
             ParseReason::UnexpectedEnd {
                 expected: "a facet loop (no `endloop`)",
+            },
+        ));
+    }
+    if !ended {
+        return Err(error(
+            Location::Line(last_line),
+            ParseReason::UnexpectedEnd {
+                expected: "a solid (no `endsolid`)",
             },
         ));
     }
@@ -317,11 +401,123 @@ mod tests {
             err,
             MeshError::Parse {
                 location: Location::Byte(170),
-                reason: ParseReason::NonFiniteCoordinate {
-                    vertex: 5,
+                reason: ParseReason::NonFiniteFacetCoordinate {
+                    facet: 1,
+                    corner: 2,
                     axis: 'y',
                     ..
                 },
+                ..
+            }
+        ));
+    }
+
+    fn parse_error(bytes: &[u8]) -> (Location, ParseReason) {
+        super::super::tests::parse_error(bytes, Format::Stl)
+    }
+
+    const ONE: [[[f32; 3]; 3]; 1] = [[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]];
+
+    #[test]
+    fn solid_header_binary_with_a_trailing_byte_loads_its_facet() {
+        for tail in [1, 49] {
+            let mut bytes = binary(&ONE, b"solid part exported by a CAD tool");
+            bytes.extend(std::iter::repeat_n(b'\n', tail));
+            let loaded = read_stl(&bytes).unwrap();
+            assert_eq!(loaded.mesh.triangle_count(), 1, "tail {tail}");
+            assert_eq!(loaded.mesh.vertex_count(), 3);
+        }
+    }
+
+    #[test]
+    fn binary_tail_that_could_hold_a_facet_is_an_error() {
+        let mut bytes = binary(&ONE, b"solid part");
+        bytes.extend_from_slice(&[0; 50]);
+        assert_eq!(
+            parse_error(&bytes),
+            (
+                Location::Byte(134),
+                ParseReason::SizeMismatch {
+                    expected: 134,
+                    found: 184
+                }
+            )
+        );
+    }
+
+    #[test]
+    fn truncated_solid_header_binary_is_a_size_error_not_an_empty_mesh() {
+        let bytes = binary(&TETRA, b"solid part exported by a CAD tool");
+        // Cut inside the text of the header, the data are a bare `solid` line: an ASCII
+        // error (no `endsolid`), still not a mesh.
+        assert!(read_stl(&bytes[..20]).is_err());
+        for len in [40, 80, 83, 84, 100, 283] {
+            assert_eq!(
+                parse_error(&bytes[..len]),
+                (
+                    Location::Byte(len as u64),
+                    ParseReason::SizeMismatch {
+                        expected: if len < 84 { 84 } else { 284 },
+                        found: len as u64
+                    }
+                ),
+                "cut at {len}"
+            );
+        }
+        // A header and body of printable bytes only (no NUL in the first 512 bytes) but no
+        // `facet`/`endsolid` keyword is binary too.
+        let mut printable = b"solid ".to_vec();
+        printable.resize(80, b' ');
+        printable.extend_from_slice(b"AAAA"); // 0x41414141 facets
+        printable.resize(700, b'A');
+        assert!(matches!(
+            parse_error(&printable),
+            (
+                Location::Byte(700),
+                ParseReason::SizeMismatch { found: 700, .. }
+            )
+        ));
+    }
+
+    #[test]
+    fn ascii_missing_endsolid_is_an_error_with_a_line() {
+        let text = b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n";
+        assert_eq!(
+            parse_error(text),
+            (
+                Location::Line(8),
+                ParseReason::UnexpectedEnd {
+                    expected: "a solid (no `endsolid`)"
+                }
+            )
+        );
+        assert!(matches!(
+            parse_error(b"solid x\n"),
+            (Location::Line(1), ParseReason::UnexpectedEnd { .. })
+        ));
+        // An empty but well-formed solid is a valid (empty) mesh.
+        let empty = read_stl(b"solid x\nendsolid x\n").unwrap();
+        assert_eq!(empty.mesh.triangle_count(), 0);
+    }
+
+    #[test]
+    fn ascii_with_binary_bytes_is_an_error_not_an_empty_mesh() {
+        // Reached directly (detection sends such data to the binary reader).
+        let err = read_ascii(b"solid blob\x01\x7f\nendsolid\n").unwrap_err();
+        assert!(matches!(
+            err,
+            MeshError::Parse {
+                location: Location::Line(1),
+                reason: ParseReason::BinaryByte { byte: 1 },
+                ..
+            }
+        ));
+        let err = read_ascii(b"solid x\nfacet\n\0\nendsolid\n").unwrap_err();
+        assert!(matches!(
+            err,
+            MeshError::Parse {
+                location: Location::Line(3),
+                reason: ParseReason::BinaryByte { byte: 0 },
                 ..
             }
         ));

@@ -359,8 +359,8 @@ fn garbage_bytes_are_errors_in_every_format() {
     }
 }
 
-/// Valid files of every format, for the truncation property.
-fn samples() -> Vec<(Format, Vec<u8>)> {
+/// Valid files of every format, for the truncation property: `(format, bytes, binary)`.
+fn samples() -> Vec<(Format, Vec<u8>, bool)> {
     let mesh = tetrahedron();
     let mut obj = Vec::new();
     write_obj_to(&mut obj, &mesh).unwrap();
@@ -398,21 +398,44 @@ fn samples() -> Vec<(Format, Vec<u8>)> {
         }
         stl_binary.extend_from_slice(&[0; 2]);
     }
+    // The same binary STL with a header that starts with `solid`, as CAD exporters write.
+    let mut stl_solid_binary = stl_binary.clone();
+    let header = b"solid exported by a CAD tool";
+    stl_solid_binary[..header.len()].copy_from_slice(header);
     let off = b"OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 3\n".to_vec();
     vec![
-        (Format::Obj, obj),
-        (Format::Ply, ply_ascii),
-        (Format::Ply, ply_binary),
-        (Format::Ply, ply_rich),
-        (Format::Stl, stl_ascii),
-        (Format::Stl, stl_binary),
-        (Format::Off, off),
+        (Format::Obj, obj, false),
+        (Format::Ply, ply_ascii, false),
+        (Format::Ply, ply_binary, true),
+        (Format::Ply, ply_rich, true),
+        (Format::Stl, stl_ascii, false),
+        (Format::Stl, stl_binary, true),
+        (Format::Off, off, false),
+        (Format::Stl, stl_solid_binary, true),
     ]
+}
+
+/// Every strict prefix of a valid binary file is an error: a binary file cut short never
+/// loads as a smaller mesh (nor as an empty one).
+#[test]
+fn strict_prefixes_of_binary_files_are_errors() {
+    for (format, bytes, binary) in samples() {
+        if !binary {
+            continue;
+        }
+        for len in 0..bytes.len() {
+            assert!(
+                read_from_bytes(&bytes[..len], format).is_err(),
+                "{format} prefix of {len} of {} bytes loaded",
+                bytes.len()
+            );
+        }
+    }
 }
 
 #[test]
 fn samples_are_valid() {
-    for (format, bytes) in samples() {
+    for (format, bytes, _) in samples() {
         assert!(read_from_bytes(&bytes, format).is_ok(), "{format}");
     }
 }
@@ -450,15 +473,16 @@ proptest! {
         }
     }
 
-    /// Truncating or corrupting a valid file gives an error or a mesh, never a panic.
+    /// Truncating or corrupting a valid file gives an error or a mesh, never a panic;
+    /// a strict prefix of a binary file (uncorrupted) is always an error.
     #[test]
     fn truncations_and_corruptions_never_panic(
-        sample in 0usize..7,
+        sample in 0usize..8,
         cut in 0.0f64..1.0,
         flip in prop::option::of((0.0f64..1.0, any::<u8>())),
     ) {
         let all = samples();
-        let (format, bytes) = &all[sample];
+        let (format, bytes, binary) = &all[sample];
         let mut bytes = bytes[..(cut * bytes.len() as f64) as usize].to_vec();
         if let Some((at, value)) = flip
             && !bytes.is_empty()
@@ -466,7 +490,10 @@ proptest! {
             let i = ((at * bytes.len() as f64) as usize).min(bytes.len() - 1);
             bytes[i] = value;
         }
-        let _ = read_from_bytes(&bytes, *format);
+        let result = read_from_bytes(&bytes, *format);
+        if *binary && flip.is_none() {
+            prop_assert!(result.is_err(), "{} prefix of {} bytes loaded", format, bytes.len());
+        }
     }
 }
 
@@ -524,5 +551,103 @@ proptest! {
             prop_assert_eq!(bits(&back), bits(&mesh));
             prop_assert_eq!(back.triangles(), mesh.triangles());
         }
+    }
+}
+
+#[test]
+fn ply_nan_float_index_is_reported_as_non_integer_not_out_of_range() {
+    let header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n\
+        property float y\nproperty float z\nelement face 1\nproperty list uchar float vertex_indices\n\
+        end_header\n";
+    let mut ply = header.as_bytes().to_vec();
+    for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+        ply.extend_from_slice(&v.to_le_bytes());
+    }
+    let face_start = ply.len() as u64;
+    ply.push(3);
+    for v in [0.0f32, f32::NAN, 2.0] {
+        ply.extend_from_slice(&v.to_le_bytes());
+    }
+    let (location, reason) = parse_error(&ply, Format::Ply);
+    assert_eq!(location, Location::Byte(face_start));
+    assert!(matches!(reason, ParseReason::NonIntegerIndex { value } if value.is_nan()));
+    assert!(reason.to_string().contains("not an integer"), "{reason}");
+    // An ASCII float index of 1.5 is non-integer too; 7.0 is out of range.
+    let ascii = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+        property float z\nelement face 1\nproperty list uchar double vertex_indices\nend_header\n\
+        0 0 0\n1 0 0\n0 1 0\n";
+    assert_eq!(
+        parse_error(format!("{ascii}3 0 1.5 2\n").as_bytes(), Format::Ply),
+        (
+            Location::Line(13),
+            ParseReason::NonIntegerIndex { value: 1.5 }
+        )
+    );
+    assert_eq!(
+        parse_error(format!("{ascii}3 0 7.0 2\n").as_bytes(), Format::Ply),
+        (
+            Location::Line(13),
+            ParseReason::IndexOutOfRange {
+                index: 7,
+                vertex_count: 3
+            }
+        )
+    );
+}
+
+#[test]
+fn ply_huge_element_counts_do_not_allocate_up_front() {
+    // 2^60 faces (and records of an unknown element): the reader must reserve by what the
+    // body can hold, then report the missing records.
+    let huge = 1u64 << 60;
+    for encoding in ["ascii", "binary_little_endian"] {
+        let ply = format!(
+            "ply\nformat {encoding} 1.0\nelement vertex 3\nproperty uchar x\nproperty uchar y\n\
+             property uchar z\nelement face {huge}\nproperty list uchar uchar vertex_indices\n\
+             element junk {huge}\nproperty uchar j\nend_header\n"
+        );
+        let (_, reason) = parse_error(ply.as_bytes(), Format::Ply);
+        assert!(
+            matches!(reason, ParseReason::MissingRecords { ref element, found: 0, .. } if element == "vertex"),
+            "{encoding}: {reason}"
+        );
+    }
+    let vertices = format!(
+        "ply\nformat ascii 1.0\nelement vertex {huge}\nproperty float x\nproperty float y\n\
+         property float z\nend_header\n"
+    );
+    assert_eq!(
+        parse_error(vertices.as_bytes(), Format::Ply),
+        (
+            Location::Line(3),
+            ParseReason::TooManyVertices { count: huge }
+        )
+    );
+    let faces = "ply\nformat binary_little_endian 1.0\nelement face 1152921504606846976\n\
+        property list uchar uchar vertex_indices\nelement vertex 3\nproperty uchar x\n\
+        property uchar y\nproperty uchar z\nend_header\n\x03\x00\x01\x02";
+    assert!(matches!(
+        parse_error(faces.as_bytes(), Format::Ply).1,
+        ParseReason::MissingRecords { found: 1, .. }
+    ));
+}
+
+#[test]
+fn stream_write_errors_do_not_show_an_empty_path() {
+    struct Broken;
+    impl std::io::Write for Broken {
+        fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+            Err(std::io::Error::other("disk on fire"))
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+    let mesh = tetrahedron();
+    let ply = write_ply_to(&mut Broken, &mesh, PlyEncoding::Ascii, None).unwrap_err();
+    let obj = write_obj_to(&mut Broken, &mesh).unwrap_err();
+    for err in [ply, obj] {
+        assert!(matches!(err, MeshError::Io { .. }));
+        assert_eq!(err.to_string(), "cannot access <stream>: disk on fire");
     }
 }

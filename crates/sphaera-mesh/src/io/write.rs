@@ -26,6 +26,9 @@ fn io_error(path: &Path, source: io::Error) -> MeshError {
     }
 }
 
+/// The path [`MeshError::Io`] names when a caller's writer (not a file) fails.
+const STREAM: &str = "<stream>";
+
 /// Writes a file atomically: the bytes go to a temporary file in the same directory, which
 /// is flushed to disk (`fsync`) and then renamed over `path`. A crash or an error leaves
 /// either the old file or the complete new one, never half a file; on error the temporary
@@ -113,12 +116,16 @@ where
 ///
 /// # Errors
 ///
-/// Whatever `writer` reports.
+/// [`MeshError::Io`] with the path `<stream>` if `writer` fails.
 ///
 /// # Performance
 ///
 /// Linear; wrap an unbuffered writer in a [`BufWriter`].
-pub fn write_obj_to<W: Write>(writer: &mut W, mesh: &TriMesh) -> io::Result<()> {
+pub fn write_obj_to<W: Write>(writer: &mut W, mesh: &TriMesh) -> Result<(), MeshError> {
+    encode_obj(writer, mesh).map_err(|source| io_error(Path::new(STREAM), source))
+}
+
+fn encode_obj<W: Write>(writer: &mut W, mesh: &TriMesh) -> io::Result<()> {
     writeln!(writer, "# written by sphaera-mesh")?;
     writeln!(
         writer,
@@ -145,7 +152,7 @@ pub fn write_obj_to<W: Write>(writer: &mut W, mesh: &TriMesh) -> io::Result<()> 
 ///
 /// [`MeshError::Io`] if the file cannot be written.
 pub fn write_obj(path: impl AsRef<Path>, mesh: &TriMesh) -> Result<(), MeshError> {
-    write_atomic(path.as_ref(), |w| write_obj_to(w, mesh))
+    write_atomic(path.as_ref(), |w| encode_obj(w, mesh))
 }
 
 /// Writes `mesh` as PLY to `writer`: `double` coordinates, optional `uchar`
@@ -169,7 +176,7 @@ pub fn write_obj(path: impl AsRef<Path>, mesh: &TriMesh) -> Result<(), MeshError
 /// # Errors
 ///
 /// [`MeshError::VertexCountMismatch`] if `colors` does not have one entry per vertex
-/// (checked before anything is written); [`MeshError::Io`] (with an empty path) if
+/// (checked before anything is written); [`MeshError::Io`] with the path `<stream>` if
 /// `writer` fails.
 pub fn write_ply_to<W: Write>(
     writer: &mut W,
@@ -178,7 +185,7 @@ pub fn write_ply_to<W: Write>(
     colors: Option<&[[u8; 3]]>,
 ) -> Result<(), MeshError> {
     check_colors(mesh, colors)?;
-    encode_ply(writer, mesh, encoding, colors).map_err(|source| io_error(Path::new(""), source))
+    encode_ply(writer, mesh, encoding, colors).map_err(|source| io_error(Path::new(STREAM), source))
 }
 
 /// Writes `mesh` to a PLY file at `path`, atomically (see [`write_atomic`] and
