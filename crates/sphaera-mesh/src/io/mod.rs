@@ -117,7 +117,8 @@
 //!
 //! Files are read whole into memory and parsed as bytes (no per-line allocation, no hash
 //! map except STL welding). The 871,414-triangle ASCII `dragon_vrip.ply` (33 MB) loads in
-//! about 0.3 s in release mode on the reference 2-core machine.
+//! about 0.14 s in release mode on the reference 2-core machine (`cargo bench -p sphaera-mesh
+//! --bench load_topology`; see `docs/benchmarks.md`).
 
 mod builder;
 pub mod colormap;
@@ -302,7 +303,7 @@ pub struct LoadedMesh {
 ///
 /// # Performance
 ///
-/// Reads the whole file into memory, then parses it in one pass; about 0.3 s for the
+/// Reads the whole file into memory, then parses it in one pass; about 0.14 s for the
 /// 33 MB ASCII `dragon_vrip.ply` in release mode.
 pub fn read(path: impl AsRef<Path>) -> Result<LoadedMesh, MeshError> {
     let path = path.as_ref();
