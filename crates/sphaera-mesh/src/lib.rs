@@ -86,10 +86,11 @@
 //!
 //! # Performance
 //!
-//! Measured on the 2-core reference machine (see `docs/benchmarks.md` in the repository
-//! for the commands): the 871,414-triangle Stanford dragon (33 MB ASCII PLY) reads in
-//! about 0.14 s and its topology report takes about 0.16 s; its half-edge mesh builds in
-//! about 0.09 s.
+//! Measured on the 2-core reference machine with criterion
+//! (`cargo bench -p sphaera-mesh --bench load_topology`; see `docs/benchmarks.md` in the
+//! repository): the 871,414-triangle Stanford dragon (33 MB ASCII PLY) reads in about
+//! 0.14 s, its topology report takes about 0.16 s, and its half-edge mesh builds in about
+//! 0.11 s.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

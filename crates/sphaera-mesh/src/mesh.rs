@@ -46,12 +46,16 @@ impl TriMesh {
     ///
     /// - [`MeshError::NonFiniteCoordinate`] if a coordinate is NaN or infinite;
     /// - [`MeshError::IndexOutOfRange`] if a triangle refers to a missing vertex;
-    /// - [`MeshError::TooManyVertices`] if there are more than `u32::MAX` vertices.
+    /// - [`MeshError::TooManyVertices`] if there are more than `u32::MAX` vertices;
+    /// - [`MeshError::TooManyTriangles`] if `3 × triangle count ≥ u32::MAX − 1` (more than
+    ///   about 1.43 billion triangles): topology code numbers the corners `3t + i` as `u32`
+    ///   and keeps `u32::MAX` and `u32::MAX − 1` as sentinels.
     ///
     /// An empty mesh (no triangles) is allowed here; operations that need a surface return
     /// [`MeshError::EmptyMesh`].
     pub fn new(positions: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Result<Self, MeshError> {
         check_positions(&positions)?;
+        check_triangle_count(triangles.len())?;
         check_triangles(&triangles, positions.len())?;
         Ok(Self {
             positions,
@@ -123,7 +127,8 @@ impl TriMesh {
 
     /// Total area of the triangles.
     pub fn surface_area(&self) -> f64 {
-        self.triangle_iter().map(|t| t.area()).sum()
+        // `fold` from +0.0: `sum()` of an empty `f64` iterator is −0.0.
+        self.triangle_iter().fold(0.0, |area, t| area + t.area())
     }
 
     /// Replaces every vertex position (for deforming meshes), keeping the triangles.
@@ -169,6 +174,15 @@ fn check_positions(positions: &[DVec3]) -> Result<(), MeshError> {
                 value,
             });
         }
+    }
+    Ok(())
+}
+
+/// Rejects triangle counts whose corner numbers `3t + i` would reach the `u32` sentinels
+/// (`u32::MAX − 1` and `u32::MAX`) that topology code reserves.
+fn check_triangle_count(count: usize) -> Result<(), MeshError> {
+    if count.saturating_mul(3) >= u32::MAX as usize - 1 {
+        return Err(MeshError::TooManyTriangles { count });
     }
     Ok(())
 }
@@ -240,6 +254,31 @@ mod tests {
             mesh.bounding_box(),
             Aabb::new(DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0))
         );
+    }
+
+    #[test]
+    fn too_many_triangles_for_u32_corner_numbers_is_rejected() {
+        // The largest count whose corner count 3t (and so every corner 3t + i) stays below
+        // the sentinel u32::MAX - 1.
+        let max_ok = (u32::MAX as usize - 2) / 3;
+        assert!(3 * max_ok < u32::MAX as usize - 1);
+        assert!(3 * (max_ok + 1) >= u32::MAX as usize - 1);
+        assert!(check_triangle_count(max_ok).is_ok());
+        assert!(matches!(
+            check_triangle_count(max_ok + 1),
+            Err(MeshError::TooManyTriangles { count }) if count == max_ok + 1
+        ));
+        assert!(matches!(
+            check_triangle_count(usize::MAX),
+            Err(MeshError::TooManyTriangles { .. })
+        ));
+        assert!(check_triangle_count(0).is_ok());
+    }
+
+    #[test]
+    fn empty_mesh_surface_area_is_positive_zero() {
+        let area = TriMesh::default().surface_area();
+        assert_eq!(area.to_bits(), 0.0f64.to_bits());
     }
 
     #[test]

@@ -64,6 +64,8 @@ pub struct EnclosingBall {
 ///
 /// - [`MeshError::EmptyInput`] when `points` is empty.
 /// - [`MeshError::NonFiniteInput`] when a point has a NaN or infinite coordinate.
+/// - [`MeshError::InvalidParameter`] (named `points`) when the enclosing ball's radius
+///   would exceed `f64::MAX` (coordinates near the ends of the `f64` range).
 ///
 /// # Panics
 ///
@@ -72,7 +74,9 @@ pub struct EnclosingBall {
 /// # Performance
 ///
 /// `O(n)` per pivot step, a few dozen steps in practice: about 2 ms for 100,000 random
-/// points on one core (release build). No allocation.
+/// points on one core (release build). No allocation, except a copy of the input when its bounding box is larger than
+/// 1e100 or smaller than 1e-100: such inputs are solved translated and scaled to unit size
+/// (exactly, by a power of two) so that squared distances neither overflow nor underflow.
 pub fn minimum_enclosing_ball(points: &[DVec3]) -> Result<Sphere, MeshError> {
     minimum_enclosing_ball_with_support(points).map(|ball| ball.sphere)
 }
@@ -106,9 +110,17 @@ pub fn minimum_enclosing_ball_with_support(points: &[DVec3]) -> Result<Enclosing
             index,
         });
     }
-    enclosing_ball_core::solve(points).ok_or(MeshError::EmptyInput {
+    let ball = enclosing_ball_core::solve(points).ok_or(MeshError::EmptyInput {
         operation: OPERATION,
-    })
+    })?;
+    if !ball.sphere.radius.is_finite() {
+        return Err(MeshError::InvalidParameter {
+            name: "points",
+            value: ball.sphere.radius,
+            requirement: "within a ball whose radius is at most f64::MAX",
+        });
+    }
+    Ok(ball)
 }
 
 /// A point is an item whose extent is its squared distance from the centre.
@@ -127,6 +139,14 @@ impl Item for DVec3 {
 
     fn radius_for_extent(extent: f64) -> f64 {
         covering_radius(extent)
+    }
+
+    fn half_bounds(&self) -> (DVec3, DVec3) {
+        (0.5 * *self, 0.5 * *self)
+    }
+
+    fn mapped(&self, offset: DVec3, scale: f64) -> Self {
+        (*self - offset) * scale
     }
 }
 
@@ -324,5 +344,62 @@ mod tests {
         let min = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
         assert!((a.sphere.radius - 0.5 * (max - min)).abs() < 1e-14);
         assert_eq!(a.support.len(), 2);
+    }
+
+    #[test]
+    fn huge_coordinates_give_a_finite_enclosing_ball() {
+        // Squared extents of ±1e200 overflow; the ball used to come back with radius inf.
+        let points = [
+            DVec3::new(1e200, 0.0, 0.0),
+            DVec3::new(-1e200, 0.0, 0.0),
+            DVec3::new(0.0, 5e199, 0.0),
+            DVec3::new(0.0, 0.0, -3e199),
+        ];
+        let ball = minimum_enclosing_ball(&points).unwrap();
+        assert!(ball.radius.is_finite());
+        assert!((ball.radius / 1e200 - 1.0).abs() < 1e-14, "{ball:?}");
+        // Distances measured in units of 2^664 ≈ 1e200 (exact scaling, no overflow).
+        let unit = 2f64.powi(-664);
+        assert!((ball.center * unit).length() < 1e-13);
+        for p in points {
+            assert!(((p - ball.center) * unit).length() <= ball.radius * unit);
+        }
+        // Near the ends of the f64 range the radius itself is not representable.
+        let corners = [DVec3::splat(f64::MAX), DVec3::splat(-f64::MAX)];
+        assert!(matches!(
+            minimum_enclosing_ball(&corners),
+            Err(MeshError::InvalidParameter { name: "points", .. })
+        ));
+        // A lone huge point needs no rescaling.
+        let lone = minimum_enclosing_ball(&[DVec3::splat(f64::MAX)]).unwrap();
+        assert_eq!(lone, Sphere::new(DVec3::splat(f64::MAX), 0.0));
+    }
+
+    #[test]
+    fn tiny_coordinates_keep_their_precision() {
+        // Squared extents of 1e-200 underflow to zero.
+        let unit = [DVec3::X, -DVec3::X, 0.5 * DVec3::Y, 0.2 * DVec3::Z];
+        let tiny: Vec<DVec3> = unit.iter().map(|&p| p * 1e-200).collect();
+        let ball = minimum_enclosing_ball(&tiny).unwrap();
+        assert!((ball.radius / 1e-200 - 1.0).abs() < 1e-14, "{ball:?}");
+        assert!(ball.center.length() < 1e-214);
+        assert!(
+            tiny.iter()
+                .all(|&p| p.distance(ball.center) <= ball.radius * (1.0 + 1e-15))
+        );
+    }
+
+    #[test]
+    fn moderate_inputs_are_not_rescaled() {
+        // Below the rescaling threshold the result is the plain solve, bit for bit.
+        let points = [
+            DVec3::new(1e99, 0.0, 0.0),
+            DVec3::new(-1e99, 1.0, 0.0),
+            DVec3::new(0.3e99, 0.7e99, 0.1e99),
+        ];
+        assert_eq!(
+            minimum_enclosing_ball_with_support(&points).unwrap(),
+            enclosing_ball_core::solve_as_given(&points).unwrap()
+        );
     }
 }

@@ -13,6 +13,13 @@
 //! means a nearly degenerate boundary set can never produce a too-small ball: it simply loses
 //! to a better candidate. The final radius is derived from the largest extent from the final
 //! centre, so every item is inside the returned ball.
+//!
+//! Squared extents overflow for coordinates beyond about 1e154 and underflow for extents
+//! below about 1e-154. Inputs whose bounding box is larger than 1e100 or smaller than 1e-100
+//! are therefore translated to their box centre and scaled by a power of two to unit size,
+//! solved there, and mapped back (the power-of-two scaling is exact; the final radius is
+//! measured against the original items). Other inputs are solved as given, so their results
+//! are unchanged bit for bit.
 
 use glam::DVec3;
 use smallvec::SmallVec;
@@ -42,11 +49,71 @@ pub(super) trait Item: Copy {
     /// The smallest radius that contains an item of extent `extent` from the centre (in
     /// floating point).
     fn radius_for_extent(extent: f64) -> f64;
+
+    /// Half the item's bounding box, `(min / 2, max / 2)`, computed without overflow.
+    fn half_bounds(&self) -> (DVec3, DVec3);
+
+    /// The item translated by `-offset` and scaled by `scale` (a power of two).
+    fn mapped(&self, offset: DVec3, scale: f64) -> Self;
 }
 
+/// Boxes larger than this (or smaller than [`MIN_UNSCALED_EXTENT`]) are solved rescaled.
+const MAX_UNSCALED_EXTENT: f64 = 1e100;
+/// See [`MAX_UNSCALED_EXTENT`].
+const MIN_UNSCALED_EXTENT: f64 = 1e-100;
+
 /// The minimum enclosing ball of `items` with its support, or `None` when `items` is empty.
-/// The items must be finite (validated by the caller).
+/// The items must be finite (validated by the caller). The radius is infinite when the ball
+/// is too large for `f64` (callers report that as an error).
 pub(super) fn solve<T: Item>(items: &[T]) -> Option<EnclosingBall> {
+    let Some((offset, scale)) = rescaling(items) else {
+        return solve_as_given(items);
+    };
+    let mapped: Vec<T> = items
+        .iter()
+        .map(|item| item.mapped(offset, scale))
+        .collect();
+    let ball = solve_as_given(&mapped)?;
+    // Division by a power of two is exact (barring overflow, which gives an infinite radius).
+    let center = ball.sphere.center / scale + offset;
+    // Measure the radius against the original items from the mapped-back centre, in the
+    // scaled frame (exact power-of-two scaling, no overflow), so rounding in the mapping
+    // cannot leave an item outside.
+    let far_extent = items
+        .iter()
+        .map(|item| item.mapped(center, scale).extent_from(DVec3::ZERO))
+        .fold(0.0, f64::max);
+    Some(EnclosingBall {
+        sphere: Sphere::new(center, T::radius_for_extent(far_extent) / scale),
+        support: ball.support,
+    })
+}
+
+/// The translation and power-of-two scale bringing `items` to unit size, or `None` when
+/// their bounding box is of moderate size (or a single point) and they are solved as given.
+fn rescaling<T: Item>(items: &[T]) -> Option<(DVec3, f64)> {
+    let (lo, hi) = items.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), item| {
+            let (item_lo, item_hi) = item.half_bounds();
+            (lo.min(item_lo), hi.max(item_hi))
+        },
+    );
+    // Half the largest side of the box; finite because every half coordinate is at most
+    // f64::MAX / 2 in magnitude.
+    let half_extent = (hi - lo).max_element();
+    let moderate = (0.5 * MIN_UNSCALED_EXTENT..=0.5 * MAX_UNSCALED_EXTENT).contains(&half_extent);
+    if !half_extent.is_normal() || moderate {
+        return None;
+    }
+    // The binary exponent of a normal f64, clamped so that 2^-exponent is a normal f64.
+    let exponent = i64::try_from((half_extent.to_bits() >> 52) & 0x7ff).unwrap_or(1023) - 1023;
+    let biased = u64::try_from(1023 - exponent.min(1022)).unwrap_or(1023);
+    Some((lo + hi, f64::from_bits(biased << 52)))
+}
+
+/// [`solve`] without rescaling.
+pub(super) fn solve_as_given<T: Item>(items: &[T]) -> Option<EnclosingBall> {
     let first = items.first()?;
     let mut support: SmallVec<[usize; 4]> = SmallVec::new();
     support.push(0);

@@ -50,6 +50,8 @@ const OPERATION: &str = "minimum enclosing ball of balls";
 ///
 /// - [`MeshError::EmptyInput`] when `balls` is empty.
 /// - [`MeshError::NonFiniteInput`] when a centre has a NaN or infinite coordinate.
+/// - [`MeshError::InvalidParameter`] (named `balls`) when the enclosing ball's radius
+///   would exceed `f64::MAX` (coordinates near the ends of the `f64` range).
 /// - [`MeshError::InvalidRadius`] when a radius is negative, NaN or infinite.
 ///
 /// # Panics
@@ -58,7 +60,9 @@ const OPERATION: &str = "minimum enclosing ball of balls";
 ///
 /// # Performance
 ///
-/// `O(n)` per pivot step, a few dozen steps in practice. No allocation.
+/// `O(n)` per pivot step, a few dozen steps in practice. No allocation, except a copy of the input when its bounding box is larger than
+/// 1e100 or smaller than 1e-100: such inputs are solved translated and scaled to unit size
+/// (exactly, by a power of two) so that squared distances neither overflow nor underflow.
 pub fn minimum_enclosing_ball_of_balls(balls: &[Sphere]) -> Result<Sphere, MeshError> {
     minimum_enclosing_ball_of_balls_with_support(balls).map(|ball| ball.sphere)
 }
@@ -105,9 +109,17 @@ pub fn minimum_enclosing_ball_of_balls_with_support(
             });
         }
     }
-    enclosing_ball_core::solve(balls).ok_or(MeshError::EmptyInput {
+    let ball = enclosing_ball_core::solve(balls).ok_or(MeshError::EmptyInput {
         operation: OPERATION,
-    })
+    })?;
+    if !ball.sphere.radius.is_finite() {
+        return Err(MeshError::InvalidParameter {
+            name: "balls",
+            value: ball.sphere.radius,
+            requirement: "within a ball whose radius is at most f64::MAX",
+        });
+    }
+    Ok(ball)
 }
 
 /// How far `ball` reaches from `center`: `|center − ball.center| + ball.radius`.
@@ -132,6 +144,15 @@ impl Item for Sphere {
 
     fn radius_for_extent(extent: f64) -> f64 {
         extent
+    }
+
+    fn half_bounds(&self) -> (DVec3, DVec3) {
+        let (c, r) = (0.5 * self.center, DVec3::splat(0.5 * self.radius));
+        (c - r, c + r)
+    }
+
+    fn mapped(&self, offset: DVec3, scale: f64) -> Self {
+        Sphere::new((self.center - offset) * scale, self.radius * scale)
     }
 }
 
@@ -378,5 +399,44 @@ mod tests {
         let s = minimum_enclosing_ball_of_balls(&balls).unwrap();
         assert!(s.center.length() < 1e-14);
         assert!((s.radius - (3f64.sqrt() + 1.0)).abs() < 1e-14);
+    }
+
+    #[test]
+    fn huge_balls_give_a_finite_enclosing_ball() {
+        let balls = [
+            Sphere::new(DVec3::new(-1e200, 0.0, 0.0), 1e200),
+            Sphere::new(DVec3::new(2e200, 0.0, 0.0), 2e200),
+            Sphere::new(DVec3::new(0.0, 1e199, 0.0), 1e199),
+        ];
+        let ball = minimum_enclosing_ball_of_balls(&balls).unwrap();
+        assert!(ball.radius.is_finite());
+        assert!((ball.radius / 3e200 - 1.0).abs() < 1e-14, "{ball:?}");
+        // Distances measured in units of 2^664 ≈ 1e200 (exact scaling, no overflow).
+        let unit = 2f64.powi(-664);
+        assert!(((ball.center - DVec3::new(1e200, 0.0, 0.0)) * unit).length() < 1e-13);
+        for b in balls {
+            let reach = ((b.center - ball.center) * unit).length() + b.radius * unit;
+            assert!(reach <= ball.radius * unit);
+        }
+        let far = [
+            Sphere::new(DVec3::splat(-f64::MAX), 1.0),
+            Sphere::new(DVec3::splat(f64::MAX), f64::MAX),
+        ];
+        assert!(matches!(
+            minimum_enclosing_ball_of_balls(&far),
+            Err(MeshError::InvalidParameter { name: "balls", .. })
+        ));
+    }
+
+    #[test]
+    fn tiny_balls_keep_their_precision() {
+        let balls = [
+            Sphere::new(-DVec3::X * 1e-200, 1e-200),
+            Sphere::new(2.0 * DVec3::X * 1e-200, 2e-200),
+        ];
+        let ball = minimum_enclosing_ball_of_balls(&balls).unwrap();
+        assert!((ball.radius / 3e-200 - 1.0).abs() < 1e-14, "{ball:?}");
+        assert!((ball.center / 1e-200 - DVec3::X).length() < 1e-14);
+        assert!(balls.iter().all(|b| ball.contains_sphere(b, 0.0)));
     }
 }

@@ -67,9 +67,14 @@ use glam::DVec3;
 
 use crate::{MeshError, TriMesh};
 
-/// The most points a sampler returns (2²⁸ ≈ 268 million): a guard against a typo
-/// exhausting memory.
-pub const MAX_SAMPLES: usize = 1 << 28;
+/// The most points a sampler draws (2²⁴ ≈ 16.8 million, counting [`poisson_disk`]'s
+/// oversampled candidates): a guard against a typo exhausting memory.
+///
+/// A [`SurfaceSample`] takes 80 bytes, so the cap bounds [`random`]'s output at about
+/// 1.3 GB and [`poisson_disk`]'s candidates at the same (plus their neighbour lists, a few
+/// times more). Within the cap, a failed allocation of the output is reported as
+/// [`MeshError::InvalidParameter`] rather than aborting the process.
+pub const MAX_SAMPLES: usize = 1 << 24;
 
 /// A point on a mesh's surface.
 ///
@@ -170,6 +175,22 @@ impl AreaTable {
     }
 }
 
+/// An empty vector with room for `n` samples.
+///
+/// # Errors
+///
+/// [`MeshError::InvalidParameter`] (named `name`) if the memory cannot be reserved.
+fn try_with_capacity<T>(name: &'static str, n: usize) -> Result<Vec<T>, MeshError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n)
+        .map_err(|_| MeshError::InvalidParameter {
+            name,
+            value: n as f64,
+            requirement: "small enough for the memory available",
+        })?;
+    Ok(v)
+}
+
 /// `Ok` if `n` is at most [`MAX_SAMPLES`].
 fn check_count(name: &'static str, n: usize) -> Result<(), MeshError> {
     if n <= MAX_SAMPLES {
@@ -178,7 +199,7 @@ fn check_count(name: &'static str, n: usize) -> Result<(), MeshError> {
         Err(MeshError::InvalidParameter {
             name,
             value: n as f64,
-            requirement: "at most `sampling::MAX_SAMPLES` (2^28)",
+            requirement: "at most `sampling::MAX_SAMPLES` (2^24)",
         })
     }
 }

@@ -163,7 +163,7 @@ pub fn poisson_disk_with(
         return Err(MeshError::InvalidParameter {
             name: "n × oversampling",
             value: candidate_count,
-            requirement: "at most `sampling::MAX_SAMPLES` (2^28)",
+            requirement: "at most `sampling::MAX_SAMPLES` (2^24)",
         });
     }
     // Validates the mesh even for n = 0 (candidate_count ≤ MAX_SAMPLES, so the cast is exact).
@@ -205,10 +205,15 @@ fn eliminate(candidates: &[SurfaceSample], n: usize, d_max: f64) -> Vec<usize> {
         .iter()
         .map(|&i| candidates[i as usize].position)
         .collect();
-    let d_min = d_max * 0.65 * (1.0 - (n as f64 / m as f64).powf(1.5));
+    // (n / m)^1.5 and (1 - d / d_max)^8 with plain multiplications and `sqrt` (correctly
+    // rounded everywhere), not `powf` / `powi`, whose results may differ between libms.
+    let ratio = n as f64 / m as f64;
+    let d_min = d_max * 0.65 * (1.0 - ratio * ratio.sqrt());
     let weight = |a: DVec3, b: DVec3| {
         let d = a.distance(b).max(d_min);
-        (1.0 - d / d_max).powi(8)
+        let x2 = (1.0 - d / d_max) * (1.0 - d / d_max);
+        let x4 = x2 * x2;
+        x4 * x4
     };
 
     // Neighbour lists in slot space, per occupied cell (in parallel), then flattened.

@@ -34,8 +34,8 @@ use crate::{MeshError, TriMesh};
 ///
 /// - [`MeshError::EmptyMesh`] if the mesh has no triangles;
 /// - [`MeshError::ZeroSurfaceArea`] if all its triangles are degenerate;
-/// - [`MeshError::InvalidParameter`] if `n` exceeds [`super::MAX_SAMPLES`] or the
-///   surface area overflows `f64`.
+/// - [`MeshError::InvalidParameter`] if `n` exceeds [`super::MAX_SAMPLES`], the memory for
+///   `n` samples cannot be reserved, or the surface area overflows `f64`.
 ///
 /// # Panics
 ///
@@ -49,7 +49,7 @@ pub fn random(mesh: &TriMesh, n: usize, seed: u64) -> Result<Vec<SurfaceSample>,
     check_count("n", n)?;
     let table = AreaTable::new(mesh)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut samples = Vec::with_capacity(n);
+    let mut samples = super::try_with_capacity("n", n)?;
     for _ in 0..n {
         let triangle = table.pick(rng.random::<f64>());
         let (r1, r2) = (rng.random::<f64>(), rng.random::<f64>());

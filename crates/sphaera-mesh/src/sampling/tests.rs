@@ -280,3 +280,27 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn sample_cap_keeps_the_output_allocation_modest() {
+    // 2^28 samples asked for ~21 GB up front and aborted instead of returning an error.
+    assert!(MAX_SAMPLES * size_of::<SurfaceSample>() <= 2 << 30);
+    let mesh = shapes::cube(1.0, 1).unwrap();
+    assert!(matches!(
+        poisson_disk(&mesh, MAX_SAMPLES / 4, 1),
+        Err(MeshError::InvalidParameter {
+            name: "n × oversampling",
+            ..
+        })
+    ));
+}
+
+#[test]
+fn failed_sample_allocation_is_an_error_not_an_abort() {
+    assert!(matches!(
+        try_with_capacity::<SurfaceSample>("n", usize::MAX / 2),
+        Err(MeshError::InvalidParameter { name: "n", .. })
+    ));
+    let v = try_with_capacity::<SurfaceSample>("n", 10).unwrap();
+    assert!(v.capacity() >= 10 && v.is_empty());
+}

@@ -36,35 +36,67 @@ pub enum Expansion {
     ThirdOrder,
 }
 
-/// Parameters of [`WindingNumber`].
+/// Parameters of [`WindingNumber`], set builder-style (like
+/// [`PoissonDiskOptions`](crate::sampling::PoissonDiskOptions)) so that options can be added
+/// without breaking callers.
 ///
 /// # Examples
 ///
 /// ```
 /// use sphaera_mesh::winding::{Expansion, WindingOptions};
 ///
-/// let options = WindingOptions { beta: 3.0, ..WindingOptions::default() };
-/// assert_eq!(options.expansion, Expansion::ThirdOrder);
-/// assert_eq!(WindingOptions::default().beta, 2.0);
+/// let options = WindingOptions::default().with_beta(3.0);
+/// assert_eq!(options.beta(), 3.0);
+/// assert_eq!(options.expansion(), Expansion::ThirdOrder);
+/// assert_eq!(WindingOptions::default().beta(), 2.0);
+/// let coarse = options.with_expansion(Expansion::FirstOrder);
+/// assert_eq!(coarse.expansion(), Expansion::FirstOrder);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct WindingOptions {
-    /// Far-field parameter: a node whose triangles lie within distance `r` of its centre
-    /// is replaced by its expansion when the query is farther than `beta · r` from that
-    /// centre. Larger is more accurate and slower. Must be greater than 1;
-    /// `f64::INFINITY` disables the approximation (exact evaluation, equal to
-    /// [`winding_number_brute`](super::winding_number_brute) up to rounding). Default 2.
-    pub beta: f64,
-    /// The far-field expansion. Default [`Expansion::ThirdOrder`].
-    pub expansion: Expansion,
+    beta: f64,
+    expansion: Expansion,
 }
 
 impl Default for WindingOptions {
+    /// `beta` 2, [`Expansion::ThirdOrder`] (as in Barill et al.).
     fn default() -> Self {
         Self {
             beta: 2.0,
             expansion: Expansion::ThirdOrder,
         }
+    }
+}
+
+impl WindingOptions {
+    /// Sets the far-field parameter: a node whose triangles lie within distance `r` of its
+    /// centre is replaced by its expansion when the query is farther than `beta · r` from
+    /// that centre. Larger is more accurate and slower. Must be greater than 1 (checked by
+    /// [`WindingNumber::with_options`]); `f64::INFINITY` disables the approximation (exact
+    /// evaluation, equal to [`winding_number_brute`](super::winding_number_brute) up to
+    /// rounding). Default 2.
+    #[must_use]
+    pub fn with_beta(mut self, beta: f64) -> Self {
+        self.beta = beta;
+        self
+    }
+
+    /// Sets the far-field expansion. Default [`Expansion::ThirdOrder`].
+    #[must_use]
+    pub fn with_expansion(mut self, expansion: Expansion) -> Self {
+        self.expansion = expansion;
+        self
+    }
+
+    /// The far-field parameter (see [`WindingOptions::with_beta`]).
+    pub fn beta(&self) -> f64 {
+        self.beta
+    }
+
+    /// The far-field expansion.
+    pub fn expansion(&self) -> Expansion {
+        self.expansion
     }
 }
 
@@ -161,13 +193,7 @@ impl WindingNumber {
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
     pub fn exact(mesh: &TriMesh) -> Result<Self, MeshError> {
-        Self::with_options(
-            mesh,
-            WindingOptions {
-                beta: f64::INFINITY,
-                ..WindingOptions::default()
-            },
-        )
+        Self::with_options(mesh, WindingOptions::default().with_beta(f64::INFINITY))
     }
 
     /// Builds the evaluator with the given options.
@@ -175,7 +201,7 @@ impl WindingNumber {
     /// # Errors
     ///
     /// - [`MeshError::EmptyMesh`] if the mesh has no triangles;
-    /// - [`MeshError::InvalidParameter`] (`beta`) if `options.beta` is NaN or not greater
+    /// - [`MeshError::InvalidParameter`] (`beta`) if `options.beta()` is NaN or not greater
     ///   than 1 (the expansion diverges when the query can be inside the node's ball);
     /// - [`MeshError::TooManyTriangles`] if the mesh has `u32::MAX` triangles or more.
     ///
@@ -191,13 +217,13 @@ impl WindingNumber {
     /// )?;
     /// let careful = WindingNumber::with_options(
     ///     &mesh,
-    ///     WindingOptions { beta: 4.0, ..WindingOptions::default() },
+    ///     WindingOptions::default().with_beta(4.0),
     /// )?;
     /// assert!(careful.is_inside(DVec3::splat(0.1)));
     ///
     /// let err = WindingNumber::with_options(
     ///     &mesh,
-    ///     WindingOptions { beta: 0.5, ..WindingOptions::default() },
+    ///     WindingOptions::default().with_beta(0.5),
     /// )
     /// .unwrap_err();
     /// assert!(matches!(err, MeshError::InvalidParameter { name: "beta", .. }));

@@ -70,7 +70,7 @@
 //!   triangle ([`Expansion::ThirdOrder`], the default, as in the paper).
 //!
 //! A query descends the tree; a node whose centre is farther than **`beta · r`** from the
-//! query (the *far field*, [`WindingOptions::beta`], default 2) contributes its expansion,
+//! query (the *far field*, [`WindingOptions::with_beta`], default 2) contributes its expansion,
 //! other nodes are opened, and the triangles of the leaves that are reached are summed
 //! exactly. `beta = ∞` ([`WindingNumber::exact`]) disables the approximation.
 //!

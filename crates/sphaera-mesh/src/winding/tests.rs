@@ -140,7 +140,7 @@ fn evaluator_is_send_and_sync() {
 fn exact_mode_equals_brute_force() {
     for (name, mesh) in all_shapes() {
         let exact = WindingNumber::exact(&mesh).unwrap();
-        assert!(exact.options().beta.is_infinite());
+        assert!(exact.options().beta().is_infinite());
         for (p, _) in random_points(&mesh, 100, 3) {
             let (fast, brute) = (exact.winding_number(p), winding_number_brute(&mesh, p));
             assert!(
@@ -289,10 +289,7 @@ fn non_finite_points_are_nan_and_outside() {
 fn invalid_parameters_are_rejected() {
     let mesh = test_meshes::unit_cube();
     for beta in [1.0, 0.5, -2.0, f64::NAN, f64::NEG_INFINITY] {
-        let options = WindingOptions {
-            beta,
-            ..WindingOptions::default()
-        };
+        let options = WindingOptions::default().with_beta(beta);
         let err = WindingNumber::with_options(&mesh, options).unwrap_err();
         assert!(
             matches!(err, crate::MeshError::InvalidParameter { name: "beta", .. }),
@@ -329,8 +326,13 @@ fn error_table() {
             let mut sum = 0.0;
             let mut count = 0;
             for (_, mesh) in all_shapes() {
-                let winding =
-                    WindingNumber::with_options(&mesh, WindingOptions { beta, expansion }).unwrap();
+                let winding = WindingNumber::with_options(
+                    &mesh,
+                    WindingOptions::default()
+                        .with_beta(beta)
+                        .with_expansion(expansion),
+                )
+                .unwrap();
                 let diagonal = mesh.bounding_box_diagonal();
                 for (p, d) in random_points(&mesh, 500, 7) {
                     if d < 1e-3 * diagonal {
