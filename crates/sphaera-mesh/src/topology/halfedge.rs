@@ -48,6 +48,8 @@ pub(crate) struct Vertex {
     /// Anchor: an outgoing half-edge; for a boundary vertex, the one without twin.
     pub(crate) halfedge: u32,
     pub(crate) original: u32,
+    /// Collapses into this vertex currently applied (see `CollapseRecord`).
+    pub(crate) merges: u32,
     pub(crate) flags: u8,
 }
 
@@ -147,6 +149,7 @@ impl HalfEdgeMesh {
                 position,
                 halfedge: NONE,
                 original: i as u32,
+                merges: 0,
                 flags: 0,
             })
             .collect();
@@ -248,6 +251,28 @@ impl HalfEdgeMesh {
             }
         }
         h
+    }
+
+    /// The canonical anchor of the fan of outgoing half-edge `h`: the outgoing half-edge
+    /// without twin if the fan is open, the lowest-numbered one if it is closed (what
+    /// construction assigns, so that a vertex split restores anchors exactly).
+    pub(crate) fn canonical_anchor(&self, h: u32) -> u32 {
+        let anchor = self.fan_anchor(h);
+        if self.twin_raw(anchor).is_none() {
+            return anchor;
+        }
+        let (mut lowest, mut g) = (anchor, anchor);
+        // Bounded like `fan_anchor`: a closed fan returns to its start.
+        for _ in 0..self.halfedges.len() {
+            match self.rotate_forward(g) {
+                Some(n) if n != anchor => {
+                    g = n;
+                    lowest = lowest.min(n);
+                }
+                _ => break,
+            }
+        }
+        lowest
     }
 
     /// The next outgoing half-edge counter-clockwise: `twin(prev(h))`.
