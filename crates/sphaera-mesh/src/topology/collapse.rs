@@ -489,9 +489,8 @@ impl HalfEdgeMesh {
 
     /// Whether `record` can be undone on the current state: all indices in range, the
     /// removed vertex and faces deleted, their other corners live, the kept vertex live
-    /// with the record's merge
-    /// count, and every origin and twin the collapse wrote still in place (anchors are
-    /// recomputed, not restored).
+    /// with the record's merge count, and every origin and twin the collapse wrote still
+    /// in place (anchors are recomputed, not restored).
     fn split_fits(&self, record: &CollapseRecord) -> bool {
         let vertex_ok = |x: u32| (x as usize) < self.vertices.len();
         let halfedge_ok = |x: u32| (x as usize) < self.halfedges.len();

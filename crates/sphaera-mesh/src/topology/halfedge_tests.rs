@@ -224,6 +224,63 @@ fn independent_collapses_split_in_any_order() {
     assert_eq!(he, original);
 }
 
+#[test]
+fn set_position_rejects_non_finite_so_to_trimesh_never_empties() {
+    let mut he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let before = he.clone();
+    for bad in [DVec3::NAN, DVec3::new(0.0, 0.0, f64::INFINITY)] {
+        assert!(matches!(
+            he.set_position(VertexId(3), bad),
+            Err(MeshError::NonFiniteCoordinate { vertex: 3, .. })
+        ));
+    }
+    assert!(matches!(
+        he.set_position(VertexId(99), DVec3::ZERO),
+        Err(MeshError::InvalidHandle { index: 99, .. })
+    ));
+    assert_eq!(he, before);
+    he.set_position(VertexId(3), DVec3::ONE).unwrap();
+    let live = he.to_trimesh();
+    assert_eq!(live.mesh.triangle_count(), 8);
+    assert_eq!(live.mesh.positions()[3], DVec3::ONE);
+}
+
+#[test]
+fn moving_one_copy_of_a_non_manifold_vertex_keeps_the_first_copy_position() {
+    // A bow tie: vertex 0 is split into two copies, 0 and 5.
+    let mesh = TriMesh::new(
+        vec![DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y],
+        vec![[0, 1, 2], [0, 3, 4]],
+    )
+    .unwrap();
+    let mut he = HalfEdgeMesh::from_trimesh(&mesh);
+    he.set_position(VertexId(5), DVec3::Z).unwrap();
+    let live = he.to_trimesh();
+    assert_eq!(live.mesh.vertex_count(), 5);
+    assert_eq!(live.mesh.positions()[0], DVec3::ZERO);
+}
+
+#[test]
+fn handle_arithmetic_at_u32_max_does_not_overflow() {
+    let he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let h = HalfEdgeId(u32::MAX);
+    assert!(!he.is_valid_halfedge(he.prev(h)));
+    assert!(!he.is_valid_halfedge(he.next(h)));
+    assert!(!he.is_valid_halfedge(he.face_halfedge(super::FaceId(u32::MAX))));
+    assert!(!he.is_valid_face(he.face(h)));
+    assert!(!he.is_valid_vertex(VertexId(u32::MAX)));
+    assert!(he.is_valid_halfedge(he.prev(HalfEdgeId(0))));
+    assert_eq!(he.prev(HalfEdgeId(0)), HalfEdgeId(2));
+    assert_eq!(he.next(HalfEdgeId(2)), HalfEdgeId(0));
+}
+
+#[test]
+#[should_panic(expected = "index out of bounds")]
+fn out_of_range_halfedge_hits_the_documented_panic() {
+    let he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let _ = he.target(he.prev(HalfEdgeId(u32::MAX)));
+}
+
 /// Meshes for the collapse properties: closed and open, genus 0 to 2.
 fn base_mesh(kind: u8, n: u32) -> TriMesh {
     match kind {
