@@ -140,10 +140,11 @@ pub enum MeshError {
         /// Why the collapse is not allowed.
         reason: crate::topology::CollapseRefusal,
     },
-    /// A vertex split was given a collapse record that does not match the mesh: splits
-    /// must undo collapses in exactly the reverse order, on the same mesh.
+    /// A vertex split was given a collapse record that does not match the mesh: a record
+    /// from another mesh, one already split, or one whose neighbourhood a later collapse
+    /// still changes (split that one first; the reverse collapse order always works).
     #[error(
-        "the collapse record of vertex {removed} into vertex {kept} does not match the mesh (splits must undo collapses in reverse order)"
+        "the collapse record of vertex {removed} into vertex {kept} does not match the mesh (already split, from another mesh, or its neighbourhood was changed by a later collapse that must be split first)"
     )]
     SplitMismatch {
         /// The vertex the record's collapse removed.

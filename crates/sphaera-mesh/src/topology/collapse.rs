@@ -6,7 +6,8 @@ use glam::DVec3;
 use smallvec::SmallVec;
 
 use super::halfedge::{
-    DELETED, HalfEdgeId, HalfEdgeMesh, LOCKED, NON_MANIFOLD, NONE, VertexId, next_raw, prev_raw,
+    DELETED, HalfEdgeId, HalfEdgeMesh, LOCKED, NON_MANIFOLD, NONE, Vertex, VertexId, next_raw,
+    prev_raw,
 };
 use crate::MeshError;
 
@@ -76,12 +77,13 @@ pub struct CollapseRecord {
     new_position: DVec3,
     /// Faces deleted: the face of the half-edge and (interior edge) of its twin.
     faces: [u32; 2],
-    /// Half-edges whose twin changed, with their old twin.
-    twins: SmallVec<[(u32, u32); 4]>,
+    /// Half-edges whose twin changed: (half-edge, twin before, twin the collapse wrote).
+    twins: SmallVec<[(u32, u32, u32); 4]>,
     /// Half-edges whose origin moved from `removed` to `kept`.
     moved: SmallVec<[u32; 8]>,
-    /// Vertices whose anchor changed, with their old anchor.
-    anchors: SmallVec<[(u32, u32); 3]>,
+    /// The kept vertex's merge count after the collapse (it counts the applied collapses
+    /// into that vertex, so a split cannot undo a collapse that a later one built on).
+    merges: u32,
 }
 
 impl CollapseRecord {
@@ -302,13 +304,14 @@ impl HalfEdgeMesh {
         }
 
         // Glue the outer edges of each deleted face.
-        let mut twins: SmallVec<[(u32, u32); 4]> = SmallVec::new();
+        let mut twins: SmallVec<[(u32, u32, u32); 4]> = SmallVec::new();
         let mut glue = |mesh: &mut Self, a: u32, b: u32| {
             let (ta, tb) = (mesh.twin_raw(a), mesh.twin_raw(b));
             for (x, other) in [(ta, tb), (tb, ta)] {
                 if let Some(x) = x {
-                    twins.push((x, mesh.halfedges[x as usize].twin));
-                    mesh.halfedges[x as usize].twin = other.unwrap_or(NONE);
+                    let new = other.unwrap_or(NONE);
+                    twins.push((x, mesh.halfedges[x as usize].twin, new));
+                    mesh.halfedges[x as usize].twin = new;
                 }
             }
         };
@@ -328,19 +331,22 @@ impl HalfEdgeMesh {
         self.live_vertex_count -= 1;
         let old_position = self.vertices[v as usize].position;
         self.vertices[v as usize].position = new_position;
+        // At most one collapse per removed vertex is applied at a time, so the count stays
+        // below the vertex count (invariant); wrapping only guards the arithmetic.
+        let merges = self.vertices[v as usize].merges.wrapping_add(1);
+        self.vertices[v as usize].merges = merges;
 
         // Moved half-edges now leave v too, so they seed v's new anchor as well.
-        let mut anchors: SmallVec<[(u32, u32); 3]> = SmallVec::new();
+        // Anchors are canonical (a function of the connectivity), so a split restores
+        // them by recomputing them whatever order splits come in.
         for (x, ring) in &affected {
             let seed = ring
                 .first()
                 .copied()
                 .or_else(|| (*x == v).then(|| moved.first().copied()).flatten());
-            let old = self.vertices[*x as usize].halfedge;
-            anchors.push((*x, old));
             // The checks guarantee every affected vertex keeps a live face (invariant);
             // without a seed the vertex would become isolated.
-            self.vertices[*x as usize].halfedge = seed.map_or(NONE, |s| self.fan_anchor(s));
+            self.vertices[*x as usize].halfedge = seed.map_or(NONE, |s| self.canonical_anchor(s));
         }
 
         Ok(CollapseRecord {
@@ -352,7 +358,7 @@ impl HalfEdgeMesh {
             faces: [f0, f1],
             twins,
             moved,
-            anchors,
+            merges,
         })
     }
 
@@ -360,14 +366,25 @@ impl HalfEdgeMesh {
     /// faces, every link and the kept vertex's position exactly as they were (the mesh
     /// compares equal to its state before the collapse).
     ///
-    /// Splits must undo collapses in reverse order (last collapsed, first split), as a
-    /// progressive mesh replays them.
+    /// Splits need not follow the reverse collapse order (selective refinement of a
+    /// progressive mesh splits in any order the neighbourhoods allow): a split is accepted
+    /// exactly when the collapse's neighbourhood is still as the collapse left it. Every
+    /// twin and origin the collapse wrote must still hold the value it wrote, the
+    /// removed vertex and faces must still be deleted, the other corners of those faces
+    /// must be live, and no later collapse into the kept
+    /// vertex may still be applied (those must be split first). The reverse collapse order
+    /// always qualifies. The kept vertex goes back to its old position whatever its
+    /// current position is (moving it in between, for a geomorph, is allowed).
     ///
     /// # Errors
     ///
     /// [`MeshError::SplitMismatch`] if the record does not fit the mesh's current state
-    /// (a record from another mesh, a split out of order, or a record applied twice); the
-    /// mesh is unchanged on error.
+    /// (a record from another mesh, a split whose neighbourhood a later collapse changed,
+    /// or a record applied twice); the mesh is unchanged on error.
+    ///
+    /// # Performance
+    ///
+    /// Proportional to the record's size (the removed vertex's valence).
     ///
     /// # Examples
     ///
@@ -380,51 +397,136 @@ impl HalfEdgeMesh {
         if !self.split_fits(record) {
             return Err(mismatch);
         }
-        for &(x, old) in record.anchors.iter().rev() {
-            self.vertices[x as usize].halfedge = old;
+        // The corners of the revived faces (the removed vertex first) and how many
+        // half-edges each must leave once the split is done; the values are checked
+        // after the split, which is rolled back if they do not hold.
+        let revived: SmallVec<[u32; 6]> = record
+            .faces
+            .iter()
+            .filter(|&&f| f != NONE)
+            .flat_map(|&f| 3 * f..3 * f + 3)
+            .collect();
+        let mut corners: SmallVec<[(u32, usize); 4]> = SmallVec::new();
+        for &h in &revived {
+            let x = self.halfedges[h as usize].origin;
+            if let Some(entry) = corners.iter_mut().find(|c| c.0 == x) {
+                entry.1 += 1;
+            } else {
+                let before = if x == record.removed {
+                    record.moved.len()
+                } else if x == record.kept {
+                    self.outgoing_count(x).saturating_sub(record.moved.len())
+                } else {
+                    self.outgoing_count(x)
+                };
+                corners.push((x, before + 1));
+            }
         }
-        self.vertices[record.kept as usize].position = record.old_position;
+        let saved_vertices: SmallVec<[(u32, Vertex); 4]> = corners
+            .iter()
+            .map(|&(x, _)| (x, self.vertices[x as usize]))
+            .collect();
+        let saved_twins: SmallVec<[(u32, u32); 4]> = record
+            .twins
+            .iter()
+            .map(|&(x, _, _)| (x, self.halfedges[x as usize].twin))
+            .collect();
+
+        let kept = &mut self.vertices[record.kept as usize];
+        kept.position = record.old_position;
+        kept.merges = record.merges.wrapping_sub(1);
         self.vertices[record.removed as usize].flags &= !DELETED;
-        self.live_vertex_count += 1;
-        for &f in record.faces.iter().filter(|&&f| f != NONE) {
-            self.faces[f as usize].deleted = false;
-            self.live_face_count += 1;
-        }
+        self.set_faces_deleted(record, false);
         for &x in &record.moved {
             self.halfedges[x as usize].origin = record.removed;
         }
-        for &(x, old) in record.twins.iter().rev() {
+        for &(x, old, _) in record.twins.iter().rev() {
             self.halfedges[x as usize].twin = old;
         }
+        // Every corner of a revived face gets its canonical anchor back; a half-edge of
+        // that face seeds it (the faces are live and their corners too, checked above).
+        for &h in &revived {
+            let x = self.halfedges[h as usize].origin;
+            self.vertices[x as usize].halfedge = self.canonical_anchor(h);
+        }
+        // Each corner must have one fan holding all its half-edges.
+        if corners.iter().any(|&(x, n)| self.outgoing_count(x) != n) {
+            for &(x, twin) in saved_twins.iter().rev() {
+                self.halfedges[x as usize].twin = twin;
+            }
+            for &x in &record.moved {
+                self.halfedges[x as usize].origin = record.kept;
+            }
+            self.set_faces_deleted(record, true);
+            for &(x, vertex) in &saved_vertices {
+                self.vertices[x as usize] = vertex;
+            }
+            return Err(mismatch);
+        }
+        self.live_vertex_count += 1;
         Ok(())
     }
 
-    /// Whether `record` can be undone on the current state (all indices in range, the
-    /// removed vertex and faces deleted, the moved half-edges leaving the kept vertex).
+    /// Marks the record's faces deleted or live, keeping the live count.
+    fn set_faces_deleted(&mut self, record: &CollapseRecord, deleted: bool) {
+        for &f in record.faces.iter().filter(|&&f| f != NONE) {
+            self.faces[f as usize].deleted = deleted;
+            if deleted {
+                self.live_face_count -= 1;
+            } else {
+                self.live_face_count += 1;
+            }
+        }
+    }
+
+    /// The number of half-edges in the fan of `x` (bounded, in case the fan does not
+    /// close on a structure a wrong split left inconsistent).
+    fn outgoing_count(&self, x: u32) -> usize {
+        self.outgoing(VertexId(x))
+            .take(self.halfedges.len() + 1)
+            .count()
+    }
+
+    /// Whether `record` can be undone on the current state: all indices in range, the
+    /// removed vertex and faces deleted, their other corners live, the kept vertex live
+    /// with the record's merge count, and every origin and twin the collapse wrote still
+    /// in place (anchors are recomputed, not restored).
     fn split_fits(&self, record: &CollapseRecord) -> bool {
         let vertex_ok = |x: u32| (x as usize) < self.vertices.len();
         let halfedge_ok = |x: u32| (x as usize) < self.halfedges.len();
+        let link_ok = |x: u32| x >= super::halfedge::UNPAIRED || halfedge_ok(x);
         let live = |x: u32| vertex_ok(x) && self.vertices[x as usize].flags & DELETED == 0;
+        // A slot written twice by the collapse holds its last value.
+        let last_twin = |i: usize, x: u32| record.twins[i + 1..].iter().all(|e| e.0 != x);
         vertex_ok(record.removed)
             && self.vertices[record.removed as usize].flags & DELETED != 0
             && live(record.kept)
+            && self.vertices[record.kept as usize].merges == record.merges
             && record.faces[0] != NONE
             && record
                 .faces
                 .iter()
                 .filter(|&&f| f != NONE)
                 .all(|&f| (f as usize) < self.faces.len() && self.faces[f as usize].deleted)
+            // The revived faces' other corners must still be live (not collapsed away).
+            && record
+                .faces
+                .iter()
+                .filter(|&&f| f != NONE)
+                .flat_map(|&f| 3 * f..3 * f + 3)
+                .all(|h| {
+                    let x = self.halfedges[h as usize].origin;
+                    x == record.removed || live(x)
+                })
             && record.moved.iter().all(|&x| {
                 halfedge_ok(x)
                     && !self.faces[(x / 3) as usize].deleted
                     && self.halfedges[x as usize].origin == record.kept
             })
-            && record.twins.iter().all(|&(x, old)| {
-                halfedge_ok(x) && (old >= super::halfedge::UNPAIRED || halfedge_ok(old))
+            && record.twins.iter().enumerate().all(|(i, &(x, old, new))| {
+                halfedge_ok(x)
+                    && link_ok(old)
+                    && (!last_twin(i, x) || self.halfedges[x as usize].twin == new)
             })
-            && record
-                .anchors
-                .iter()
-                .all(|&(x, old)| vertex_ok(x) && (old == NONE || halfedge_ok(old)))
     }
 }

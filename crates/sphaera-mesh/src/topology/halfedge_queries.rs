@@ -150,9 +150,17 @@ impl HalfEdgeMesh {
     /// The live mesh as an indexed mesh, with maps back to this mesh's handles.
     ///
     /// Output vertices are the live vertices used by a live face, in handle order, except
-    /// that copies of one non-manifold source vertex are merged back into one vertex (the
-    /// copies are never moved, because collapses refuse non-manifold vertices). Isolated
-    /// vertices are dropped; triangles are the live faces in handle order.
+    /// that copies of one non-manifold source vertex are merged back into one vertex, at
+    /// the position of the lowest-numbered copy a live face uses. Collapses refuse
+    /// non-manifold vertices, so only [`HalfEdgeMesh::set_position`] can move a copy: a
+    /// copy moved away from the others is still merged, and its own position is ignored.
+    /// Isolated vertices are dropped; triangles are the live faces in handle order.
+    ///
+    /// # Panics
+    ///
+    /// Never: positions are finite (construction, collapses and
+    /// [`HalfEdgeMesh::set_position`] keep them so) and every corner of a live face is a
+    /// live vertex.
     ///
     /// # Performance
     ///
@@ -192,9 +200,10 @@ impl HalfEdgeMesh {
                 [0, 1, 2].map(|i| new_index[self.halfedges[base + i].origin as usize])
             })
             .collect();
-        // Every corner of a live face is a used live vertex, so every index is assigned
-        // and positions came from a valid mesh: construction cannot fail (invariant).
-        let mesh = TriMesh::new(positions, triangles).unwrap_or_default();
+        // Every corner of a live face is a used live vertex, so every index is assigned,
+        // and every position is finite: construction cannot fail (invariant).
+        let mesh = TriMesh::new(positions, triangles)
+            .expect("invariant: live faces name live vertices with finite positions");
         LiveMesh {
             mesh,
             vertex_map,

@@ -157,7 +157,7 @@ fn interior_edge_between_boundary_vertices_is_refused() {
 }
 
 #[test]
-fn split_twice_or_out_of_order_is_an_error() {
+fn split_twice_is_an_error() {
     let mut he = HalfEdgeMesh::from_trimesh(&test_meshes::torus(6, 5));
     let a = he.collapse_edge(HalfEdgeId(0), DVec3::ZERO).unwrap();
     let h = (0..he.halfedge_count() as u32)
@@ -173,6 +173,112 @@ fn split_twice_or_out_of_order_is_an_error() {
     ));
     he.split_vertex(&a).unwrap();
     assert_eq!(he, HalfEdgeMesh::from_trimesh(&test_meshes::torus(6, 5)));
+}
+
+#[test]
+fn split_under_a_later_collapse_into_its_kept_vertex_is_an_error() {
+    let original = HalfEdgeMesh::from_trimesh(&crate::shapes::torus(1.0, 0.4, 12).unwrap());
+    let mut he = original.clone();
+    let a = he.collapse_edge(HalfEdgeId(0), DVec3::ZERO).unwrap();
+    let kept = a.kept_vertex();
+    // Collapse B: some neighbour into A's kept vertex.
+    let h = he
+        .outgoing(kept)
+        .filter_map(|g| he.twin(g))
+        .find(|&g| he.can_collapse(g))
+        .unwrap();
+    assert_eq!(he.target(h), kept);
+    let b = he.collapse_edge(h, DVec3::ONE).unwrap();
+    let after_both = he.clone();
+    assert!(matches!(
+        he.split_vertex(&a),
+        Err(MeshError::SplitMismatch { .. })
+    ));
+    assert_eq!(he, after_both);
+    he.split_vertex(&b).unwrap();
+    he.split_vertex(&a).unwrap();
+    assert_eq!(he, original);
+}
+
+#[test]
+fn independent_collapses_split_in_any_order() {
+    let original = HalfEdgeMesh::from_trimesh(&crate::shapes::torus(1.0, 0.4, 12).unwrap());
+    let mut he = original.clone();
+    let a = he.collapse_edge(HalfEdgeId(0), DVec3::ZERO).unwrap();
+    // A collapse whose endpoints are outside the 2-ring of A's kept vertex.
+    let mut near: Vec<VertexId> = vec![a.kept_vertex()];
+    for _ in 0..2 {
+        let ring: Vec<VertexId> = near.iter().flat_map(|&v| he.neighbors(v)).collect();
+        near.extend(ring);
+    }
+    let h = (0..he.halfedge_count() as u32)
+        .map(HalfEdgeId)
+        .find(|&g| {
+            he.can_collapse(g) && !near.contains(&he.origin(g)) && !near.contains(&he.target(g))
+        })
+        .unwrap();
+    let b = he.collapse_edge(h, DVec3::ONE).unwrap();
+    he.split_vertex(&a).unwrap();
+    check_invariants(&he);
+    he.split_vertex(&b).unwrap();
+    assert_eq!(he, original);
+}
+
+#[test]
+fn set_position_rejects_non_finite_so_to_trimesh_never_empties() {
+    let mut he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let before = he.clone();
+    for bad in [DVec3::NAN, DVec3::new(0.0, 0.0, f64::INFINITY)] {
+        assert!(matches!(
+            he.set_position(VertexId(3), bad),
+            Err(MeshError::NonFiniteCoordinate { vertex: 3, .. })
+        ));
+    }
+    assert!(matches!(
+        he.set_position(VertexId(99), DVec3::ZERO),
+        Err(MeshError::InvalidHandle { index: 99, .. })
+    ));
+    assert_eq!(he, before);
+    he.set_position(VertexId(3), DVec3::ONE).unwrap();
+    let live = he.to_trimesh();
+    assert_eq!(live.mesh.triangle_count(), 8);
+    assert_eq!(live.mesh.positions()[3], DVec3::ONE);
+}
+
+#[test]
+fn moving_one_copy_of_a_non_manifold_vertex_keeps_the_first_copy_position() {
+    // A bow tie: vertex 0 is split into two copies, 0 and 5.
+    let mesh = TriMesh::new(
+        vec![DVec3::ZERO, DVec3::X, DVec3::Y, -DVec3::X, -DVec3::Y],
+        vec![[0, 1, 2], [0, 3, 4]],
+    )
+    .unwrap();
+    let mut he = HalfEdgeMesh::from_trimesh(&mesh);
+    he.set_position(VertexId(5), DVec3::Z).unwrap();
+    let live = he.to_trimesh();
+    assert_eq!(live.mesh.vertex_count(), 5);
+    assert_eq!(live.mesh.positions()[0], DVec3::ZERO);
+}
+
+#[test]
+fn handle_arithmetic_at_u32_max_does_not_overflow() {
+    let he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let h = HalfEdgeId(u32::MAX);
+    assert!(!he.is_valid_halfedge(he.prev(h)));
+    assert!(!he.is_valid_halfedge(he.next(h)));
+    assert!(!he.is_valid_halfedge(he.face_halfedge(super::FaceId(u32::MAX))));
+    assert!(!he.is_valid_face(he.face(h)));
+    assert!(!he.is_valid_vertex(VertexId(u32::MAX)));
+    assert!(he.is_valid_halfedge(he.prev(HalfEdgeId(0))));
+    assert_eq!(he.prev(HalfEdgeId(0)), HalfEdgeId(2));
+    assert_eq!(he.next(HalfEdgeId(2)), HalfEdgeId(0));
+}
+
+#[test]
+#[should_panic(expected = "index out of bounds")]
+fn out_of_range_halfedge_hits_the_documented_panic() {
+    let he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let _ = he.target(he.prev(HalfEdgeId(u32::MAX)));
 }
 
 /// Meshes for the collapse properties: closed and open, genus 0 to 2.
@@ -237,6 +343,57 @@ proptest! {
             states.pop();
             he.split_vertex(&record).unwrap();
             prop_assert_eq!(&he, states.last().unwrap());
+        }
+        prop_assert_eq!(he, original);
+    }
+
+    /// Splits in a random order either fail and leave the mesh unchanged, or succeed and
+    /// leave a valid structure; undoing the rest in reverse collapse order then restores
+    /// the mesh exactly.
+    #[test]
+    fn splits_out_of_order_fail_cleanly_or_succeed(
+        kind in 0u8..5,
+        n in 0u32..5,
+        picks in prop::collection::vec(any::<prop::sample::Index>(), 1..30),
+        order in prop::collection::vec(any::<prop::sample::Index>(), 0..40),
+        optimal in any::<bool>(),
+    ) {
+        let original = HalfEdgeMesh::from_trimesh(&base_mesh(kind, n));
+        let mut he = original.clone();
+        let mut records = Vec::new();
+        for pick in picks {
+            let candidates: Vec<HalfEdgeId> = (0..he.halfedge_count() as u32)
+                .map(HalfEdgeId)
+                .filter(|&h| he.can_collapse(h))
+                .collect();
+            if candidates.is_empty() {
+                break;
+            }
+            let h = candidates[pick.index(candidates.len())];
+            let target = if optimal {
+                (he.position(he.origin(h)) + he.position(he.target(h))) / 2.0
+            } else {
+                he.position(he.target(h))
+            };
+            records.push(Some(he.collapse_edge(h, target).unwrap()));
+        }
+        for pick in order {
+            if records.is_empty() {
+                break;
+            }
+            let i = pick.index(records.len());
+            let Some(record) = &records[i] else { continue };
+            let before = he.clone();
+            if he.split_vertex(record).is_ok() {
+                check_invariants(&he);
+                records[i] = None;
+            } else {
+                prop_assert_eq!(&he, &before);
+            }
+        }
+        for record in records.iter().rev().flatten() {
+            he.split_vertex(record).unwrap();
+            check_invariants(&he);
         }
         prop_assert_eq!(he, original);
     }

@@ -7,7 +7,7 @@
 //! degenerate or duplicate triangles and unreferenced vertices. By default it first merges
 //! vertices with identical coordinates (OBJ files split vertices at uv seams), which makes
 //! its closed / 2-manifold / components / boundary edges / genus / `χ` numbers those of
-//! trimesh and pymeshlab in `shared/data/README.md` (all 38 meshes of that table agree).
+//! trimesh and pymeshlab in `shared/data/README.md` (all 39 meshes of that table agree).
 //! Components are edge-connected; a triangle with a repeated index counts as a face, and
 //! its repeated side as a (self-loop) edge, as in trimesh.
 //!

@@ -36,8 +36,8 @@ pub struct TriangleFilterReport {
 
 /// Removes triangles with a repeated vertex index or a zero area.
 ///
-/// A triangle has zero area when its area is at most `relative_tolerance` times its
-/// squared longest edge ([`Triangle::is_degenerate`](crate::geometry::Triangle::is_degenerate));
+/// A triangle has zero area when twice its area (the length of the cross product of two
+/// edges) is at most `relative_tolerance` times its squared longest edge ([`Triangle::is_degenerate`](crate::geometry::Triangle::is_degenerate));
 /// `0.0` removes only exactly collinear corners, `1e-12` also near-collinear slivers.
 /// Vertices are kept (see [`drop_unreferenced_vertices`]).
 ///
@@ -130,7 +130,8 @@ pub fn drop_duplicate_triangles(mesh: &TriMesh) -> (TriMesh, TriangleFilterRepor
         }
     }
     report.removed_triangle_count = report.duplicate_count;
-    let (positions, _) = mesh.clone().into_parts();
+    // Only the positions are copied (the triangles were rebuilt above).
+    let positions = mesh.positions().to_vec();
     // Same positions and a subset of checked triangles: construction cannot fail, but
     // fall back to the input rather than panic if that invariant were ever broken.
     let clean = TriMesh::new(positions, kept).unwrap_or_else(|_| mesh.clone());

@@ -87,9 +87,8 @@ pub struct TopologyReport {
     pub merged_vertex_count: usize,
     /// Distinct (merged) vertices used by at least one triangle: the `V` of `χ`.
     pub referenced_vertex_count: usize,
-    /// Vertex records no triangle uses (counted before merging: a record whose position
-    /// is shared with a used record still counts as unreferenced if no triangle names it
-    /// or any record identical to it).
+    /// Vertex records no triangle names, counted before merging: a record counts even
+    /// when its position equals that of a record a triangle does name.
     pub unreferenced_vertex_count: usize,
     /// Triangles: the `F` of `χ`.
     pub triangle_count: usize,
@@ -116,15 +115,18 @@ pub struct TopologyReport {
     pub component_count: usize,
     /// Euler characteristic `χ = V − E + F`, over the referenced (merged) vertices.
     pub euler_characteristic: i64,
-    /// No boundary edge and no non-manifold edge.
+    /// At least one triangle, no boundary edge and no non-manifold edge (a mesh without
+    /// triangles encloses nothing, so it is not closed).
     pub is_closed: bool,
-    /// No non-manifold edge and no non-manifold vertex (pymeshlab's 2-manifold).
+    /// No non-manifold edge and no non-manifold vertex (pymeshlab's 2-manifold). True
+    /// for a mesh without triangles (vacuously: it has no defect).
     pub is_manifold: bool,
     /// No edge is traversed twice in the same direction.
     pub is_oriented: bool,
     /// The genus, summed over components and counting holes: `Σ (2 − χ_c − b_c) / 2`
     /// with `b_c` the boundary loops of component `c`. `None` unless the mesh is manifold
-    /// and oriented (the genus of a non-orientable surface is a different number).
+    /// and oriented (the genus of a non-orientable surface is a different number), and
+    /// `None` for a mesh without triangles (no surface).
     pub genus: Option<u64>,
     /// Triangles with a repeated vertex index (after merging).
     pub repeated_index_triangle_count: usize,
@@ -161,8 +163,8 @@ pub struct TopologyReport {
 ///
 /// # Performance
 ///
-/// Linear time: a sort of the positions (for merging), a counting sort of the half-edges
-/// and a few union-find passes. About 0.2 s for the 871k-triangle Stanford dragon on one
+/// `O(n log n)` for `n` vertices (a sort of the positions, for merging), then linear:
+/// a counting sort of the half-edges and a few union-find passes. About 0.2 s for the 871k-triangle Stanford dragon on one
 /// core (release).
 pub fn analyze(mesh: &TriMesh) -> TopologyReport {
     analyze_with(mesh, TopologyOptions::default())
@@ -301,10 +303,10 @@ fn report_of(
     let edge_count = table.edge_count();
     let euler_characteristic =
         referenced_vertex_count as i64 - edge_count as i64 + triangle_count as i64;
-    let is_closed = boundary_edge_count == 0 && non_manifold_edge_count == 0;
+    let is_closed = triangle_count > 0 && boundary_edge_count == 0 && non_manifold_edge_count == 0;
     let is_manifold = non_manifold_edge_count == 0 && non_manifold_vertex_count == 0;
     let is_oriented = inconsistent_edge_count == 0;
-    let genus = if is_manifold && is_oriented {
+    let genus = if is_manifold && is_oriented && triangle_count > 0 {
         // Σ_c (2 − χ_c − b_c) / 2 = (2 C − χ − B) / 2.
         let twice = 2 * component_count as i64 - euler_characteristic - boundary_loop_count as i64;
         u64::try_from(twice / 2).ok().filter(|_| twice % 2 == 0)
@@ -549,7 +551,7 @@ mod tests {
         let non_manifold_edge_count = groups.values().filter(|g| g.len() > 2).count();
         let chi = used.len() as i64 - groups.len() as i64 + tris.len() as i64;
         let is_manifold = non_manifold_edge_count == 0 && non_manifold_vertex_count == 0;
-        let genus = (is_manifold && inconsistent == 0).then(|| {
+        let genus = (is_manifold && inconsistent == 0 && !tris.is_empty()).then(|| {
             let twice = 2 * component_count as i64 - chi - boundary_loop_count as i64;
             u64::try_from(twice / 2).unwrap()
         });
@@ -577,7 +579,7 @@ mod tests {
             boundary_loop_count,
             component_count,
             euler_characteristic: chi,
-            is_closed: boundary.is_empty() && non_manifold_edge_count == 0,
+            is_closed: !tris.is_empty() && boundary.is_empty() && non_manifold_edge_count == 0,
             is_manifold,
             is_oriented: inconsistent == 0,
             genus,
@@ -660,11 +662,18 @@ mod tests {
     }
 
     #[test]
-    fn empty_mesh_reports_zeros() {
-        let r = analyze(&TriMesh::default());
-        assert_eq!(r.component_count, 0);
-        assert_eq!(r.euler_characteristic, 0);
-        assert_eq!(r.genus, Some(0));
+    fn empty_mesh_is_not_closed_and_has_no_genus() {
+        for mesh in [
+            TriMesh::default(),
+            TriMesh::new(vec![DVec3::ZERO, DVec3::X], Vec::new()).unwrap(),
+        ] {
+            let r = analyze(&mesh);
+            assert_eq!(r.component_count, 0);
+            assert_eq!(r.euler_characteristic, 0);
+            assert!(!r.is_closed);
+            assert!(r.is_manifold && r.is_oriented);
+            assert_eq!(r.genus, None);
+        }
     }
 
     fn small_mesh() -> impl Strategy<Value = TriMesh> {
