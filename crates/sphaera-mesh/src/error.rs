@@ -186,8 +186,11 @@ pub enum MeshError {
     // ----------------------------------------------------------------------------------
     // Inside/outside (winding/).
     // ----------------------------------------------------------------------------------
-    /// The mesh has more triangles than a `u32` index can address.
-    #[error("the mesh has {count} triangles, more than a u32 index can address")]
+    /// The mesh has more triangles than `u32` half-edge indices can address (three
+    /// half-edges per triangle: at most 1,431,655,764 triangles).
+    #[error(
+        "the mesh has {count} triangles, more than the 1,431,655,764 that u32 half-edge indices can address"
+    )]
     TooManyTriangles {
         /// Number of triangles supplied.
         count: usize,
