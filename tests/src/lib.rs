@@ -4,8 +4,15 @@
 //! (override with `SPHAERA_DATA=/path/to/data`). Tests that need them call [`data_dir`]:
 //! when the folder is absent they skip with a message, unless `SPHAERA_REQUIRE_DATA=1`
 //! (CI sets it), in which case they fail.
+//!
+//! [`hausdorff`] measures a sampled Hausdorff distance between two meshes with parry3d-f64
+//! (a lower bound of the true distance), to check certified upper bounds against.
 
 use std::path::{Path, PathBuf};
+
+pub mod hausdorff;
+
+pub use hausdorff::{SampledHausdorff, sampled_hausdorff};
 
 /// Where the shared meshes are: `$SPHAERA_DATA`, or `../shared/data` beside the workspace.
 pub fn data_root() -> PathBuf {
