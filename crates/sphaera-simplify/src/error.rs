@@ -1,0 +1,41 @@
+//! The error type of `sphaera-simplify`.
+
+use sphaera_mesh::MeshError;
+
+/// Everything that can go wrong when simplifying.
+///
+/// Messages are lowercase without a final period, so they compose into larger messages.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_simplify::SimplifyError;
+///
+/// let error = SimplifyError::InvalidParameter {
+///     name: "target_ratio",
+///     value: 1.5,
+///     requirement: "in (0, 1]",
+/// };
+/// assert_eq!(error.to_string(), "invalid `target_ratio` (1.5): must be in (0, 1]");
+/// assert_eq!(SimplifyError::EmptyMesh.to_string(), "the input mesh has no triangles");
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimplifyError {
+    /// The input mesh has no triangles, so there is nothing to simplify.
+    #[error("the input mesh has no triangles")]
+    EmptyMesh,
+    /// A builder parameter is out of its domain (NaN, negative, or out of range).
+    #[error("invalid `{name}` ({value}): must be {requirement}")]
+    InvalidParameter {
+        /// The parameter's name as it appears in the API, e.g. `"target_ratio"`.
+        name: &'static str,
+        /// The value supplied.
+        value: f64,
+        /// What the value must be, e.g. `"in (0, 1]"`.
+        requirement: &'static str,
+    },
+    /// An error of the underlying mesh crate (building or editing the half-edge mesh).
+    #[error("mesh error: {0}")]
+    Mesh(#[from] MeshError),
+}

@@ -1,0 +1,101 @@
+//! # sphaera-simplify
+//!
+//! Triangle-mesh simplification by half-edge collapses, with a **certified two-sided error
+//! bound**: every vertex of the simplified mesh carries an *error sphere* radius, and the
+//! simplified triangles swept by those spheres enclose the original surface while every
+//! simplified point stays within its radius of the original surface. This is the
+//! simplification behind the Meshsweeper hierarchy of A. Guéziec, *Meshsweeper: Dynamic
+//! Point-to-Polygonal-Mesh Distance and Applications*, IEEE TVCG 7(1), 2001 (sections 4.1–4.2
+//! on error spheres, 5.3 on deformation); this crate is its first part (the progressive
+//! hierarchy and selective refinement come later).
+//!
+//! # Quick start
+//!
+//! ```
+//! use sphaera_mesh::shapes;
+//! use sphaera_simplify::{MaxError, Simplifier};
+//!
+//! let sphere = shapes::sphere(1.0, 24)?;
+//! let out = Simplifier::new(&sphere).target_ratio(0.1).build()?;
+//! assert!(out.mesh.triangle_count() <= sphere.triangle_count() / 10 + 1);
+//! assert!(out.error_bound >= 0.0);
+//! assert_eq!(out.vertex_radii.len(), out.mesh.vertex_count());
+//! // Subset placement: every output vertex is an input vertex.
+//! for (i, &o) in out.original_vertex.iter().enumerate() {
+//!     assert_eq!(out.mesh.positions()[i], sphere.positions()[o as usize]);
+//! }
+//!
+//! // Or stop at an error bound (relative to the bounding-box diagonal).
+//! let fine = Simplifier::new(&sphere)
+//!     .max_error(MaxError::RelativeToDiagonal(0.005))
+//!     .build()?;
+//! assert!(fine.error_bound <= 0.005 * sphere.bounding_box_diagonal());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Algorithm
+//!
+//! Every vertex carries a radius `r`, 0 for original vertices. The *tolerance volume* of a
+//! simplified triangle with corners `P = (a, b, c)` and radii `R = (ra, rb, rc)` is the union,
+//! over barycentric weights `λ`, of the balls `B(λ·P, λ·R)`. Two invariants hold after
+//! every collapse:
+//!
+//! - **(A)** every point of the original surface lies in the tolerance volume of some
+//!   simplified triangle;
+//! - **(B)** every point `y` of a simplified triangle is within `r(y)` (its interpolated
+//!   radius) of the original surface.
+//!
+//! A half-edge collapse `u → v` replaces the fan of triangles around `u` by a fan around
+//! `v` over the same link polygon. If `φ` is a bijection from the old fan onto the new fan
+//! that fixes the link polygon and is affine on each cell of a common refinement of the
+//! two triangulations, then requiring `r_new(φ(p)) ≥ |p − φ(p)| + r_old(p)` at every point
+//! `p` carries both invariants over: for (A), `B(p, r_old(p)) ⊂ B(φ(p), r_new(φ(p)))`; for
+//! (B), `dist(φ(p), M0) ≤ |φ(p) − p| + dist(p, M0) ≤ |φ(p) − p| + r_old(p)`. The slack
+//! `|p − φ(p)| + r_old(p) − r_new(φ(p))` is convex on each cell (the norm of an affine map
+//! plus an affine map), so it suffices to check it at the cell vertices.
+//!
+//! The map used is the tight one: both fans are projected onto the plane of the old fan's
+//! area-weighted normal; when both projections are injective (every projected triangle
+//! positively oriented and the angles around `u` summing to one turn), `φ` pairs points
+//! with the same projection. The cell vertices are the fan vertices and the crossings of
+//! the old spokes `u–w_i` with the new spokes `v–w_j`; at each, the needed radius of `v` is
+//! `(|p − φ| + r_old(p) − Σ_{j≠v} λ_j r_j) / λ_v`, and the new `r_v` is the maximum of
+//! these and the old `r_v` (plus a tiny margin against rounding). Raising `r_v` only grows
+//! the tolerance volumes of `v`'s other triangles, so the invariants hold there too. On a
+//! flat region the collapse costs nothing, unlike the simple map that sends `u` to `v`
+//! (which needs `r_v ≥ r_u + |u − v|`).
+//!
+//! Collapses that fold the projection are refused, as are those that flip a triangle's
+//! normal (more than 90°) or create a sliver. Boundary vertices are never removed (interior
+//! vertices may collapse onto them); non-manifold vertices and their edges are never
+//! touched; the topology guards of
+//! [`HalfEdgeMesh::check_collapse`](sphaera_mesh::topology::HalfEdgeMesh::check_collapse)
+//! (link condition, tetrahedron) apply. What stayed locked is in [`Simplified::locked`].
+//!
+//! The order is error-driven: a priority queue holds each vertex's cheapest legal collapse,
+//! keyed by the radius it would give `v` (ties broken by vertex and half-edge index, so the
+//! result is deterministic); after a collapse the kept vertex and its neighbours are
+//! re-evaluated (stale entries are recognised by version stamps).
+//!
+//! # Errors
+//!
+//! [`Simplifier::build`] returns [`SimplifyError`] for an empty mesh or parameters out of
+//! their domain (NaN, negative bounds, a ratio outside `(0, 1]`). It never panics.
+//!
+//! # Performance
+//!
+//! Not yet benchmarked. The work per collapse is bounded by the valences around the kept
+//! vertex (each re-evaluation is `O(d²)` for valence `d`), so the whole run is
+//! `O(T log T)` for `T` triangles on meshes of bounded valence.
+//!
+//! # See also
+//!
+//! [`sphaera_mesh::topology::HalfEdgeMesh`] (the editable mesh and its collapse records).
+
+mod engine;
+mod error;
+mod simplifier;
+mod spheres;
+
+pub use error::SimplifyError;
+pub use simplifier::{LockReport, MaxError, Placement, Simplified, Simplifier};

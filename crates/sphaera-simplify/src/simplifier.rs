@@ -1,0 +1,307 @@
+//! The [`Simplifier`] builder and its result, [`Simplified`].
+
+use sphaera_mesh::TriMesh;
+use sphaera_mesh::topology::HalfEdgeMesh;
+
+use crate::SimplifyError;
+use crate::engine::{self, Stop};
+
+/// Where the kept vertex of a collapse goes.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_simplify::Placement;
+///
+/// assert_eq!(Placement::default(), Placement::Subset);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Placement {
+    /// Half-edge collapse: the kept vertex stays where it is, so every simplified vertex is
+    /// an original vertex and per-vertex data stays valid at every level.
+    #[default]
+    Subset,
+}
+
+/// A maximum error bound: the simplification stops before any vertex's error radius would
+/// exceed it.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_simplify::MaxError;
+///
+/// assert_eq!(MaxError::Absolute(0.5).resolve(10.0), 0.5);
+/// assert_eq!(MaxError::RelativeToDiagonal(0.01).resolve(10.0), 0.1);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MaxError {
+    /// In the mesh's length unit.
+    Absolute(f64),
+    /// As a fraction of the input's bounding-box diagonal.
+    RelativeToDiagonal(f64),
+}
+
+impl MaxError {
+    /// The bound in length units, for a mesh whose bounding-box diagonal is `diagonal`.
+    pub fn resolve(self, diagonal: f64) -> f64 {
+        match self {
+            Self::Absolute(e) => e,
+            Self::RelativeToDiagonal(f) => f * diagonal,
+        }
+    }
+
+    /// The value as given (for validation messages).
+    fn value(self) -> f64 {
+        match self {
+            Self::Absolute(x) | Self::RelativeToDiagonal(x) => x,
+        }
+    }
+}
+
+/// What the simplifier could not touch.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_simplify::LockReport;
+///
+/// assert_eq!(LockReport::default().total(), 0);
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub struct LockReport {
+    /// Boundary vertices (never removed in this version, whatever
+    /// [`Simplifier::lock_boundary`] says).
+    pub boundary: usize,
+    /// Non-manifold vertices and their copies (never removed; neither are edges into them).
+    pub non_manifold: usize,
+}
+
+impl LockReport {
+    /// All locked vertices.
+    pub fn total(&self) -> usize {
+        self.boundary + self.non_manifold
+    }
+}
+
+/// The result of [`Simplifier::build`].
+///
+/// The two-sided guarantee: every point of the input surface lies within the tolerance
+/// volume of some output triangle (the triangle swept by the balls centred on its points
+/// with the linearly interpolated radius of [`Simplified::vertex_radii`]), and every point
+/// of an output triangle is within its interpolated radius of the input surface. So the
+/// symmetric Hausdorff distance between input and output is at most
+/// [`Simplified::error_bound`].
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Simplified {
+    /// The simplified mesh (no unreferenced vertices).
+    pub mesh: TriMesh,
+    /// The error radius of each output vertex (0 for a vertex nothing was collapsed into).
+    pub vertex_radii: Vec<f64>,
+    /// The largest radius: a bound on the symmetric Hausdorff distance to the input.
+    pub error_bound: f64,
+    /// For each output vertex, the input vertex it is (Subset placement keeps positions).
+    pub original_vertex: Vec<u32>,
+    /// How many edge collapses were applied.
+    pub collapses: usize,
+    /// What could not be simplified.
+    pub locked: LockReport,
+}
+
+/// Builder for a simplification.
+///
+/// Stops at whichever comes first: the triangle target ([`Simplifier::target_triangles`],
+/// [`Simplifier::target_ratio`]), the error bound ([`Simplifier::max_error`]), or no legal
+/// collapse left. With no target and no bound it simplifies as far as it can.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::shapes;
+/// use sphaera_simplify::{MaxError, Simplifier};
+///
+/// let sphere = shapes::sphere(1.0, 16)?;
+/// let out = Simplifier::new(&sphere)
+///     .target_ratio(0.25)
+///     .max_error(MaxError::RelativeToDiagonal(0.5))
+///     .build()?;
+/// assert!(out.mesh.triangle_count() <= sphere.triangle_count() / 4 + 1);
+/// assert!(out.error_bound > 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Simplifier<'a> {
+    mesh: &'a TriMesh,
+    target_triangles: Option<usize>,
+    target_ratio: Option<f64>,
+    max_error: Option<MaxError>,
+    lock_boundary: bool,
+    placement: Placement,
+}
+
+impl<'a> Simplifier<'a> {
+    /// A simplifier of `mesh` with no target (as far as possible), boundary locked and
+    /// [`Placement::Subset`].
+    pub fn new(mesh: &'a TriMesh) -> Self {
+        Self {
+            mesh,
+            target_triangles: None,
+            target_ratio: None,
+            max_error: None,
+            lock_boundary: true,
+            placement: Placement::Subset,
+        }
+    }
+
+    /// Stop at `n` triangles (or one more: an interior collapse removes two).
+    #[must_use]
+    pub fn target_triangles(mut self, n: usize) -> Self {
+        self.target_triangles = Some(n);
+        self
+    }
+
+    /// Stop at `ceil(ratio × input triangles)` triangles; `ratio` must be in `(0, 1]`
+    /// (checked by [`Simplifier::build`]).
+    #[must_use]
+    pub fn target_ratio(mut self, ratio: f64) -> Self {
+        self.target_ratio = Some(ratio);
+        self
+    }
+
+    /// Never let the error bound exceed `bound` (must be finite and non-negative, checked
+    /// by [`Simplifier::build`]).
+    #[must_use]
+    pub fn max_error(mut self, bound: MaxError) -> Self {
+        self.max_error = Some(bound);
+        self
+    }
+
+    /// Keep boundary vertices (the default). In this version boundary vertices are always
+    /// kept: `false` is accepted and behaves as `true`.
+    #[must_use]
+    pub fn lock_boundary(mut self, lock: bool) -> Self {
+        self.lock_boundary = lock;
+        self
+    }
+
+    /// Where kept vertices go (only [`Placement::Subset`] exists so far).
+    #[must_use]
+    pub fn placement(mut self, placement: Placement) -> Self {
+        self.placement = placement;
+        self
+    }
+
+    /// Runs the simplification.
+    ///
+    /// A target at or above the input's triangle count returns the input unchanged, with
+    /// all radii and the bound 0 (and no lock report: nothing was attempted). Triangles
+    /// with a repeated vertex index (segments or points) are dropped from the output; the
+    /// guarantee is with respect to the other triangles.
+    ///
+    /// # Errors
+    ///
+    /// - [`SimplifyError::EmptyMesh`] if the input has no triangles;
+    /// - [`SimplifyError::InvalidParameter`] if the ratio is not in `(0, 1]` or the error
+    ///   bound is NaN, infinite or negative.
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    ///
+    /// # Performance
+    ///
+    /// `O(T log T)` for `T` triangles (valence-bounded local work per collapse); not yet
+    /// benchmarked.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::{Simplifier, SimplifyError};
+    ///
+    /// let cube = shapes::cube(1.0, 4)?;
+    /// let err = Simplifier::new(&cube).target_ratio(f64::NAN).build().unwrap_err();
+    /// assert!(matches!(err, SimplifyError::InvalidParameter { name: "target_ratio", .. }));
+    /// let same = Simplifier::new(&cube).target_triangles(1_000_000).build()?;
+    /// assert_eq!(same.mesh, cube);
+    /// assert_eq!(same.error_bound, 0.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn build(&self) -> Result<Simplified, SimplifyError> {
+        let input = self.mesh.triangle_count();
+        if input == 0 {
+            return Err(SimplifyError::EmptyMesh);
+        }
+        let mut target = self.target_triangles.unwrap_or(0);
+        if let Some(ratio) = self.target_ratio {
+            if !(ratio > 0.0 && ratio <= 1.0) {
+                return Err(SimplifyError::InvalidParameter {
+                    name: "target_ratio",
+                    value: ratio,
+                    requirement: "in (0, 1]",
+                });
+            }
+            // `ratio ≤ 1`, so the product is at most `input` and the cast is exact enough.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let by_ratio = (ratio * input as f64).ceil() as usize;
+            target = target.max(by_ratio);
+        }
+        let max_radius = match self.max_error {
+            None => f64::INFINITY,
+            Some(bound) => {
+                let value = bound.value();
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(SimplifyError::InvalidParameter {
+                        name: "max_error",
+                        value,
+                        requirement: "finite and non-negative",
+                    });
+                }
+                bound.resolve(self.mesh.bounding_box_diagonal())
+            }
+        };
+        let Placement::Subset = self.placement;
+        if target >= input {
+            let n = self.mesh.vertex_count();
+            return Ok(Simplified {
+                mesh: self.mesh.clone(),
+                vertex_radii: vec![0.0; n],
+                error_bound: 0.0,
+                original_vertex: (0..n as u32).collect(),
+                collapses: 0,
+                locked: LockReport::default(),
+            });
+        }
+        let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
+        let outcome = engine::run(
+            half_edges,
+            Stop {
+                triangles: target,
+                max_radius,
+            },
+        );
+        let live = outcome.mesh.to_trimesh();
+        let vertex_radii: Vec<f64> = live
+            .vertex_map
+            .iter()
+            .map(|x| outcome.radii.get(x.0 as usize).copied().unwrap_or(0.0))
+            .collect();
+        let original_vertex = live
+            .vertex_map
+            .iter()
+            .map(|&x| outcome.mesh.original_vertex(x))
+            .collect();
+        let error_bound = vertex_radii.iter().fold(0.0_f64, |m, &r| m.max(r));
+        Ok(Simplified {
+            mesh: live.mesh,
+            vertex_radii,
+            error_bound,
+            original_vertex,
+            collapses: outcome.collapses,
+            locked: outcome.locked,
+        })
+    }
+}
