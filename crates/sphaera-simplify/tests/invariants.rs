@@ -1,5 +1,8 @@
 //! The two error-sphere invariants, checked by brute force on procedural meshes.
 
+// Exact values are expected here (a copied maximum, an untouched zero).
+#![allow(clippy::float_cmp)]
+
 mod common;
 
 use common::{SLACK, grid, original_samples, worst_containment, worst_coverage};
@@ -41,7 +44,7 @@ fn shape(kind: u8, resolution: usize) -> TriMesh {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
     #[test]
     fn both_invariants_hold_on_small_shapes(kind in 0u8..4, resolution in 4usize..12, ratio in 0.05f64..0.9, seed in 0u64..1000) {
