@@ -7,7 +7,7 @@ use std::collections::BinaryHeap;
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
 use crate::simplifier::LockReport;
-use crate::spheres::collapse_radius;
+use crate::spheres::{BoundaryPolicy, collapse_radius};
 
 /// When to stop.
 #[derive(Clone, Copy, Debug)]
@@ -16,6 +16,8 @@ pub(crate) struct Stop {
     pub triangles: usize,
     /// Never apply a collapse whose resulting radius exceeds this.
     pub max_radius: f64,
+    /// Whether boundary vertices may be removed.
+    pub boundary: BoundaryPolicy,
 }
 
 /// The state after the loop.
@@ -63,19 +65,25 @@ impl Ord for Candidate {
     }
 }
 
-/// Whether `u` may ever be removed: live, manifold, unlocked and not on the boundary.
-fn removable(mesh: &HalfEdgeMesh, u: VertexId) -> bool {
+/// Whether `u` may ever be removed: live, manifold, unlocked and (unless the policy allows
+/// it) not on the boundary.
+fn removable(mesh: &HalfEdgeMesh, u: VertexId, boundary: BoundaryPolicy) -> bool {
     !mesh.is_deleted_vertex(u)
         && !mesh.is_non_manifold_vertex(u)
         && !mesh.is_locked(u)
-        && !mesh.is_boundary_vertex(u)
+        && (boundary == BoundaryPolicy::Collapse || !mesh.is_boundary_vertex(u))
         && mesh.vertex_halfedge(u).is_some()
 }
 
 /// The cheapest legal collapse out of `u`: `(radius, half-edge)`, ties to the lowest
 /// half-edge.
-fn best_collapse(mesh: &HalfEdgeMesh, radii: &[f64], u: VertexId) -> Option<(f64, HalfEdgeId)> {
-    if !removable(mesh, u) {
+fn best_collapse(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    u: VertexId,
+    boundary: BoundaryPolicy,
+) -> Option<(f64, HalfEdgeId)> {
+    if !removable(mesh, u, boundary) {
         return None;
     }
     let mut best: Option<(f64, HalfEdgeId)> = None;
@@ -83,7 +91,7 @@ fn best_collapse(mesh: &HalfEdgeMesh, radii: &[f64], u: VertexId) -> Option<(f64
         if mesh.check_collapse(g).is_err() {
             continue;
         }
-        if let Some(r) = collapse_radius(mesh, radii, g) {
+        if let Some(r) = collapse_radius(mesh, radii, g, boundary) {
             let better = best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt());
             if better {
                 best = Some((r, g));
@@ -106,7 +114,7 @@ pub(crate) fn run(mut mesh: HalfEdgeMesh, stop: Stop) -> Outcome {
         }
         if mesh.is_non_manifold_vertex(x) {
             locked.non_manifold += 1;
-        } else if mesh.is_boundary_vertex(x) {
+        } else if stop.boundary == BoundaryPolicy::Lock && mesh.is_boundary_vertex(x) {
             locked.boundary += 1;
         }
     }
@@ -117,7 +125,7 @@ pub(crate) fn run(mut mesh: HalfEdgeMesh, stop: Stop) -> Outcome {
                 radii: &[f64],
                 u: u32,
                 stamp: u32| {
-        if let Some((cost, h)) = best_collapse(mesh, radii, VertexId(u)) {
+        if let Some((cost, h)) = best_collapse(mesh, radii, VertexId(u), stop.boundary) {
             heap.push(Candidate {
                 cost,
                 vertex: u,
@@ -146,7 +154,7 @@ pub(crate) fn run(mut mesh: HalfEdgeMesh, stop: Stop) -> Outcome {
         let fresh = mesh
             .check_collapse(h)
             .ok()
-            .and_then(|()| collapse_radius(&mesh, &radii, h));
+            .and_then(|()| collapse_radius(&mesh, &radii, h, stop.boundary));
         let Some(radius) = fresh.filter(|r| r.total_cmp(&top.cost).is_eq()) else {
             stamps[u] = stamps[u].wrapping_add(1);
             push(&mut heap, &mesh, &radii, top.vertex, stamps[u]);

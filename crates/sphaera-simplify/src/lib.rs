@@ -66,9 +66,11 @@
 //! (which needs `r_v ≥ r_u + |u − v|`).
 //!
 //! Collapses that fold the projection are refused, as are those that flip a triangle's
-//! normal (more than 90°) or create a sliver. Boundary vertices are never removed (interior
-//! vertices may collapse onto them); non-manifold vertices and their edges are never
-//! touched; the topology guards of
+//! normal (more than 90°) or create a sliver. By default boundary vertices are never removed
+//! (interior vertices may collapse onto them); with
+//! [`Simplifier::lock_boundary`]`(false)` they may collapse along boundary edges, with the
+//! simple map sending `u` to `v` (rigorous, but it needs `r_v ≥ r_u + |u − v|`).
+//! Non-manifold vertices and their edges are never touched; the topology guards of
 //! [`HalfEdgeMesh::check_collapse`](sphaera_mesh::topology::HalfEdgeMesh::check_collapse)
 //! (link condition, tetrahedron) apply. What stayed locked is in [`Simplified::locked`].
 //!

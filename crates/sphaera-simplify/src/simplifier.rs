@@ -5,6 +5,7 @@ use sphaera_mesh::topology::HalfEdgeMesh;
 
 use crate::SimplifyError;
 use crate::engine::{self, Stop};
+use crate::spheres::BoundaryPolicy;
 
 /// Where the kept vertex of a collapse goes.
 ///
@@ -72,8 +73,8 @@ impl MaxError {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub struct LockReport {
-    /// Boundary vertices (never removed in this version, whatever
-    /// [`Simplifier::lock_boundary`] says).
+    /// Boundary vertices, when [`Simplifier::lock_boundary`] is on (the default); 0
+    /// otherwise.
     pub boundary: usize,
     /// Non-manifold vertices and their copies (never removed; neither are edges into them).
     pub non_manifold: usize,
@@ -179,8 +180,36 @@ impl<'a> Simplifier<'a> {
         self
     }
 
-    /// Keep boundary vertices (the default). In this version boundary vertices are always
-    /// kept: `false` is accepted and behaves as `true`.
+    /// Keep every boundary vertex (`true`, the default), or let boundary vertices collapse
+    /// along boundary edges (`false`).
+    ///
+    /// Interior vertices collapse with a tight error map (see the crate documentation);
+    /// boundary collapses use the simple map that sends `u` to `v`, whose radius
+    /// `r_u + |u − v|` is rigorous but loose, so with `false` boundary vertices go late and
+    /// the bound grows at least by the boundary edge lengths collapsed.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, TriMesh};
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// // A flat 4 × 4 grid of squares.
+    /// let mut p = Vec::new();
+    /// for j in 0..5 { for i in 0..5 { p.push(DVec3::new(f64::from(i), f64::from(j), 0.0)); } }
+    /// let mut t = Vec::new();
+    /// for j in 0..4u32 { for i in 0..4u32 {
+    ///     let a = 5 * j + i;
+    ///     t.push([a, a + 1, a + 6]);
+    ///     t.push([a, a + 6, a + 5]);
+    /// } }
+    /// let grid = TriMesh::new(p, t)?;
+    /// let locked = Simplifier::new(&grid).build()?;
+    /// let free = Simplifier::new(&grid).lock_boundary(false).build()?;
+    /// assert_eq!(locked.locked.boundary, 16);
+    /// assert!(free.mesh.triangle_count() < locked.mesh.triangle_count());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     #[must_use]
     pub fn lock_boundary(mut self, lock: bool) -> Self {
         self.lock_boundary = lock;
@@ -281,6 +310,11 @@ impl<'a> Simplifier<'a> {
             Stop {
                 triangles: target,
                 max_radius,
+                boundary: if self.lock_boundary {
+                    BoundaryPolicy::Lock
+                } else {
+                    BoundaryPolicy::Collapse
+                },
             },
         );
         let live = outcome.mesh.to_trimesh();

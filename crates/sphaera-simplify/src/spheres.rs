@@ -45,11 +45,19 @@ struct FanVertex {
 ///
 /// Topology (link condition, locks, non-manifold vertices) is the caller's business
 /// ([`HalfEdgeMesh::check_collapse`]). `radii` is indexed by half-edge-mesh vertex.
-pub(crate) fn collapse_radius(mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -> Option<f64> {
+pub(crate) fn collapse_radius(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    h: HalfEdgeId,
+    boundary: BoundaryPolicy,
+) -> Option<f64> {
     let u = mesh.origin(h);
     let v = mesh.target(h);
     if mesh.is_boundary_vertex(u) {
-        return None;
+        return match boundary {
+            BoundaryPolicy::Lock => None,
+            BoundaryPolicy::Collapse => boundary_collapse_radius(mesh, radii, h),
+        };
     }
     let radius = |x: VertexId| radii.get(x.0 as usize).copied().unwrap_or(f64::INFINITY);
     let pu = mesh.position(u);
@@ -168,6 +176,58 @@ pub(crate) fn collapse_radius(mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId)
     }
     let margin = ROUNDING_MARGIN * scale.max(needed);
     Some(needed + margin)
+}
+
+/// What to do with boundary vertices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum BoundaryPolicy {
+    /// Never remove them.
+    Lock,
+    /// Remove them along boundary edges, with the simple map (see
+    /// [`boundary_collapse_radius`]).
+    Collapse,
+}
+
+/// The radius for collapsing a boundary vertex `u` along its outgoing boundary half-edge
+/// `h` into `v`, or `None` if `h` is not a boundary half-edge or a triangle would flip or
+/// become a sliver.
+///
+/// The map is the simple one, affine on each old triangle and sending `u` to `v` (the
+/// triangle on the edge degenerates onto the edge `v–w`, which stays in the mesh). It is
+/// onto the new fan, which is all the invariants need, and a point with weight `λ_u` on
+/// `u` moves by `λ_u |u − v|`, so `r_v' = max(r_v, r_u + |u − v|)` suffices. It is rigorous
+/// but loose (it grows with edge length even on flat regions), so the error-driven order
+/// takes boundary collapses late.
+fn boundary_collapse_radius(mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -> Option<f64> {
+    if mesh.twin(h).is_some() {
+        return None;
+    }
+    let u = mesh.origin(h);
+    let v = mesh.target(h);
+    let radius = |x: VertexId| radii.get(x.0 as usize).copied().unwrap_or(f64::INFINITY);
+    let (pu, pv) = (mesh.position(u), mesh.position(v));
+    let mut scale = pu.abs().max_element().max(pv.abs().max_element());
+    for g in mesh.outgoing(u) {
+        let (a, b) = (mesh.target(g), mesh.origin(mesh.prev(g)));
+        if a == v || b == v {
+            continue;
+        }
+        let (pa, pb) = (mesh.position(a), mesh.position(b));
+        scale = scale
+            .max(pa.abs().max_element())
+            .max(pb.abs().max_element());
+        let new_normal = (pa - pv).cross(pb - pv);
+        let old_normal = (pa - pu).cross(pb - pu);
+        let longest = (pa - pv)
+            .length_squared()
+            .max((pb - pv).length_squared())
+            .max((pa - pb).length_squared());
+        if new_normal.dot(old_normal) <= 0.0 || new_normal.length() <= MIN_SINE * longest {
+            return None;
+        }
+    }
+    let needed = radius(v).max(radius(u) + (pu - pv).length());
+    Some(needed + ROUNDING_MARGIN * scale.max(needed))
 }
 
 /// The radius at `v` for which `weight_v · r + others ≥ demand`, or `None` if the weight

@@ -47,9 +47,15 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
     #[test]
-    fn both_invariants_hold_on_small_shapes(kind in 0u8..4, resolution in 4usize..12, ratio in 0.05f64..0.9, seed in 0u64..1000) {
+    fn both_invariants_hold_on_small_shapes(
+        kind in 0u8..4,
+        resolution in 4usize..12,
+        ratio in 0.05f64..0.9,
+        lock_boundary: bool,
+        seed in 0u64..1000,
+    ) {
         let mesh = shape(kind, resolution);
-        let out = Simplifier::new(&mesh).target_ratio(ratio).build().unwrap();
+        let out = Simplifier::new(&mesh).target_ratio(ratio).lock_boundary(lock_boundary).build().unwrap();
         check_both(&mesh, &out, 300, seed);
     }
 }
@@ -76,4 +82,17 @@ fn bumpy_open_grid_keeps_both_invariants_and_its_boundary() {
     let out = Simplifier::new(&mesh).target_ratio(0.1).build().unwrap();
     assert_eq!(out.locked.boundary, 40);
     check_both(&mesh, &out, 1000, 11);
+}
+
+#[test]
+fn open_grid_with_free_boundary_keeps_both_invariants() {
+    let mesh = grid(10, |x, y| 0.1 * (5.0 * x).sin() * (4.0 * y).sin());
+    let out = Simplifier::new(&mesh)
+        .target_ratio(0.05)
+        .lock_boundary(false)
+        .build()
+        .unwrap();
+    assert_eq!(out.locked.boundary, 0);
+    assert!(out.mesh.triangle_count() <= 11);
+    check_both(&mesh, &out, 1000, 12);
 }
