@@ -273,6 +273,54 @@ mod tests {
     use super::*;
     use approx::assert_relative_eq;
 
+    /// A hexagonal fan around the origin lifted by `height` at the centre.
+    fn hexagon(height: f64) -> HalfEdgeMesh {
+        let mut p = vec![DVec3::new(0.0, 0.0, height)];
+        for k in 0..6 {
+            let a = f64::from(k) * std::f64::consts::TAU / 6.0;
+            p.push(DVec3::new(a.cos(), a.sin(), 0.0));
+        }
+        let t: Vec<[u32; 3]> = (0..6).map(|k| [0, 1 + k, 1 + (k + 1) % 6]).collect();
+        HalfEdgeMesh::from_trimesh(&sphaera_mesh::TriMesh::new(p, t).unwrap())
+    }
+
+    /// The half-edge from the centre to rim vertex 1.
+    fn centre_to_rim(mesh: &HalfEdgeMesh) -> HalfEdgeId {
+        mesh.outgoing(VertexId(0))
+            .find(|&g| mesh.target(g) == VertexId(1))
+            .unwrap()
+    }
+
+    #[test]
+    fn flat_fan_collapses_at_the_rounding_margin_only() {
+        let mesh = hexagon(0.0);
+        let h = centre_to_rim(&mesh);
+        let r = collapse_radius(&mesh, &[0.0; 7], h, BoundaryPolicy::Lock).unwrap();
+        // Only the rounding margin (1e-12 of the coordinates); the simple map would need 1.
+        assert!(r < 2e-12, "flat collapse costs {r}");
+    }
+
+    #[test]
+    fn raised_centre_needs_at_least_its_height() {
+        let height = 0.3;
+        let mesh = hexagon(height);
+        let h = centre_to_rim(&mesh);
+        let r = collapse_radius(&mesh, &[0.0; 7], h, BoundaryPolicy::Lock).unwrap();
+        // The centre must be covered, and every new point is at least `height` from it.
+        assert!(r >= height);
+        // And the tight map does no worse than the simple one.
+        let simple = (mesh.position(VertexId(0)) - mesh.position(VertexId(1))).length();
+        assert!(r <= simple * (1.0 + 1e-9), "tight {r} vs simple {simple}");
+    }
+
+    #[test]
+    fn boundary_vertex_is_refused_when_locked() {
+        let mesh = hexagon(0.0);
+        // A rim vertex is on the boundary.
+        let h = mesh.outgoing(VertexId(1)).next().unwrap();
+        assert!(collapse_radius(&mesh, &[0.0; 7], h, BoundaryPolicy::Lock).is_none());
+    }
+
     #[test]
     fn crossing_of_perpendicular_segments() {
         let (s, t) = crossing(
