@@ -27,6 +27,74 @@ pub enum Command {
     /// Describe a mesh: counts, bounding box, topology (closed, manifold, genus,
     /// components, boundary loops), degenerate and duplicate triangles.
     Info(InfoArgs),
+    /// Simplify a mesh by edge collapses, with an error bound that holds both ways: every
+    /// input point is within the bound of the output and every output point within the
+    /// bound of the input.
+    Simplify(SimplifyArgs),
+}
+
+/// Arguments of `sphaera simplify`.
+#[derive(Debug, Args)]
+pub struct SimplifyArgs {
+    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    pub mesh: Option<PathBuf>,
+
+    /// Where to write the simplified mesh (`.obj` or `.ply`, written atomically). Without
+    /// it, only the figures are printed.
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    /// Stop at this many triangles.
+    #[arg(long, conflicts_with = "ratio")]
+    pub triangles: Option<usize>,
+
+    /// Stop at this fraction of the input's triangles, in (0, 1].
+    #[arg(long)]
+    pub ratio: Option<f64>,
+
+    /// Stop before the error bound exceeds this: an absolute distance (`0.002`) or a
+    /// percentage of the bounding-box diagonal (`0.5%`).
+    #[arg(long, value_parser = parse_max_error)]
+    pub max_error: Option<MaxErrorArg>,
+
+    /// Keep every boundary vertex in place (the default; gives the tightest bound).
+    #[arg(long, conflicts_with = "free_boundary")]
+    pub lock_boundary: bool,
+
+    /// Let boundary vertices collapse along boundary edges (looser bound near holes).
+    #[arg(long)]
+    pub free_boundary: bool,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
+}
+
+/// A `--max-error` value: absolute, or relative to the bounding-box diagonal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MaxErrorArg {
+    /// A distance in the mesh's units.
+    Absolute(f64),
+    /// A fraction of the bounding-box diagonal (the command line says it in percent).
+    RelativeToDiagonal(f64),
+}
+
+fn parse_max_error(text: &str) -> Result<MaxErrorArg, String> {
+    let (number, relative) = match text.strip_suffix('%') {
+        Some(number) => (number, true),
+        None => (text, false),
+    };
+    let value: f64 = number
+        .trim()
+        .parse()
+        .map_err(|e| format!("`{text}` is not a number or a percentage: {e}"))?;
+    if !value.is_finite() || value < 0.0 {
+        return Err(format!("`{text}` must be finite and non-negative"));
+    }
+    Ok(if relative {
+        MaxErrorArg::RelativeToDiagonal(value / 100.0)
+    } else {
+        MaxErrorArg::Absolute(value)
+    })
 }
 
 /// Arguments of `sphaera info`.
@@ -56,5 +124,17 @@ mod tests {
     #[test]
     fn command_line_is_well_formed() {
         Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn max_error_takes_distances_and_percentages() {
+        assert_eq!(parse_max_error("0.002"), Ok(MaxErrorArg::Absolute(0.002)));
+        assert_eq!(
+            parse_max_error("0.5%"),
+            Ok(MaxErrorArg::RelativeToDiagonal(0.005))
+        );
+        assert!(parse_max_error("abc").is_err());
+        assert!(parse_max_error("-1").is_err());
+        assert!(parse_max_error("NaN%").is_err());
     }
 }

@@ -11,10 +11,11 @@
 //! | module | crate | what it does |
 //! |---|---|---|
 //! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, winding numbers, surface sampling, procedural test shapes |
+//! | `simplify` (feature `simplify`) | `sphaera-simplify` | edge-collapse simplification whose reported error bound holds in both directions (error spheres) |
 //!
-//! Later capabilities (Meshsweeper distance queries, edge-collapse simplification with
-//! error spheres, medial-axis sphere-trees, HAL trees, silhouette labels) join this table
-//! as their crates land; see `docs/architecture.md` in the repository.
+//! Later capabilities (Meshsweeper distance queries, medial-axis sphere-trees, HAL trees,
+//! silhouette labels) join this table as their crates land; see `docs/architecture.md` in
+//! the repository.
 //!
 //! # Quick start
 //!
@@ -33,6 +34,8 @@
 #![doc = document_features::document_features!()]
 
 pub use sphaera_mesh as mesh;
+#[cfg(feature = "simplify")]
+pub use sphaera_simplify as simplify;
 
 /// The types almost every Sphaera user needs.
 pub mod prelude {

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod info;
+mod simplify;
 
 use anyhow::Result;
 
@@ -10,5 +11,6 @@ use crate::cli::{Cli, Command};
 pub fn run(cli: &Cli) -> Result<()> {
     match &cli.command {
         Command::Info(args) => info::run(args, cli.quiet),
+        Command::Simplify(args) => simplify::run(args, cli.quiet),
     }
 }

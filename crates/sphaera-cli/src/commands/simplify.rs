@@ -1,0 +1,157 @@
+//! `sphaera simplify`: edge-collapse simplification with a two-sided error bound.
+
+use std::time::Instant;
+
+use anyhow::Result;
+use serde::Serialize;
+use sphaera::{
+    mesh::io,
+    simplify::{MaxError, Simplifier},
+};
+
+use crate::{
+    cli::{MaxErrorArg, SimplifyArgs},
+    input::read_mesh,
+    output::{print_json, thousands},
+    progress,
+};
+
+/// Everything `sphaera simplify` reports; also its JSON schema.
+#[derive(Debug, Serialize)]
+struct Report {
+    /// The input file, or `<embedded bunny_lowres.obj>`.
+    source: String,
+    /// Where the result was written (`null` without `--output`).
+    output: Option<String>,
+    triangles_in: usize,
+    triangles_out: usize,
+    vertices_out: usize,
+    collapses: usize,
+    /// Bound on the symmetric Hausdorff distance between input and output.
+    error_bound: f64,
+    /// The bound as a fraction of the input's bounding-box diagonal.
+    error_bound_relative: f64,
+    locked_boundary_vertices: usize,
+    locked_non_manifold_vertices: usize,
+    seconds: Seconds,
+}
+
+#[derive(Debug, Serialize)]
+struct Seconds {
+    load: f64,
+    simplify: f64,
+    write: f64,
+}
+
+pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
+    if let Some(path) = &args.output {
+        check_writable_format(path)?;
+    }
+    let input = read_mesh(args.mesh.as_deref(), quiet)?;
+    let mesh = &input.loaded.mesh;
+    let mut simplifier = Simplifier::new(mesh).lock_boundary(!args.free_boundary);
+    if let Some(n) = args.triangles {
+        simplifier = simplifier.target_triangles(n);
+    }
+    if let Some(ratio) = args.ratio {
+        simplifier = simplifier.target_ratio(ratio);
+    }
+    if let Some(bound) = args.max_error {
+        simplifier = simplifier.max_error(match bound {
+            MaxErrorArg::Absolute(e) => MaxError::Absolute(e),
+            MaxErrorArg::RelativeToDiagonal(f) => MaxError::RelativeToDiagonal(f),
+        });
+    }
+    let spinner = progress::spinner(
+        quiet,
+        &format!("simplifying {} triangles", thousands(mesh.triangle_count())),
+    );
+    let started = Instant::now();
+    let simplified = simplifier.build();
+    let simplify_seconds = started.elapsed().as_secs_f64();
+    spinner.finish_and_clear();
+    let simplified = simplified?;
+
+    let started = Instant::now();
+    if let Some(path) = &args.output {
+        io::save(path, &simplified.mesh)?;
+    }
+    let write_seconds = started.elapsed().as_secs_f64();
+
+    let diagonal = mesh.bounding_box_diagonal();
+    let report = Report {
+        source: input.source,
+        output: args.output.as_ref().map(|p| p.display().to_string()),
+        triangles_in: mesh.triangle_count(),
+        triangles_out: simplified.mesh.triangle_count(),
+        vertices_out: simplified.mesh.vertex_count(),
+        collapses: simplified.collapses,
+        error_bound: simplified.error_bound,
+        error_bound_relative: if diagonal > 0.0 {
+            simplified.error_bound / diagonal
+        } else {
+            0.0
+        },
+        locked_boundary_vertices: simplified.locked.boundary,
+        locked_non_manifold_vertices: simplified.locked.non_manifold,
+        seconds: Seconds {
+            load: input.seconds,
+            simplify: simplify_seconds,
+            write: write_seconds,
+        },
+    };
+    if args.print.json {
+        print_json(&report)
+    } else {
+        print!("{}", report.to_text());
+        Ok(())
+    }
+}
+
+/// Fails before any work when the output's extension is not a format we write.
+fn check_writable_format(path: &std::path::Path) -> Result<()> {
+    match io::Format::from_path(path) {
+        Some(io::Format::Obj | io::Format::Ply) => Ok(()),
+        Some(format) => anyhow::bail!(
+            "cannot write {}: writing {format} files is not supported (use .obj or .ply)",
+            path.display()
+        ),
+        None => anyhow::bail!(
+            "cannot write {}: the extension is not .obj or .ply",
+            path.display()
+        ),
+    }
+}
+
+impl Report {
+    fn to_text(&self) -> String {
+        let mut lines = vec![
+            format!("mesh            {}", self.source),
+            format!(
+                "triangles       {} -> {} ({} collapses)",
+                thousands(self.triangles_in),
+                thousands(self.triangles_out),
+                thousands(self.collapses)
+            ),
+            format!(
+                "error bound     {:.6e} ({:.4} % of the diagonal), both directions",
+                self.error_bound,
+                100.0 * self.error_bound_relative
+            ),
+            format!(
+                "locked          {} boundary, {} non-manifold vertices",
+                thousands(self.locked_boundary_vertices),
+                thousands(self.locked_non_manifold_vertices)
+            ),
+            format!(
+                "time            {:.3} s to read, {:.3} s to simplify, {:.3} s to write",
+                self.seconds.load, self.seconds.simplify, self.seconds.write
+            ),
+        ];
+        lines.push(match &self.output {
+            Some(path) => format!("written to      {path}"),
+            None => "written to      nothing (give --output FILE.obj or .ply)".to_owned(),
+        });
+        lines.join("\n") + "\n"
+    }
+}

@@ -1,0 +1,70 @@
+//! End-to-end tests of `sphaera simplify`.
+
+use std::process::{Command, Output};
+
+fn sphaera(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sphaera"))
+        .args(args)
+        .output()
+        .expect("the sphaera binary runs")
+}
+
+fn json(output: &Output) -> serde_json::Value {
+    assert!(
+        output.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).expect("valid JSON")
+}
+
+#[test]
+fn simplify_the_embedded_bunny_to_a_ratio_and_write_it() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("bunny_10.ply");
+    let report = json(&sphaera(&[
+        "simplify",
+        "--ratio",
+        "0.1",
+        "--json",
+        "-o",
+        path.to_str().unwrap(),
+    ]));
+    assert_eq!(report["triangles_in"], 3674);
+    let out = report["triangles_out"].as_u64().unwrap();
+    assert!(out <= 368, "{out} triangles");
+    assert!(report["error_bound"].as_f64().unwrap() > 0.0);
+    // The file is there, and `info` reads back the same triangle count.
+    let info = json(&sphaera(&["info", "--json", path.to_str().unwrap()]));
+    assert_eq!(info["triangles"].as_u64(), Some(out));
+    assert_eq!(info["topology"]["closed"], true);
+}
+
+#[test]
+fn simplify_stops_at_a_relative_error_bound() {
+    let report = json(&sphaera(&["simplify", "--max-error", "0.5%", "--json"]));
+    let relative = report["error_bound_relative"].as_f64().unwrap();
+    assert!(relative <= 0.005, "bound {relative} of the diagonal");
+    assert!(report["triangles_out"].as_u64().unwrap() < 3674);
+}
+
+#[test]
+fn simplify_rejects_a_bad_ratio_with_a_clear_message() {
+    let output = sphaera(&["simplify", "--ratio", "1.5"]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.starts_with("error:"), "{message}");
+    assert!(message.contains("ratio"), "{message}");
+}
+
+#[test]
+fn simplify_refuses_to_write_an_unsupported_format_and_leaves_no_file() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("out.stl");
+    let output = sphaera(&["simplify", "--ratio", "0.5", "-o", path.to_str().unwrap()]);
+    assert!(!output.status.success());
+    assert!(!path.exists());
+    let message = String::from_utf8_lossy(&output.stderr).to_lowercase();
+    assert!(message.contains("stl"), "{message}");
+    assert!(message.contains("out.stl"), "{message}");
+}
