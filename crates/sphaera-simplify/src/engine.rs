@@ -6,7 +6,7 @@ use std::collections::BinaryHeap;
 
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
-use crate::simplifier::LockReport;
+use crate::simplifier::{LockReport, Progress};
 use crate::spheres::{BoundaryPolicy, collapse_radius};
 
 /// When to stop.
@@ -102,7 +102,11 @@ fn best_collapse(
 }
 
 /// Runs the greedy simplification of `mesh` (whose radii all start at 0).
-pub(crate) fn run(mut mesh: HalfEdgeMesh, stop: Stop) -> Outcome {
+pub(crate) fn run(
+    mut mesh: HalfEdgeMesh,
+    stop: Stop,
+    progress: Option<&(dyn Fn(Progress) + Sync)>,
+) -> Outcome {
     let n = mesh.vertex_count();
     let mut radii = vec![0.0; n];
     let mut stamps = vec![0_u32; n];
@@ -139,7 +143,24 @@ pub(crate) fn run(mut mesh: HalfEdgeMesh, stop: Stop) -> Outcome {
     }
 
     let mut collapses = 0;
+    let start_faces = mesh.live_face_count();
+    let to_remove = start_faces.saturating_sub(stop.triangles);
+    let report_every = (to_remove / 256).max(1);
+    let mut next_report = 0;
+    let report = |faces: usize| {
+        if let Some(callback) = progress {
+            callback(Progress {
+                removed: start_faces - faces,
+                to_remove,
+            });
+        }
+    };
     while mesh.live_face_count() > stop.triangles {
+        let removed = start_faces - mesh.live_face_count();
+        if removed >= next_report {
+            report(mesh.live_face_count());
+            next_report = removed + report_every;
+        }
         let Some(top) = heap.pop() else { break };
         let u = top.vertex as usize;
         if stamps.get(u) != Some(&top.stamp) {
@@ -179,6 +200,7 @@ pub(crate) fn run(mut mesh: HalfEdgeMesh, stop: Stop) -> Outcome {
             push(&mut heap, &mesh, &radii, x.0, stamps[i]);
         }
     }
+    report(mesh.live_face_count());
     Outcome {
         mesh,
         radii,

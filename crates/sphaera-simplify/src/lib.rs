@@ -100,4 +100,4 @@ mod simplifier;
 mod spheres;
 
 pub use error::SimplifyError;
-pub use simplifier::{LockReport, MaxError, Placement, Simplified, Simplifier};
+pub use simplifier::{LockReport, MaxError, Placement, Progress, Simplified, Simplifier};

@@ -5,6 +5,7 @@ use sphaera_mesh::topology::HalfEdgeMesh;
 
 use crate::SimplifyError;
 use crate::engine::{self, Stop};
+
 use crate::spheres::BoundaryPolicy;
 
 /// Where the kept vertex of a collapse goes.
@@ -133,7 +134,7 @@ pub struct Simplified {
 /// assert!(out.error_bound > 0.0);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone, Debug)]
+#[derive(Clone)]
 pub struct Simplifier<'a> {
     mesh: &'a TriMesh,
     target_triangles: Option<usize>,
@@ -141,6 +142,51 @@ pub struct Simplifier<'a> {
     max_error: Option<MaxError>,
     lock_boundary: bool,
     placement: Placement,
+    progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+}
+
+/// How far a running simplification is, passed to the [`Simplifier::progress`] callback.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_simplify::Progress;
+///
+/// let p = Progress { removed: 50, to_remove: 200 };
+/// assert_eq!(p.fraction(), 0.25);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Progress {
+    /// Triangles removed so far.
+    pub removed: usize,
+    /// Triangles to remove to reach the triangle target (the whole mesh minus the target;
+    /// the run may stop earlier at the error bound or when no collapse is legal).
+    pub to_remove: usize,
+}
+
+impl Progress {
+    /// `removed / to_remove`, in `[0, 1]` (1 when there is nothing to remove).
+    pub fn fraction(&self) -> f64 {
+        if self.to_remove == 0 {
+            1.0
+        } else {
+            (self.removed as f64 / self.to_remove as f64).min(1.0)
+        }
+    }
+}
+
+impl std::fmt::Debug for Simplifier<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Simplifier")
+            .field("triangles", &self.mesh.triangle_count())
+            .field("target_triangles", &self.target_triangles)
+            .field("target_ratio", &self.target_ratio)
+            .field("max_error", &self.max_error)
+            .field("lock_boundary", &self.lock_boundary)
+            .field("placement", &self.placement)
+            .field("progress", &self.progress.is_some())
+            .finish()
+    }
 }
 
 impl<'a> Simplifier<'a> {
@@ -154,6 +200,7 @@ impl<'a> Simplifier<'a> {
             max_error: None,
             lock_boundary: true,
             placement: Placement::Subset,
+            progress: None,
         }
     }
 
@@ -220,6 +267,30 @@ impl<'a> Simplifier<'a> {
     #[must_use]
     pub fn placement(mut self, placement: Placement) -> Self {
         self.placement = placement;
+        self
+    }
+
+    /// Calls `callback` now and then (about every 1/256 of the work, and at the end) while
+    /// [`Simplifier::build`] runs, e.g. to drive a progress bar. It runs on the calling
+    /// thread and should be cheap.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::{Progress, Simplifier};
+    ///
+    /// let sphere = shapes::sphere(1.0, 16)?;
+    /// let last = AtomicUsize::new(0);
+    /// let report = |p: Progress| last.store(p.removed, Ordering::Relaxed);
+    /// let out = Simplifier::new(&sphere).target_ratio(0.5).progress(&report).build()?;
+    /// assert_eq!(last.load(Ordering::Relaxed), sphere.triangle_count() - out.mesh.triangle_count());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn progress(mut self, callback: &'a (dyn Fn(Progress) + Sync)) -> Self {
+        self.progress = Some(callback);
         self
     }
 
@@ -316,6 +387,7 @@ impl<'a> Simplifier<'a> {
                     BoundaryPolicy::Collapse
                 },
             },
+            self.progress,
         );
         let live = outcome.mesh.to_trimesh();
         let vertex_radii: Vec<f64> = live
