@@ -6,6 +6,7 @@ use std::collections::BinaryHeap;
 
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
+use crate::record::Recorder;
 use crate::simplifier::{LockReport, Progress};
 use crate::spheres::{BoundaryPolicy, collapse_radius};
 
@@ -106,6 +107,7 @@ pub(crate) fn run(
     mut mesh: HalfEdgeMesh,
     stop: Stop,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
+    mut recorder: Option<&mut Recorder>,
 ) -> Outcome {
     let n = mesh.vertex_count();
     let mut radii = vec![0.0; n];
@@ -183,6 +185,9 @@ pub(crate) fn run(
         };
         let v = mesh.target(h);
         let target_position = mesh.position(v);
+        if let Some(recorder) = recorder.as_deref_mut() {
+            recorder.before(&mesh, h);
+        }
         if mesh.collapse_edge(h, target_position).is_err() {
             // The checks above passed, so this does not happen; skip the vertex if it does.
             stamps[u] = stamps[u].wrapping_add(1);
@@ -191,6 +196,9 @@ pub(crate) fn run(
         collapses += 1;
         if let Some(r) = radii.get_mut(v.0 as usize) {
             *r = radius;
+        }
+        if let Some(recorder) = recorder.as_deref_mut() {
+            recorder.after(&mesh, radius);
         }
         stamps[u] = stamps[u].wrapping_add(1);
         let ring: Vec<VertexId> = std::iter::once(v).chain(mesh.neighbors(v)).collect();

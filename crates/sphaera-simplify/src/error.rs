@@ -35,6 +35,39 @@ pub enum SimplifyError {
         /// What the value must be, e.g. `"in (0, 1]"`.
         requirement: &'static str,
     },
+    /// A refinement was asked to split a vertex that is not in its current mesh (removed,
+    /// or out of range).
+    #[error("vertex {vertex} is not in the current mesh (removed or out of range)")]
+    VertexNotPresent {
+        /// The vertex asked for.
+        vertex: u32,
+    },
+    /// Every per-vertex tolerance weight is 0, so no vertex may move and nothing can be
+    /// simplified.
+    #[error("every tolerance weight is 0: no region may move, so nothing can be simplified")]
+    AllWeightsZero,
+    /// A per-vertex array has the wrong length.
+    #[error("`{name}` has {actual} entries, expected {expected} (one per input vertex)")]
+    LengthMismatch {
+        /// The parameter's name, e.g. `"weights"`.
+        name: &'static str,
+        /// Its length.
+        actual: usize,
+        /// The input's vertex count.
+        expected: usize,
+    },
+    /// A per-vertex value is NaN, infinite or negative.
+    #[error("`{name}`[{index}] = {value}: must be {requirement}")]
+    InvalidVertexValue {
+        /// The parameter's name, e.g. `"weights"`.
+        name: &'static str,
+        /// The input vertex.
+        index: usize,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        requirement: &'static str,
+    },
     /// An error of the underlying mesh crate (building or editing the half-edge mesh).
     #[error("mesh error: {0}")]
     Mesh(#[from] MeshError),

@@ -96,8 +96,13 @@
 
 mod engine;
 mod error;
+mod hierarchy;
+mod record;
+mod refine;
 mod simplifier;
 mod spheres;
 
 pub use error::SimplifyError;
+pub use hierarchy::{Hierarchy, MemoryUse};
+pub use refine::Refinement;
 pub use simplifier::{LockReport, MaxError, Placement, Progress, Simplified, Simplifier};

@@ -3,8 +3,9 @@
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::topology::HalfEdgeMesh;
 
-use crate::SimplifyError;
 use crate::engine::{self, Stop};
+use crate::record::Recorder;
+use crate::{Hierarchy, SimplifyError};
 
 use crate::spheres::BoundaryPolicy;
 
@@ -331,6 +332,89 @@ impl<'a> Simplifier<'a> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn build(&self) -> Result<Simplified, SimplifyError> {
+        let stop = self.stop()?;
+        if stop.triangles >= self.mesh.triangle_count() {
+            let n = self.mesh.vertex_count();
+            return Ok(Simplified {
+                mesh: self.mesh.clone(),
+                vertex_radii: vec![0.0; n],
+                error_bound: 0.0,
+                original_vertex: (0..n as u32).collect(),
+                collapses: 0,
+                locked: LockReport::default(),
+            });
+        }
+        let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
+        let outcome = engine::run(half_edges, stop, self.progress, None);
+        let live = outcome.mesh.to_trimesh();
+        let vertex_radii: Vec<f64> = live
+            .vertex_map
+            .iter()
+            .map(|x| outcome.radii.get(x.0 as usize).copied().unwrap_or(0.0))
+            .collect();
+        let original_vertex = live
+            .vertex_map
+            .iter()
+            .map(|&x| outcome.mesh.original_vertex(x))
+            .collect();
+        let error_bound = vertex_radii.iter().fold(0.0_f64, |m, &r| m.max(r));
+        Ok(Simplified {
+            mesh: live.mesh,
+            vertex_radii,
+            error_bound,
+            original_vertex,
+            collapses: outcome.collapses,
+            locked: outcome.locked,
+        })
+    }
+
+    /// Runs the simplification and records it as a progressive [`Hierarchy`], from the
+    /// input (the finest mesh) to where the simplification stopped (the base mesh, equal
+    /// to what [`Simplifier::build`] returns). For a distance hierarchy, leave the target
+    /// unset so the base mesh is as coarse as possible.
+    ///
+    /// # Errors
+    ///
+    /// As [`Simplifier::build`].
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    ///
+    /// # Performance
+    ///
+    /// The run of [`Simplifier::build`] plus the recording (a few lists per collapse); see
+    /// [`Hierarchy::memory`] for the size.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// let cube = shapes::cube(1.0, 6)?;
+    /// let simplifier = Simplifier::new(&cube).target_ratio(0.2);
+    /// let hierarchy = simplifier.build_hierarchy()?;
+    /// assert_eq!(hierarchy.base(), simplifier.build()?);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn build_hierarchy(&self) -> Result<Hierarchy, SimplifyError> {
+        let stop = self.stop()?;
+        let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
+        let finest = half_edges.clone();
+        let mut recorder = Recorder::new(&half_edges);
+        let outcome = engine::run(half_edges, stop, self.progress, Some(&mut recorder));
+        Ok(Hierarchy::from_record(
+            &finest,
+            recorder,
+            (self.mesh.vertex_count(), self.mesh.triangle_count()),
+            outcome.locked,
+            self.placement,
+        ))
+    }
+
+    /// Validates the parameters into the engine's stopping rule.
+    fn stop(&self) -> Result<Stop, SimplifyError> {
         let input = self.mesh.triangle_count();
         if input == 0 {
             return Err(SimplifyError::EmptyMesh);
@@ -364,50 +448,14 @@ impl<'a> Simplifier<'a> {
             }
         };
         let Placement::Subset = self.placement;
-        if target >= input {
-            let n = self.mesh.vertex_count();
-            return Ok(Simplified {
-                mesh: self.mesh.clone(),
-                vertex_radii: vec![0.0; n],
-                error_bound: 0.0,
-                original_vertex: (0..n as u32).collect(),
-                collapses: 0,
-                locked: LockReport::default(),
-            });
-        }
-        let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
-        let outcome = engine::run(
-            half_edges,
-            Stop {
-                triangles: target,
-                max_radius,
-                boundary: if self.lock_boundary {
-                    BoundaryPolicy::Lock
-                } else {
-                    BoundaryPolicy::Collapse
-                },
+        Ok(Stop {
+            triangles: target,
+            max_radius,
+            boundary: if self.lock_boundary {
+                BoundaryPolicy::Lock
+            } else {
+                BoundaryPolicy::Collapse
             },
-            self.progress,
-        );
-        let live = outcome.mesh.to_trimesh();
-        let vertex_radii: Vec<f64> = live
-            .vertex_map
-            .iter()
-            .map(|x| outcome.radii.get(x.0 as usize).copied().unwrap_or(0.0))
-            .collect();
-        let original_vertex = live
-            .vertex_map
-            .iter()
-            .map(|&x| outcome.mesh.original_vertex(x))
-            .collect();
-        let error_bound = vertex_radii.iter().fold(0.0_f64, |m, &r| m.max(r));
-        Ok(Simplified {
-            mesh: live.mesh,
-            vertex_radii,
-            error_bound,
-            original_vertex,
-            collapses: outcome.collapses,
-            locked: outcome.locked,
         })
     }
 }
