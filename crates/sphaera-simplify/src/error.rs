@@ -68,6 +68,13 @@ pub enum SimplifyError {
         /// What it must be.
         requirement: &'static str,
     },
+    /// An internal consistency check failed: a bug in this crate, reported instead of a
+    /// panic. Please report it with the input that triggers it.
+    #[error("internal error: {what}")]
+    Internal {
+        /// What was inconsistent.
+        what: &'static str,
+    },
     /// An error of the underlying mesh crate (building or editing the half-edge mesh).
     #[error("mesh error: {0}")]
     Mesh(#[from] MeshError),

@@ -94,6 +94,7 @@
 //!
 //! [`sphaera_mesh::topology::HalfEdgeMesh`] (the editable mesh and its collapse records).
 
+mod deform;
 mod engine;
 mod error;
 mod hierarchy;
