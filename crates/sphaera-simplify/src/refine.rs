@@ -267,22 +267,28 @@ impl<'h> Refinement<'h> {
         let live: Vec<[u32; 3]> = (0..self.hierarchy.triangle_count() as u32)
             .filter_map(|t| self.corners(t))
             .collect();
-        // Output vertices in increasing hierarchy order, as `HalfEdgeMesh::to_trimesh`.
-        let mut index = vec![u32::MAX; n];
+        // Output vertices in increasing hierarchy order, copies of a non-manifold vertex
+        // merged into one (they are never collapsed, so they agree), as
+        // `HalfEdgeMesh::to_trimesh` does.
+        let mut used = vec![false; n];
         for &x in live.iter().flatten() {
-            index[x as usize] = 0;
+            used[x as usize] = true;
         }
+        let mut by_original = vec![u32::MAX; n.max(self.hierarchy.tables.input_counts.0)];
+        let mut index = vec![u32::MAX; n];
         let mut positions = Vec::new();
         let mut radii = Vec::new();
         let mut original = Vec::new();
-        for (x, slot) in index.iter_mut().enumerate() {
-            if *slot == 0 {
+        for x in (0..n as u32).filter(|&x| used[x as usize]) {
+            let source = self.hierarchy.original_vertex(x).unwrap_or(x);
+            let slot = &mut by_original[source as usize];
+            if *slot == u32::MAX {
                 *slot = positions.len() as u32;
-                let x = x as u32;
                 positions.push(self.position(x));
                 radii.push(self.radius(x));
-                original.push(self.hierarchy.original_vertex(x).unwrap_or(x));
+                original.push(source);
             }
+            index[x as usize] = *slot;
         }
         let triangles: Vec<[u32; 3]> = live
             .iter()
