@@ -6,8 +6,10 @@
 //! simplified point stays within its radius of the original surface. This is the
 //! simplification behind the Meshsweeper hierarchy of A. Guéziec, *Meshsweeper: Dynamic
 //! Point-to-Polygonal-Mesh Distance and Applications*, IEEE TVCG 7(1), 2001 (sections 4.1–4.2
-//! on error spheres, 5.3 on deformation); this crate is its first part (the progressive
-//! hierarchy and selective refinement come later).
+//! on error spheres, 5.3 on deformation). Besides the simplified mesh, it records the
+//! collapses as a progressive [`Hierarchy`] in the paper's array form, refined selectively
+//! by a [`Refinement`] (the changing state of a distance query), and updated for deforming
+//! meshes by [`Hierarchy::replay`] and [`Hierarchy::inflate`].
 //!
 //! # Quick start
 //!
@@ -79,6 +81,30 @@
 //! result is deterministic); after a collapse the kept vertex and its neighbours are
 //! re-evaluated (stale entries are recognised by version stamps).
 //!
+//! # The progressive hierarchy
+//!
+//! [`Simplifier::build_hierarchy`] records every collapse: the removed vertex, its parent,
+//! the parent's new radius, the faces around both, and what the collapse *read* (the radii
+//! of the removed vertex's one-ring and the faces around both ends). A collapse depends on
+//! the latest earlier collapses that wrote what it read; "split before" is the inverse
+//! relation. A [`Refinement`] undoes a collapse only after undoing its applied dependants
+//! (in decreasing build order, a topological order), so every reachable state is locally
+//! identical to a state of the build sequence: radii, corners and the triangle lists of
+//! each split are exact, and both invariants hold in every state (property-tested by
+//! replaying each refined state's collapses in build order and comparing). Triangles keep
+//! their input index for life (a triangle's corners are its input corners with removed
+//! vertices replaced by their parents), so a caller's priority queue keys on stable ids.
+//!
+//! # Deformation
+//!
+//! [`Hierarchy::replay`] recomputes every radius for new positions by applying the same
+//! collapses (tight map where its projection is still injective, the simple map
+//! elsewhere): exact radii for a key-frame. [`Hierarchy::inflate`] needs only an upper
+//! bound of each vertex's displacement: walking the collapses, it tracks for each triangle
+//! the largest displacement over the input surface it stands for, and adds twice that to
+//! the radius of every vertex of the triangle (a point of the simplified triangle and the
+//! input point it covers each move by at most that much). No geometry is computed.
+//!
 //! # Errors
 //!
 //! [`Simplifier::build`] returns [`SimplifyError`] for an empty mesh or parameters out of
@@ -102,6 +128,7 @@ mod record;
 mod refine;
 mod simplifier;
 mod spheres;
+mod weights;
 
 pub use error::SimplifyError;
 pub use hierarchy::{Hierarchy, MemoryUse};

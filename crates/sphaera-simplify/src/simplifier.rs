@@ -5,6 +5,7 @@ use sphaera_mesh::topology::HalfEdgeMesh;
 
 use crate::engine::{self, Stop};
 use crate::record::Recorder;
+use crate::weights::Weights;
 use crate::{Hierarchy, SimplifyError};
 
 use crate::spheres::BoundaryPolicy;
@@ -144,6 +145,7 @@ pub struct Simplifier<'a> {
     lock_boundary: bool,
     placement: Placement,
     progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+    weights: Option<&'a [f64]>,
 }
 
 /// How far a running simplification is, passed to the [`Simplifier::progress`] callback.
@@ -186,6 +188,7 @@ impl std::fmt::Debug for Simplifier<'_> {
             .field("lock_boundary", &self.lock_boundary)
             .field("placement", &self.placement)
             .field("progress", &self.progress.is_some())
+            .field("weights", &self.weights.map(<[f64]>::len))
             .finish()
     }
 }
@@ -202,6 +205,7 @@ impl<'a> Simplifier<'a> {
             lock_boundary: true,
             placement: Placement::Subset,
             progress: None,
+            weights: None,
         }
     }
 
@@ -268,6 +272,41 @@ impl<'a> Simplifier<'a> {
     #[must_use]
     pub fn placement(mut self, placement: Placement) -> Self {
         self.placement = placement;
+        self
+    }
+
+    /// Per-vertex tolerance weights, one per input vertex: a collapse is ranked by its
+    /// radius divided by the smallest weight over the vertices it changes (the removed
+    /// vertex, its parent and the removed vertex's neighbours), and with
+    /// [`Simplifier::max_error`] it is only allowed while its radius stays below that
+    /// weight times the bound. So `f < 1` keeps the error near a vertex `f` times smaller
+    /// (regions with small weights are simplified last), `f > 1` allows more, and `f = 0`
+    /// forbids every collapse that would change the surface near the vertex: that region
+    /// stays exactly as it is.
+    ///
+    /// Checked by [`Simplifier::build`]: one finite, non-negative weight per input vertex,
+    /// not all zero.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// let sphere = shapes::sphere(1.0, 16)?;
+    /// // Freeze the northern hemisphere.
+    /// let weights: Vec<f64> = sphere.positions().iter().map(|p| if p.z > 0.0 { 0.0 } else { 1.0 }).collect();
+    /// let out = Simplifier::new(&sphere).weights(&weights).target_ratio(0.1).build()?;
+    /// for (i, &o) in out.original_vertex.iter().enumerate() {
+    ///     if sphere.positions()[o as usize].z > 0.0 {
+    ///         assert_eq!(out.vertex_radii[i], 0.0);
+    ///     }
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn weights(mut self, weights: &'a [f64]) -> Self {
+        self.weights = Some(weights);
         self
     }
 
@@ -448,6 +487,9 @@ impl<'a> Simplifier<'a> {
             }
         };
         let Placement::Subset = self.placement;
+        if let Some(weights) = self.weights {
+            Weights::validate(self.mesh, weights)?;
+        }
         Ok(Stop {
             triangles: target,
             max_radius,
