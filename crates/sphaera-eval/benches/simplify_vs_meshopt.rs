@@ -12,6 +12,9 @@
 //! `-- bunny` for the bunny only: each dragon case takes minutes while Sphaera is slow).
 //! Needs `../shared/data` (or `$SPHAERA_DATA`); without it the bench says so and exits.
 
+// A skipped case says why on the terminal.
+#![allow(clippy::print_stderr)]
+
 use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
