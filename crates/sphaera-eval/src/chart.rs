@@ -3,6 +3,8 @@
 use std::{fmt::Write as _, path::Path};
 
 use anyhow::{Context, Result};
+/// Where a panel's legend goes.
+pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
 
 /// One named set of `(x, y)` points.
@@ -99,6 +101,8 @@ pub struct Panel<'a> {
     pub series: &'a [Series],
     /// Draw the line `y = x` (dashed grey), e.g. to show a bound is never below a value.
     pub diagonal: bool,
+    /// Where the legend goes (a corner the data leaves empty).
+    pub legend: SeriesLabelPosition,
 }
 
 /// Draws `panels` side by side (each 640 × 520) into `path` (SVG, written atomically).
@@ -168,7 +172,7 @@ pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
             }
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position(panel.legend.clone())
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
                 .draw()?;

@@ -20,7 +20,7 @@ use sphaera::mesh::{TriMesh, io};
 use sphaera_tests::sampled_hausdorff;
 
 use super::min_time;
-use crate::chart::{ChartSpec, Panel, Series, log_log_panels, write_csv};
+use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 use crate::methods::{
     MeshoptInput, PLACEMENTS, meshopt_surface, sphaera_simplify, target_triangles,
 };
@@ -203,7 +203,7 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
         .map(|(_, label, runs, _)| format!("{runs} for the {label}"))
         .collect::<Vec<_>>()
         .join(", ");
-    let time_label = format!("seconds (minimum of {runs} runs)");
+    let time_label = format!("seconds (best of {runs} runs)");
     log_log_panels(
         &out.join(format!("{NAME}.svg")),
         &[
@@ -215,6 +215,7 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
                 },
                 series: &time_series,
                 diagonal: false,
+                legend: SeriesLabelPosition::LowerLeft,
             },
             Panel {
                 spec: ChartSpec {
@@ -224,6 +225,7 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
                 },
                 series: &bound_series,
                 diagonal: true,
+                legend: SeriesLabelPosition::LowerRight,
             },
         ],
     )
