@@ -6,7 +6,8 @@
 //!                           duplicate-glam check, generated-file check
 //! cargo xtask bench [ARGS]  the criterion benches (ARGS go to `cargo bench`)
 //! cargo xtask charts        run the sphaera-eval experiments, write docs/charts/*.svg + *.csv
-//! cargo xtask charts --check  fail if a chart or its CSV is missing
+//! cargo xtask charts --check  fail if a chart or its CSV is missing, or the CSV misses
+//!                           a mesh of ../shared/data the chart must cover
 //! ```
 
 // A command-line tool reports on the terminal.
@@ -168,13 +169,29 @@ fn bench(args: &[String]) -> Result<()> {
     cargo(&full)
 }
 
-/// The charts `cargo xtask charts` must produce, each as `docs/charts/NAME.svg` with the
-/// data behind it in `docs/charts/NAME.csv`.
-const CHARTS: &[&str] = &["load_topology_time"];
+/// Which meshes of `../shared/data` a chart's CSV must list in its first column.
+enum Coverage {
+    /// Every mesh file of the folder (a chart over the whole collection).
+    EveryMesh,
+    /// These files (relative to the folder), when present: a chart that covers chosen
+    /// meshes by design.
+    Only(&'static [&'static str]),
+}
 
-/// Fails if a mesh of `../shared/data` is missing from the chart's CSV (first column):
-/// the chart is stale and must be regenerated. Skipped when the data folder is absent.
-fn check_chart_covers_every_mesh(csv: &Path) -> Result<()> {
+/// The charts `cargo xtask charts` must produce, each as `docs/charts/NAME.svg` with the
+/// data behind it in `docs/charts/NAME.csv`, and the meshes its CSV must cover.
+const CHARTS: &[(&str, Coverage)] = &[
+    ("load_topology_time", Coverage::EveryMesh),
+    (
+        "simplify_error_vs_time",
+        Coverage::Only(&["stanford-bunny.obj", "dragon_vrip.ply"]),
+    ),
+];
+
+/// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV
+/// (first column): the chart is stale and must be regenerated. Skipped when the data
+/// folder is absent.
+fn check_chart_coverage(csv: &Path, coverage: &Coverage) -> Result<()> {
     let data = std::env::var_os("SPHAERA_DATA").map_or_else(
         || Path::new("..").join("shared").join("data"),
         PathBuf::from,
@@ -190,8 +207,33 @@ fn check_chart_covers_every_mesh(csv: &Path) -> Result<()> {
         .skip(1)
         .filter_map(|line| line.split(',').next())
         .collect();
-    let mut missing = Vec::new();
-    let mut folders = vec![data.clone()];
+    let required = match coverage {
+        Coverage::EveryMesh => mesh_files(&data)?,
+        Coverage::Only(files) => files
+            .iter()
+            .filter(|file| data.join(file).is_file())
+            .map(|file| (*file).to_owned())
+            .collect(),
+    };
+    let mut missing: Vec<String> = required
+        .into_iter()
+        .filter(|name| !charted.contains(&name.as_str()))
+        .collect();
+    if !missing.is_empty() {
+        missing.sort();
+        bail!(
+            "{} does not chart {}; run `cargo xtask charts` and commit",
+            csv.display(),
+            missing.join(", ")
+        );
+    }
+    Ok(())
+}
+
+/// Every mesh file under `data` (OBJ, PLY, STL, OFF), relative to it, with `/` separators.
+fn mesh_files(data: &Path) -> Result<Vec<String>> {
+    let mut files = Vec::new();
+    let mut folders = vec![data.to_path_buf()];
     while let Some(folder) = folders.pop() {
         for entry in std::fs::read_dir(&folder)
             .with_context(|| format!("cannot list {}", folder.display()))?
@@ -206,23 +248,12 @@ fn check_chart_covers_every_mesh(csv: &Path) -> Result<()> {
             if path.is_dir() {
                 folders.push(path);
             } else if is_mesh {
-                let relative = path.strip_prefix(&data).unwrap_or(&path);
-                let name = relative.to_string_lossy().replace('\\', "/");
-                if !charted.contains(&name.as_str()) {
-                    missing.push(name);
-                }
+                let relative = path.strip_prefix(data).unwrap_or(&path);
+                files.push(relative.to_string_lossy().replace('\\', "/"));
             }
         }
     }
-    if !missing.is_empty() {
-        missing.sort();
-        bail!(
-            "{} does not chart {}; run `cargo xtask charts` and commit",
-            csv.display(),
-            missing.join(", ")
-        );
-    }
-    Ok(())
+    Ok(files)
 }
 
 fn charts(check: bool) -> Result<()> {
@@ -230,7 +261,7 @@ fn charts(check: bool) -> Result<()> {
     if check {
         let missing: Vec<String> = CHARTS
             .iter()
-            .flat_map(|name| [format!("{name}.svg"), format!("{name}.csv")])
+            .flat_map(|(name, _)| [format!("{name}.svg"), format!("{name}.csv")])
             .filter(|file| !dir.join(file).is_file())
             .collect();
         if !missing.is_empty() {
@@ -239,7 +270,9 @@ fn charts(check: bool) -> Result<()> {
                 missing.join(", ")
             );
         }
-        check_chart_covers_every_mesh(&dir.join("load_topology_time.csv"))?;
+        for (name, coverage) in CHARTS {
+            check_chart_coverage(&dir.join(format!("{name}.csv")), coverage)?;
+        }
         eprintln!("  (charts present: ok)");
         return Ok(());
     }

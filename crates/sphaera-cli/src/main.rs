@@ -11,6 +11,8 @@
 mod cli;
 mod commands;
 mod input;
+mod measure;
+mod nearest;
 mod output;
 mod progress;
 

@@ -1,4 +1,5 @@
-//! Progress display on stderr (indicatif), silent when stderr is not a terminal.
+//! Progress display on stderr (indicatif): spinners and bars, silent with `--quiet` or when
+//! stderr is not a terminal.
 
 use std::time::Duration;
 
@@ -18,5 +19,23 @@ pub fn spinner(quiet: bool, message: &str) -> ProgressBar {
     }
     bar.set_message(message.to_owned());
     bar.enable_steady_tick(Duration::from_millis(100));
+    bar
+}
+
+/// A progress bar of `len` steps with a message, for work whose size is known
+/// (simplification reports triangles removed out of triangles to remove).
+///
+/// Hidden with `--quiet`, and by indicatif when stderr is not a terminal.
+pub fn bar(quiet: bool, message: &str, len: u64) -> ProgressBar {
+    if quiet {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::new(len);
+    if let Ok(style) = ProgressStyle::with_template(
+        "{msg} [{bar:40}] {percent:>3} % ({elapsed}, about {eta} left)",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(message.to_owned());
     bar
 }

@@ -68,3 +68,64 @@ fn simplify_refuses_to_write_an_unsupported_format_and_leaves_no_file() {
     assert!(message.contains("stl"), "{message}");
     assert!(message.contains("out.stl"), "{message}");
 }
+
+#[test]
+fn simplify_measure_reports_a_distance_below_the_certified_bound() {
+    let report = json(&sphaera(&[
+        "simplify",
+        "--ratio",
+        "0.1",
+        "--placement",
+        "subset",
+        "--measure",
+        "--json",
+    ]));
+    assert_eq!(report["placement"], "subset");
+    let bound = report["error_bound"].as_f64().unwrap();
+    let measured = report["measured_hausdorff"].as_f64().unwrap();
+    // A sampled lower bound of the true distance, which the certified bound encloses.
+    assert!(measured > 0.0, "measured {measured}");
+    assert!(
+        measured <= bound * (1.0 + 1e-9),
+        "{measured} > bound {bound}"
+    );
+    let relative = report["measured_hausdorff_relative"].as_f64().unwrap();
+    let bound_relative = report["error_bound_relative"].as_f64().unwrap();
+    assert!((relative / bound_relative - measured / bound).abs() < 1e-9);
+    assert!(report["seconds"]["measure"].as_f64().unwrap() >= 0.0);
+}
+
+#[test]
+fn simplify_without_measure_leaves_the_measured_fields_null() {
+    let report = json(&sphaera(&["simplify", "--ratio", "0.5", "--json"]));
+    assert_eq!(report["placement"], "subset");
+    assert!(report["measured_hausdorff"].is_null());
+    assert!(report["measured_hausdorff_relative"].is_null());
+    assert!(report["seconds"]["measure"].is_null());
+}
+
+#[test]
+fn simplify_text_output_names_the_placement_and_the_measurement() {
+    let output = sphaera(&["simplify", "--ratio", "0.5", "--measure", "--quiet"]);
+    assert!(output.status.success());
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(text.contains("placement       subset"), "{text}");
+    assert!(text.contains("sampled lower bound"), "{text}");
+    assert!(text.contains("s to measure"), "{text}");
+    // Not a terminal: no progress bar on stderr.
+    assert!(
+        output.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+#[test]
+fn simplify_rejects_an_unknown_placement_and_lists_the_known_ones() {
+    let output = sphaera(&["simplify", "--placement", "centroid"]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("--placement"), "{message}");
+    assert!(message.contains("centroid"), "{message}");
+    assert!(message.contains("subset"), "{message}");
+}

@@ -3,6 +3,8 @@
 use std::{fmt::Write as _, path::Path};
 
 use anyhow::{Context, Result};
+/// Where a panel's legend goes.
+pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
 
 /// One named set of `(x, y)` points.
@@ -86,6 +88,95 @@ pub fn log_log_scatter(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> 
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .draw()?;
+        root.present()?;
+    }
+    write_atomically(path, svg.as_bytes())
+}
+
+/// One plot of a multi-panel chart: log–log axes, each series as points joined by a line.
+pub struct Panel<'a> {
+    /// Caption, axes.
+    pub spec: ChartSpec<'a>,
+    /// The series; colours are given by the position in this list, the same in every panel.
+    pub series: &'a [Series],
+    /// Draw the line `y = x` (dashed grey), e.g. to show a bound is never below a value.
+    pub diagonal: bool,
+    /// Where the legend goes (a corner the data leaves empty).
+    pub legend: SeriesLabelPosition,
+}
+
+/// Draws `panels` side by side (each 640 × 520) into `path` (SVG, written atomically).
+/// A series with the same index has the same colour in every panel.
+pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
+    let positive = |&(x, y): &(f64, f64)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite();
+    let width = 640 * u32::try_from(panels.len().max(1)).unwrap_or(1);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, 520)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let areas = root.split_evenly((1, panels.len().max(1)));
+        for (panel, area) in panels.iter().zip(&areas) {
+            let all: Vec<(f64, f64)> = panel
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().copied())
+                .filter(positive)
+                .collect();
+            let (mut x_range, mut y_range) = log_range(&all);
+            if panel.diagonal {
+                // One range for both axes, so that y = x is the square's diagonal.
+                let lo = x_range.start.min(y_range.start);
+                let hi = x_range.end.max(y_range.end);
+                (x_range, y_range) = (lo..hi, lo..hi);
+            }
+            let mut chart = ChartBuilder::on(area)
+                .caption(panel.spec.title, ("sans-serif", 18))
+                .margin(16)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
+                .build_cartesian_2d(x_range.clone().log_scale(), y_range.log_scale())?;
+            chart
+                .configure_mesh()
+                .x_desc(panel.spec.x_label)
+                .y_desc(panel.spec.y_label)
+                .x_label_formatter(&|v| tick_label(*v))
+                .y_label_formatter(&|v| tick_label(*v))
+                .draw()?;
+            if panel.diagonal {
+                let grey = RGBColor(128, 128, 128);
+                chart
+                    .draw_series(DashedLineSeries::new(
+                        [(x_range.start, x_range.start), (x_range.end, x_range.end)],
+                        6,
+                        4,
+                        grey.stroke_width(1),
+                    ))?
+                    .label("y = x")
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], grey));
+            }
+            for (i, s) in panel.series.iter().enumerate() {
+                let color = COLORS[i % COLORS.len()];
+                let points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
+                if points.is_empty() {
+                    continue;
+                }
+                chart.draw_series(LineSeries::new(points.iter().copied(), color.mix(0.5)))?;
+                chart
+                    .draw_series(
+                        points
+                            .into_iter()
+                            .map(|p| Circle::new(p, 3, color.filled())),
+                    )?
+                    .label(s.name.as_str())
+                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
+            }
+            chart
+                .configure_series_labels()
+                .position(panel.legend.clone())
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .draw()?;
+        }
         root.present()?;
     }
     write_atomically(path, svg.as_bytes())

@@ -16,6 +16,7 @@
 
 mod chart;
 mod experiments;
+mod methods;
 
 use std::path::PathBuf;
 

@@ -6,12 +6,13 @@ use anyhow::Result;
 use serde::Serialize;
 use sphaera::{
     mesh::io,
-    simplify::{MaxError, Simplifier},
+    simplify::{MaxError, Progress, Simplifier},
 };
 
 use crate::{
     cli::{MaxErrorArg, SimplifyArgs},
     input::read_mesh,
+    measure,
     output::{print_json, thousands},
     progress,
 };
@@ -23,6 +24,8 @@ struct Report {
     source: String,
     /// Where the result was written (`null` without `--output`).
     output: Option<String>,
+    /// `--placement`: where kept vertices go.
+    placement: &'static str,
     triangles_in: usize,
     triangles_out: usize,
     vertices_out: usize,
@@ -31,6 +34,11 @@ struct Report {
     error_bound: f64,
     /// The bound as a fraction of the input's bounding-box diagonal.
     error_bound_relative: f64,
+    /// With `--measure`: the sampled symmetric Hausdorff distance between input and output
+    /// (a lower bound of the true one); `null` without.
+    measured_hausdorff: Option<f64>,
+    /// The measured distance as a fraction of the input's bounding-box diagonal.
+    measured_hausdorff_relative: Option<f64>,
     locked_boundary_vertices: usize,
     locked_non_manifold_vertices: usize,
     seconds: Seconds,
@@ -40,6 +48,8 @@ struct Report {
 struct Seconds {
     load: f64,
     simplify: f64,
+    /// With `--measure`: the measurement; `null` without.
+    measure: Option<f64>,
     write: f64,
 }
 
@@ -49,7 +59,9 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     }
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
     let mesh = &input.loaded.mesh;
-    let mut simplifier = Simplifier::new(mesh).lock_boundary(!args.free_boundary);
+    let mut simplifier = Simplifier::new(mesh)
+        .lock_boundary(!args.free_boundary)
+        .placement(args.placement.placement());
     if let Some(n) = args.triangles {
         simplifier = simplifier.target_triangles(n);
     }
@@ -62,15 +74,30 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
             MaxErrorArg::RelativeToDiagonal(f) => MaxError::RelativeToDiagonal(f),
         });
     }
-    let spinner = progress::spinner(
+    let bar = progress::bar(
         quiet,
         &format!("simplifying {} triangles", thousands(mesh.triangle_count())),
+        mesh.triangle_count() as u64,
     );
+    let report_progress = |p: Progress| {
+        bar.set_length(p.to_remove as u64);
+        bar.set_position(p.removed as u64);
+    };
     let started = Instant::now();
-    let simplified = simplifier.build();
+    let simplified = simplifier.progress(&report_progress).build();
     let simplify_seconds = started.elapsed().as_secs_f64();
-    spinner.finish_and_clear();
+    bar.finish_and_clear();
     let simplified = simplified?;
+
+    let (measured, measure_seconds) = if args.measure {
+        let spinner = progress::spinner(quiet, "measuring the Hausdorff distance");
+        let started = Instant::now();
+        let h = measure::sampled_hausdorff(mesh, &simplified.mesh);
+        spinner.finish_and_clear();
+        (Some(h), Some(started.elapsed().as_secs_f64()))
+    } else {
+        (None, None)
+    };
 
     let started = Instant::now();
     if let Some(path) = &args.output {
@@ -79,24 +106,25 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     let write_seconds = started.elapsed().as_secs_f64();
 
     let diagonal = mesh.bounding_box_diagonal();
+    let relative = |d: f64| if diagonal > 0.0 { d / diagonal } else { 0.0 };
     let report = Report {
         source: input.source,
         output: args.output.as_ref().map(|p| p.display().to_string()),
+        placement: args.placement.name(),
         triangles_in: mesh.triangle_count(),
         triangles_out: simplified.mesh.triangle_count(),
         vertices_out: simplified.mesh.vertex_count(),
         collapses: simplified.collapses,
         error_bound: simplified.error_bound,
-        error_bound_relative: if diagonal > 0.0 {
-            simplified.error_bound / diagonal
-        } else {
-            0.0
-        },
+        error_bound_relative: relative(simplified.error_bound),
+        measured_hausdorff: measured,
+        measured_hausdorff_relative: measured.map(relative),
         locked_boundary_vertices: simplified.locked.boundary,
         locked_non_manifold_vertices: simplified.locked.non_manifold,
         seconds: Seconds {
             load: input.seconds,
             simplify: simplify_seconds,
+            measure: measure_seconds,
             write: write_seconds,
         },
     };
@@ -127,6 +155,7 @@ impl Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!("mesh            {}", self.source),
+            format!("placement       {}", self.placement),
             format!(
                 "triangles       {} -> {} ({} collapses)",
                 thousands(self.triangles_in),
@@ -138,16 +167,31 @@ impl Report {
                 self.error_bound,
                 100.0 * self.error_bound_relative
             ),
+        ];
+        if let (Some(h), Some(r)) = (self.measured_hausdorff, self.measured_hausdorff_relative) {
+            lines.push(format!(
+                "measured        {h:.6e} ({:.4} % of the diagonal), sampled lower bound",
+                100.0 * r
+            ));
+        }
+        lines.extend([
             format!(
                 "locked          {} boundary, {} non-manifold vertices",
                 thousands(self.locked_boundary_vertices),
                 thousands(self.locked_non_manifold_vertices)
             ),
-            format!(
-                "time            {:.3} s to read, {:.3} s to simplify, {:.3} s to write",
-                self.seconds.load, self.seconds.simplify, self.seconds.write
-            ),
-        ];
+            match self.seconds.measure {
+                Some(m) => format!(
+                    "time            {:.3} s to read, {:.3} s to simplify, {m:.3} s to measure, \
+                     {:.3} s to write",
+                    self.seconds.load, self.seconds.simplify, self.seconds.write
+                ),
+                None => format!(
+                    "time            {:.3} s to read, {:.3} s to simplify, {:.3} s to write",
+                    self.seconds.load, self.seconds.simplify, self.seconds.write
+                ),
+            },
+        ]);
         lines.push(match &self.output {
             Some(path) => format!("written to      {path}"),
             None => "written to      nothing (give --output FILE.obj or .ply)".to_owned(),

@@ -1,6 +1,7 @@
 //! The experiments, one module each.
 
 mod load_topology;
+mod simplify_error;
 
 use std::path::Path;
 
@@ -8,12 +9,13 @@ use anyhow::{Result, bail};
 
 /// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
 /// `NAME.svg` and `NAME.csv`.
-pub const NAMES: &[&str] = &[load_topology::NAME];
+pub const NAMES: &[&str] = &[load_topology::NAME, simplify_error::NAME];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
 pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
     match name {
         load_topology::NAME => load_topology::run(data, out),
+        simplify_error::NAME => simplify_error::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }
