@@ -102,9 +102,14 @@ fn full_depth(c: &mut Criterion) {
                     .expect("Sphaera simplifies the mesh")
             });
         });
-        // HIERARCHY: when `build_hierarchy()` lands, bench it here with the same placement
-        // (`group.bench_function(format!("hierarchy_{placement_name}"), ...)`), next to the
-        // plain full-depth simplification above, so the hierarchy's overhead reads directly.
+        group.bench_function(format!("hierarchy_{placement_name}"), |b| {
+            b.iter(|| {
+                Simplifier::new(black_box(&mesh))
+                    .placement(placement)
+                    .build_hierarchy()
+                    .expect("Sphaera records the hierarchy")
+            });
+        });
     }
     group.finish();
 }
