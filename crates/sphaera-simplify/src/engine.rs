@@ -1,13 +1,14 @@
 //! The greedy collapse loop: a priority queue of per-vertex best collapses, ordered by the
-//! error-sphere radius they would need, re-evaluated lazily with version stamps.
+//! error-sphere radius they would need, re-evaluated around every applied collapse.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+mod queue;
 
+use smallvec::SmallVec;
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
 use crate::simplifier::{LockReport, Progress};
-use crate::spheres::{BoundaryPolicy, collapse_radius};
+use crate::spheres::{BoundaryPolicy, Fan, collapse_radius};
+use queue::Queue;
 
 /// When to stop.
 #[derive(Clone, Copy, Debug)]
@@ -29,42 +30,6 @@ pub(crate) struct Outcome {
     pub locked: LockReport,
 }
 
-/// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated.
-#[derive(Clone, Copy, Debug)]
-struct Candidate {
-    cost: f64,
-    vertex: u32,
-    halfedge: u32,
-    stamp: u32,
-}
-
-impl PartialEq for Candidate {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for Candidate {}
-
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Candidate {
-    /// Reversed (the heap is a max-heap): the lowest cost first, then the lowest vertex,
-    /// half-edge and stamp, so the order is total and deterministic.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .cost
-            .total_cmp(&self.cost)
-            .then(other.vertex.cmp(&self.vertex))
-            .then(other.halfedge.cmp(&self.halfedge))
-            .then(other.stamp.cmp(&self.stamp))
-    }
-}
-
 /// Whether `u` may ever be removed: live, manifold, unlocked and (unless the policy allows
 /// it) not on the boundary.
 fn removable(mesh: &HalfEdgeMesh, u: VertexId, boundary: BoundaryPolicy) -> bool {
@@ -77,6 +42,11 @@ fn removable(mesh: &HalfEdgeMesh, u: VertexId, boundary: BoundaryPolicy) -> bool
 
 /// The cheapest legal collapse out of `u`: `(radius, half-edge)`, ties to the lowest
 /// half-edge.
+///
+/// For an interior vertex the fan is projected once and shared by all targets, and only
+/// the targets that can still win are evaluated in full ([`Fan::best`]); the result is the
+/// minimum of [`collapse_radius`] over the half-edges that pass
+/// [`HalfEdgeMesh::check_collapse`], bit for bit.
 fn best_collapse(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
@@ -86,9 +56,13 @@ fn best_collapse(
     if !removable(mesh, u, boundary) {
         return None;
     }
+    let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
+    if !mesh.is_boundary_vertex(u) {
+        return Fan::new(mesh, radii, u)?.best(legal);
+    }
     let mut best: Option<(f64, HalfEdgeId)> = None;
     for g in mesh.outgoing(u) {
-        if mesh.check_collapse(g).is_err() {
+        if !legal(g) {
             continue;
         }
         if let Some(r) = collapse_radius(mesh, radii, g, boundary) {
@@ -101,6 +75,45 @@ fn best_collapse(
     best
 }
 
+/// The best collapse of every vertex, in vertex order (in parallel with the `parallel`
+/// feature; each entry is a pure function of the mesh, so the result is the same).
+fn initial_candidates(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    boundary: BoundaryPolicy,
+) -> Vec<Option<(f64, HalfEdgeId)>> {
+    let n = mesh.vertex_count() as u32;
+    let evaluate = |u: u32| best_collapse(mesh, radii, VertexId(u), boundary);
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n).into_par_iter().map(evaluate).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        (0..n).map(evaluate).collect()
+    }
+}
+
+/// Re-evaluates `u` and makes its best collapse its current candidate.
+fn refresh(
+    queue: &mut Queue,
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    u: VertexId,
+    boundary: BoundaryPolicy,
+) {
+    let best = best_collapse(mesh, radii, u, boundary);
+    let same = match (best, queue.get(u.0)) {
+        (Some((c, h)), Some((d, g))) => c.total_cmp(&d).is_eq() && h == g,
+        (None, None) => true,
+        _ => false,
+    };
+    if !same {
+        queue.set(u.0, best);
+    }
+}
+
 /// Runs the greedy simplification of `mesh` (whose radii all start at 0).
 pub(crate) fn run(
     mut mesh: HalfEdgeMesh,
@@ -109,7 +122,6 @@ pub(crate) fn run(
 ) -> Outcome {
     let n = mesh.vertex_count();
     let mut radii = vec![0.0; n];
-    let mut stamps = vec![0_u32; n];
     let mut locked = LockReport::default();
     for x in 0..n {
         let x = VertexId(x as u32);
@@ -123,24 +135,7 @@ pub(crate) fn run(
         }
     }
 
-    let mut heap = BinaryHeap::new();
-    let push = |heap: &mut BinaryHeap<Candidate>,
-                mesh: &HalfEdgeMesh,
-                radii: &[f64],
-                u: u32,
-                stamp: u32| {
-        if let Some((cost, h)) = best_collapse(mesh, radii, VertexId(u), stop.boundary) {
-            heap.push(Candidate {
-                cost,
-                vertex: u,
-                halfedge: h.0,
-                stamp,
-            });
-        }
-    };
-    for u in 0..n as u32 {
-        push(&mut heap, &mesh, &radii, u, 0);
-    }
+    let mut queue = Queue::new(&initial_candidates(&mesh, &radii, stop.boundary));
 
     let mut collapses = 0;
     let start_faces = mesh.live_face_count();
@@ -161,43 +156,37 @@ pub(crate) fn run(
             report(mesh.live_face_count());
             next_report = removed + report_every;
         }
-        let Some(top) = heap.pop() else { break };
-        let u = top.vertex as usize;
-        if stamps.get(u) != Some(&top.stamp) {
-            continue;
-        }
+        let Some(top) = queue.pop() else { break };
         if top.cost > stop.max_radius {
             break;
         }
+        let u = VertexId(top.vertex);
         // Re-check the candidate: a change two rings away can alter the link condition
-        // without bumping u's stamp.
+        // without re-evaluating u.
         let h = HalfEdgeId(top.halfedge);
         let fresh = mesh
             .check_collapse(h)
             .ok()
             .and_then(|()| collapse_radius(&mesh, &radii, h, stop.boundary));
         let Some(radius) = fresh.filter(|r| r.total_cmp(&top.cost).is_eq()) else {
-            stamps[u] = stamps[u].wrapping_add(1);
-            push(&mut heap, &mesh, &radii, top.vertex, stamps[u]);
+            refresh(&mut queue, &mesh, &radii, u, stop.boundary);
             continue;
         };
         let v = mesh.target(h);
         let target_position = mesh.position(v);
         if mesh.collapse_edge(h, target_position).is_err() {
-            // The checks above passed, so this does not happen; skip the vertex if it does.
-            stamps[u] = stamps[u].wrapping_add(1);
+            // The checks above passed, so this does not happen; skip the vertex if it does
+            // (popping it unqueued it).
             continue;
         }
         collapses += 1;
         if let Some(r) = radii.get_mut(v.0 as usize) {
             *r = radius;
         }
-        stamps[u] = stamps[u].wrapping_add(1);
-        let ring: Vec<VertexId> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
+        // Re-evaluate v and its neighbours (u is gone, and popping it unqueued it).
+        let ring: SmallVec<[VertexId; 16]> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
         for x in ring {
-            let i = x.0 as usize;
-            stamps[i] = stamps[i].wrapping_add(1);
-            push(&mut heap, &mesh, &radii, x.0, stamps[i]);
+            refresh(&mut queue, &mesh, &radii, x, stop.boundary);
         }
     }
     report(mesh.live_face_count());
