@@ -47,18 +47,25 @@ fn removable(mesh: &HalfEdgeMesh, u: VertexId, boundary: BoundaryPolicy) -> bool
 /// the targets that can still win are evaluated in full ([`Fan::best`]); the result is the
 /// minimum of [`collapse_radius`] over the half-edges that pass
 /// [`HalfEdgeMesh::check_collapse`], bit for bit.
+///
+/// `fan` is scratch space (any content), reused between calls.
 fn best_collapse(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
     u: VertexId,
     boundary: BoundaryPolicy,
+    fan: &mut Fan,
 ) -> Option<(f64, HalfEdgeId)> {
     if !removable(mesh, u, boundary) {
         return None;
     }
     let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
     if !mesh.is_boundary_vertex(u) {
-        return Fan::new(mesh, radii, u)?.best(legal);
+        return if fan.rebuild(mesh, radii, u) {
+            fan.best(legal)
+        } else {
+            None
+        };
     }
     let mut best: Option<(f64, HalfEdgeId)> = None;
     for g in mesh.outgoing(u) {
@@ -83,27 +90,32 @@ fn initial_candidates(
     boundary: BoundaryPolicy,
 ) -> Vec<Option<(f64, HalfEdgeId)>> {
     let n = mesh.vertex_count() as u32;
-    let evaluate = |u: u32| best_collapse(mesh, radii, VertexId(u), boundary);
+    let evaluate = |fan: &mut Fan, u: u32| best_collapse(mesh, radii, VertexId(u), boundary, fan);
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        (0..n).into_par_iter().map(evaluate).collect()
+        (0..n)
+            .into_par_iter()
+            .map_init(Fan::empty, evaluate)
+            .collect()
     }
     #[cfg(not(feature = "parallel"))]
     {
-        (0..n).map(evaluate).collect()
+        let mut fan = Fan::empty();
+        (0..n).map(|u| evaluate(&mut fan, u)).collect()
     }
 }
 
-/// Re-evaluates `u` and makes its best collapse its current candidate.
+/// Re-evaluates `u` and makes its best collapse its current candidate (`fan`: scratch).
 fn refresh(
     queue: &mut Queue,
     mesh: &HalfEdgeMesh,
     radii: &[f64],
     u: VertexId,
     boundary: BoundaryPolicy,
+    fan: &mut Fan,
 ) {
-    let best = best_collapse(mesh, radii, u, boundary);
+    let best = best_collapse(mesh, radii, u, boundary, fan);
     let same = match (best, queue.get(u.0)) {
         (Some((c, h)), Some((d, g))) => c.total_cmp(&d).is_eq() && h == g,
         (None, None) => true,
@@ -136,6 +148,7 @@ pub(crate) fn run(
     }
 
     let mut queue = Queue::new(&initial_candidates(&mesh, &radii, stop.boundary));
+    let mut fan = Fan::empty();
 
     let mut collapses = 0;
     let start_faces = mesh.live_face_count();
@@ -169,7 +182,7 @@ pub(crate) fn run(
             .ok()
             .and_then(|()| collapse_radius(&mesh, &radii, h, stop.boundary));
         let Some(radius) = fresh.filter(|r| r.total_cmp(&top.cost).is_eq()) else {
-            refresh(&mut queue, &mesh, &radii, u, stop.boundary);
+            refresh(&mut queue, &mesh, &radii, u, stop.boundary, &mut fan);
             continue;
         };
         let v = mesh.target(h);
@@ -186,7 +199,7 @@ pub(crate) fn run(
         // Re-evaluate v and its neighbours (u is gone, and popping it unqueued it).
         let ring: SmallVec<[VertexId; 16]> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
         for x in ring {
-            refresh(&mut queue, &mesh, &radii, x, stop.boundary);
+            refresh(&mut queue, &mesh, &radii, x, stop.boundary, &mut fan);
         }
     }
     report(mesh.live_face_count());

@@ -138,7 +138,7 @@ fn barycentric(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> Option<[f64; 3]> {
 /// each (clamped to `[0, 1]`), or `None` if they do not cross or are parallel (parallel
 /// overlaps add no overlay vertex beyond the endpoints, which are checked separately).
 #[cfg(test)]
-fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
+pub(super) fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
     let (da, db) = (a1 - a0, b1 - b0);
     let d = b0 - a0;
     crossing_parts(
@@ -161,6 +161,23 @@ fn crossing_parts(
     d_perp_da: f64,
 ) -> Option<(f64, f64)> {
     const SLACK: f64 = 1e-9;
+    // Cheap rejection without dividing: a quotient clearly outside
+    // `[−2·SLACK, 1 + 2·SLACK]` rounds to a value outside `[−SLACK, 1 + SLACK]` too (the
+    // margin is orders of magnitude above the rounding of the products), so this only
+    // skips pairs the exact test below rejects. Most pairs of spokes do not cross.
+    let (lo, hi) = (-2.0 * SLACK, 1.0 + 2.0 * SLACK);
+    let clearly_outside = |num: f64| {
+        if denom > 0.0 {
+            num < lo * denom || num > hi * denom
+        } else if denom < 0.0 {
+            num > lo * denom || num < hi * denom
+        } else {
+            false
+        }
+    };
+    if clearly_outside(d_perp_db) || clearly_outside(d_perp_da) {
+        return None;
+    }
     let s = d_perp_db / denom;
     let t = d_perp_da / denom;
     let inside = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);

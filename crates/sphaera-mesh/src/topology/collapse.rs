@@ -217,8 +217,9 @@ impl HalfEdgeMesh {
             return Err(refuse(CollapseRefusal::TooFewNeighbours));
         }
         for w in std::iter::once(w0).chain(w1) {
-            let valence = self.valence(w);
-            if valence.saturating_sub(1) < minimum(self.is_boundary_vertex(VertexId(w))) {
+            // Only whether the valence reaches `minimum + 1` matters: stop counting there.
+            let needed = minimum(self.is_boundary_vertex(VertexId(w))) + 1;
+            if self.valence_up_to(w, needed) < needed {
                 return Err(refuse(CollapseRefusal::TooFewNeighbours));
             }
         }
@@ -229,21 +230,27 @@ impl HalfEdgeMesh {
     /// [`HalfEdgeMesh::neighbors`] (a raw loop: this is the inner loop of
     /// [`HalfEdgeMesh::check_collapse`]).
     fn ring_into(&self, x: u32, out: &mut SmallVec<[u32; 16]>) {
-        self.walk_ring(x, |y| out.push(y));
+        self.walk_ring(x, |y| {
+            out.push(y);
+            true
+        });
     }
 
-    /// The number of neighbours of `x` (`neighbors(x).count()`).
-    fn valence(&self, x: u32) -> usize {
+    /// The number of neighbours of `x` (`neighbors(x).count()`), counted up to `cap`.
+    fn valence_up_to(&self, x: u32, cap: usize) -> usize {
         let mut count = 0;
-        self.walk_ring(x, |_| count += 1);
+        self.walk_ring(x, |_| {
+            count += 1;
+            count < cap
+        });
         count
     }
 
     /// Calls `visit` on each neighbour of `x`, exactly as [`HalfEdgeMesh::neighbors`]
-    /// yields them: the target of every outgoing half-edge, then, for an open fan, the
-    /// origin of the last face's incoming edge.
+    /// yields them (the target of every outgoing half-edge, then, for an open fan, the
+    /// origin of the last face's incoming edge), until it returns `false`.
     #[inline]
-    fn walk_ring(&self, x: u32, mut visit: impl FnMut(u32)) {
+    fn walk_ring(&self, x: u32, mut visit: impl FnMut(u32) -> bool) {
         let vertex = &self.vertices[x as usize];
         if vertex.halfedge == NONE || vertex.flags & DELETED != 0 {
             return;
@@ -251,7 +258,9 @@ impl HalfEdgeMesh {
         let start = vertex.halfedge;
         let mut h = start;
         loop {
-            visit(self.halfedges[next_raw(h) as usize].origin);
+            if !visit(self.halfedges[next_raw(h) as usize].origin) {
+                return;
+            }
             let incoming = prev_raw(h);
             match self.twin_raw(incoming) {
                 Some(n) if n != start => h = n,

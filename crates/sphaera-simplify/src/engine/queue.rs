@@ -188,7 +188,7 @@ mod tests {
         let initial: Vec<Option<(f64, HalfEdgeId)>> = (0..n)
             .map(|_| {
                 let r = lcg(&mut state);
-                (r % 5 != 0).then(|| ((r % 17) as f64, HalfEdgeId((r % 1000) as u32)))
+                (!r.is_multiple_of(5)).then_some(((r % 17) as f64, HalfEdgeId((r % 1000) as u32)))
             })
             .collect();
         let mut queue = Queue::new(&initial);
@@ -208,7 +208,8 @@ mod tests {
                     model[v as usize] = None;
                 }
             } else {
-                let c = (r % 4 != 0).then(|| ((r % 13) as f64, HalfEdgeId((r % 77) as u32)));
+                let c = (!r.is_multiple_of(4))
+                    .then_some(((r % 13) as f64, HalfEdgeId((r % 77) as u32)));
                 queue.set(u, c);
                 model[u as usize] = c;
             }
