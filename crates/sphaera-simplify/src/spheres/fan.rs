@@ -14,7 +14,14 @@
 //! for valence `d`) is a lower bound of the full one (`O(d²)` with the spoke crossings).
 //! Targets are taken in increasing lower bound, and the scan stops at the first lower bound
 //! that cannot beat the best full radius found so far; a full evaluation is abandoned as
-//! soon as its partial maximum loses. The result is the exact minimum of the full radii.
+//! soon as its partial maximum loses. The topology check (ring walks in
+//! [`HalfEdgeMesh::check_collapse`]) is asked first about the overall cheapest target only.
+//! The result is the exact minimum of the full radii over the legal targets, ties to the
+//! lowest half-edge.
+//!
+//! The pruning needs the ordering key to be the radius itself, or a function of it that is
+//! nondecreasing for each target (a per-vertex weight, say): apply the same function to the
+//! lower bounds, or the scan may stop too early.
 
 use glam::{DVec2, DVec3};
 use smallvec::SmallVec;
@@ -198,10 +205,23 @@ impl Fan {
     /// The cheapest target for which `legal` holds: `(radius, half-edge)`, ties to the
     /// lowest half-edge; exactly the minimum of [`Fan::radius`] over the legal outgoing
     /// half-edges.
+    ///
+    /// `legal` (the topology check, a few ring walks) is first asked only about the
+    /// cheapest target overall: if that one is legal it is also the cheapest legal one.
+    /// Only otherwise is the search redone with `legal` filtering every candidate.
     pub(crate) fn best(
         &self,
         mut legal: impl FnMut(HalfEdgeId) -> bool,
     ) -> Option<(f64, HalfEdgeId)> {
+        let (r, g) = self.search(|_| true)?;
+        if legal(g) {
+            return Some((r, g));
+        }
+        self.search(legal)
+    }
+
+    /// The cheapest target for which `legal` holds (see [`Fan::best`]).
+    fn search(&self, mut legal: impl FnMut(HalfEdgeId) -> bool) -> Option<(f64, HalfEdgeId)> {
         let mut lifts: SmallVec<[Lift; 16]> = (0..self.corners.len())
             .filter_map(|c| self.lift(c))
             .collect();
