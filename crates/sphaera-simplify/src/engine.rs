@@ -1,14 +1,27 @@
 //! The greedy collapse loop: a priority queue of per-vertex best collapses, ordered by the
-//! error-sphere radius they would need, re-evaluated lazily with version stamps.
+//! error-sphere radius they would need, re-evaluated around every applied collapse.
+//!
+//! # Performance
+//!
+//! After each collapse `u → v` the kept vertex `v` and its neighbours are re-evaluated
+//! (about 9 vertices on a mesh of valence 6); each re-evaluation builds the projected fan
+//! once ([`Fan`]) and prunes targets by lower bounds, so it costs `O(d²)` arithmetic for
+//! valence `d` plus a few ring walks, and the candidate queue ([`queue`]) holds one entry
+//! per vertex. The initial evaluation of all vertices runs on `rayon` with the `parallel`
+//! feature (same candidates, so the same result). Measured on the 69k-triangle bunny at
+//! 10 %: about 20 µs of CPU per applied collapse on the 2-core reference machine, the
+//! time going to fan construction (loading the neighbours' positions), the lifts of `u`,
+//! the spoke crossings and the topology checks in roughly equal parts.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+mod queue;
 
+use smallvec::SmallVec;
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
 use crate::record::Recorder;
 use crate::simplifier::{LockReport, Progress};
-use crate::spheres::{BoundaryPolicy, collapse_radius};
+use crate::spheres::{BoundaryPolicy, Fan, collapse_radius};
+use queue::Queue;
 
 /// When to stop.
 #[derive(Clone, Copy, Debug)]
@@ -30,42 +43,6 @@ pub(crate) struct Outcome {
     pub locked: LockReport,
 }
 
-/// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated.
-#[derive(Clone, Copy, Debug)]
-struct Candidate {
-    cost: f64,
-    vertex: u32,
-    halfedge: u32,
-    stamp: u32,
-}
-
-impl PartialEq for Candidate {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for Candidate {}
-
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Candidate {
-    /// Reversed (the heap is a max-heap): the lowest cost first, then the lowest vertex,
-    /// half-edge and stamp, so the order is total and deterministic.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .cost
-            .total_cmp(&self.cost)
-            .then(other.vertex.cmp(&self.vertex))
-            .then(other.halfedge.cmp(&self.halfedge))
-            .then(other.stamp.cmp(&self.stamp))
-    }
-}
-
 /// Whether `u` may ever be removed: live, manifold, unlocked and (unless the policy allows
 /// it) not on the boundary.
 fn removable(mesh: &HalfEdgeMesh, u: VertexId, boundary: BoundaryPolicy) -> bool {
@@ -78,18 +55,34 @@ fn removable(mesh: &HalfEdgeMesh, u: VertexId, boundary: BoundaryPolicy) -> bool
 
 /// The cheapest legal collapse out of `u`: `(radius, half-edge)`, ties to the lowest
 /// half-edge.
+///
+/// For an interior vertex the fan is projected once and shared by all targets, and only
+/// the targets that can still win are evaluated in full ([`Fan::best`]); the result is the
+/// minimum of [`collapse_radius`] over the half-edges that pass
+/// [`HalfEdgeMesh::check_collapse`], bit for bit.
+///
+/// `fan` is scratch space (any content), reused between calls.
 fn best_collapse(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
     u: VertexId,
     boundary: BoundaryPolicy,
+    fan: &mut Fan,
 ) -> Option<(f64, HalfEdgeId)> {
     if !removable(mesh, u, boundary) {
         return None;
     }
+    let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
+    if !mesh.is_boundary_vertex(u) {
+        return if fan.rebuild(mesh, radii, u) {
+            fan.best(legal)
+        } else {
+            None
+        };
+    }
     let mut best: Option<(f64, HalfEdgeId)> = None;
     for g in mesh.outgoing(u) {
-        if mesh.check_collapse(g).is_err() {
+        if !legal(g) {
             continue;
         }
         if let Some(r) = collapse_radius(mesh, radii, g, boundary) {
@@ -102,6 +95,50 @@ fn best_collapse(
     best
 }
 
+/// The best collapse of every vertex, in vertex order (in parallel with the `parallel`
+/// feature; each entry is a pure function of the mesh, so the result is the same).
+fn initial_candidates(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    boundary: BoundaryPolicy,
+) -> Vec<Option<(f64, HalfEdgeId)>> {
+    let n = mesh.vertex_count() as u32;
+    let evaluate = |fan: &mut Fan, u: u32| best_collapse(mesh, radii, VertexId(u), boundary, fan);
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        (0..n)
+            .into_par_iter()
+            .map_init(Fan::empty, evaluate)
+            .collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        let mut fan = Fan::empty();
+        (0..n).map(|u| evaluate(&mut fan, u)).collect()
+    }
+}
+
+/// Re-evaluates `u` and makes its best collapse its current candidate (`fan`: scratch).
+fn refresh(
+    queue: &mut Queue,
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    u: VertexId,
+    boundary: BoundaryPolicy,
+    fan: &mut Fan,
+) {
+    let best = best_collapse(mesh, radii, u, boundary, fan);
+    let same = match (best, queue.get(u.0)) {
+        (Some((c, h)), Some((d, g))) => c.total_cmp(&d).is_eq() && h == g,
+        (None, None) => true,
+        _ => false,
+    };
+    if !same {
+        queue.set(u.0, best);
+    }
+}
+
 /// Runs the greedy simplification of `mesh` (whose radii all start at 0).
 pub(crate) fn run(
     mut mesh: HalfEdgeMesh,
@@ -111,7 +148,6 @@ pub(crate) fn run(
 ) -> Outcome {
     let n = mesh.vertex_count();
     let mut radii = vec![0.0; n];
-    let mut stamps = vec![0_u32; n];
     let mut locked = LockReport::default();
     for x in 0..n {
         let x = VertexId(x as u32);
@@ -125,24 +161,8 @@ pub(crate) fn run(
         }
     }
 
-    let mut heap = BinaryHeap::new();
-    let push = |heap: &mut BinaryHeap<Candidate>,
-                mesh: &HalfEdgeMesh,
-                radii: &[f64],
-                u: u32,
-                stamp: u32| {
-        if let Some((cost, h)) = best_collapse(mesh, radii, VertexId(u), stop.boundary) {
-            heap.push(Candidate {
-                cost,
-                vertex: u,
-                halfedge: h.0,
-                stamp,
-            });
-        }
-    };
-    for u in 0..n as u32 {
-        push(&mut heap, &mesh, &radii, u, 0);
-    }
+    let mut queue = Queue::new(&initial_candidates(&mesh, &radii, stop.boundary));
+    let mut fan = Fan::empty();
 
     let mut collapses = 0;
     let start_faces = mesh.live_face_count();
@@ -163,24 +183,20 @@ pub(crate) fn run(
             report(mesh.live_face_count());
             next_report = removed + report_every;
         }
-        let Some(top) = heap.pop() else { break };
-        let u = top.vertex as usize;
-        if stamps.get(u) != Some(&top.stamp) {
-            continue;
-        }
+        let Some(top) = queue.pop() else { break };
         if top.cost > stop.max_radius {
             break;
         }
+        let u = VertexId(top.vertex);
         // Re-check the candidate: a change two rings away can alter the link condition
-        // without bumping u's stamp.
+        // without re-evaluating u.
         let h = HalfEdgeId(top.halfedge);
         let fresh = mesh
             .check_collapse(h)
             .ok()
             .and_then(|()| collapse_radius(&mesh, &radii, h, stop.boundary));
         let Some(radius) = fresh.filter(|r| r.total_cmp(&top.cost).is_eq()) else {
-            stamps[u] = stamps[u].wrapping_add(1);
-            push(&mut heap, &mesh, &radii, top.vertex, stamps[u]);
+            refresh(&mut queue, &mesh, &radii, u, stop.boundary, &mut fan);
             continue;
         };
         let v = mesh.target(h);
@@ -189,8 +205,8 @@ pub(crate) fn run(
             recorder.before(&mesh, h);
         }
         if mesh.collapse_edge(h, target_position).is_err() {
-            // The checks above passed, so this does not happen; skip the vertex if it does.
-            stamps[u] = stamps[u].wrapping_add(1);
+            // The checks above passed, so this does not happen; skip the vertex if it does
+            // (popping it unqueued it).
             continue;
         }
         collapses += 1;
@@ -200,12 +216,10 @@ pub(crate) fn run(
         if let Some(recorder) = recorder.as_deref_mut() {
             recorder.after(&mesh, radius);
         }
-        stamps[u] = stamps[u].wrapping_add(1);
-        let ring: Vec<VertexId> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
+        // Re-evaluate v and its neighbours (u is gone, and popping it unqueued it).
+        let ring: SmallVec<[VertexId; 16]> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
         for x in ring {
-            let i = x.0 as usize;
-            stamps[i] = stamps[i].wrapping_add(1);
-            push(&mut heap, &mesh, &radii, x.0, stamps[i]);
+            refresh(&mut queue, &mesh, &radii, x, stop.boundary, &mut fan);
         }
     }
     report(mesh.live_face_count());

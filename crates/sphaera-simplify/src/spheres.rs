@@ -9,9 +9,16 @@
 //! `r_new(φ(p)) ≥ |p − φ(p)| + r_old(p)` everywhere; the slack of that inequality is convex
 //! on each cell, so checking it at the overlay vertices (the projected fan vertices and the
 //! crossings of old spokes `u–w_i` with new spokes `v–w_j`) is exact.
+//!
+//! The parts that depend only on `u` are computed once per vertex by [`Fan`]; this module
+//! holds the entry point for one collapse, the boundary case and the planar helpers.
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
+
+mod fan;
+
+pub(crate) use fan::Fan;
 
 /// The smallest accepted sine of a projected corner angle: below it a projected triangle
 /// counts as folded or degenerate and the collapse is refused.
@@ -28,16 +35,6 @@ const MIN_WEIGHT_V: f64 = 1e-12;
 /// floating-point rounding (relative to the largest absolute coordinate of the fan).
 const ROUNDING_MARGIN: f64 = 1e-12;
 
-/// The 3D position and error radius of a vertex of the fan.
-#[derive(Clone, Copy, Debug)]
-struct FanVertex {
-    id: VertexId,
-    position: DVec3,
-    radius: f64,
-    /// Projection onto the fan's plane (origin at `u`).
-    projected: DVec2,
-}
-
 /// The radius vertex `v = target(h)` needs after collapsing `h` (its origin `u` into `v`,
 /// `v` keeping its position), or `None` when the collapse is refused geometrically: `u` is
 /// on the boundary, the projected old or new fan folds, a new triangle would be a sliver or
@@ -45,6 +42,9 @@ struct FanVertex {
 ///
 /// Topology (link condition, locks, non-manifold vertices) is the caller's business
 /// ([`HalfEdgeMesh::check_collapse`]). `radii` is indexed by half-edge-mesh vertex.
+///
+/// The computation lives in [`Fan`]: to evaluate every collapse out of one vertex, build
+/// its fan once and use [`Fan::best`] (same radii, bit for bit).
 pub(crate) fn collapse_radius(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
@@ -52,130 +52,13 @@ pub(crate) fn collapse_radius(
     boundary: BoundaryPolicy,
 ) -> Option<f64> {
     let u = mesh.origin(h);
-    let v = mesh.target(h);
     if mesh.is_boundary_vertex(u) {
         return match boundary {
             BoundaryPolicy::Lock => None,
             BoundaryPolicy::Collapse => boundary_collapse_radius(mesh, radii, h),
         };
     }
-    let radius = |x: VertexId| radii.get(x.0 as usize).copied().unwrap_or(f64::INFINITY);
-    let pu = mesh.position(u);
-    let (ru, rv) = (radius(u), radius(v));
-    let pv = mesh.position(v);
-
-    // The old fan of u: triangles (u, a, b), counter-clockwise.
-    let fan: Vec<(VertexId, VertexId)> = mesh
-        .outgoing(u)
-        .map(|g| (mesh.target(g), mesh.origin(mesh.prev(g))))
-        .collect();
-    if fan.len() < 3 {
-        return None;
-    }
-    let normal = fan.iter().fold(DVec3::ZERO, |n, &(a, b)| {
-        n + (mesh.position(a) - pu).cross(mesh.position(b) - pu)
-    });
-    let normal = normal.try_normalize()?;
-    let (e1, e2) = normal.any_orthonormal_pair();
-    let project = |p: DVec3| DVec2::new((p - pu).dot(e1), (p - pu).dot(e2));
-    let vertex = |x: VertexId| {
-        let position = mesh.position(x);
-        FanVertex {
-            id: x,
-            position,
-            radius: radius(x),
-            projected: project(position),
-        }
-    };
-    let fan: Vec<(FanVertex, FanVertex)> =
-        fan.iter().map(|&(a, b)| (vertex(a), vertex(b))).collect();
-    let scale = fan
-        .iter()
-        .flat_map(|(a, b)| [a.position, b.position])
-        .chain([pu])
-        .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-
-    // The old fan must project injectively: every triangle positively oriented, and the
-    // angles around u summing to one turn.
-    let mut angle_sum = 0.0;
-    for (a, b) in &fan {
-        let cross = a.projected.perp_dot(b.projected);
-        if cross <= MIN_SINE * a.projected.length() * b.projected.length() {
-            return None;
-        }
-        angle_sum += cross.atan2(a.projected.dot(b.projected));
-    }
-    if (angle_sum - std::f64::consts::TAU).abs() > ANGLE_SUM_TOLERANCE {
-        return None;
-    }
-
-    // The new fan: the triangles of u not containing v, re-apexed at v.
-    let pv2 = project(pv);
-    let mut new_fan: Vec<(FanVertex, FanVertex)> = Vec::with_capacity(fan.len());
-    for &(a, b) in &fan {
-        if a.id == v || b.id == v {
-            continue;
-        }
-        let (da, db) = (a.projected - pv2, b.projected - pv2);
-        if da.perp_dot(db) <= MIN_SINE * da.length() * db.length() {
-            return None;
-        }
-        let new_normal = (a.position - pv).cross(b.position - pv);
-        let old_normal = (a.position - pu).cross(b.position - pu);
-        let longest = (a.position - pv)
-            .length_squared()
-            .max((b.position - pv).length_squared())
-            .max((a.position - b.position).length_squared());
-        if new_normal.dot(old_normal) <= 0.0 || new_normal.length() <= MIN_SINE * longest {
-            return None;
-        }
-        new_fan.push((a, b));
-    }
-    if new_fan.is_empty() {
-        return None;
-    }
-
-    let mut needed = rv;
-    // Overlay vertex u': the point u of the old fan, lifted onto the new fan.
-    let mut best: Option<(f64, [f64; 3], &(FanVertex, FanVertex))> = None;
-    for tri in &new_fan {
-        let l = barycentric(DVec2::ZERO, pv2, tri.0.projected, tri.1.projected)?;
-        let worst = l[0].min(l[1]).min(l[2]);
-        if best.is_none_or(|(w, _, _)| worst > w) {
-            best = Some((worst, l, tri));
-        }
-    }
-    let (worst, l, (a, b)) = best?;
-    if worst < -1e-9 {
-        return None;
-    }
-    let lifted = l[0] * pv + l[1] * a.position + l[2] * b.position;
-    needed = needed.max(required(
-        (pu - lifted).length() + ru,
-        l[1] * a.radius + l[2] * b.radius,
-        l[0],
-    )?);
-
-    // Overlay vertices where an old spoke u–w crosses a new spoke v–x.
-    let mut spokes: Vec<FanVertex> = fan.iter().map(|&(a, _)| a).filter(|a| a.id != v).collect();
-    spokes.sort_by_key(|a| a.id.0);
-    spokes.dedup_by_key(|a| a.id.0);
-    for w in &spokes {
-        for x in &spokes {
-            if x.id == w.id {
-                continue;
-            }
-            let Some((s, t)) = crossing(DVec2::ZERO, w.projected, pv2, x.projected) else {
-                continue;
-            };
-            let p = pu + s * (w.position - pu);
-            let r_old = (1.0 - s) * ru + s * w.radius;
-            let q = pv + t * (x.position - pv);
-            needed = needed.max(required((p - q).length() + r_old, t * x.radius, 1.0 - t)?);
-        }
-    }
-    let margin = ROUNDING_MARGIN * scale.max(needed);
-    Some(needed + margin)
+    Fan::new(mesh, radii, u)?.radius(h)
 }
 
 /// What to do with boundary vertices.
@@ -254,24 +137,67 @@ fn barycentric(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> Option<[f64; 3]> {
 /// Where the planar segments `a0–a1` and `b0–b1` cross, as the parameters `(s, t)` along
 /// each (clamped to `[0, 1]`), or `None` if they do not cross or are parallel (parallel
 /// overlaps add no overlay vertex beyond the endpoints, which are checked separately).
-fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
-    const SLACK: f64 = 1e-9;
+/// The tests' entry point; the code shares parts between pairs with [`crossing_parts`].
+#[cfg(test)]
+pub(super) fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
     let (da, db) = (a1 - a0, b1 - b0);
-    let denom = da.perp_dot(db);
-    if denom.abs() <= 1e-14 * da.length() * db.length() {
+    let d = b0 - a0;
+    crossing_parts(
+        da.perp_dot(db),
+        da.length(),
+        db.length(),
+        d.perp_dot(db),
+        d.perp_dot(da),
+    )
+}
+
+/// Where the planar segments `a0–a1` and `b0–b1` cross, as the parameters `(s, t)` along
+/// each (clamped to `[0, 1]`), or `None` if they do not cross or are parallel (parallel
+/// overlaps add no overlay vertex beyond the endpoints, which are checked separately);
+/// computed from parts that callers share between many pairs: with
+/// `da = a1 − a0`, `db = b1 − b0` and `d = b0 − a0`, the arguments are `da ⟂ db`, `|da|`,
+/// `|db|`, `d ⟂ db` and `d ⟂ da` (`⟂` the perp-dot product).
+fn crossing_parts(
+    denom: f64,
+    da_length: f64,
+    db_length: f64,
+    d_perp_db: f64,
+    d_perp_da: f64,
+) -> Option<(f64, f64)> {
+    const SLACK: f64 = 1e-9;
+    // Cheap rejection without dividing: a quotient clearly outside
+    // `[−2·SLACK, 1 + 2·SLACK]` rounds to a value outside `[−SLACK, 1 + SLACK]` too (the
+    // margin is orders of magnitude above the rounding of the products), so this only
+    // skips pairs the exact test below rejects. Most pairs of spokes do not cross.
+    let (lo, hi) = (-2.0 * SLACK, 1.0 + 2.0 * SLACK);
+    let clearly_outside = |num: f64| {
+        if denom > 0.0 {
+            num < lo * denom || num > hi * denom
+        } else if denom < 0.0 {
+            num > lo * denom || num < hi * denom
+        } else {
+            false
+        }
+    };
+    if clearly_outside(d_perp_db) || clearly_outside(d_perp_da) {
         return None;
     }
-    let d = b0 - a0;
-    let s = d.perp_dot(db) / denom;
-    let t = d.perp_dot(da) / denom;
+    let s = d_perp_db / denom;
+    let t = d_perp_da / denom;
     let inside = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);
-    (inside(s) && inside(t)).then(|| (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)))
+    // Tested after the range (the cheap rejection of most pairs); a zero `denom` gives
+    // an infinite or NaN parameter, which is not inside either.
+    if !(inside(s) && inside(t)) || denom.abs() <= 1e-14 * da_length * db_length {
+        return None;
+    }
+    Some((s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+    use glam::DVec3;
 
     /// A hexagonal fan around the origin lifted by `height` at the centre.
     fn hexagon(height: f64) -> HalfEdgeMesh {

@@ -197,8 +197,10 @@ impl HalfEdgeMesh {
         if w1 == Some(w0) {
             return Err(refuse(CollapseRefusal::TooFewNeighbours));
         }
-        let ring_u: SmallVec<[u32; 16]> = self.neighbors(VertexId(u)).map(|x| x.0).collect();
-        let ring_v: SmallVec<[u32; 16]> = self.neighbors(VertexId(v)).map(|x| x.0).collect();
+        let mut ring_u: SmallVec<[u32; 16]> = SmallVec::new();
+        let mut ring_v: SmallVec<[u32; 16]> = SmallVec::new();
+        self.ring_into(u, &mut ring_u);
+        self.ring_into(v, &mut ring_v);
         let mut common = 0;
         for &x in &ring_u {
             if ring_v.contains(&x) {
@@ -215,12 +217,60 @@ impl HalfEdgeMesh {
             return Err(refuse(CollapseRefusal::TooFewNeighbours));
         }
         for w in std::iter::once(w0).chain(w1) {
-            let valence = self.neighbors(VertexId(w)).count();
-            if valence.saturating_sub(1) < minimum(self.is_boundary_vertex(VertexId(w))) {
+            // Only whether the valence reaches `minimum + 1` matters: stop counting there.
+            let needed = minimum(self.is_boundary_vertex(VertexId(w))) + 1;
+            if self.valence_up_to(w, needed) < needed {
                 return Err(refuse(CollapseRefusal::TooFewNeighbours));
             }
         }
         Ok(())
+    }
+
+    /// Pushes the neighbours of `x` onto `out`, in the order of
+    /// [`HalfEdgeMesh::neighbors`] (a raw loop: this is the inner loop of
+    /// [`HalfEdgeMesh::check_collapse`]).
+    fn ring_into(&self, x: u32, out: &mut SmallVec<[u32; 16]>) {
+        self.walk_ring(x, |y| {
+            out.push(y);
+            true
+        });
+    }
+
+    /// The number of neighbours of `x` (`neighbors(x).count()`), counted up to `cap`.
+    fn valence_up_to(&self, x: u32, cap: usize) -> usize {
+        let mut count = 0;
+        self.walk_ring(x, |_| {
+            count += 1;
+            count < cap
+        });
+        count
+    }
+
+    /// Calls `visit` on each neighbour of `x`, exactly as [`HalfEdgeMesh::neighbors`]
+    /// yields them (the target of every outgoing half-edge, then, for an open fan, the
+    /// origin of the last face's incoming edge), until it returns `false`.
+    #[inline]
+    fn walk_ring(&self, x: u32, mut visit: impl FnMut(u32) -> bool) {
+        let vertex = &self.vertices[x as usize];
+        if vertex.halfedge == NONE || vertex.flags & DELETED != 0 {
+            return;
+        }
+        let start = vertex.halfedge;
+        let mut h = start;
+        loop {
+            if !visit(self.halfedges[next_raw(h) as usize].origin) {
+                return;
+            }
+            let incoming = prev_raw(h);
+            match self.twin_raw(incoming) {
+                Some(n) if n != start => h = n,
+                Some(_) => return,
+                None => {
+                    visit(self.halfedges[incoming as usize].origin);
+                    return;
+                }
+            }
+        }
     }
 
     /// Collapses half-edge `h`: its origin `u` is removed, its target `v` moves to
