@@ -20,7 +20,8 @@ use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
 use crate::record::Recorder;
 use crate::simplifier::{LockReport, Progress};
-use crate::spheres::{BoundaryPolicy, Fan, collapse_radius};
+use crate::spheres::{BoundaryPolicy, Fan, collapse_radius, edge_radius, simple_map_radius};
+use crate::weights::Weights;
 use queue::Queue;
 
 /// When to stop.
@@ -66,33 +67,75 @@ fn best_collapse(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
     u: VertexId,
-    boundary: BoundaryPolicy,
+    policy: Policy<'_>,
     fan: &mut Fan,
 ) -> Option<(f64, HalfEdgeId)> {
-    if !removable(mesh, u, boundary) {
+    if !removable(mesh, u, policy.boundary) {
         return None;
     }
+    let weight = policy.weight(mesh, u)?;
     let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
-    if !mesh.is_boundary_vertex(u) {
-        return if fan.rebuild(mesh, radii, u) {
-            fan.best(legal)
-        } else {
-            None
-        };
-    }
+    let better = |r: f64, g: HalfEdgeId, best: Option<(f64, HalfEdgeId)>| {
+        best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
+    };
     let mut best: Option<(f64, HalfEdgeId)> = None;
-    for g in mesh.outgoing(u) {
-        if !legal(g) {
-            continue;
+    if mesh.is_boundary_vertex(u) {
+        for g in mesh.outgoing(u) {
+            if !legal(g) {
+                continue;
+            }
+            if let Some(r) = collapse_radius(mesh, radii, g, policy.boundary)
+                && better(r, g, best)
+            {
+                best = Some((r, g));
+            }
         }
-        if let Some(r) = collapse_radius(mesh, radii, g, boundary) {
-            let better = best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt());
-            if better {
+    } else {
+        if fan.rebuild(mesh, radii, u) {
+            best = fan.best(legal);
+        }
+        // The simple map where it beats the tight one (see `edge_radius`); its radius is
+        // at least `r_u + |u − v|`, which prunes most targets without any work.
+        let ru = radii.get(u.0 as usize).copied().unwrap_or(f64::INFINITY);
+        let pu = mesh.position(u);
+        for g in mesh.outgoing(u) {
+            let bound = ru + (mesh.position(mesh.target(g)) - pu).length();
+            if best.is_some_and(|(c, _)| bound > c) || !legal(g) {
+                continue;
+            }
+            if let Some(r) = simple_map_radius(mesh, radii, g)
+                && better(r, g, best)
+            {
                 best = Some((r, g));
             }
         }
     }
-    best
+    best.map(|(r, g)| (r / weight, g))
+}
+
+/// How candidates are costed: the boundary policy and the optional tolerance weights.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Policy<'w> {
+    /// Whether boundary vertices may be removed.
+    pub boundary: BoundaryPolicy,
+    /// Per-vertex tolerance weights (`None`: all 1).
+    pub weights: Option<&'w Weights>,
+}
+
+impl Policy<'_> {
+    /// The weight of every collapse out of `u` (the smallest over its closed one-ring), or
+    /// `None` when it is 0 (the collapse is forbidden).
+    fn weight(&self, mesh: &HalfEdgeMesh, u: VertexId) -> Option<f64> {
+        let w = self.weights.map_or(1.0, |w| w.of_vertex(mesh, u));
+        (w > 0.0).then_some(w)
+    }
+
+    /// The queue key of collapsing `h` now: its radius over its weight, and the radius.
+    fn key(&self, mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -> Option<(f64, f64)> {
+        let weight = self.weight(mesh, mesh.origin(h))?;
+        let r = edge_radius(mesh, radii, h, self.boundary)?;
+        Some((r / weight, r))
+    }
 }
 
 /// The best collapse of every vertex, in vertex order (in parallel with the `parallel`
@@ -100,10 +143,10 @@ fn best_collapse(
 fn initial_candidates(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
-    boundary: BoundaryPolicy,
+    policy: Policy<'_>,
 ) -> Vec<Option<(f64, HalfEdgeId)>> {
     let n = mesh.vertex_count() as u32;
-    let evaluate = |fan: &mut Fan, u: u32| best_collapse(mesh, radii, VertexId(u), boundary, fan);
+    let evaluate = |fan: &mut Fan, u: u32| best_collapse(mesh, radii, VertexId(u), policy, fan);
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
@@ -125,10 +168,10 @@ fn refresh(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
     u: VertexId,
-    boundary: BoundaryPolicy,
+    policy: Policy<'_>,
     fan: &mut Fan,
 ) {
-    let best = best_collapse(mesh, radii, u, boundary, fan);
+    let best = best_collapse(mesh, radii, u, policy, fan);
     let same = match (best, queue.get(u.0)) {
         (Some((c, h)), Some((d, g))) => c.total_cmp(&d).is_eq() && h == g,
         (None, None) => true,
@@ -143,9 +186,14 @@ fn refresh(
 pub(crate) fn run(
     mut mesh: HalfEdgeMesh,
     stop: Stop,
+    weights: Option<&Weights>,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
     mut recorder: Option<&mut Recorder>,
 ) -> Outcome {
+    let policy = Policy {
+        boundary: stop.boundary,
+        weights,
+    };
     let n = mesh.vertex_count();
     let mut radii = vec![0.0; n];
     let mut locked = LockReport::default();
@@ -161,7 +209,7 @@ pub(crate) fn run(
         }
     }
 
-    let mut queue = Queue::new(&initial_candidates(&mesh, &radii, stop.boundary));
+    let mut queue = Queue::new(&initial_candidates(&mesh, &radii, policy));
     let mut fan = Fan::empty();
 
     let mut collapses = 0;
@@ -194,9 +242,9 @@ pub(crate) fn run(
         let fresh = mesh
             .check_collapse(h)
             .ok()
-            .and_then(|()| collapse_radius(&mesh, &radii, h, stop.boundary));
-        let Some(radius) = fresh.filter(|r| r.total_cmp(&top.cost).is_eq()) else {
-            refresh(&mut queue, &mesh, &radii, u, stop.boundary, &mut fan);
+            .and_then(|()| policy.key(&mesh, &radii, h));
+        let Some((_, radius)) = fresh.filter(|(key, _)| key.total_cmp(&top.cost).is_eq()) else {
+            refresh(&mut queue, &mesh, &radii, u, policy, &mut fan);
             continue;
         };
         let v = mesh.target(h);
@@ -219,7 +267,7 @@ pub(crate) fn run(
         // Re-evaluate v and its neighbours (u is gone, and popping it unqueued it).
         let ring: SmallVec<[VertexId; 16]> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
         for x in ring {
-            refresh(&mut queue, &mesh, &radii, x, stop.boundary, &mut fan);
+            refresh(&mut queue, &mesh, &radii, x, policy, &mut fan);
         }
     }
     report(mesh.live_face_count());

@@ -384,7 +384,8 @@ impl<'a> Simplifier<'a> {
             });
         }
         let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
-        let outcome = engine::run(half_edges, stop, self.progress, None);
+        let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
+        let outcome = engine::run(half_edges, stop, weights.as_ref(), self.progress, None);
         let live = outcome.mesh.to_trimesh();
         let vertex_radii: Vec<f64> = live
             .vertex_map
@@ -442,7 +443,14 @@ impl<'a> Simplifier<'a> {
         let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
         let finest = half_edges.clone();
         let mut recorder = Recorder::new(&half_edges);
-        let outcome = engine::run(half_edges, stop, self.progress, Some(&mut recorder));
+        let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
+        let outcome = engine::run(
+            half_edges,
+            stop,
+            weights.as_ref(),
+            self.progress,
+            Some(&mut recorder),
+        );
         Ok(Hierarchy::from_record(
             &finest,
             recorder,

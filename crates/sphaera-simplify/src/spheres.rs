@@ -61,6 +61,25 @@ pub(crate) fn collapse_radius(
     Fan::new(mesh, radii, u)?.radius(h)
 }
 
+/// The radius the engine uses for collapsing `h`: for an interior vertex the smaller of
+/// the tight map's [`collapse_radius`] and the simple map's [`simple_map_radius`] (both
+/// are rigorous), for a boundary vertex [`collapse_radius`].
+pub(crate) fn edge_radius(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    h: HalfEdgeId,
+    boundary: BoundaryPolicy,
+) -> Option<f64> {
+    let tight = collapse_radius(mesh, radii, h, boundary);
+    if mesh.is_boundary_vertex(mesh.origin(h)) {
+        return tight;
+    }
+    match (tight, simple_map_radius(mesh, radii, h)) {
+        (Some(t), Some(s)) => Some(t.min(s)),
+        (t, s) => t.or(s),
+    }
+}
+
 /// What to do with boundary vertices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum BoundaryPolicy {
@@ -85,6 +104,15 @@ fn boundary_collapse_radius(mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -
     if mesh.twin(h).is_some() {
         return None;
     }
+    simple_map_radius(mesh, radii, h)
+}
+
+/// The radius of the simple map for collapsing `h` (its origin `u` into its target `v`):
+/// `max(r_v, r_u + |u − v|)` plus the rounding margin, or `None` if a new triangle would
+/// flip or become a sliver. Valid for any edge (see [`boundary_collapse_radius`] for why):
+/// the fallback where the projected map folds, and a cap where it is ill-conditioned
+/// (steep or thin fans, where the tight map can be far worse).
+pub(crate) fn simple_map_radius(mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -> Option<f64> {
     let u = mesh.origin(h);
     let v = mesh.target(h);
     let radius = |x: VertexId| radii.get(x.0 as usize).copied().unwrap_or(f64::INFINITY);

@@ -1,7 +1,7 @@
 //! Per-vertex tolerance weights: how much of the error bound a region may use.
 
 use sphaera_mesh::TriMesh;
-use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
+use sphaera_mesh::topology::{HalfEdgeMesh, VertexId};
 
 use crate::SimplifyError;
 
@@ -57,12 +57,11 @@ impl Weights {
         )
     }
 
-    /// The weight of collapsing `h`: the smallest weight over the removed vertex, its
-    /// parent and the removed vertex's neighbours (every vertex of the region that
-    /// changes). 0 means the collapse is forbidden.
-    pub fn of_collapse(&self, mesh: &HalfEdgeMesh, h: HalfEdgeId) -> f64 {
+    /// The weight of every collapse out of `u`: the smallest weight over `u` and its
+    /// neighbours (every vertex of the region that changes, the parent included). 0 means
+    /// the collapse is forbidden.
+    pub fn of_vertex(&self, mesh: &HalfEdgeMesh, u: VertexId) -> f64 {
         let w = |x: VertexId| self.0.get(x.0 as usize).copied().unwrap_or(1.0);
-        let u = mesh.origin(h);
-        mesh.neighbors(u).fold(w(u).min(w(mesh.target(h))), |m, x| m.min(w(x)))
+        mesh.neighbors(u).fold(w(u), |m, x| m.min(w(x)))
     }
 }

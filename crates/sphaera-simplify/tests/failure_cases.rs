@@ -232,3 +232,104 @@ fn output_is_deterministic() {
     let b = Simplifier::new(&mesh).target_ratio(0.3).build().unwrap();
     assert_eq!(a, b);
 }
+
+#[test]
+fn all_zero_weights_are_a_clear_error() {
+    let mesh = shapes::sphere(1.0, 8).unwrap();
+    let zeros = vec![0.0; mesh.vertex_count()];
+    let err = Simplifier::new(&mesh).weights(&zeros).build().unwrap_err();
+    assert!(matches!(err, SimplifyError::AllWeightsZero), "{err}");
+    assert!(err.to_string().contains("nothing can be simplified"));
+    let err = Simplifier::new(&mesh)
+        .weights(&zeros)
+        .build_hierarchy()
+        .unwrap_err();
+    assert!(matches!(err, SimplifyError::AllWeightsZero));
+}
+
+#[test]
+fn bad_weights_are_errors() {
+    let mesh = shapes::sphere(1.0, 8).unwrap();
+    let n = mesh.vertex_count();
+    let err = Simplifier::new(&mesh)
+        .weights(&vec![1.0; n - 1])
+        .build()
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        SimplifyError::LengthMismatch { name: "weights", actual, expected } if actual == n - 1 && expected == n
+    ));
+    for bad in [f64::NAN, -0.5, f64::INFINITY] {
+        let mut w = vec![1.0; n];
+        w[5] = bad;
+        let err = Simplifier::new(&mesh).weights(&w).build().unwrap_err();
+        assert!(
+            matches!(
+                err,
+                SimplifyError::InvalidVertexValue {
+                    name: "weights",
+                    index: 5,
+                    ..
+                }
+            ),
+            "{bad}: {err}"
+        );
+    }
+}
+
+#[test]
+fn zero_weight_regions_do_not_move_and_small_weights_keep_their_error_small() {
+    let mesh = shapes::sphere(1.0, 16).unwrap();
+    let p = mesh.positions();
+    // Freeze the cap z > 0.5, make z < -0.5 ten times stricter.
+    let weights: Vec<f64> = p
+        .iter()
+        .map(|q| {
+            if q.z > 0.5 {
+                0.0
+            } else if q.z < -0.5 {
+                0.1
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let plain = Simplifier::new(&mesh).target_ratio(0.2).build().unwrap();
+    let out = Simplifier::new(&mesh)
+        .weights(&weights)
+        .target_ratio(0.2)
+        .build()
+        .unwrap();
+    // Every input triangle touching a frozen vertex is still there, unchanged.
+    let kept: std::collections::BTreeSet<[u32; 3]> = out
+        .mesh
+        .triangles()
+        .iter()
+        .map(|t| t.map(|i| out.original_vertex[i as usize]))
+        .collect();
+    for t in mesh.triangles() {
+        if t.iter().any(|&v| weights[v as usize] == 0.0) {
+            assert!(
+                kept.contains(t),
+                "triangle {t:?} near a frozen vertex changed"
+            );
+        }
+    }
+    // The strict region ends with a smaller error than without weights.
+    let worst_south = |s: &sphaera_simplify::Simplified| {
+        s.original_vertex
+            .iter()
+            .zip(&s.vertex_radii)
+            .filter(|(o, _)| p[**o as usize].z < -0.6)
+            .fold(0.0_f64, |m, (_, &r)| m.max(r))
+    };
+    assert!(worst_south(&out) < worst_south(&plain));
+    // With a bound, the strict region stays within a tenth of it.
+    let bound = 0.05;
+    let bounded = Simplifier::new(&mesh)
+        .weights(&weights)
+        .max_error(MaxError::Absolute(bound))
+        .build()
+        .unwrap();
+    assert!(worst_south(&bounded) <= 0.1 * bound + 1e-12);
+}
