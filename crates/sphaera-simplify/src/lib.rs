@@ -67,8 +67,10 @@
 //! flat region the collapse costs nothing, unlike the simple map that sends `u` to `v`
 //! (which needs `r_v ≥ r_u + |u − v|`).
 //!
-//! Collapses that fold the projection are refused, as are those that flip a triangle's
-//! normal (more than 90°) or create a sliver. By default boundary vertices are never removed
+//! Where the projection folds, or where the tight map is worse (steep or thin fans, where
+//! it is ill-conditioned), the simple map is used instead: both are rigorous, and the
+//! engine keeps the smaller radius. Collapses that flip a triangle's normal (more than
+//! 90°) or create a sliver are refused. By default boundary vertices are never removed
 //! (interior vertices may collapse onto them); with
 //! [`Simplifier::lock_boundary`]`(false)` they may collapse along boundary edges, with the
 //! simple map sending `u` to `v` (rigorous, but it needs `r_v ≥ r_u + |u − v|`).
@@ -76,10 +78,12 @@
 //! [`HalfEdgeMesh::check_collapse`](sphaera_mesh::topology::HalfEdgeMesh::check_collapse)
 //! (link condition, tetrahedron) apply. What stayed locked is in [`Simplified::locked`].
 //!
-//! The order is error-driven: a priority queue holds each vertex's cheapest legal collapse,
-//! keyed by the radius it would give `v` (ties broken by vertex and half-edge index, so the
-//! result is deterministic); after a collapse the kept vertex and its neighbours are
-//! re-evaluated (stale entries are recognised by version stamps).
+//! The order is error-driven: a priority queue (one entry per vertex, updated in place)
+//! holds each vertex's cheapest legal collapse, keyed by the radius it would give `v`
+//! divided by the smallest [tolerance weight](Simplifier::weights) of the vertices it
+//! changes (ties broken by vertex and half-edge index, so the result is deterministic);
+//! after a collapse the kept vertex and its neighbours are re-evaluated, and a popped
+//! candidate is re-validated before it is applied.
 //!
 //! # The progressive hierarchy
 //!
@@ -112,9 +116,15 @@
 //!
 //! # Performance
 //!
-//! Not yet benchmarked. The work per collapse is bounded by the valences around the kept
-//! vertex (each re-evaluation is `O(d²)` for valence `d`), so the whole run is
-//! `O(T log T)` for `T` triangles on meshes of bounded valence.
+//! The work per collapse is bounded by the valences around the kept vertex (each
+//! re-evaluation is `O(d²)` for valence `d`, with the fan projected once per vertex and
+//! targets pruned by a lower bound), so the whole run is `O(T log T)` for `T` triangles on
+//! meshes of bounded valence. The initial evaluation of every vertex runs in parallel with
+//! the default `parallel` feature (identical results without it). Measured on the 2-core
+//! reference machine: about 0.6–0.9 s for the 69k-triangle bunny at 10 % and 11 s for the
+//! 871k-triangle dragon at 2 %, 10–15× slower than meshoptimizer (which has no certified
+//! bound); figures and the same-run comparison are in the repository's
+//! `docs/benchmarks.md`.
 //!
 //! # See also
 //!
