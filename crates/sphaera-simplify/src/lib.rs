@@ -94,8 +94,10 @@
 //!
 //! [`sphaera_mesh::topology::HalfEdgeMesh`] (the editable mesh and its collapse records).
 
+mod edge_radius;
 mod engine;
 mod error;
+mod quadric;
 mod simplifier;
 mod spheres;
 
