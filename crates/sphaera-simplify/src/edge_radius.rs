@@ -313,7 +313,9 @@ impl Region {
         for apex in [0, 1] {
             let (l, (a, b, _)) = locate(
                 at(apex),
-                self.new.iter().map(|&(a, b, o)| ([t2, at(a), at(b)], (a, b, o))),
+                self.new
+                    .iter()
+                    .map(|&(a, b, o)| ([t2, at(a), at(b)], (a, b, o))),
             )?;
             let q = l[0] * t + l[1] * self.position(a) + l[2] * self.position(b);
             let demand = (self.position(apex) - q).length() + self.radius(apex)
@@ -332,11 +334,12 @@ impl Region {
         needed = needed.max((p - t).length() + r_old + margin);
 
         // Old interior edges crossing new spokes.
-        let old_edges = self
-            .fan_u
-            .iter()
-            .map(|&(a, _)| (0, a))
-            .chain(self.fan_v.iter().filter(|&&(a, _)| a != 0).map(|&(a, _)| (1, a)));
+        let old_edges = self.fan_u.iter().map(|&(a, _)| (0, a)).chain(
+            self.fan_v
+                .iter()
+                .filter(|&&(a, _)| a != 0)
+                .map(|&(a, _)| (1, a)),
+        );
         for (e0, e1) in old_edges {
             for &(x, _, _) in &self.new {
                 if x == e1 {
@@ -373,7 +376,7 @@ fn is_one_turn(centre: DVec2, fan: impl Iterator<Item = (DVec2, DVec2)>) -> bool
     for (a, b) in fan {
         let (da, db) = (a - centre, b - centre);
         let cross = da.perp_dot(db);
-        if !(cross > MIN_SINE * da.length() * db.length()) {
+        if cross.is_nan() || cross <= MIN_SINE * da.length() * db.length() {
             return false;
         }
         sum += cross.atan2(da.dot(db));
@@ -401,7 +404,7 @@ fn locate<T>(p: DVec2, tris: impl Iterator<Item = ([DVec2; 3], T)>) -> Option<([
 /// Barycentric coordinates of `p` in the planar triangle `c`, or `None` if degenerate.
 fn barycentric(p: DVec2, c: [DVec2; 3]) -> Option<[f64; 3]> {
     let area = (c[1] - c[0]).perp_dot(c[2] - c[0]);
-    if !(area.abs() > f64::MIN_POSITIVE) {
+    if area.is_nan() || area.abs() <= f64::MIN_POSITIVE {
         return None;
     }
     let l0 = (c[1] - p).perp_dot(c[2] - p) / area;
@@ -416,7 +419,7 @@ fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
     const SLACK: f64 = 1e-9;
     let (da, db) = (a1 - a0, b1 - b0);
     let denom = da.perp_dot(db);
-    if !(denom.abs() > 1e-14 * da.length() * db.length()) {
+    if denom.is_nan() || denom.abs() <= 1e-14 * da.length() * db.length() {
         return None;
     }
     let d = b0 - a0;

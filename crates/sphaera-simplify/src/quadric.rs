@@ -71,7 +71,7 @@ impl Quadric {
     pub(crate) fn triangle(a: DVec3, b: DVec3, c: DVec3) -> Self {
         let cross = (b - a).cross(c - a);
         let twice_area = cross.length();
-        if !(twice_area > 0.0) || !twice_area.is_finite() {
+        if !twice_area.is_finite() || twice_area <= 0.0 {
             return Self::default();
         }
         let n = cross / twice_area;
@@ -234,7 +234,7 @@ fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [DVec3; 3]) {
     let norm = a.iter().flatten().fold(0.0_f64, |s, x| s + x * x).sqrt();
     for _sweep in 0..32 {
         let off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-        if !(off > (1e-18 * norm) * (1e-18 * norm)) {
+        if off.is_nan() || off <= (1e-18 * norm) * (1e-18 * norm) {
             break;
         }
         for (p, q) in [(0, 1), (0, 2), (1, 2)] {
@@ -379,8 +379,13 @@ mod tests {
             let (values, _) = symmetric_eigen(q.a());
             let ratio = values.iter().fold(f64::INFINITY, |m, &x| m.min(x))
                 / values.iter().fold(0.0_f64, |m, &x| m.max(x));
-            if ratio > 1e-3 {
+            let mid = 0.5 * (u + v);
+            if ratio > 1e-3 && (p[0] - mid).length() < 0.9 * MAX_SOLVE_DISTANCE * (v - u).length() {
                 assert!((x - p[0]).length() < 1e-9, "{x} vs {}", p[0]);
+            } else if (p[0] - mid).length() > 1.1 * MAX_SOLVE_DISTANCE * (v - u).length() {
+                // Distrusted solve: the point lies on the segment.
+                let s = (x - u).dot(v - u) / (v - u).length_squared();
+                assert!((u + s * (v - u) - x).length() < 1e-12 && (0.0..=1.0).contains(&s));
             }
         }
     }
