@@ -131,9 +131,11 @@
 //! [`sphaera_mesh::topology::HalfEdgeMesh`] (the editable mesh and its collapse records).
 
 mod deform;
+mod edge_radius;
 mod engine;
 mod error;
 mod hierarchy;
+mod quadric;
 mod record;
 mod refine;
 mod simplifier;
