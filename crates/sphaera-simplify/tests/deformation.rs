@@ -3,18 +3,10 @@
 
 mod common;
 
-use common::{SLACK, original_samples, worst_containment, worst_coverage};
+use common::{SLACK, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_simplify::{Hierarchy, Simplified, Simplifier, SimplifyError};
-
-fn shape(kind: u8, resolution: usize) -> TriMesh {
-    match kind {
-        0 => shapes::sphere(1.0, resolution.max(4)).unwrap(),
-        1 => shapes::torus(1.0, 0.35, resolution.max(6)).unwrap(),
-        _ => shapes::cube(1.0, resolution.clamp(1, 5)).unwrap(),
-    }
-}
 
 /// A smooth deformation of amplitude `amplitude`, different per `seed`.
 fn deform(p: DVec3, amplitude: f64, seed: u64) -> DVec3 {

@@ -9,21 +9,10 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use common::{SLACK, grid, original_samples, worst_containment, worst_coverage};
+use common::{SLACK, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
 use sphaera_simplify::{Hierarchy, Refinement, Simplified, Simplifier, SimplifyError};
-
-fn shape(kind: u8, resolution: usize) -> TriMesh {
-    match kind {
-        0 => shapes::sphere(1.0, resolution.max(4)).unwrap(),
-        1 => shapes::torus(1.0, 0.35, resolution.max(6)).unwrap(),
-        2 => shapes::cube(1.0, resolution.clamp(1, 6)).unwrap(),
-        _ => grid(resolution.clamp(2, 10) as u32, |x, y| {
-            0.2 * (3.0 * x).sin() * (2.0 * y).cos()
-        }),
-    }
-}
 
 fn check_invariants(original: &TriMesh, out: &Simplified, seed: u64) {
     let xs = original_samples(original, 300, seed);

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{SLACK, grid, original_samples, worst_containment, worst_coverage};
+use common::{SLACK, grid, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
 use sphaera_simplify::{Simplified, Simplifier};
@@ -30,17 +30,6 @@ fn check_both(original: &TriMesh, out: &Simplified, samples: usize, seed: u64) {
         "bound {} below measured {measured}",
         out.error_bound
     );
-}
-
-fn shape(kind: u8, resolution: usize) -> TriMesh {
-    match kind {
-        0 => shapes::sphere(1.0, resolution.max(4)).unwrap(),
-        1 => shapes::torus(1.0, 0.35, resolution.max(6)).unwrap(),
-        2 => shapes::cube(1.0, resolution.clamp(1, 6)).unwrap(),
-        _ => grid(resolution.clamp(2, 10) as u32, |x, y| {
-            0.2 * (3.0 * x).sin() * (2.0 * y).cos()
-        }),
-    }
 }
 
 proptest! {

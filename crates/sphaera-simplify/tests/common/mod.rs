@@ -161,3 +161,16 @@ pub fn grid(n: u32, height: impl Fn(f64, f64) -> f64) -> TriMesh {
     }
     TriMesh::new(p, t).expect("a valid grid")
 }
+
+/// The procedural test shapes: 0 sphere, 1 torus, 2 cube, otherwise a wavy open grid.
+pub fn shape(kind: u8, resolution: usize) -> TriMesh {
+    use sphaera_mesh::shapes;
+    match kind {
+        0 => shapes::sphere(1.0, resolution.max(4)).unwrap(),
+        1 => shapes::torus(1.0, 0.35, resolution.max(6)).unwrap(),
+        2 => shapes::cube(1.0, resolution.clamp(1, 6)).unwrap(),
+        _ => grid(resolution.clamp(2, 10) as u32, |x, y| {
+            0.2 * (3.0 * x).sin() * (2.0 * y).cos()
+        }),
+    }
+}
