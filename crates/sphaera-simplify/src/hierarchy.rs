@@ -392,7 +392,9 @@ impl Hierarchy {
 
     /// The level of detail the build passed through when it first had at most `n`
     /// triangles (the base mesh if it never got that low, the finest if `n` is at least
-    /// its count): exactly what the simplifier returns for target `n`.
+    /// its count): exactly what the simplifier returns for a target `n` below the input's
+    /// triangle count (at or above it, the simplifier returns the input as given, while
+    /// this drops triangles with a repeated vertex index and unreferenced vertices).
     pub fn level_by_triangles(&self, n: usize) -> Simplified {
         let mut live = self.tables.finest_triangle_count;
         let mut k = 0;
