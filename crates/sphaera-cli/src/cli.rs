@@ -84,11 +84,18 @@ pub struct SimplifyArgs {
 
 /// The placements offered by `--placement`: name, placement, help. The first is the
 /// default. One line per placement.
-pub const PLACEMENTS: &[(&str, Placement, &str)] = &[(
-    "subset",
-    Placement::Subset,
-    "every output vertex is an input vertex (half-edge collapse)",
-)];
+pub const PLACEMENTS: &[(&str, Placement, &str)] = &[
+    (
+        "subset",
+        Placement::Subset,
+        "half-edge collapses: every output vertex is an input vertex",
+    ),
+    (
+        "optimal",
+        Placement::Optimal,
+        "full-edge collapses to the quadric-optimal position (when its certified error is smaller)",
+    ),
+];
 
 /// A `--placement` value: an index into [`PLACEMENTS`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -20,7 +20,10 @@ use sphaera::{
 
 /// Every placement measured, with its name in tables and charts. Adding a placement to the
 /// experiment and the bench is one line here.
-pub const PLACEMENTS: &[(&str, Placement)] = &[("subset", Placement::Subset)];
+pub const PLACEMENTS: &[(&str, Placement)] = &[
+    ("subset", Placement::Subset),
+    ("optimal", Placement::Optimal),
+];
 
 /// meshopt's options: lock the topological border, as Sphaera does by default.
 pub const MESHOPT_OPTIONS: SimplifyOptions = SimplifyOptions::LockBorder;

@@ -8,7 +8,7 @@ use sphaera_mesh::topology::{FaceId, HalfEdgeMesh, VertexId};
 
 use crate::hierarchy::Geometry;
 use crate::spheres::{BoundaryPolicy, collapse_radius};
-use crate::{Hierarchy, SimplifyError};
+use crate::{Hierarchy, Placement, SimplifyError};
 
 /// Relative safety margin against rounding for the simple-map radius (as the engine's).
 const ROUNDING_MARGIN: f64 = 1e-12;
@@ -28,7 +28,8 @@ impl Hierarchy {
     /// # Errors
     ///
     /// [`SimplifyError::LengthMismatch`] if `positions` does not have one entry per input
-    /// vertex; [`SimplifyError::Mesh`] if a position is not finite.
+    /// vertex; [`SimplifyError::Mesh`] if a position is not finite;
+    /// [`SimplifyError::NeedsSubsetPlacement`] for an optimal-placement hierarchy.
     ///
     /// # Panics
     ///
@@ -55,6 +56,7 @@ impl Hierarchy {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn replay(&self, positions: &[DVec3]) -> Result<Hierarchy, SimplifyError> {
+        self.require_subset("replay")?;
         let (input_vertices, _) = self.tables.input_counts;
         if positions.len() != input_vertices {
             return Err(SimplifyError::LengthMismatch {
@@ -120,7 +122,8 @@ impl Hierarchy {
     /// # Errors
     ///
     /// [`SimplifyError::LengthMismatch`] for a wrong length;
-    /// [`SimplifyError::InvalidVertexValue`] for a NaN, infinite or negative displacement.
+    /// [`SimplifyError::InvalidVertexValue`] for a NaN, infinite or negative displacement;
+    /// [`SimplifyError::NeedsSubsetPlacement`] for an optimal-placement hierarchy.
     ///
     /// # Panics
     ///
@@ -144,6 +147,7 @@ impl Hierarchy {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn inflate(&self, displacement: &[f64]) -> Result<Hierarchy, SimplifyError> {
+        self.require_subset("inflate")?;
         let (input_vertices, _) = self.tables.input_counts;
         if displacement.len() != input_vertices {
             return Err(SimplifyError::LengthMismatch {
@@ -204,6 +208,14 @@ impl Hierarchy {
                 ..self.geometry.clone()
             },
         })
+    }
+
+    fn require_subset(&self, operation: &'static str) -> Result<(), SimplifyError> {
+        if self.placement() == Placement::Subset {
+            Ok(())
+        } else {
+            Err(SimplifyError::NeedsSubsetPlacement { operation })
+        }
     }
 
     /// The finest half-edge mesh for `positions` (one per input vertex), checked against

@@ -84,7 +84,6 @@
 
 // Not yet wired into the engine (`Placement::Optimal` is integrated separately): dead code
 // until then.
-#![allow(dead_code)]
 
 use glam::{DVec2, DVec3};
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};

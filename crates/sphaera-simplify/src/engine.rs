@@ -18,10 +18,13 @@ mod queue;
 use smallvec::SmallVec;
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
+use crate::edge_radius::edge_collapse_radius;
+use crate::quadric::{Quadric, optimal_position, vertex_quadrics};
 use crate::record::Recorder;
 use crate::simplifier::{LockReport, Progress};
 use crate::spheres::{BoundaryPolicy, Fan, collapse_radius, edge_radius, simple_map_radius};
 use crate::weights::Weights;
+use glam::DVec3;
 use queue::Queue;
 
 /// When to stop.
@@ -75,6 +78,20 @@ fn best_collapse(
     }
     let weight = policy.weight(mesh, u)?;
     let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
+    if let Some(quadrics) = policy.quadrics {
+        let mut best: Option<(f64, HalfEdgeId)> = None;
+        for g in mesh.outgoing(u) {
+            if !legal(g) {
+                continue;
+            }
+            if let Some((r, _)) = optimal_choice(mesh, radii, quadrics, g, policy.boundary)
+                && best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
+            {
+                best = Some((r, g));
+            }
+        }
+        return best.map(|(r, g)| (r / weight, g));
+    }
     let better = |r: f64, g: HalfEdgeId, best: Option<(f64, HalfEdgeId)>| {
         best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
     };
@@ -113,16 +130,57 @@ fn best_collapse(
     best.map(|(r, g)| (r / weight, g))
 }
 
-/// How candidates are costed: the boundary policy and the optional tolerance weights.
+/// [`Placement::Optimal`](crate::Placement::Optimal): the better of the full-edge
+/// collapse to the quadric-optimal position ([`edge_collapse_radius`]) and the half-edge
+/// collapse onto the target ([`edge_radius`]), as `(radius, position of the kept vertex)`.
+/// Deterministic, so re-validating a popped candidate finds the same choice.
+fn optimal_choice(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    quadrics: &[Quadric],
+    h: HalfEdgeId,
+    boundary: BoundaryPolicy,
+) -> Option<(f64, DVec3)> {
+    let (u, v) = (mesh.origin(h), mesh.target(h));
+    let subset = edge_radius(mesh, radii, h, boundary).map(|r| (r, mesh.position(v)));
+    let full = match (quadrics.get(u.0 as usize), quadrics.get(v.0 as usize)) {
+        (Some(&qu), Some(&qv)) => {
+            let target = optimal_position(&(qu + qv), mesh.position(u), mesh.position(v));
+            edge_collapse_radius(mesh, radii, h, target).map(|r| (r, target))
+        }
+        _ => None,
+    };
+    match (subset, full) {
+        (Some(a), Some(b)) => Some(if b.0 < a.0 { b } else { a }),
+        (a, b) => a.or(b),
+    }
+}
+
+/// How candidates are costed: the boundary policy, the optional tolerance weights and, for
+/// optimal placement, the vertex quadrics.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Policy<'w> {
     /// Whether boundary vertices may be removed.
     pub boundary: BoundaryPolicy,
     /// Per-vertex tolerance weights (`None`: all 1).
     pub weights: Option<&'w Weights>,
+    /// Per-vertex quadrics (`Some` for optimal placement).
+    pub quadrics: Option<&'w [Quadric]>,
 }
 
-impl Policy<'_> {
+impl<'w> Policy<'w> {
+    fn new(
+        boundary: BoundaryPolicy,
+        weights: Option<&'w Weights>,
+        quadrics: Option<&'w [Quadric]>,
+    ) -> Self {
+        Self {
+            boundary,
+            weights,
+            quadrics,
+        }
+    }
+
     /// The weight of every collapse out of `u` (the smallest over its closed one-ring), or
     /// `None` when it is 0 (the collapse is forbidden).
     fn weight(&self, mesh: &HalfEdgeMesh, u: VertexId) -> Option<f64> {
@@ -130,11 +188,18 @@ impl Policy<'_> {
         (w > 0.0).then_some(w)
     }
 
-    /// The queue key of collapsing `h` now: its radius over its weight, and the radius.
-    fn key(&self, mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -> Option<(f64, f64)> {
+    /// The queue key of collapsing `h` now (its radius over its weight), the radius, and
+    /// where the kept vertex goes.
+    fn key(&self, mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId) -> Option<(f64, f64, DVec3)> {
         let weight = self.weight(mesh, mesh.origin(h))?;
-        let r = edge_radius(mesh, radii, h, self.boundary)?;
-        Some((r / weight, r))
+        let (r, target) = match self.quadrics {
+            Some(quadrics) => optimal_choice(mesh, radii, quadrics, h, self.boundary)?,
+            None => (
+                edge_radius(mesh, radii, h, self.boundary)?,
+                mesh.position(mesh.target(h)),
+            ),
+        };
+        Some((r / weight, r, target))
     }
 }
 
@@ -187,13 +252,11 @@ pub(crate) fn run(
     mut mesh: HalfEdgeMesh,
     stop: Stop,
     weights: Option<&Weights>,
+    optimal: bool,
     progress: Option<&(dyn Fn(Progress) + Sync)>,
     mut recorder: Option<&mut Recorder>,
 ) -> Outcome {
-    let policy = Policy {
-        boundary: stop.boundary,
-        weights,
-    };
+    let mut quadrics = optimal.then(|| vertex_quadrics(&mesh, 0.0));
     let n = mesh.vertex_count();
     let mut radii = vec![0.0; n];
     let mut locked = LockReport::default();
@@ -209,7 +272,11 @@ pub(crate) fn run(
         }
     }
 
-    let mut queue = Queue::new(&initial_candidates(&mesh, &radii, policy));
+    let mut queue = Queue::new(&initial_candidates(
+        &mesh,
+        &radii,
+        Policy::new(stop.boundary, weights, quadrics.as_deref()),
+    ));
     let mut fan = Fan::empty();
 
     let mut collapses = 0;
@@ -236,6 +303,7 @@ pub(crate) fn run(
             break;
         }
         let u = VertexId(top.vertex);
+        let policy = Policy::new(stop.boundary, weights, quadrics.as_deref());
         // Re-check the candidate: a change two rings away can alter the link condition
         // without re-evaluating u.
         let h = HalfEdgeId(top.halfedge);
@@ -243,12 +311,13 @@ pub(crate) fn run(
             .check_collapse(h)
             .ok()
             .and_then(|()| policy.key(&mesh, &radii, h));
-        let Some((_, radius)) = fresh.filter(|(key, _)| key.total_cmp(&top.cost).is_eq()) else {
+        let Some((_, radius, target_position)) =
+            fresh.filter(|(key, _, _)| key.total_cmp(&top.cost).is_eq())
+        else {
             refresh(&mut queue, &mesh, &radii, u, policy, &mut fan);
             continue;
         };
         let v = mesh.target(h);
-        let target_position = mesh.position(v);
         if let Some(recorder) = recorder.as_deref_mut() {
             recorder.before(&mesh, h);
         }
@@ -264,6 +333,13 @@ pub(crate) fn run(
         if let Some(recorder) = recorder.as_deref_mut() {
             recorder.after(&mesh, radius);
         }
+        if let Some(q) = quadrics.as_mut()
+            && let Some(&qu) = q.get(u.0 as usize)
+            && let Some(qv) = q.get_mut(v.0 as usize)
+        {
+            *qv += qu;
+        }
+        let policy = Policy::new(stop.boundary, weights, quadrics.as_deref());
         // Re-evaluate v and its neighbours (u is gone, and popping it unqueued it).
         let ring: SmallVec<[VertexId; 16]> = std::iter::once(v).chain(mesh.neighbors(v)).collect();
         for x in ring {

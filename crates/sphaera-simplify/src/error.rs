@@ -68,6 +68,14 @@ pub enum SimplifyError {
         /// What it must be.
         requirement: &'static str,
     },
+    /// A deformation method was called on a hierarchy built with
+    /// [`Placement::Optimal`](crate::Placement::Optimal), whose placed vertices have no
+    /// displacement or replay rule of their own.
+    #[error("`{operation}` needs a hierarchy built with subset placement")]
+    NeedsSubsetPlacement {
+        /// The method called, e.g. `"replay"`.
+        operation: &'static str,
+    },
     /// An internal consistency check failed: a bug in this crate, reported instead of a
     /// panic. Please report it with the input that triggers it.
     #[error("internal error: {what}")]

@@ -211,7 +211,8 @@ impl Hierarchy {
             placement,
         };
         let placed = match placement {
-            Placement::Subset => Vec::new(),
+            Placement::Optimal => entries.iter().map(|e| e.position).collect(),
+            _ => Vec::new(),
         };
         let geometry = Geometry {
             positions: (0..n as u32)

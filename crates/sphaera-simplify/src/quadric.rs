@@ -15,7 +15,6 @@
 
 // Not yet wired into the engine (`Placement::Optimal` is integrated separately): dead code
 // until then.
-#![allow(dead_code)]
 
 use std::ops::{Add, AddAssign};
 

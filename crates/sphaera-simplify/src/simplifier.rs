@@ -26,6 +26,16 @@ pub enum Placement {
     /// an original vertex and per-vertex data stays valid at every level.
     #[default]
     Subset,
+    /// Full-edge collapse: the kept vertex moves to the position minimising the sum of the
+    /// two vertices' error quadrics (Garland–Heckbert; on the segment, or the better
+    /// endpoint or midpoint, when the system is ill-conditioned), unless the half-edge
+    /// collapse onto the kept vertex needs a smaller radius. Radii are as rigorous as with
+    /// [`Placement::Subset`] (the full-edge collapse has its own tight and simple maps);
+    /// output vertices are no longer input vertices, so
+    /// [`Simplified::original_vertex`] names the input vertex that *stands for* each one.
+    /// Deformation ([`Hierarchy::replay`](crate::Hierarchy::replay),
+    /// [`Hierarchy::inflate`](crate::Hierarchy::inflate)) needs Subset placement.
+    Optimal,
 }
 
 /// A maximum error bound: the simplification stops before any vertex's error radius would
@@ -268,7 +278,7 @@ impl<'a> Simplifier<'a> {
         self
     }
 
-    /// Where kept vertices go (only [`Placement::Subset`] exists so far).
+    /// Where kept vertices go ([`Placement::Subset`] by default).
     #[must_use]
     pub fn placement(mut self, placement: Placement) -> Self {
         self.placement = placement;
@@ -385,7 +395,14 @@ impl<'a> Simplifier<'a> {
         }
         let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
         let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
-        let outcome = engine::run(half_edges, stop, weights.as_ref(), self.progress, None);
+        let outcome = engine::run(
+            half_edges,
+            stop,
+            weights.as_ref(),
+            self.placement == Placement::Optimal,
+            self.progress,
+            None,
+        );
         let live = outcome.mesh.to_trimesh();
         let vertex_radii: Vec<f64> = live
             .vertex_map
@@ -448,6 +465,7 @@ impl<'a> Simplifier<'a> {
             half_edges,
             stop,
             weights.as_ref(),
+            self.placement == Placement::Optimal,
             self.progress,
             Some(&mut recorder),
         );
@@ -494,7 +512,6 @@ impl<'a> Simplifier<'a> {
                 bound.resolve(self.mesh.bounding_box_diagonal())
             }
         };
-        let Placement::Subset = self.placement;
         if let Some(weights) = self.weights {
             Weights::validate(self.mesh, weights)?;
         }

@@ -144,3 +144,27 @@ fn bad_deformation_input_is_an_error() {
         Err(SimplifyError::InvalidVertexValue { index: 2, .. })
     ));
 }
+
+#[test]
+fn deformation_of_an_optimal_placement_hierarchy_is_a_clear_error() {
+    let mesh = shapes::sphere(1.0, 6).unwrap();
+    let h = Simplifier::new(&mesh)
+        .placement(sphaera_simplify::Placement::Optimal)
+        .build_hierarchy()
+        .unwrap();
+    let err = h.replay(mesh.positions()).unwrap_err();
+    assert!(matches!(
+        err,
+        SimplifyError::NeedsSubsetPlacement {
+            operation: "replay"
+        }
+    ));
+    assert!(err.to_string().contains("subset placement"));
+    let err = h.inflate(&vec![0.0; mesh.vertex_count()]).unwrap_err();
+    assert!(matches!(
+        err,
+        SimplifyError::NeedsSubsetPlacement {
+            operation: "inflate"
+        }
+    ));
+}

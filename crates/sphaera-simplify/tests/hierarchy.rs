@@ -12,7 +12,7 @@ use std::collections::BTreeSet;
 use common::{SLACK, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
-use sphaera_simplify::{Hierarchy, Refinement, Simplified, Simplifier, SimplifyError};
+use sphaera_simplify::{Hierarchy, Placement, Refinement, Simplified, Simplifier, SimplifyError};
 
 fn check_invariants(original: &TriMesh, out: &Simplified, seed: u64) {
     let xs = original_samples(original, 300, seed);
@@ -101,10 +101,12 @@ proptest! {
         kind in 0u8..4,
         resolution in 4usize..10,
         picks in prop::collection::vec(any::<u32>(), 1..24),
+        optimal: bool,
         seed in 0u64..1000,
     ) {
         let mesh = shape(kind, resolution);
-        let hierarchy = Simplifier::new(&mesh).build_hierarchy().unwrap();
+        let placement = if optimal { Placement::Optimal } else { Placement::Subset };
+        let hierarchy = Simplifier::new(&mesh).placement(placement).build_hierarchy().unwrap();
         let mut refinement = hierarchy.refinement();
         let base_count = refinement.live_triangle_count();
         let mut live: BTreeSet<u32> = refinement.live_triangles().collect();

@@ -8,7 +8,7 @@ mod common;
 use common::{SLACK, grid, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
-use sphaera_simplify::{Simplified, Simplifier};
+use sphaera_simplify::{Placement, Simplified, Simplifier};
 
 fn check_both(original: &TriMesh, out: &Simplified, samples: usize, seed: u64) {
     let xs = original_samples(original, samples, seed);
@@ -41,10 +41,17 @@ proptest! {
         resolution in 4usize..12,
         ratio in 0.05f64..0.9,
         lock_boundary: bool,
+        optimal: bool,
         seed in 0u64..1000,
     ) {
         let mesh = shape(kind, resolution);
-        let out = Simplifier::new(&mesh).target_ratio(ratio).lock_boundary(lock_boundary).build().unwrap();
+        let placement = if optimal { Placement::Optimal } else { Placement::Subset };
+        let out = Simplifier::new(&mesh)
+            .target_ratio(ratio)
+            .lock_boundary(lock_boundary)
+            .placement(placement)
+            .build()
+            .unwrap();
         check_both(&mesh, &out, 300, seed);
     }
 }
