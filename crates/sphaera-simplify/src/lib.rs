@@ -74,6 +74,12 @@
 //! (interior vertices may collapse onto them); with
 //! [`Simplifier::lock_boundary`]`(false)` they may collapse along boundary edges, with the
 //! simple map sending `u` to `v` (rigorous, but it needs `r_v ≥ r_u + |u − v|`).
+//! With [`Placement::Optimal`] the kept vertex may instead move to the minimum of the two
+//! vertices' error quadrics (a full-edge collapse); the region is then both stars, whose
+//! overlay with the new fan is checked the same way (over three projection planes, or the
+//! simple map sending both ends to the new position), and the half-edge collapse is kept
+//! when its radius is smaller.
+//!
 //! Non-manifold vertices and their edges are never touched; the topology guards of
 //! [`HalfEdgeMesh::check_collapse`](sphaera_mesh::topology::HalfEdgeMesh::check_collapse)
 //! (link condition, tetrahedron) apply. What stayed locked is in [`Simplified::locked`].
