@@ -85,6 +85,7 @@
 // Not yet wired into the engine (`Placement::Optimal` is integrated separately): dead code
 // until then.
 
+use crate::spheres::crossing;
 use glam::{DVec2, DVec3};
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 
@@ -409,23 +410,6 @@ fn barycentric(p: DVec2, c: [DVec2; 3]) -> Option<[f64; 3]> {
     let l0 = (c[1] - p).perp_dot(c[2] - p) / area;
     let l1 = (c[2] - p).perp_dot(c[0] - p) / area;
     Some([l0, l1, 1.0 - l0 - l1])
-}
-
-/// Where the planar segments `a0–a1` and `b0–b1` cross, as parameters `(s, t)` along each
-/// (clamped to `[0, 1]`), or `None` if they do not cross or are parallel (a parallel
-/// overlap adds no overlay vertex beyond the segments' endpoints, checked separately).
-fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
-    const SLACK: f64 = 1e-9;
-    let (da, db) = (a1 - a0, b1 - b0);
-    let denom = da.perp_dot(db);
-    if denom.is_nan() || denom.abs() <= 1e-14 * da.length() * db.length() {
-        return None;
-    }
-    let d = b0 - a0;
-    let s = d.perp_dot(db) / denom;
-    let t = d.perp_dot(da) / denom;
-    let inside = |x: f64| (-SLACK..=1.0 + SLACK).contains(&x);
-    (inside(s) && inside(t)).then(|| (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)))
 }
 
 /// The radius of `t` for which `weight · r ≥ demand` (others already subtracted), or

@@ -393,16 +393,7 @@ impl<'a> Simplifier<'a> {
                 locked: LockReport::default(),
             });
         }
-        let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
-        let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
-        let outcome = engine::run(
-            half_edges,
-            stop,
-            weights.as_ref(),
-            self.placement == Placement::Optimal,
-            self.progress,
-            None,
-        );
+        let outcome = self.run(HalfEdgeMesh::from_trimesh(self.mesh), stop, None);
         let live = outcome.mesh.to_trimesh();
         let vertex_radii: Vec<f64> = live
             .vertex_map
@@ -460,15 +451,7 @@ impl<'a> Simplifier<'a> {
         let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
         let finest = half_edges.clone();
         let mut recorder = Recorder::new(&half_edges);
-        let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
-        let outcome = engine::run(
-            half_edges,
-            stop,
-            weights.as_ref(),
-            self.placement == Placement::Optimal,
-            self.progress,
-            Some(&mut recorder),
-        );
+        let outcome = self.run(half_edges, stop, Some(&mut recorder));
         Ok(Hierarchy::from_record(
             &finest,
             recorder,
@@ -476,6 +459,24 @@ impl<'a> Simplifier<'a> {
             outcome.locked,
             self.placement,
         ))
+    }
+
+    /// Runs the engine on `half_edges` with this builder's weights, placement and progress.
+    fn run(
+        &self,
+        half_edges: HalfEdgeMesh,
+        stop: Stop,
+        recorder: Option<&mut Recorder>,
+    ) -> engine::Outcome {
+        let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
+        engine::run(
+            half_edges,
+            stop,
+            weights.as_ref(),
+            self.placement == Placement::Optimal,
+            self.progress,
+            recorder,
+        )
     }
 
     /// Validates the parameters into the engine's stopping rule.

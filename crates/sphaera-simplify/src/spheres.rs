@@ -165,9 +165,9 @@ fn barycentric(p: DVec2, a: DVec2, b: DVec2, c: DVec2) -> Option<[f64; 3]> {
 /// Where the planar segments `a0–a1` and `b0–b1` cross, as the parameters `(s, t)` along
 /// each (clamped to `[0, 1]`), or `None` if they do not cross or are parallel (parallel
 /// overlaps add no overlay vertex beyond the endpoints, which are checked separately).
-/// The tests' entry point; the code shares parts between pairs with [`crossing_parts`].
-#[cfg(test)]
-pub(super) fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
+/// The fan code shares parts between pairs through [`crossing_parts`]; this is the
+/// one-pair entry point (the full-edge collapse radius and the tests use it).
+pub(crate) fn crossing(a0: DVec2, a1: DVec2, b0: DVec2, b1: DVec2) -> Option<(f64, f64)> {
     let (da, db) = (a1 - a0, b1 - b0);
     let d = b0 - a0;
     crossing_parts(
