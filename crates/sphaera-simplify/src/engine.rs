@@ -78,20 +78,27 @@ fn best_collapse(
     }
     let weight = policy.weight(mesh, u)?;
     let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
-    if let Some(quadrics) = policy.quadrics {
-        let mut best: Option<(f64, HalfEdgeId)> = None;
-        for g in mesh.outgoing(u) {
-            if !legal(g) {
-                continue;
-            }
-            if let Some((r, _)) = optimal_choice(mesh, radii, quadrics, g, policy.boundary)
-                && best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
-            {
-                best = Some((r, g));
-            }
-        }
-        return best.map(|(r, g)| (r / weight, g));
+    let mut best = best_subset_collapse(mesh, radii, u, policy.boundary, fan, legal);
+    if let Some(quadrics) = policy.quadrics
+        && let Some((g, target)) = quadric_edge(mesh, quadrics, u, legal)
+        && let Some(r) = edge_collapse_radius(mesh, radii, g, target)
+        && best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
+    {
+        best = Some((r, g));
     }
+    best.map(|(r, g)| (r / weight, g))
+}
+
+/// The cheapest legal half-edge collapse out of the removable vertex `u` (see
+/// [`best_collapse`]).
+fn best_subset_collapse(
+    mesh: &HalfEdgeMesh,
+    radii: &[f64],
+    u: VertexId,
+    boundary: BoundaryPolicy,
+    fan: &mut Fan,
+    legal: impl Fn(HalfEdgeId) -> bool + Copy,
+) -> Option<(f64, HalfEdgeId)> {
     let better = |r: f64, g: HalfEdgeId, best: Option<(f64, HalfEdgeId)>| {
         best.is_none_or(|(c, b)| r.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
     };
@@ -101,7 +108,7 @@ fn best_collapse(
             if !legal(g) {
                 continue;
             }
-            if let Some(r) = collapse_radius(mesh, radii, g, policy.boundary)
+            if let Some(r) = collapse_radius(mesh, radii, g, boundary)
                 && better(r, g, best)
             {
                 best = Some((r, g));
@@ -127,13 +134,49 @@ fn best_collapse(
             }
         }
     }
-    best.map(|(r, g)| (r / weight, g))
+    best
 }
 
-/// [`Placement::Optimal`](crate::Placement::Optimal): the better of the full-edge
-/// collapse to the quadric-optimal position ([`edge_collapse_radius`]) and the half-edge
-/// collapse onto the target ([`edge_radius`]), as `(radius, position of the kept vertex)`.
-/// Deterministic, so re-validating a popped candidate finds the same choice.
+/// [`Placement::Optimal`](crate::Placement::Optimal)'s one full-edge candidate out of `u`:
+/// the legal edge whose merged quadric is smallest at the best of its two ends and its
+/// midpoint (a cheap stand-in for the optimum; ties to the lowest half-edge), with the
+/// quadric-optimal position on it. Only this edge is tried as a full-edge
+/// collapse ([`edge_collapse_radius`] costs about six half-edge evaluations), every edge
+/// as a half-edge collapse.
+fn quadric_edge(
+    mesh: &HalfEdgeMesh,
+    quadrics: &[Quadric],
+    u: VertexId,
+    legal: impl Fn(HalfEdgeId) -> bool,
+) -> Option<(HalfEdgeId, DVec3)> {
+    let qu = *quadrics.get(u.0 as usize)?;
+    let pu = mesh.position(u);
+    let mut best: Option<(f64, HalfEdgeId, Quadric, DVec3)> = None;
+    for g in mesh.outgoing(u) {
+        let v = mesh.target(g);
+        let Some(&qv) = quadrics.get(v.0 as usize) else {
+            continue;
+        };
+        let q = qu + qv;
+        let pv = mesh.position(v);
+        let cost = q
+            .evaluate(pu)
+            .min(q.evaluate(pv))
+            .min(q.evaluate(0.5 * (pu + pv)));
+        if best.is_none_or(|(c, b, _, _)| cost.total_cmp(&c).then(g.0.cmp(&b.0)).is_lt())
+            && legal(g)
+        {
+            best = Some((cost, g, q, pv));
+        }
+    }
+    best.map(|(_, g, q, pv)| (g, optimal_position(&q, pu, pv)))
+}
+
+/// [`Placement::Optimal`](crate::Placement::Optimal): the half-edge collapse `h` onto its
+/// target ([`edge_radius`]), or, when `h` is its origin's [`quadric_edge`] and that is
+/// strictly better, the full-edge collapse to the quadric-optimal position
+/// ([`edge_collapse_radius`]), as `(radius, position of the kept vertex)`. The same choice
+/// [`best_collapse`] makes for `h`, so re-validating a popped candidate reproduces its key.
 fn optimal_choice(
     mesh: &HalfEdgeMesh,
     radii: &[f64],
@@ -141,15 +184,12 @@ fn optimal_choice(
     h: HalfEdgeId,
     boundary: BoundaryPolicy,
 ) -> Option<(f64, DVec3)> {
-    let (u, v) = (mesh.origin(h), mesh.target(h));
-    let subset = edge_radius(mesh, radii, h, boundary).map(|r| (r, mesh.position(v)));
-    let full = match (quadrics.get(u.0 as usize), quadrics.get(v.0 as usize)) {
-        (Some(&qu), Some(&qv)) => {
-            let target = optimal_position(&(qu + qv), mesh.position(u), mesh.position(v));
-            edge_collapse_radius(mesh, radii, h, target).map(|r| (r, target))
-        }
-        _ => None,
-    };
+    let u = mesh.origin(h);
+    let subset = edge_radius(mesh, radii, h, boundary).map(|r| (r, mesh.position(mesh.target(h))));
+    let legal = |g: HalfEdgeId| mesh.check_collapse(g).is_ok();
+    let full = quadric_edge(mesh, quadrics, u, legal)
+        .filter(|&(g, _)| g == h)
+        .and_then(|(_, target)| edge_collapse_radius(mesh, radii, h, target).map(|r| (r, target)));
     match (subset, full) {
         (Some(a), Some(b)) => Some(if b.0 < a.0 { b } else { a }),
         (a, b) => a.or(b),
