@@ -82,9 +82,6 @@
 //! too), and the result gets a final relative margin; `λ_t` below `MIN_WEIGHT_TARGET`
 //! makes the tight map give up (the simple one remains).
 
-// Not yet wired into the engine (`Placement::Optimal` is integrated separately): dead code
-// until then.
-
 use crate::spheres::crossing;
 use glam::{DVec2, DVec3};
 use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};

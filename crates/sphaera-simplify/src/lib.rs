@@ -74,11 +74,11 @@
 //! (interior vertices may collapse onto them); with
 //! [`Simplifier::lock_boundary`]`(false)` they may collapse along boundary edges, with the
 //! simple map sending `u` to `v` (rigorous, but it needs `r_v ≥ r_u + |u − v|`).
-//! With [`Placement::Optimal`] the kept vertex may instead move to the minimum of the two
-//! vertices' error quadrics (a full-edge collapse); the region is then both stars, whose
-//! overlay with the new fan is checked the same way (over three projection planes, or the
-//! simple map sending both ends to the new position), and the half-edge collapse is kept
-//! when its radius is smaller.
+//! With [`Placement::Optimal`] each vertex's edge with the smallest merged error quadric
+//! is also tried as a full-edge collapse, the kept vertex moving to the quadric's minimum;
+//! the region is then both stars, whose overlay with the new fan is checked the same way
+//! (over three projection planes, or the simple map sending both ends to the new
+//! position), and whichever collapse needs the smaller radius wins.
 //!
 //! Non-manifold vertices and their edges are never touched; the topology guards of
 //! [`HalfEdgeMesh::check_collapse`](sphaera_mesh::topology::HalfEdgeMesh::check_collapse)

@@ -13,9 +13,6 @@
 //! The quadric only ranks and places collapses: the certified error is the error-sphere
 //! radius of [`crate::edge_radius`].
 
-// Not yet wired into the engine (`Placement::Optimal` is integrated separately): dead code
-// until then.
-
 use std::ops::{Add, AddAssign};
 
 use glam::DVec3;
