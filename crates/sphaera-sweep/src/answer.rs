@@ -1,0 +1,105 @@
+//! What queries return: exact closest points and certified distance intervals.
+
+use glam::DVec3;
+
+/// The feature of the input mesh a closest point lies on, in input vertex indices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Feature {
+    /// A vertex of the input mesh.
+    Vertex(u32),
+    /// The interior of the edge between two input vertices (in the triangle's corner order).
+    Edge(u32, u32),
+    /// The interior of the triangle.
+    Face,
+}
+
+/// An exact closest point on the input mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ClosestPoint {
+    /// The closest point.
+    pub point: DVec3,
+    /// Its distance to the query point.
+    pub distance: f64,
+    /// The input triangle it lies on (its index in the mesh given to the simplifier).
+    pub triangle: u32,
+    /// The feature of that triangle it lies on.
+    pub feature: Feature,
+}
+
+/// A certified interval for the distance from a query point to the mesh: the true distance
+/// `d` satisfies `lower ≤ d ≤ upper`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DistanceBounds {
+    /// A lower bound of the distance (never negative).
+    pub lower: f64,
+    /// An upper bound of the distance.
+    pub upper: f64,
+    /// The exact answer when the process ran to the end (then `lower == upper ==
+    /// closest.distance`).
+    pub closest: Option<ClosestPoint>,
+    /// Vertex splits this query performed.
+    pub splits: usize,
+}
+
+impl DistanceBounds {
+    /// `upper − lower`.
+    pub fn gap(&self) -> f64 {
+        self.upper - self.lower
+    }
+
+    /// The middle of the interval, the estimate with the smallest worst-case error.
+    pub fn midpoint(&self) -> f64 {
+        0.5 * (self.lower + self.upper)
+    }
+}
+
+/// When an approximate query may stop: once `upper − lower` is at most this.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_sweep::Tolerance;
+///
+/// assert_eq!(Tolerance::Absolute(0.01).allowed_gap(5.0), 0.01);
+/// assert_eq!(Tolerance::Relative(0.01).allowed_gap(5.0), 0.05);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tolerance {
+    /// An absolute gap, in the mesh's units.
+    Absolute(f64),
+    /// A fraction of the upper bound (`0.01`: the distance is known to 1 %).
+    Relative(f64),
+}
+
+impl Tolerance {
+    /// The gap allowed when the upper bound is `upper`.
+    pub fn allowed_gap(self, upper: f64) -> f64 {
+        match self {
+            Self::Absolute(t) => t,
+            Self::Relative(t) => t * upper,
+        }
+    }
+
+    /// The tolerance's value.
+    pub(crate) fn value(self) -> f64 {
+        match self {
+            Self::Absolute(t) | Self::Relative(t) => t,
+        }
+    }
+}
+
+/// Counters of a [`Session`](crate::Session), cumulative since it was created.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SessionStats {
+    /// Queries answered (each of `closest`, `closest_within`, `k_closest`, `within`).
+    pub queries: usize,
+    /// Of those, answered in constant time inside the safe radius of the previous answer
+    /// (paper section 3.3), without touching the queue.
+    pub constant_time: usize,
+    /// Vertex splits (each may undo several collapses).
+    pub splits: usize,
+    /// Point–triangle distance evaluations.
+    pub distance_evaluations: usize,
+    /// Resets to the base mesh.
+    pub resets: usize,
+}

@@ -1,0 +1,74 @@
+//! # sphaera-sweep
+//!
+//! Meshsweeper (Guéziec, *"Meshsweeper": From Closest Point to Hausdorff Distances Between
+//! Meshes*, 2000): exact and anytime closest-point queries on a triangle mesh, through the
+//! progressive hierarchy of error spheres that [`sphaera_simplify`] records.
+//!
+//! ```
+//! use sphaera_mesh::{DVec3, shapes};
+//! use sphaera_sweep::{Feature, Sweeper, build_hierarchy};
+//!
+//! let cube = shapes::cube(2.0, 4)?; // corners at ±1
+//! let hierarchy = build_hierarchy(&cube)?;
+//! let sweeper = Sweeper::new(&hierarchy)?;
+//! let mut session = sweeper.session();
+//!
+//! let answer = session.closest(DVec3::new(3.0, 0.2, 0.1))?;
+//! assert!((answer.distance - 2.0).abs() < 1e-12);
+//! assert!((answer.point - DVec3::new(1.0, 0.2, 0.1)).length() < 1e-12);
+//!
+//! // Beyond a corner, the answer is that vertex of the input mesh.
+//! let corner = session.closest(DVec3::splat(2.0))?;
+//! assert!(matches!(corner.feature, Feature::Vertex(_)));
+//! assert!((corner.distance - 3f64.sqrt()).abs() < 1e-12);
+//!
+//! // The 5 nearest input triangles, nearest first.
+//! let near = session.k_closest(DVec3::new(0.0, 0.0, 1.5), 5)?;
+//! assert_eq!(near.len(), 5);
+//! assert!(near.windows(2).all(|w| w[0].distance <= w[1].distance));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # How it works
+//!
+//! Every vertex of a simplified mesh carries an error radius; the triangle swept by those
+//! spheres bounds the part of the input surface it stands for, in both directions
+//! (`sphaera_simplify`'s invariants (A) and (B)). So for a query point `p` and a
+//! simplified triangle at distance `d` with largest corner radius `ε`, the input surface
+//! it covers lies at a distance in `[d − ε, d + r]` (`r` ≤ `ε`: the radius interpolated at
+//! the closest point). A [`Session`] keeps the triangles of a selectively refined mesh in
+//! a priority queue keyed by `d − ε`; it pops the front, splits one of its vertices (and
+//! whatever must be split before, from the hierarchy's fixed tables), re-queues what
+//! changed, and stops when the front is a triangle of the input mesh: its interval is a
+//! single value below every other lower bound, the exact distance.
+//!
+//! The fixed tables live in the [`Hierarchy`](sphaera_simplify::Hierarchy) and are shared
+//! by every thread through a [`Sweeper`]; a session owns only the changing state: one word
+//! per vertex and per collapse, and the queue (16 bytes per queued triangle plus a 4-byte
+//! slot per triangle).
+//!
+//! # Coherence
+//!
+//! A session keeps the refined mesh and the queue between queries. Moving the query point
+//! by `δ` widens every interval by `δ` without reordering (the keys are stored shifted by
+//! the total motion), and marks them stale; stale intervals are re-evaluated only when they
+//! reach the front. A query within the *safe radius* of the previous exact answer —
+//! half the gap between its distance and the next lower bound — is answered from the same
+//! triangle without touching the queue. [`SessionOptions`] says when a session resets to
+//! the base mesh.
+//!
+//! # What is not here yet
+//!
+//! Hausdorff distances between meshes, polylines, and deforming meshes (paper sections
+//! 3, 5.2–5.3 and 6) are the next steps of this crate.
+
+mod answer;
+mod error;
+mod queue;
+mod session;
+mod sweeper;
+
+pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};
+pub use error::SweepError;
+pub use session::{Session, SessionOptions};
+pub use sweeper::{Sweeper, build_hierarchy};

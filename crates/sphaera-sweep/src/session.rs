@@ -1,0 +1,519 @@
+//! A query session: the refined mesh and the priority queue, kept between queries.
+
+use glam::DVec3;
+use sphaera_mesh::geometry::{self, Triangle, closest_point_on_triangle};
+use sphaera_simplify::{Hierarchy, Refinement};
+
+use crate::error::{check_non_negative, check_point};
+use crate::queue::{Entry, Queue};
+use crate::{ClosestPoint, DistanceBounds, Feature, SessionStats, SweepError, Sweeper, Tolerance};
+
+/// When a [`Session`] goes back to the base mesh before a query.
+///
+/// A session only refines (paper section 4.2); it coarsens all at once, by a reset. A reset
+/// costs `O(changed + base triangles)`; not resetting costs re-evaluating stale intervals.
+/// The defaults reset when the refined mesh has grown past `max_triangles`, or when the
+/// query point jumped farther than `jump_factor` times the previous distance (then almost
+/// every interval is stale, and the base mesh is cheaper to start from).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_sweep::SessionOptions;
+///
+/// let options = SessionOptions { jump_factor: 4.0, ..SessionOptions::default() };
+/// assert_eq!(options.max_triangles, SessionOptions::default().max_triangles);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SessionOptions {
+    /// Reset before a query when the refined mesh has more live triangles than this.
+    pub max_triangles: usize,
+    /// Reset before a query when the query point moved more than this many times the
+    /// previous answer's distance (`f64::INFINITY`: never for motion).
+    pub jump_factor: f64,
+}
+
+impl Default for SessionOptions {
+    fn default() -> Self {
+        Self {
+            max_triangles: 20_000,
+            jump_factor: 1.0,
+        }
+    }
+}
+
+/// The exact answer of the last single closest-point query and the radius around its
+/// query point inside which it stays the answer (paper section 3.3).
+#[derive(Clone, Copy, Debug)]
+struct SafeBall {
+    center: DVec3,
+    radius: f64,
+    triangle: u32,
+}
+
+/// The changing state of Meshsweeper: a selectively refined mesh and a priority queue of
+/// its triangles keyed by the lower end of their distance intervals `[d − ε, d + r]`
+/// (`d`: distance to the simplified triangle, `ε`: its largest corner radius, `r`: the
+/// radius interpolated at the closest point).
+///
+/// Each query pops the front triangle: a stale one ("dirty", computed for an earlier query
+/// point) is re-evaluated; a simplified one has a corner split (with whatever must be
+/// split first), its triangles re-queued; a triangle of the input mesh is the exact
+/// answer, since its interval is a point and lies below every other interval. Between
+/// queries the state stays: a query point moved by `δ` widens every interval by `δ`
+/// without reordering the queue (section 5.1), so coherent queries only refine a little
+/// more, and a query inside the safe ball of the previous answer costs one point–triangle
+/// distance (section 3.3). See [`SessionOptions`] for when it resets.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::{DVec3, shapes};
+/// use sphaera_sweep::{Sweeper, Tolerance, build_hierarchy};
+///
+/// let sphere = shapes::sphere(1.0, 24)?;
+/// let hierarchy = build_hierarchy(&sphere)?;
+/// let sweeper = Sweeper::new(&hierarchy)?;
+/// let mut session = sweeper.session();
+///
+/// // A smooth path of queries: each refines only a little more.
+/// for i in 0..100 {
+///     let angle = i as f64 * 0.01;
+///     let p = 2.0 * DVec3::new(angle.cos(), angle.sin(), 0.1);
+///     let answer = session.closest(p)?;
+///     // The mesh lies inside the unit sphere, within its tessellation error.
+///     assert!((answer.distance - (p.length() - 1.0)).abs() < 0.05);
+/// }
+///
+/// // An anytime query: a certified interval at most 1e-3 wide.
+/// let bounds = session.closest_within(DVec3::new(0.0, 0.0, 3.0), Tolerance::Absolute(1e-3))?;
+/// assert!(bounds.lower <= 2.0 + 1e-9 && 2.0 - 0.01 <= bounds.upper);
+/// assert!(bounds.gap() <= 1e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Session<'s> {
+    hierarchy: &'s Hierarchy,
+    base: &'s [u32],
+    options: SessionOptions,
+    refinement: Refinement<'s>,
+    queue: Queue,
+    /// The point the queue's intervals are computed for (widened by the motion since).
+    query: Option<DVec3>,
+    /// Total motion of the query point since the last reset (the key shift).
+    motion: f64,
+    /// Incremented whenever the query point moves: entries with an older stamp are dirty.
+    generation: u32,
+    /// The smallest upper bound seen for the current query point (widened by motion).
+    best_upper: f64,
+    /// The distance of the last answer (for the jump policy).
+    last_distance: f64,
+    safe: Option<SafeBall>,
+    stats: SessionStats,
+    undone: Vec<u32>,
+    touched: Vec<u32>,
+}
+
+/// Why the sweep stopped.
+enum Stop {
+    /// The front triangle is a leaf: exact.
+    Exact(u32),
+    /// The interval is narrow enough, or the budget ran out.
+    Approximate { lower: f64 },
+    /// The queue is empty (every triangle was taken by a k-closest query).
+    Empty,
+}
+
+impl<'s> Session<'s> {
+    pub(crate) fn new(sweeper: &'s Sweeper<'s>, options: SessionOptions) -> Self {
+        let hierarchy = sweeper.hierarchy();
+        Self {
+            hierarchy,
+            base: sweeper.base_triangles(),
+            options,
+            refinement: hierarchy.refinement(),
+            queue: Queue::new(hierarchy.triangle_count()),
+            query: None,
+            motion: 0.0,
+            generation: 0,
+            best_upper: f64::INFINITY,
+            last_distance: f64::INFINITY,
+            safe: None,
+            stats: SessionStats::default(),
+            undone: Vec::new(),
+            touched: Vec::new(),
+        }
+    }
+
+    /// The exact closest point of the mesh to `p`.
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
+    ///
+    /// # Performance
+    ///
+    /// Constant when `p` is inside the safe ball of the previous answer; otherwise the
+    /// intervals still below the answer are re-evaluated and split. Worst case linear in
+    /// the mesh size (a query at the centre of a sphere mesh touches every triangle).
+    pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, SweepError> {
+        let p = check_point(p)?;
+        self.stats.queries += 1;
+        if let Some(safe) = self.safe
+            && (p - safe.center).length() <= safe.radius
+            && let Some(answer) = self.leaf_answer(safe.triangle, p)
+        {
+            self.stats.constant_time += 1;
+            return Ok(answer);
+        }
+        self.move_to(p);
+        match self.sweep(p, None, usize::MAX) {
+            Stop::Exact(t) => {
+                let answer = self.exact(t, p)?;
+                let second = self
+                    .queue
+                    .second_key()
+                    .map_or(f64::INFINITY, |k| k - self.motion);
+                self.safe = Some(SafeBall {
+                    center: p,
+                    radius: (0.5 * (second - answer.distance)).max(0.0),
+                    triangle: t,
+                });
+                Ok(answer)
+            }
+            Stop::Approximate { .. } | Stop::Empty => Err(SweepError::EmptyMesh),
+        }
+    }
+
+    /// A certified interval for the distance from `p` to the mesh, at most `tolerance`
+    /// wide (or exact, if the process reaches the input triangles first).
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::NonFiniteQuery`] for a non-finite `p`;
+    /// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
+    pub fn closest_within(
+        &mut self,
+        p: DVec3,
+        tolerance: Tolerance,
+    ) -> Result<DistanceBounds, SweepError> {
+        check_non_negative("tolerance", tolerance.value())?;
+        self.bounded(p, Some(tolerance), usize::MAX)
+    }
+
+    /// A certified interval for the distance from `p` to the mesh after at most
+    /// `max_splits` vertex splits (the anytime query: `0` answers from the current mesh).
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::NonFiniteQuery`] for a non-finite `p`.
+    pub fn closest_with_budget(
+        &mut self,
+        p: DVec3,
+        max_splits: usize,
+    ) -> Result<DistanceBounds, SweepError> {
+        self.bounded(p, None, max_splits)
+    }
+
+    /// The `k` input triangles closest to `p`, nearest first, each with its closest point
+    /// (fewer if the mesh has fewer triangles).
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::NonFiniteQuery`] for a non-finite `p`.
+    pub fn k_closest(&mut self, p: DVec3, k: usize) -> Result<Vec<ClosestPoint>, SweepError> {
+        self.collect(p, k, f64::INFINITY)
+    }
+
+    /// Every input triangle within distance `d` of `p` (inclusive), nearest first, each
+    /// with its closest point.
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::NonFiniteQuery`] for a non-finite `p`;
+    /// [`SweepError::InvalidParameter`] for a negative or non-finite `d`.
+    pub fn within(&mut self, p: DVec3, d: f64) -> Result<Vec<ClosestPoint>, SweepError> {
+        check_non_negative("distance", d)?;
+        self.collect(p, usize::MAX, d)
+    }
+
+    /// Back to the base mesh (also done automatically, see [`SessionOptions`]).
+    pub fn reset(&mut self) {
+        self.refinement.reset();
+        self.queue.clear();
+        self.query = None;
+        self.motion = 0.0;
+        self.best_upper = f64::INFINITY;
+        self.safe = None;
+        self.stats.resets += 1;
+    }
+
+    /// The counters since the session was created.
+    pub fn stats(&self) -> SessionStats {
+        self.stats
+    }
+
+    /// Live triangles of the refined mesh now.
+    pub fn live_triangle_count(&self) -> usize {
+        self.refinement.live_triangle_count()
+    }
+
+    /// Bytes of this session's own state (the refinement and the queue; the hierarchy's
+    /// tables are shared).
+    pub fn memory_bytes(&self) -> usize {
+        4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
+            + self.queue.bytes()
+            + 4 * (self.undone.capacity() + self.touched.capacity())
+    }
+
+    /// The bounded query behind [`Session::closest_within`] and
+    /// [`Session::closest_with_budget`].
+    fn bounded(
+        &mut self,
+        p: DVec3,
+        tolerance: Option<Tolerance>,
+        max_splits: usize,
+    ) -> Result<DistanceBounds, SweepError> {
+        let p = check_point(p)?;
+        self.stats.queries += 1;
+        self.move_to(p);
+        let before = self.stats.splits;
+        let stop = self.sweep(p, tolerance, max_splits);
+        let splits = self.stats.splits - before;
+        match stop {
+            Stop::Exact(t) => {
+                let answer = self.exact(t, p)?;
+                Ok(DistanceBounds {
+                    lower: answer.distance,
+                    upper: answer.distance,
+                    closest: Some(answer),
+                    splits,
+                })
+            }
+            Stop::Approximate { lower } => Ok(DistanceBounds {
+                lower: lower.max(0.0),
+                upper: self.best_upper,
+                closest: None,
+                splits,
+            }),
+            Stop::Empty => Err(SweepError::EmptyMesh),
+        }
+    }
+
+    /// Takes leaves off the queue in order of distance while fewer than `k` are taken and
+    /// the front's lower bound is at most `limit`; puts them back afterwards.
+    fn collect(
+        &mut self,
+        p: DVec3,
+        k: usize,
+        limit: f64,
+    ) -> Result<Vec<ClosestPoint>, SweepError> {
+        let p = check_point(p)?;
+        self.stats.queries += 1;
+        self.move_to(p);
+        let mut taken: Vec<Entry> = Vec::new();
+        let mut answers = Vec::new();
+        while answers.len() < k {
+            match self.sweep_until(p, limit) {
+                Some(t) => {
+                    let answer = self.exact(t, p)?;
+                    if answer.distance > limit {
+                        break;
+                    }
+                    answers.push(answer);
+                    taken.extend(self.queue.remove(t));
+                }
+                None => break,
+            }
+        }
+        for entry in taken {
+            self.queue.set(entry);
+        }
+        Ok(answers)
+    }
+
+    /// Moves the query point to `p`: widens every interval by the motion (lazily, through
+    /// the key shift), or resets per [`SessionOptions`].
+    fn move_to(&mut self, p: DVec3) {
+        self.safe = None;
+        let jump = self.query.map_or(0.0, |q| (p - q).length());
+        let grown = self.refinement.live_triangle_count() > self.options.max_triangles;
+        let far = jump > self.options.jump_factor * self.last_distance;
+        if self.query.is_some() && (grown || far || self.generation == u32::MAX) {
+            self.reset();
+        }
+        if self.query.is_none() || self.queue.len() == 0 {
+            self.query = Some(p);
+            self.generation = self.generation.wrapping_add(1);
+            self.best_upper = f64::INFINITY;
+            self.refill(p);
+            return;
+        }
+        if jump > 0.0 {
+            self.query = Some(p);
+            self.motion += jump;
+            self.generation += 1;
+            self.best_upper += jump;
+        }
+    }
+
+    /// Queues every live triangle of the current mesh for `p` (after a reset: the base
+    /// mesh).
+    fn refill(&mut self, p: DVec3) {
+        if self.refinement.undone_count() == 0 {
+            for i in 0..self.base.len() {
+                let t = self.base[i];
+                self.evaluate(t, p);
+            }
+        } else {
+            let live: Vec<u32> = self.refinement.live_triangles().collect();
+            for t in live {
+                self.evaluate(t, p);
+            }
+        }
+    }
+
+    /// The sweep for a single answer: until the front is a leaf, the interval is within
+    /// `tolerance`, or `max_splits` splits were made.
+    fn sweep(&mut self, p: DVec3, tolerance: Option<Tolerance>, max_splits: usize) -> Stop {
+        let mut splits = 0;
+        loop {
+            let Some(front) = self.queue.first() else {
+                return Stop::Empty;
+            };
+            if front.stamp != self.generation {
+                self.evaluate(front.triangle, p);
+                continue;
+            }
+            let lower = front.key - self.motion;
+            let done = tolerance.is_some_and(|t| {
+                self.best_upper - lower.max(0.0) <= t.allowed_gap(self.best_upper)
+            });
+            if done || splits >= max_splits {
+                return Stop::Approximate { lower };
+            }
+            if !self.split_front(front.triangle, p) {
+                return Stop::Exact(front.triangle);
+            }
+            splits += 1;
+        }
+    }
+
+    /// The sweep for collecting leaves: the next leaf at the front, or `None` once the
+    /// front's lower bound exceeds `limit` or the queue is empty.
+    fn sweep_until(&mut self, p: DVec3, limit: f64) -> Option<u32> {
+        loop {
+            let front = self.queue.first()?;
+            if front.stamp != self.generation {
+                self.evaluate(front.triangle, p);
+                continue;
+            }
+            if front.key - self.motion > limit {
+                return None;
+            }
+            if !self.split_front(front.triangle, p) {
+                return Some(front.triangle);
+            }
+        }
+    }
+
+    /// Splits a corner of `t` (the one with the largest radius) and re-queues the
+    /// triangles the split changed; `false` if `t` is a leaf (an input triangle).
+    fn split_front(&mut self, t: u32, p: DVec3) -> bool {
+        let Some(corners) = self.refinement.corners(t) else {
+            // Not live (cannot happen for a queued triangle); drop it.
+            self.queue.remove(t);
+            return true;
+        };
+        let Some(v) = corners
+            .into_iter()
+            .filter(|&c| self.refinement.can_split(c))
+            .max_by(|&a, &b| {
+                let (ra, rb) = (self.refinement.radius(a), self.refinement.radius(b));
+                ra.total_cmp(&rb).then(b.cmp(&a))
+            })
+        else {
+            return false;
+        };
+        self.undone.clear();
+        if self.refinement.split_vertex_into(v, &mut self.undone).is_err() {
+            return false;
+        }
+        self.stats.splits += 1;
+        self.touched.clear();
+        for &c in &self.undone {
+            self.touched
+                .extend_from_slice(self.hierarchy.triangles_added_by_split(c));
+            self.touched
+                .extend_from_slice(self.hierarchy.triangles_affected_by_split(c));
+        }
+        for i in 0..self.touched.len() {
+            let t = self.touched[i];
+            if self.refinement.corners(t).is_some() {
+                self.evaluate(t, p);
+            } else {
+                self.queue.remove(t);
+            }
+        }
+        true
+    }
+
+    /// Computes the interval of live triangle `t` for `p` and queues it.
+    fn evaluate(&mut self, t: u32, p: DVec3) {
+        let Some(corners) = self.refinement.corners(t) else {
+            return;
+        };
+        self.stats.distance_evaluations += 1;
+        let positions = corners.map(|c| self.refinement.position(c));
+        let radii = corners.map(|c| self.refinement.radius(c));
+        let triangle = Triangle::new(positions[0], positions[1], positions[2]);
+        let hit = closest_point_on_triangle(p, &triangle);
+        let d = hit.distance_squared.sqrt();
+        let eps = radii[0].max(radii[1]).max(radii[2]);
+        let at_point = hit.barycentric[0] * radii[0]
+            + hit.barycentric[1] * radii[1]
+            + hit.barycentric[2] * radii[2];
+        self.best_upper = self.best_upper.min(d + at_point);
+        self.queue.set(Entry {
+            key: (d - eps) + self.motion,
+            triangle: t,
+            stamp: self.generation,
+        });
+    }
+
+    /// The exact answer on leaf `t`, remembering its distance for the jump policy.
+    fn exact(&mut self, t: u32, p: DVec3) -> Result<ClosestPoint, SweepError> {
+        let answer = self.leaf_answer(t, p).ok_or(SweepError::EmptyMesh)?;
+        self.last_distance = answer.distance;
+        self.best_upper = self.best_upper.min(answer.distance);
+        Ok(answer)
+    }
+
+    /// The closest point of input triangle `t` (a leaf) to `p`.
+    fn leaf_answer(&self, t: u32, p: DVec3) -> Option<ClosestPoint> {
+        let corners = self.hierarchy.triangle(t)?;
+        let positions = self.hierarchy.positions();
+        let at = |i: usize| positions.get(corners[i] as usize).copied();
+        let triangle = Triangle::new(at(0)?, at(1)?, at(2)?);
+        let hit = closest_point_on_triangle(p, &triangle);
+        let original = |i: usize| {
+            self.hierarchy
+                .original_vertex(corners[i])
+                .unwrap_or(corners[i])
+        };
+        let feature = match hit.feature {
+            geometry::Feature::Vertex(i) => Feature::Vertex(original(usize::from(i))),
+            geometry::Feature::Edge(e) => {
+                let e = usize::from(e);
+                Feature::Edge(original(e), original((e + 1) % 3))
+            }
+            geometry::Feature::Face => Feature::Face,
+        };
+        Some(ClosestPoint {
+            point: hit.point,
+            distance: hit.distance_squared.sqrt(),
+            triangle: self.hierarchy.original_triangle(t).unwrap_or(t),
+            feature,
+        })
+    }
+}
