@@ -112,6 +112,10 @@ pub struct Session<'s> {
     stats: SessionStats,
     undone: Vec<u32>,
     touched: Vec<u32>,
+    /// Per triangle: the mark of the split that last re-queued it (dedupes `touched`).
+    touched_at: Vec<u32>,
+    /// The current split's mark (never `u32::MAX`, the "never" value).
+    mark: u32,
 }
 
 /// Why the sweep stopped.
@@ -142,6 +146,8 @@ impl<'s> Session<'s> {
             stats: SessionStats::default(),
             undone: Vec::new(),
             touched: Vec::new(),
+            touched_at: vec![u32::MAX; hierarchy.triangle_count()],
+            mark: 0,
         }
     }
 
@@ -263,7 +269,7 @@ impl<'s> Session<'s> {
     pub fn memory_bytes(&self) -> usize {
         4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
             + self.queue.bytes()
-            + 4 * (self.undone.capacity() + self.touched.capacity())
+            + 4 * (self.undone.capacity() + self.touched.capacity() + self.touched_at.capacity())
     }
 
     /// The bounded query behind [`Session::closest_within`] and
@@ -302,12 +308,7 @@ impl<'s> Session<'s> {
 
     /// Takes leaves off the queue in order of distance while fewer than `k` are taken and
     /// the front's lower bound is at most `limit`; puts them back afterwards.
-    fn collect(
-        &mut self,
-        p: DVec3,
-        k: usize,
-        limit: f64,
-    ) -> Result<Vec<ClosestPoint>, SweepError> {
+    fn collect(&mut self, p: DVec3, k: usize, limit: f64) -> Result<Vec<ClosestPoint>, SweepError> {
         let p = check_point(p)?;
         self.stats.queries += 1;
         self.move_to(p);
@@ -436,16 +437,35 @@ impl<'s> Session<'s> {
             return false;
         };
         self.undone.clear();
-        if self.refinement.split_vertex_into(v, &mut self.undone).is_err() {
+        if self
+            .refinement
+            .split_vertex_into(v, &mut self.undone)
+            .is_err()
+        {
             return false;
         }
         self.stats.splits += 1;
         self.touched.clear();
+        self.mark += 1;
+        if self.mark == u32::MAX {
+            self.touched_at.fill(u32::MAX);
+            self.mark = 0;
+        }
+        let mark = self.mark;
         for &c in &self.undone {
-            self.touched
-                .extend_from_slice(self.hierarchy.triangles_added_by_split(c));
-            self.touched
-                .extend_from_slice(self.hierarchy.triangles_affected_by_split(c));
+            for &t in self
+                .hierarchy
+                .triangles_added_by_split(c)
+                .iter()
+                .chain(self.hierarchy.triangles_affected_by_split(c))
+            {
+                if let Some(at) = self.touched_at.get_mut(t as usize)
+                    && *at != mark
+                {
+                    *at = mark;
+                    self.touched.push(t);
+                }
+            }
         }
         for i in 0..self.touched.len() {
             let t = self.touched[i];

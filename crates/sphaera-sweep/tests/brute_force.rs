@@ -170,5 +170,8 @@ fn a_coherent_path_refines_far_less_than_fresh_queries() {
         fresh_splits += session.stats().splits;
     }
     eprintln!("coherent {coherent:?}, fresh splits {fresh_splits}");
-    assert!(coherent.splits * 4 < fresh_splits, "coherence saves little: {coherent:?} vs {fresh_splits}");
+    assert!(
+        coherent.splits * 4 < fresh_splits,
+        "coherence saves little: {coherent:?} vs {fresh_splits}"
+    );
 }

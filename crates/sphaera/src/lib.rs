@@ -12,8 +12,9 @@
 //! |---|---|---|
 //! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, winding numbers, surface sampling, procedural test shapes |
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | edge-collapse simplification whose reported error bound holds in both directions (error spheres) |
+//! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions |
 //!
-//! Later capabilities (Meshsweeper distance queries, medial-axis sphere-trees, HAL trees,
+//! Later capabilities (Hausdorff distances, medial-axis sphere-trees, HAL trees,
 //! silhouette labels) join this table as their crates land; see `docs/architecture.md` in
 //! the repository.
 //!
@@ -36,6 +37,8 @@
 pub use sphaera_mesh as mesh;
 #[cfg(feature = "simplify")]
 pub use sphaera_simplify as simplify;
+#[cfg(feature = "sweep")]
+pub use sphaera_sweep as sweep;
 
 /// The types almost every Sphaera user needs.
 pub mod prelude {
