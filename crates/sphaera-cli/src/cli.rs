@@ -32,6 +32,39 @@ pub enum Command {
     /// input point is within the bound of the output and every output point within the
     /// bound of the input.
     Simplify(SimplifyArgs),
+    /// Exact closest points on a mesh (Meshsweeper): for points read from a file or drawn
+    /// at random in the mesh's bounding box scaled 1.5x.
+    Distance(DistanceArgs),
+}
+
+/// Arguments of `sphaera distance`.
+#[derive(Debug, Args)]
+pub struct DistanceArgs {
+    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    pub mesh: Option<PathBuf>,
+
+    /// A text file of query points, one `x y z` per line (spaces or commas; `#` starts a
+    /// comment).
+    #[arg(long, conflicts_with = "random")]
+    pub points: Option<PathBuf>,
+
+    /// Query this many points drawn uniformly in the bounding box scaled 1.5x (the default,
+    /// with 1,000, when no `--points` file is given).
+    #[arg(long)]
+    pub random: Option<usize>,
+
+    /// The seed of `--random`.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+
+    /// Stop each query once its certified interval is at most this wide: an absolute
+    /// distance (`0.001`) or a percentage of the bounding-box diagonal (`0.1%`). Without
+    /// it, every answer is exact.
+    #[arg(long, value_parser = parse_max_error)]
+    pub tolerance: Option<MaxErrorArg>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
 }
 
 /// Arguments of `sphaera simplify`.

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+mod distance;
 mod info;
 mod simplify;
 
@@ -12,5 +13,6 @@ pub fn run(cli: &Cli) -> Result<()> {
     match &cli.command {
         Command::Info(args) => info::run(args, cli.quiet),
         Command::Simplify(args) => simplify::run(args, cli.quiet),
+        Command::Distance(args) => distance::run(args, cli.quiet),
     }
 }
