@@ -10,8 +10,7 @@ use std::f64::consts::TAU;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes, topology};
 use sphaera_sweep::{
-    ClosestPoint, Feature, Session, SessionOptions, SweepError, Sweeper, Tolerance,
-    build_hierarchy,
+    ClosestPoint, Feature, Session, SessionOptions, SweepError, Sweeper, Tolerance, build_hierarchy,
 };
 
 // ---------------------------------------------------------------------------------------
@@ -88,7 +87,9 @@ fn check_answer(mesh: &TriMesh, p: DVec3, answer: &ClosestPoint) {
 
 /// `session.closest(p)`, checked against brute force.
 fn check(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3) -> ClosestPoint {
-    let answer = session.closest(p).expect("a finite query on a non-empty mesh");
+    let answer = session
+        .closest(p)
+        .expect("a finite query on a non-empty mesh");
     check_answer(mesh, p, &answer);
     answer
 }
@@ -135,7 +136,9 @@ fn check_within(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3, d: f64) {
     // motion), and near-ties were seen swapped by 1 ulp.
     let found: Vec<f64> = inside.iter().map(|a| a.distance).collect();
     assert!(
-        found.windows(2).all(|w| w[0] <= w[1] + 1e-12 * w[1].max(1.0)),
+        found
+            .windows(2)
+            .all(|w| w[0] <= w[1] + 1e-12 * w[1].max(1.0)),
         "within({p}, {d}) is not nearest first: {found:?}"
     );
 }
@@ -149,7 +152,9 @@ fn check_bounds(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3, tolerance: 
         bounds.lower <= truth + slack && truth <= bounds.upper + slack,
         "{bounds:?} misses {truth} at {p}"
     );
-    assert!(bounds.gap() <= tolerance.allowed_gap(bounds.upper) + slack || bounds.closest.is_some());
+    assert!(
+        bounds.gap() <= tolerance.allowed_gap(bounds.upper) + slack || bounds.closest.is_some()
+    );
 }
 
 /// A small deterministic generator (`SplitMix64`).
@@ -236,7 +241,12 @@ fn band(n: usize, rows: usize) -> TriMesh {
     for r in 0..rows as u32 {
         for i in 0..n32 {
             let j = (i + 1) % n32;
-            let (a, b, c, d) = (r * n32 + i, r * n32 + j, (r + 1) * n32 + j, (r + 1) * n32 + i);
+            let (a, b, c, d) = (
+                r * n32 + i,
+                r * n32 + j,
+                (r + 1) * n32 + j,
+                (r + 1) * n32 + i,
+            );
             triangles.push([a, b, c]);
             triangles.push([a, c, d]);
         }
@@ -581,7 +591,10 @@ fn single_triangle() {
     let budget = session
         .closest_with_budget(DVec3::new(0.0, 0.0, 1.0), 0)
         .expect("ok");
-    assert_eq!(budget.lower, budget.upper, "a single input triangle is exact");
+    assert_eq!(
+        budget.lower, budget.upper,
+        "a single input triangle is exact"
+    );
     check_random_queries(&mesh, 1, 40);
 }
 
@@ -730,7 +743,11 @@ fn repeated_index_triangles_are_dropped_zero_area_ones_are_kept() {
     let triangles = vec![[3, 3, 4], [0, 1, 2], [5, 6, 7], [8, 9, 10]];
     let mesh = TriMesh::new(positions, triangles).expect("valid");
     let hierarchy = build_hierarchy(&mesh).expect("hierarchy");
-    assert_eq!(hierarchy.triangle_count(), 3, "the repeated-index one is dropped");
+    assert_eq!(
+        hierarchy.triangle_count(),
+        3,
+        "the repeated-index one is dropped"
+    );
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     let mut session = sweeper.session();
 
@@ -775,16 +792,13 @@ fn a_hierarchy_with_no_triangle_cannot_be_built() {
     // whose triangles all repeat a vertex index.
     let empty = TriMesh::new(vec![DVec3::ZERO], Vec::new()).expect("valid");
     assert!(build_hierarchy(&empty).is_err());
-    let segments = TriMesh::new(vec![DVec3::ZERO, DVec3::X], vec![[0, 0, 1], [1, 1, 0]])
-        .expect("valid");
+    let segments =
+        TriMesh::new(vec![DVec3::ZERO, DVec3::X], vec![[0, 0, 1], [1, 1, 0]]).expect("valid");
     match build_hierarchy(&segments) {
         Err(_) => {}
         Ok(hierarchy) => {
             assert_eq!(hierarchy.triangle_count(), 0);
-            assert_eq!(
-                Sweeper::new(&hierarchy).unwrap_err(),
-                SweepError::EmptyMesh
-            );
+            assert_eq!(Sweeper::new(&hierarchy).unwrap_err(), SweepError::EmptyMesh);
         }
     }
 }
@@ -800,9 +814,7 @@ fn negative_and_nan_parameters_are_errors() {
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     let mut session = sweeper.session();
     let p = DVec3::new(0.2, 0.9, 0.1);
-    let invalid = |e: SweepError, expected: &str| {
-        matches!(e, SweepError::InvalidParameter { name, .. } if name == expected)
-    };
+    let invalid = |e: SweepError, expected: &str| matches!(e, SweepError::InvalidParameter { name, .. } if name == expected);
     for value in [-1.0, -1e-300, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         for tolerance in [Tolerance::Absolute(value), Tolerance::Relative(value)] {
             let error = session.closest_within(p, tolerance).unwrap_err();
@@ -832,7 +844,11 @@ fn k_closest_with_zero_and_more_than_every_triangle() {
     let p = DVec3::new(0.4, 1.1, 0.2);
     assert!(session.k_closest(p, 0).expect("ok").is_empty());
     check(&torus, &mut session, p);
-    for k in [torus.triangle_count(), torus.triangle_count() + 1, usize::MAX] {
+    for k in [
+        torus.triangle_count(),
+        torus.triangle_count() + 1,
+        usize::MAX,
+    ] {
         check_k_closest(&torus, &mut session, p, k);
         let all = session.k_closest(p, k).expect("ok");
         let mut triangles: Vec<u32> = all.iter().map(|a| a.triangle).collect();
@@ -875,11 +891,7 @@ fn within_zero_on_the_surface_finds_the_triangles_through_the_point() {
         let found = session.within(q, 0.0).expect("ok");
         assert_eq!(found.len(), around, "vertex {v}");
         assert!(found.iter().all(|a| a.distance == 0.0 && a.point == q));
-        assert!(
-            found
-                .iter()
-                .all(|a| a.feature == Feature::Vertex(v as u32))
-        );
+        assert!(found.iter().all(|a| a.feature == Feature::Vertex(v as u32)));
     }
 }
 
@@ -922,8 +934,15 @@ fn one_session_through_every_case_in_sequence() {
         check_k_closest(&mesh, &mut s, DVec3::new(4.0, 0.0, 0.5), 7);
         check(&mesh, &mut s, DVec3::new(4.0, 0.0, 0.5));
         assert!(s.within(DVec3::ZERO, -1.0).is_err());
-        check_bounds(&mesh, &mut s, DVec3::new(2.0, 2.0, 2.0), Tolerance::Absolute(0.05));
-        let budget = s.closest_with_budget(DVec3::new(1.9, 0.0, 0.1), 0).expect("ok");
+        check_bounds(
+            &mesh,
+            &mut s,
+            DVec3::new(2.0, 2.0, 2.0),
+            Tolerance::Absolute(0.05),
+        );
+        let budget = s
+            .closest_with_budget(DVec3::new(1.9, 0.0, 0.1), 0)
+            .expect("ok");
         let truth = brute(&mesh, DVec3::new(1.9, 0.0, 0.1));
         assert!(budget.lower <= truth + 1e-12 && truth <= budget.upper + 1e-12);
         assert_eq!(budget.splits, 0);
@@ -978,7 +997,10 @@ fn random_walk(mesh: &TriMesh, options: SessionOptions, seed: u64, steps: usize,
                     .closest_with_budget(p, rng.index(5))
                     .expect("finite query");
                 let slack = 1e-12 * truth.max(1.0);
-                assert!(b.lower <= truth + slack && truth <= b.upper + slack, "{b:?}");
+                assert!(
+                    b.lower <= truth + slack && truth <= b.upper + slack,
+                    "{b:?}"
+                );
             }
             _ => {}
         }
