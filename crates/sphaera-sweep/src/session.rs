@@ -8,6 +8,14 @@ use crate::error::{check_non_negative, check_point};
 use crate::queue::{Entry, Queue};
 use crate::{ClosestPoint, DistanceBounds, Feature, SessionStats, SweepError, Sweeper, Tolerance};
 
+/// The relative rounding of a shifted key (a few ulps of the total motion).
+const MOTION_ROUNDING: f64 = 4.0 * f64::EPSILON;
+
+/// A session resets when the total motion since its last reset passes this many times the
+/// mesh's bounding-box diagonal, so the shifted keys keep their precision (the rounding
+/// slack stays below `1e-13` of the diagonal).
+const MAX_MOTION_IN_DIAGONALS: f64 = 64.0;
+
 /// When a [`Session`] goes back to the base mesh before a query.
 ///
 /// A session only refines (paper section 4.2); it coarsens all at once, by a reset. A reset
@@ -95,6 +103,8 @@ struct SafeBall {
 pub struct Session<'s> {
     hierarchy: &'s Hierarchy,
     base: &'s [u32],
+    /// The bounding-box diagonal of the finest mesh (the scale of the precision rule).
+    diagonal: f64,
     options: SessionOptions,
     refinement: Refinement<'s>,
     queue: Queue,
@@ -134,6 +144,7 @@ impl<'s> Session<'s> {
         Self {
             hierarchy,
             base: sweeper.base_triangles(),
+            diagonal: sweeper.diagonal(),
             options,
             refinement: hierarchy.refinement(),
             queue: Queue::new(hierarchy.triangle_count()),
@@ -179,7 +190,7 @@ impl<'s> Session<'s> {
                 let second = self
                     .queue
                     .second_key()
-                    .map_or(f64::INFINITY, |k| k - self.motion);
+                    .map_or(f64::INFINITY, |k| self.lower(k));
                 self.safe = Some(SafeBall {
                     center: p,
                     radius: (0.5 * (second - answer.distance)).max(0.0),
@@ -340,7 +351,8 @@ impl<'s> Session<'s> {
         let jump = self.query.map_or(0.0, |q| (p - q).length());
         let grown = self.refinement.live_triangle_count() > self.options.max_triangles;
         let far = jump > self.options.jump_factor * self.last_distance;
-        if self.query.is_some() && (grown || far || self.generation == u32::MAX) {
+        let imprecise = self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.diagonal;
+        if self.query.is_some() && (grown || far || imprecise || self.generation == u32::MAX) {
             self.reset();
         }
         if self.query.is_none() || self.queue.len() == 0 {
@@ -386,16 +398,20 @@ impl<'s> Session<'s> {
                 self.evaluate(front.triangle, p);
                 continue;
             }
-            let lower = front.key - self.motion;
+            if self.is_leaf(front.triangle) {
+                if self.is_current(front, p) {
+                    return Stop::Exact(front.triangle);
+                }
+                continue;
+            }
+            let lower = self.lower(front.key);
             let done = tolerance.is_some_and(|t| {
                 self.best_upper - lower.max(0.0) <= t.allowed_gap(self.best_upper)
             });
             if done || splits >= max_splits {
                 return Stop::Approximate { lower };
             }
-            if !self.split_front(front.triangle, p) {
-                return Stop::Exact(front.triangle);
-            }
+            self.split_front(front.triangle, p);
             splits += 1;
         }
     }
@@ -409,13 +425,25 @@ impl<'s> Session<'s> {
                 self.evaluate(front.triangle, p);
                 continue;
             }
-            if front.key - self.motion > limit {
+            if self.lower(front.key) > limit {
                 return None;
             }
-            if !self.split_front(front.triangle, p) {
-                return Some(front.triangle);
+            if self.is_leaf(front.triangle) {
+                if self.is_current(front, p) {
+                    return Some(front.triangle);
+                }
+                continue;
             }
+            self.split_front(front.triangle, p);
         }
+    }
+
+    /// Whether live triangle `t` is a triangle of the input mesh: none of its corners can
+    /// be split (then its corners are its input corners, at their input positions).
+    fn is_leaf(&self, t: u32) -> bool {
+        self.refinement
+            .corners(t)
+            .is_some_and(|corners| corners.iter().all(|&c| !self.refinement.can_split(c)))
     }
 
     /// Splits a corner of `t` (the one with the largest radius) and re-queues the
@@ -476,6 +504,25 @@ impl<'s> Session<'s> {
             }
         }
         true
+    }
+
+    /// The lower end of the interval of an entry with `key`: the key minus the motion
+    /// since the reset, minus a rounding slack proportional to the motion (so the bound
+    /// stays conservative however the shift rounded).
+    fn lower(&self, key: f64) -> f64 {
+        key - self.motion - MOTION_ROUNDING * self.motion
+    }
+
+    /// Whether `entry` (a clean leaf at the front) was computed with the radii its corners
+    /// have now. A split's tables name the triangles around the parent *as built*; a
+    /// triangle revived out of build order may keep a key computed with a corner's larger
+    /// earlier radius — a lower bound still, but not its exact distance. If so it is
+    /// re-queued with its exact key and `false` is returned.
+    fn is_current(&mut self, entry: Entry, p: DVec3) -> bool {
+        self.evaluate(entry.triangle, p);
+        self.queue
+            .first()
+            .is_some_and(|now| now.triangle == entry.triangle && now.key <= entry.key)
     }
 
     /// Computes the interval of live triangle `t` for `p` and queues it.

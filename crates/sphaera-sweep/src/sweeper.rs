@@ -1,6 +1,6 @@
 //! The shared, read-only part of the distance engine.
 
-use sphaera_mesh::TriMesh;
+use sphaera_mesh::{DVec3, TriMesh};
 use sphaera_simplify::{Hierarchy, Simplifier, SimplifyError};
 
 use crate::{Session, SessionOptions, SweepError};
@@ -29,6 +29,7 @@ use crate::{Session, SessionOptions, SweepError};
 pub struct Sweeper<'h> {
     hierarchy: &'h Hierarchy,
     base: Vec<u32>,
+    diagonal: f64,
 }
 
 impl<'h> Sweeper<'h> {
@@ -46,12 +47,26 @@ impl<'h> Sweeper<'h> {
         if base.is_empty() {
             return Err(SweepError::EmptyMesh);
         }
-        Ok(Self { hierarchy, base })
+        let (min, max) = hierarchy.positions().iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        let diagonal = (max - min).length();
+        Ok(Self {
+            hierarchy,
+            base,
+            diagonal: if diagonal.is_finite() { diagonal } else { 0.0 },
+        })
     }
 
     /// The hierarchy queried.
     pub fn hierarchy(&self) -> &'h Hierarchy {
         self.hierarchy
+    }
+
+    /// The bounding-box diagonal of the mesh's vertices.
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
     }
 
     /// The triangles of the base mesh (where every session starts and resets to).

@@ -1,6 +1,9 @@
 //! Every query against brute force (every input triangle), on procedural shapes and
 //! random points.
 
+// The coherence test prints its counters.
+#![allow(clippy::print_stderr)]
+
 use proptest::prelude::*;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes};

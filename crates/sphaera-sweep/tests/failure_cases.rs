@@ -927,7 +927,7 @@ fn one_session_through_every_case_in_sequence() {
         assert!(s.closest(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
         check(&mesh, &mut s, vertex + DVec3::splat(1e-12));
         // Far away (100× the size; farther breaks the bounds of a session that keeps its
-        // state, see `bug_far_jumps_break_the_certified_bounds_of_a_kept_session`).
+        // state, see `far_jumps_keep_the_bounds_of_a_kept_session_certified`).
         check(&mesh, &mut s, 100.0 * size * DVec3::new(0.3, -0.9, 0.1));
         check_within(&mesh, &mut s, vertex, 0.0);
         check_k_closest(&mesh, &mut s, DVec3::new(4.0, 0.0, 0.5), 0);
@@ -1063,7 +1063,8 @@ fn random_walk_with_default_options() {
 }
 
 // ---------------------------------------------------------------------------------------
-// Known bug: the key shift loses precision as the total motion grows
+// Regression (fixed: rounding slack on the shifted keys and a reset past 64 diagonals of
+// motion): the key shift used to lose precision as the total motion grew
 // ---------------------------------------------------------------------------------------
 //
 // A session stores every key as `(d − ε) + motion`, `motion` being the total distance the
@@ -1075,9 +1076,8 @@ fn random_walk_with_default_options() {
 // `closest` returns a leaf that is not the nearest.
 
 #[test]
-#[ignore = "bug: keys shifted by the total motion lose precision; far walks break `closest`"]
-fn bug_a_walk_out_and_back_breaks_closest_with_default_options() {
-    // Measured: already on the way back in, `closest((1.40625, 1.875, 3.125))` answers
+fn a_walk_out_to_1e12_and_back_stays_exact() {
+    // Before the fix: already on the way back in, `closest((1.40625, 1.875, 3.125))` answers
     // 2.9254083020 where brute force says 2.9254082752 (2.7e-8 off); after the walk
     // (243 queries, no reset) the queries near the sphere are up to 1.5e-4 off.
     let sphere = shapes::sphere(1.0, 16).expect("sphere");
@@ -1095,7 +1095,8 @@ fn bug_a_walk_out_and_back_breaks_closest_with_default_options() {
         check(&sphere, &mut session, r * dir);
         r /= 1.25;
     }
-    assert_eq!(session.stats().resets, 0);
+    // The precision rule resets the session once the total motion passes 64 diagonals.
+    assert!(session.stats().resets > 0);
     for i in 0..50 {
         let i = f64::from(i);
         check(
@@ -1107,9 +1108,8 @@ fn bug_a_walk_out_and_back_breaks_closest_with_default_options() {
 }
 
 #[test]
-#[ignore = "bug: keys shifted by the total motion lose precision; far jumps break the bounds"]
-fn bug_far_jumps_break_the_certified_bounds_of_a_kept_session() {
-    // Measured: after four jumps to ±1e6 the bounds miss by up to 4.5e-10 (at a distance
+fn far_jumps_keep_the_bounds_of_a_kept_session_certified() {
+    // Before the fix: after four jumps to ±1e6 the bounds miss by up to 4.5e-10 (at a distance
     // of about 0.5); after jumps to ±1e12 `closest` itself is 7e-4 off.
     let sphere = shapes::sphere(1.0, 16).expect("sphere");
     let hierarchy = build_hierarchy(&sphere).expect("hierarchy");
@@ -1134,8 +1134,7 @@ fn bug_far_jumps_break_the_certified_bounds_of_a_kept_session() {
 }
 
 #[test]
-#[ignore = "bug: keys shifted by the total motion lose precision; far jumps break the bounds"]
-fn bug_random_walk_with_very_far_jumps_in_kept_sessions() {
+fn random_walks_with_very_far_jumps_in_kept_sessions() {
     // The random walk of the tests above, with one jump in twenty 1e5 times the size
     // away: fails (measured: a query 3.2e-10 from the surface answered 4e-12 too far;
     // with other seeds, lower bounds above the true distance by ~1e-11).
