@@ -35,6 +35,42 @@ pub enum Command {
     /// Exact closest points on a mesh (Meshsweeper): for points read from a file or drawn
     /// at random in the mesh's bounding box scaled 1.5x.
     Distance(DistanceArgs),
+    /// Certified Hausdorff distance between two meshes (Meshsweeper, section 6): a lower
+    /// and an upper bound at most `--tolerance` apart, where the maximum is reached, and
+    /// optionally a PLY of the first mesh coloured by its distance to the second.
+    Hausdorff(HausdorffArgs),
+}
+
+/// Arguments of `sphaera hausdorff`.
+#[derive(Debug, Args)]
+pub struct HausdorffArgs {
+    /// The first mesh (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    pub a: Option<PathBuf>,
+
+    /// The second mesh; when omitted, the first mesh simplified to 15 % of its triangles
+    /// (then the simplifier's certified error bound is reported beside the distance).
+    pub b: Option<PathBuf>,
+
+    /// Stop once `upper − lower` is at most this: an absolute distance (`1e-4`) or a
+    /// percentage of the bounding-box diagonal of both meshes (`0.001%`).
+    #[arg(long, value_parser = parse_max_error, default_value = "0.001%")]
+    pub tolerance: MaxErrorArg,
+
+    /// Only the one-sided distance from A to B (default: symmetric).
+    #[arg(long)]
+    pub one_sided: bool,
+
+    /// Stop refining after this many samples (the bounds stay certified, only wider).
+    #[arg(long, default_value_t = 20_000_000)]
+    pub max_samples: usize,
+
+    /// Write mesh A as a PLY whose vertices are coloured by their distance to B, blue
+    /// (0) to red (the largest), written atomically.
+    #[arg(long)]
+    pub colors: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
 }
 
 /// Arguments of `sphaera distance`.

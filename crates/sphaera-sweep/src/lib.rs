@@ -64,11 +64,15 @@
 
 mod answer;
 mod error;
+mod hausdorff;
 mod queue;
 mod session;
 mod sweeper;
 
 pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};
 pub use error::SweepError;
+pub use hausdorff::{
+    DirectedHausdorff, Direction, Hausdorff, HausdorffDistance, HausdorffProgress, hausdorff,
+};
 pub use session::{Session, SessionOptions};
 pub use sweeper::{Sweeper, build_hierarchy};

@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod distance;
+mod hausdorff;
 mod info;
 mod simplify;
 
@@ -14,5 +15,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Info(args) => info::run(args, cli.quiet),
         Command::Simplify(args) => simplify::run(args, cli.quiet),
         Command::Distance(args) => distance::run(args, cli.quiet),
+        Command::Hausdorff(args) => hausdorff::run(args, cli.quiet),
     }
 }

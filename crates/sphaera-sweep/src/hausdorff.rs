@@ -1,0 +1,460 @@
+//! Certified Hausdorff distances between two meshes (paper section 6): see [`Hausdorff`].
+
+mod bound;
+mod peel;
+mod side;
+mod target;
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use glam::DVec3;
+use sphaera_simplify::Hierarchy;
+
+use crate::error::check_non_negative;
+use crate::{SweepError, Sweeper, Tolerance};
+use side::Side;
+
+/// A direction of a one-sided Hausdorff distance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Direction {
+    /// `h(A → B)`: the points of the first mesh, measured against the second.
+    AToB,
+    /// `h(B → A)`.
+    BToA,
+}
+
+/// A certified one-sided Hausdorff distance `h(S → T)` from a source mesh `S` to a target
+/// `T`, with where it is reached and the distance of every source vertex.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DirectedHausdorff {
+    /// A lower bound of `h(S → T)`: the largest exact distance found at a sample.
+    pub lower: f64,
+    /// An upper bound of `h(S → T)`.
+    pub upper: f64,
+    /// The sample of `S` where [`lower`](Self::lower) is reached.
+    pub farthest: DVec3,
+    /// Its closest point on `T`.
+    pub closest: DVec3,
+    /// The distance to `T` of every input vertex of `S` (by input vertex index): the
+    /// distance to the nearest point found, an upper bound that is almost always exact;
+    /// certified exact for every vertex with [`Hausdorff::exact_vertex_distances`]. 0 for
+    /// a vertex no triangle uses (not a point of the surface).
+    pub vertex_distances: Vec<f64>,
+    /// Points of `S` sampled: its vertices plus the edge midpoints of refined triangles.
+    pub samples: usize,
+    /// Samples given a certified distance by a closest-point query (the others only
+    /// needed a near point, found by a local walk from their neighbours' answers).
+    pub certified_samples: usize,
+    /// Triangles split in four.
+    pub refined_triangles: usize,
+}
+
+/// The result of [`Hausdorff::symmetric`] or [`Hausdorff::one_sided`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct HausdorffDistance {
+    /// A lower bound of the distance (`h(A → B)`, or `H(A, B)` when symmetric).
+    pub lower: f64,
+    /// An upper bound of the distance.
+    pub upper: f64,
+    /// The direction `A → B`.
+    pub a_to_b: DirectedHausdorff,
+    /// The direction `B → A` (only when symmetric).
+    pub b_to_a: Option<DirectedHausdorff>,
+    /// The direction whose lower bound is the larger (where the maximum is reached).
+    pub dominating: Direction,
+    /// `false` when the sample budget ran out before the tolerance was met (the bounds
+    /// are still certified, only wider).
+    pub converged: bool,
+}
+
+impl HausdorffDistance {
+    /// `upper − lower`.
+    pub fn gap(&self) -> f64 {
+        self.upper - self.lower
+    }
+
+    /// The dominating direction's details.
+    pub fn dominating_side(&self) -> &DirectedHausdorff {
+        match (self.dominating, &self.b_to_a) {
+            (Direction::BToA, Some(b)) => b,
+            _ => &self.a_to_b,
+        }
+    }
+}
+
+/// Progress of a Hausdorff computation, reported every few thousand samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HausdorffProgress {
+    /// Vertices queried so far, of [`vertices`](Self::vertices).
+    pub vertices_done: usize,
+    /// Vertices of the sampled meshes.
+    pub vertices: usize,
+    /// Samples queried so far (vertices and midpoints).
+    pub samples: usize,
+    /// The current lower bound.
+    pub lower: f64,
+    /// The current upper bound (infinite until the vertices are done).
+    pub upper: f64,
+}
+
+/// A Hausdorff distance computation between the meshes of two sweepers (paper section 6),
+/// configured by its methods and run by [`one_sided`](Self::one_sided) or
+/// [`symmetric`](Self::symmetric).
+///
+/// The one-sided distance `h(A → B) = max over x ∈ A of d(x, B)` is bracketed:
+///
+/// - the **lower bound** is the largest exact distance found at a sample of `A` (every
+///   sample is a point of `A`, so it cannot exceed the maximum);
+/// - the **upper bound** is the largest, over a set of triangles covering `A`, of an upper
+///   bound of the distance from every point of the triangle to `B`, computed from the exact
+///   answers at its corners (the paper's bisector-plane bound of Fig. 9, and a tighter
+///   bound through one target triangle, whichever is smaller: see `bound.rs`).
+///
+/// The samples start as the vertices of `A`, visited along spiral *peel* paths so that
+/// successive queries of one [`Session`] on `B` are coherent. Then the triangle with the
+/// largest upper bound is split in four at its edge midpoints, the midpoints are queried,
+/// and its children are queued, until the largest upper bound is within the tolerance of
+/// the lower bound: only triangles whose bound can still exceed the lower bound are ever
+/// refined. For the symmetric `H(A, B) = max(h(A → B), h(B → A))` both directions share
+/// one queue, so the direction that dominates is the only one refined once the other's
+/// bounds fall below it.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::shapes;
+/// use sphaera_sweep::{Direction, Sweeper, Tolerance, build_hierarchy, hausdorff};
+///
+/// // A cube with corners at ±1 and a unit sphere inside it.
+/// let (cube, sphere) = (shapes::cube(2.0, 8)?, shapes::sphere(1.0, 32)?);
+/// let (hc, hs) = (build_hierarchy(&cube)?, build_hierarchy(&sphere)?);
+/// let (a, b) = (Sweeper::new(&hc)?, Sweeper::new(&hs)?);
+///
+/// let result = hausdorff(&a, &b).tolerance(Tolerance::Absolute(1e-6)).symmetric()?;
+/// assert!(result.lower <= result.upper && result.gap() <= 1e-6);
+/// // The cube's corners are farthest: √3 − 1 from the (tessellated) sphere.
+/// assert_eq!(result.dominating, Direction::AToB);
+/// assert!((result.upper - (3f64.sqrt() - 1.0)).abs() < 1e-2);
+/// assert!(result.dominating_side().farthest.abs().min_element() > 0.999);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[must_use = "a Hausdorff builder does nothing until `one_sided` or `symmetric` is called"]
+pub struct Hausdorff<'a> {
+    a: &'a Sweeper<'a>,
+    b: &'a Sweeper<'a>,
+    tolerance: Tolerance,
+    max_samples: usize,
+    exact_vertex_distances: bool,
+    progress: Option<&'a dyn Fn(&HausdorffProgress)>,
+}
+
+/// A Hausdorff distance computation from mesh `a` to mesh `b` (and back, if symmetric).
+///
+/// The default tolerance is `Tolerance::Relative(1e-4)`: `upper − lower` at most 1e-4 of
+/// the bounding-box diagonal of both meshes together.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::shapes;
+/// use sphaera_sweep::{Sweeper, build_hierarchy, hausdorff};
+///
+/// let cube = shapes::cube(2.0, 4)?;
+/// let h = build_hierarchy(&cube)?;
+/// let s = Sweeper::new(&h)?;
+/// let same = hausdorff(&s, &s).symmetric()?;
+/// assert_eq!((same.lower, same.upper), (0.0, 0.0));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn hausdorff<'a>(a: &'a Sweeper<'a>, b: &'a Sweeper<'a>) -> Hausdorff<'a> {
+    Hausdorff {
+        a,
+        b,
+        tolerance: Tolerance::Relative(1e-4),
+        max_samples: 20_000_000,
+        exact_vertex_distances: false,
+        progress: None,
+    }
+}
+
+impl<'a> Hausdorff<'a> {
+    /// Stop once `upper − lower` is at most this: [`Tolerance::Absolute`] in the meshes'
+    /// units, or [`Tolerance::Relative`] as a fraction of the bounding-box diagonal of both
+    /// meshes together (not of the distance).
+    pub fn tolerance(mut self, tolerance: Tolerance) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// Stop refining once this many samples (vertices included) were queried; the result
+    /// then says `converged: false`. Default 20 million (about 1.3 GB of samples).
+    pub fn max_samples(mut self, max_samples: usize) -> Self {
+        self.max_samples = max_samples;
+        self
+    }
+
+    /// Certify the distance of every vertex (default `false`): the
+    /// [`vertex_distances`](DirectedHausdorff::vertex_distances) are then exact, at the
+    /// cost of one coherent closest-point query per vertex instead of a local walk.
+    pub fn exact_vertex_distances(mut self, exact: bool) -> Self {
+        self.exact_vertex_distances = exact;
+        self
+    }
+
+    /// Calls `report` every few thousand samples.
+    pub fn progress(mut self, report: &'a dyn Fn(&HausdorffProgress)) -> Self {
+        self.progress = Some(report);
+        self
+    }
+
+    /// The one-sided `h(A → B)`.
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
+    ///
+    /// # Performance
+    ///
+    /// One closest-point query per vertex of `A` (coherent, along peel paths), then a few
+    /// per refined triangle; memory about 64 bytes per sample.
+    pub fn one_sided(self) -> Result<HausdorffDistance, SweepError> {
+        self.run(false)
+    }
+
+    /// The symmetric `H(A, B) = max(h(A → B), h(B → A))`.
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
+    ///
+    /// # Performance
+    ///
+    /// As [`one_sided`](Self::one_sided) for both directions, but only the dominating
+    /// direction is refined once the other's upper bound falls below the lower bound.
+    pub fn symmetric(self) -> Result<HausdorffDistance, SweepError> {
+        self.run(true)
+    }
+
+    fn run(self, symmetric: bool) -> Result<HausdorffDistance, SweepError> {
+        check_non_negative("tolerance", self.tolerance.value())?;
+        let allowed = match self.tolerance {
+            Tolerance::Absolute(t) => t,
+            Tolerance::Relative(f) => f * joint_diagonal(self.a.hierarchy(), self.b.hierarchy()),
+        };
+        let mut sides = vec![Side::new(self.a, self.b, allowed)];
+        if symmetric {
+            sides.push(Side::new(self.b, self.a, allowed));
+        }
+        let vertices: usize = sides.iter().map(|s| s.source().vertex_count()).sum();
+        let mut tracker = Tracker {
+            report: self.progress,
+            vertices,
+            vertices_done: 0,
+            next_report: 0,
+        };
+        let mut floor = 0.0_f64;
+        for side in &mut sides {
+            side.floor = floor;
+            side.query_vertices(self.exact_vertex_distances, &mut tracker)?;
+            floor = floor.max(side.lower);
+        }
+        let mut queue = BinaryHeap::new();
+        let mut nodes = Vec::new();
+        for (index, side) in sides.iter().enumerate() {
+            for t in 0..side.source().triangle_count() as u32 {
+                if let Some(corners) = side.source().triangle(t) {
+                    push(&mut queue, &mut nodes, &sides, index, corners);
+                }
+            }
+        }
+        let converged = refine(
+            &mut sides,
+            &mut queue,
+            &mut nodes,
+            allowed,
+            self.max_samples,
+            &mut tracker,
+        )?;
+        // Each direction's upper bound: its own lower bound, or its largest queued bound.
+        let mut uppers: Vec<f64> = sides.iter().map(|s| s.lower).collect();
+        for entry in &queue {
+            if let Some(node) = nodes.get(entry.node)
+                && let Some(u) = uppers.get_mut(usize::from(node.side))
+            {
+                *u = u.max(entry.upper);
+            }
+        }
+        let mut directed = sides
+            .into_iter()
+            .zip(uppers)
+            .map(|(side, upper)| side.finish(upper));
+        let a_to_b = directed.next().ok_or(SweepError::EmptyMesh)?;
+        let b_to_a = directed.next();
+        let (lower, upper, dominating) = match &b_to_a {
+            Some(b) if b.lower > a_to_b.lower => {
+                (b.lower, a_to_b.upper.max(b.upper), Direction::BToA)
+            }
+            Some(b) => (a_to_b.lower, a_to_b.upper.max(b.upper), Direction::AToB),
+            None => (a_to_b.lower, a_to_b.upper, Direction::AToB),
+        };
+        Ok(HausdorffDistance {
+            lower,
+            upper,
+            a_to_b,
+            b_to_a,
+            dominating,
+            converged,
+        })
+    }
+}
+
+/// Splits the triangle with the largest upper bound until that bound is within `allowed`
+/// of the lower bound (`true`) or the sample budget runs out (`false`).
+fn refine(
+    sides: &mut [Side<'_>],
+    queue: &mut BinaryHeap<Queued>,
+    nodes: &mut Vec<Node>,
+    allowed: f64,
+    max_samples: usize,
+    tracker: &mut Tracker<'_>,
+) -> Result<bool, SweepError> {
+    loop {
+        let lower = sides.iter().map(|s| s.lower).fold(0.0_f64, f64::max);
+        let samples: usize = sides.iter().map(Side::sample_count).sum();
+        let Some(top) = queue.peek().copied() else {
+            return Ok(true);
+        };
+        tracker.tick(samples, lower, top.upper.max(lower));
+        if top.upper <= lower + allowed {
+            return Ok(true);
+        }
+        if samples >= max_samples {
+            return Ok(false);
+        }
+        queue.pop();
+        let Some(&Node {
+            corners: [a, b, c],
+            side,
+        }) = nodes.get(top.node)
+        else {
+            continue;
+        };
+        let index = usize::from(side);
+        let Some(source) = sides.get_mut(index) else {
+            continue;
+        };
+        source.refined += 1;
+        source.floor = lower;
+        let ab = source.midpoint(a, b)?;
+        let bc = source.midpoint(b, c)?;
+        let ca = source.midpoint(c, a)?;
+        for corners in [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]] {
+            push(queue, nodes, sides, index, corners);
+        }
+    }
+}
+
+/// Queues the triangle of samples `corners` of side `index` with its upper bound.
+fn push(
+    queue: &mut BinaryHeap<Queued>,
+    nodes: &mut Vec<Node>,
+    sides: &[Side<'_>],
+    index: usize,
+    corners: [u32; 3],
+) {
+    let Some(side) = sides.get(index) else {
+        return;
+    };
+    let Some(upper) = side.upper_bound(corners) else {
+        return;
+    };
+    queue.push(Queued {
+        upper,
+        node: nodes.len(),
+    });
+    nodes.push(Node {
+        corners,
+        side: u8::from(index == 1),
+    });
+}
+
+/// The bounding-box diagonal of both meshes' vertices together.
+fn joint_diagonal(a: &Hierarchy, b: &Hierarchy) -> f64 {
+    let (lo, hi) = a.positions().iter().chain(b.positions()).fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let d = (hi - lo).length();
+    if d.is_finite() { d } else { 0.0 }
+}
+
+/// A triangle of samples waiting in the queue.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    corners: [u32; 3],
+    side: u8,
+}
+
+/// A queue entry: a node and its upper bound (a max-heap on the bound, ties by node).
+#[derive(Clone, Copy, Debug)]
+struct Queued {
+    upper: f64,
+    node: usize,
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Queued {}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.upper
+            .total_cmp(&other.upper)
+            .then(other.node.cmp(&self.node))
+    }
+}
+
+/// Calls the progress callback now and then.
+struct Tracker<'a> {
+    report: Option<&'a dyn Fn(&HausdorffProgress)>,
+    vertices: usize,
+    vertices_done: usize,
+    next_report: usize,
+}
+
+impl Tracker<'_> {
+    /// One more vertex has a point found.
+    fn vertex_done(&mut self, lower: f64) {
+        self.vertices_done += 1;
+        if self.vertices_done.is_multiple_of(4096) {
+            self.tick(self.vertices_done, lower, f64::INFINITY);
+        }
+    }
+
+    fn tick(&mut self, samples: usize, lower: f64, upper: f64) {
+        if samples < self.next_report {
+            return;
+        }
+        self.next_report = samples + 4096;
+        if let Some(report) = self.report {
+            report(&HausdorffProgress {
+                vertices_done: self.vertices_done,
+                vertices: self.vertices,
+                samples,
+                lower,
+                upper,
+            });
+        }
+    }
+}

@@ -1,0 +1,278 @@
+//! One direction `S → T` of a Hausdorff computation: the samples of the source mesh `S`,
+//! the points found for them on the target `T`, and the certified lower bound.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use sphaera_mesh::geometry::Triangle;
+use sphaera_simplify::Hierarchy;
+
+use super::bound::{CornerAnswer, triangle_upper_bound};
+use super::target::{Found, Target};
+use super::{DirectedHausdorff, Tracker, peel};
+use crate::{ClosestPoint, Feature, Session, SweepError, Sweeper, Tolerance};
+
+/// A point of the source mesh with a point found on the target.
+#[derive(Clone, Copy, Debug)]
+struct Sample {
+    position: DVec3,
+    /// The nearest point found (exact once certified, usually exact before).
+    found: Found,
+}
+
+/// One direction: the source mesh's samples, the target's geometry, and a session on the
+/// target for certified lower bounds.
+pub(super) struct Side<'s> {
+    source: &'s Hierarchy,
+    target: Target<'s>,
+    session: Session<'s>,
+    samples: Vec<Sample>,
+    midpoints: HashMap<(u32, u32), u32>,
+    /// The largest certified lower bound at a sample, and that sample.
+    pub(super) lower: f64,
+    farthest: Option<usize>,
+    /// A lower bound already certified elsewhere (the other direction's, in a symmetric
+    /// computation): samples that cannot beat it are not certified.
+    pub(super) floor: f64,
+    /// The gap allowed for a certifying query (below the tolerance, so the lower bound
+    /// can get within it of the maximum).
+    certify_gap: f64,
+    pub(super) refined: usize,
+    certified: usize,
+}
+
+impl<'s> Side<'s> {
+    pub(super) fn new(source: &'s Sweeper<'s>, target: &'s Sweeper<'s>, allowed: f64) -> Self {
+        Self {
+            source: source.hierarchy(),
+            target: Target::new(target.hierarchy()),
+            session: target.session(),
+            samples: Vec::new(),
+            midpoints: HashMap::new(),
+            lower: 0.0,
+            farthest: None,
+            floor: 0.0,
+            certify_gap: 0.25 * allowed,
+            refined: 0,
+            certified: 0,
+        }
+    }
+
+    /// The source mesh.
+    pub(super) fn source(&self) -> &'s Hierarchy {
+        self.source
+    }
+
+    /// Samples so far.
+    pub(super) fn sample_count(&self) -> usize {
+        self.samples.len()
+    }
+
+    /// Finds a near target point for every source vertex, walking along peel paths from
+    /// the previous answer (sample `i` is vertex `i`); then certifies, farthest first,
+    /// the vertices that could raise the lower bound. With `exact`, every vertex gets a
+    /// certified exact answer (coherent along the same paths).
+    pub(super) fn query_vertices(
+        &mut self,
+        exact: bool,
+        tracker: &mut Tracker<'_>,
+    ) -> Result<(), SweepError> {
+        let positions = self.source.positions();
+        let triangles: Vec<[u32; 3]> = (0..self.source.triangle_count() as u32)
+            .filter_map(|t| self.source.triangle(t))
+            .collect();
+        let (order, neighbours) = peel::peel_order(positions.len(), &triangles);
+        let mut found: Vec<Option<Found>> = vec![None; positions.len()];
+        let mut exact_at: Vec<(usize, f64)> = Vec::new();
+        for v in order {
+            let p = positions.get(v as usize).copied().unwrap_or(DVec3::NAN);
+            // Walk from the nearest answer among the neighbours already visited (peel
+            // paths visit a ring after the one inside it, so there almost always is one).
+            let start = neighbours
+                .row(v)
+                .iter()
+                .filter_map(|&n| found.get(n as usize).copied().flatten())
+                .min_by(|a, b| a.distance.total_cmp(&b.distance));
+            let here = if neighbours.row(v).is_empty() {
+                // No triangle uses it: not a point of the surface.
+                Some(Found::unused(p))
+            } else {
+                match start {
+                    Some(f) if !exact => self.target.walk(p, f.triangle),
+                    _ => {
+                        let found = self.exact(p)?;
+                        exact_at.push((v as usize, found.distance));
+                        Some(found)
+                    }
+                }
+            };
+            if let Some(slot) = found.get_mut(v as usize) {
+                *slot = here;
+            }
+            tracker.vertex_done(self.lower);
+        }
+        self.samples = positions
+            .iter()
+            .zip(found)
+            .map(|(&position, found)| found.map(|found| Sample { position, found }))
+            .collect::<Option<Vec<_>>>()
+            .ok_or(SweepError::EmptyMesh)?;
+        for (i, d) in exact_at {
+            self.raise(d, i);
+        }
+        if exact {
+            return Ok(());
+        }
+        let mut by_distance: Vec<usize> = (0..self.samples.len()).collect();
+        by_distance.sort_by(|&i, &j| {
+            let d = |k: usize| self.samples.get(k).map_or(0.0, |s| s.found.distance);
+            d(j).total_cmp(&d(i)).then(i.cmp(&j))
+        });
+        for i in by_distance {
+            if !self.certify(i)? {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Certifies sample `i` if the distance found for it could raise the lower bound (or
+    /// beat the [`floor`](Self::floor)): a certified query replaces its point by the exact
+    /// one when it gets there, and raises the lower bound. `false` if it could not.
+    fn certify(&mut self, i: usize) -> Result<bool, SweepError> {
+        let Some(sample) = self.samples.get(i).copied() else {
+            return Ok(false);
+        };
+        if sample.found.distance <= self.lower.max(self.floor) {
+            return Ok(false);
+        }
+        let bounds = self
+            .session
+            .closest_within(sample.position, Tolerance::Absolute(self.certify_gap))?;
+        self.certified += 1;
+        if let Some(answer) = bounds.closest
+            && let Some(found) = self.found(answer)
+            && let Some(slot) = self.samples.get_mut(i)
+        {
+            slot.found = found;
+        }
+        self.raise(bounds.lower, i);
+        Ok(true)
+    }
+
+    /// Takes `lower`, a certified lower bound at `sample`, into the side's lower bound.
+    fn raise(&mut self, lower: f64, sample: usize) {
+        if self.farthest.is_none() || lower > self.lower {
+            self.lower = lower;
+            self.farthest = Some(sample);
+        }
+    }
+
+    /// The exact answer at `p`.
+    fn exact(&mut self, p: DVec3) -> Result<Found, SweepError> {
+        let answer = self.session.closest(p)?;
+        self.certified += 1;
+        self.found(answer).ok_or(SweepError::EmptyMesh)
+    }
+
+    /// A session's answer as a [`Found`].
+    fn found(&self, answer: ClosestPoint) -> Option<Found> {
+        let triangle = self.target.of_input(answer.triangle)?;
+        let feature_vertex = match answer.feature {
+            Feature::Vertex(v) | Feature::Edge(v, _) => v,
+            Feature::Face => u32::MAX,
+        };
+        Some(Found {
+            point: answer.point,
+            distance: answer.distance,
+            triangle,
+            feature_vertex,
+        })
+    }
+
+    /// The sample at the midpoint of samples `a` and `b` (created once per edge): the
+    /// better of two walks from both ends' answers, certified if it could raise the lower
+    /// bound.
+    pub(super) fn midpoint(&mut self, a: u32, b: u32) -> Result<u32, SweepError> {
+        let key = (a.min(b), a.max(b));
+        if let Some(&m) = self.midpoints.get(&key) {
+            return Ok(m);
+        }
+        let (Some(sa), Some(sb)) = (
+            self.samples.get(a as usize).copied(),
+            self.samples.get(b as usize).copied(),
+        ) else {
+            return Err(SweepError::EmptyMesh);
+        };
+        let p = 0.5 * (sa.position + sb.position);
+        let from_a = self.target.walk(p, sa.found.triangle);
+        let from_b = self.target.walk(p, sb.found.triangle);
+        let found = match (from_a, from_b) {
+            (Some(x), Some(y)) => Some(if y.distance < x.distance { y } else { x }),
+            (x, y) => x.or(y),
+        };
+        let found = match found {
+            Some(found) => found,
+            None => self.exact(p)?,
+        };
+        let index = self.samples.len();
+        self.samples.push(Sample { position: p, found });
+        self.midpoints.insert(key, index as u32);
+        self.certify(index)?;
+        Ok(index as u32)
+    }
+
+    /// The upper bound of the triangle of samples `corners` (`None` if a sample is
+    /// missing).
+    pub(super) fn upper_bound(&self, corners: [u32; 3]) -> Option<f64> {
+        let mut answers = [CornerAnswer {
+            position: DVec3::ZERO,
+            closest: DVec3::ZERO,
+        }; 3];
+        let mut ids: Vec<u32> = Vec::with_capacity(24);
+        for (slot, &s) in answers.iter_mut().zip(&corners) {
+            let sample = self.samples.get(s as usize)?;
+            *slot = CornerAnswer {
+                position: sample.position,
+                closest: sample.found.point,
+            };
+            ids.push(sample.found.triangle);
+            ids.extend_from_slice(self.target.around(sample.found.feature_vertex));
+        }
+        ids.sort_unstable();
+        ids.dedup();
+        let targets: Vec<Triangle> = ids
+            .iter()
+            .filter_map(|&t| self.target.triangle(t))
+            .collect();
+        Some(triangle_upper_bound(&answers, &targets))
+    }
+
+    /// The direction's result with its upper bound.
+    pub(super) fn finish(self, upper: f64) -> DirectedHausdorff {
+        let input_vertices = (0..self.source.vertex_count() as u32)
+            .filter_map(|v| self.source.original_vertex(v))
+            .max()
+            .map_or(0, |m| m as usize + 1);
+        let mut vertex_distances = vec![0.0; input_vertices];
+        for v in 0..self.source.vertex_count() as u32 {
+            if let (Some(i), Some(s)) =
+                (self.source.original_vertex(v), self.samples.get(v as usize))
+                && let Some(slot) = vertex_distances.get_mut(i as usize)
+            {
+                *slot = s.found.distance;
+            }
+        }
+        let far = self.farthest.and_then(|i| self.samples.get(i));
+        DirectedHausdorff {
+            lower: self.lower,
+            upper: upper.max(self.lower),
+            farthest: far.map_or(DVec3::ZERO, |s| s.position),
+            closest: far.map_or(DVec3::ZERO, |s| s.found.point),
+            vertex_distances,
+            samples: self.samples.len(),
+            certified_samples: self.certified,
+            refined_triangles: self.refined,
+        }
+    }
+}
