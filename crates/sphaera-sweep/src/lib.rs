@@ -64,11 +64,14 @@
 
 mod answer;
 mod error;
+mod motion;
+mod motion_pose;
 mod queue;
 mod session;
 mod sweeper;
 
 pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};
 pub use error::SweepError;
+pub use motion::Shape;
 pub use session::{Session, SessionOptions};
 pub use sweeper::{Sweeper, build_hierarchy};
