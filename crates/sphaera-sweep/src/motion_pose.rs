@@ -39,7 +39,7 @@ impl Pose {
             .to_cols_array()
             .iter()
             .fold((m.determinant() - 1.0).abs(), |d, &x| d.max(x.abs()));
-        if !(deviation <= RIGID_TOLERANCE) {
+        if deviation.is_nan() || deviation > RIGID_TOLERANCE {
             return Err(SweepError::NotRigid { deviation });
         }
         Ok(Self {
