@@ -234,6 +234,46 @@ impl Hierarchy {
         self.tables.collapse_of.len()
     }
 
+    /// Vertices of the input mesh (the length [`Hierarchy::replay`] and
+    /// [`Hierarchy::inflate`] expect).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// let cube = shapes::cube(1.0, 2)?;
+    /// let hierarchy = Simplifier::new(&cube).build_hierarchy()?;
+    /// assert_eq!(hierarchy.input_vertex_count(), cube.vertex_count());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn input_vertex_count(&self) -> usize {
+        self.tables.input_counts.0
+    }
+
+    /// Whether `other` shares this hierarchy's fixed tables (the same build, through
+    /// clones, [`Hierarchy::replay`] or [`Hierarchy::inflate`]): then a [`Refinement`] of
+    /// one is a valid state of the other ([`Refinement::radius_in`]). A pointer comparison.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// let sphere = shapes::sphere(1.0, 8)?;
+    /// let hierarchy = Simplifier::new(&sphere).build_hierarchy()?;
+    /// let moving = hierarchy.inflate(&vec![0.1; sphere.vertex_count()])?;
+    /// assert!(hierarchy.shares_tables(&moving));
+    /// let rebuilt = Simplifier::new(&sphere).build_hierarchy()?;
+    /// assert!(!hierarchy.shares_tables(&rebuilt));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn shares_tables(&self, other: &Hierarchy) -> bool {
+        Arc::ptr_eq(&self.tables, &other.tables)
+    }
+
     /// Triangles of the finest mesh (the input's, minus those with a repeated vertex
     /// index).
     pub fn triangle_count(&self) -> usize {

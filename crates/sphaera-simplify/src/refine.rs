@@ -112,6 +112,35 @@ impl<'h> Refinement<'h> {
             .map_or(0.0, |l| self.hierarchy.radius_at_level(v, l))
     }
 
+    /// The radius `v` has in the current state under another geometry of the same tables
+    /// (a key-frame from [`Hierarchy::replay`], an inflation from [`Hierarchy::inflate`]):
+    /// the state is shared, only the radii differ. `None` if `geometry` does not share
+    /// this refinement's tables ([`Hierarchy::shares_tables`]) or `v` is out of range.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// let sphere = shapes::sphere(1.0, 8)?;
+    /// let hierarchy = Simplifier::new(&sphere).build_hierarchy()?;
+    /// let moving = hierarchy.inflate(&vec![0.1; sphere.vertex_count()])?;
+    /// let refinement = hierarchy.refinement();
+    /// let v = (0..hierarchy.vertex_count() as u32).find(|&v| refinement.is_present(v)).unwrap();
+    /// let inflated = refinement.radius_in(v, &moving).unwrap();
+    /// assert!(inflated >= refinement.radius(v) + 0.2 - 1e-12);
+    /// let other = Simplifier::new(&sphere).build_hierarchy()?;
+    /// assert_eq!(refinement.radius_in(v, &other), None);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn radius_in(&self, v: u32, geometry: &Hierarchy) -> Option<f64> {
+        if !self.hierarchy.shares_tables(geometry) {
+            return None;
+        }
+        self.level(v).map(|l| geometry.radius_at_level(v, l))
+    }
+
     /// The current position of `v` (its finest position under
     /// [`Placement::Subset`](crate::Placement::Subset); `DVec3::ZERO` if out of range).
     pub fn position(&self, v: u32) -> DVec3 {

@@ -38,6 +38,81 @@ pub enum SweepError {
         /// What the value must be, e.g. `"finite and non-negative"`.
         requirement: &'static str,
     },
+    /// A mesh pose has a NaN or infinite entry.
+    #[error("the mesh pose is not finite")]
+    NonFinitePose,
+    /// A mesh pose is not a rotation followed by a translation (it scales, shears or
+    /// reflects).
+    #[error("the mesh pose is not rigid: its linear part is {deviation} away from a rotation")]
+    NotRigid {
+        /// The largest entry of `|MᵀM − I|`, or `-det M` for a reflection.
+        deviation: f64,
+    },
+    /// A hierarchy given for a deformation was not made from the sweeper's (by
+    /// `replay`/`inflate`), so it does not share its tables.
+    #[error("the hierarchy does not share the sweeper's tables (not made by replay or inflate)")]
+    ForeignHierarchy,
+    /// A per-vertex list has the wrong length.
+    #[error("`{name}` has {actual} entries, expected {expected} (one per input vertex)")]
+    LengthMismatch {
+        /// The parameter's name, e.g. `"positions"`.
+        name: &'static str,
+        /// The length given.
+        actual: usize,
+        /// The input mesh's vertex count.
+        expected: usize,
+    },
+    /// A per-vertex value is out of its domain.
+    #[error("`{name}`[{index}] = {value}: must be {requirement}")]
+    InvalidVertexValue {
+        /// The parameter's name, e.g. `"displacement"`.
+        name: &'static str,
+        /// The input vertex.
+        index: usize,
+        /// The offending value (for a position, its largest coordinate magnitude or its
+        /// distance from the reference).
+        value: f64,
+        /// What the value must be.
+        requirement: &'static str,
+    },
+    /// The hierarchy cannot be deformed (built with optimal placement, or another error
+    /// of `sphaera-simplify`).
+    #[error("cannot deform the hierarchy: {reason}")]
+    Deformation {
+        /// The hierarchy's error, as text.
+        reason: String,
+    },
+}
+
+impl From<sphaera_simplify::SimplifyError> for SweepError {
+    fn from(error: sphaera_simplify::SimplifyError) -> Self {
+        use sphaera_simplify::SimplifyError as E;
+        match error {
+            E::LengthMismatch {
+                name,
+                actual,
+                expected,
+            } => Self::LengthMismatch {
+                name,
+                actual,
+                expected,
+            },
+            E::InvalidVertexValue {
+                name,
+                index,
+                value,
+                requirement,
+            } => Self::InvalidVertexValue {
+                name,
+                index,
+                value,
+                requirement,
+            },
+            other => Self::Deformation {
+                reason: other.to_string(),
+            },
+        }
+    }
 }
 
 /// `Ok(p)` if every coordinate of `p` is finite.

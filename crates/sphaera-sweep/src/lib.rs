@@ -57,14 +57,24 @@
 //! triangle without touching the queue. [`SessionOptions`] says when a session resets to
 //! the base mesh.
 //!
-//! # What is not here yet
+//! # Motion
 //!
-//! Hausdorff distances between meshes, polylines, and deforming meshes (paper sections
-//! 3, 5.2–5.3 and 6) are the next steps of this crate.
+//! [`Session::move_mesh`] moves the mesh rigidly (queries stay in world coordinates);
+//! [`Session::deform`] and [`Session::move_vertices`] deform it with the paper's two
+//! methods, key-frames ([`Shape::keyframe`], [`Shape::between`]) and radii inflated from
+//! displacement bounds ([`Shape::inflated`]). Every interval is widened by how far the
+//! tolerance volumes can have moved, so coherence survives motion.
+//!
+//! # Hausdorff distance
+//!
+//! [`hausdorff`] brackets the one-sided or symmetric Hausdorff distance between two
+//! meshes with certified bounds at a chosen tolerance (paper section 6).
 
 mod answer;
 mod error;
 mod hausdorff;
+mod motion;
+mod motion_pose;
 mod queue;
 mod session;
 mod sweeper;
@@ -74,5 +84,6 @@ pub use error::SweepError;
 pub use hausdorff::{
     DirectedHausdorff, Direction, Hausdorff, HausdorffDistance, HausdorffProgress, hausdorff,
 };
+pub use motion::Shape;
 pub use session::{Session, SessionOptions};
 pub use sweeper::{Sweeper, build_hierarchy};

@@ -5,8 +5,14 @@ use sphaera_mesh::geometry::{self, Triangle, closest_point_on_triangle};
 use sphaera_simplify::{Hierarchy, Refinement};
 
 use crate::error::{check_non_negative, check_point};
+use crate::motion_pose::Pose;
 use crate::queue::{Entry, Queue};
-use crate::{ClosestPoint, DistanceBounds, Feature, SessionStats, SweepError, Sweeper, Tolerance};
+use crate::{
+    ClosestPoint, DistanceBounds, Feature, SessionStats, Shape, SweepError, Sweeper, Tolerance,
+};
+
+#[path = "motion_session.rs"]
+mod motion_session;
 
 /// The relative rounding of a shifted key (a few ulps of the total motion).
 const MOTION_ROUNDING: f64 = 4.0 * f64::EPSILON;
@@ -73,6 +79,15 @@ struct SafeBall {
 /// more, and a query inside the safe ball of the previous answer costs one point–triangle
 /// distance (section 3.3). See [`SessionOptions`] for when it resets.
 ///
+/// The mesh can move too (sections 5.2–5.3). [`Session::move_mesh`] sets a rigid pose:
+/// queries and answers are in world coordinates, the hierarchy stays in mesh coordinates,
+/// and a pose change widens the intervals like a query move (by the smaller of the local
+/// query point's displacement and a bound on the mesh's). [`Session::deform`] switches to
+/// a deformed [`Shape`] (key-frames, or inflated radii with [`Session::move_vertices`]):
+/// the refined mesh is kept and every interval widened by the largest vertex displacement
+/// plus the largest radius increase. Input triangles are always evaluated at their true
+/// positions, so `closest` stays exact and every interval stays certified.
+///
 /// # Examples
 ///
 /// ```
@@ -126,6 +141,12 @@ pub struct Session<'s> {
     touched_at: Vec<u32>,
     /// The current split's mark (never `u32::MAX`, the "never" value).
     mark: u32,
+    /// The mesh's pose: mesh coordinates to world coordinates.
+    pose: Pose,
+    /// The deformed geometry, or `None` for the hierarchy's own.
+    shape: Option<Shape>,
+    /// The bounding box of the current vertex positions (mesh coordinates).
+    bounds: (DVec3, DVec3),
 }
 
 /// Why the sweep stopped.
@@ -159,6 +180,9 @@ impl<'s> Session<'s> {
             touched: Vec::new(),
             touched_at: vec![u32::MAX; hierarchy.triangle_count()],
             mark: 0,
+            pose: Pose::IDENTITY,
+            shape: None,
+            bounds: bounding_box(hierarchy.positions()),
         }
     }
 
@@ -174,14 +198,14 @@ impl<'s> Session<'s> {
     /// intervals still below the answer are re-evaluated and split. Worst case linear in
     /// the mesh size (a query at the centre of a sphere mesh touches every triangle).
     pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, SweepError> {
-        let p = check_point(p)?;
+        let p = self.pose.to_local(check_point(p)?);
         self.stats.queries += 1;
         if let Some(safe) = self.safe
             && (p - safe.center).length() <= safe.radius
             && let Some(answer) = self.leaf_answer(safe.triangle, p)
         {
             self.stats.constant_time += 1;
-            return Ok(answer);
+            return Ok(self.to_world(answer));
         }
         self.move_to(p);
         match self.sweep(p, None, usize::MAX) {
@@ -196,7 +220,7 @@ impl<'s> Session<'s> {
                     radius: (0.5 * (second - answer.distance)).max(0.0),
                     triangle: t,
                 });
-                Ok(answer)
+                Ok(self.to_world(answer))
             }
             Stop::Approximate { .. } | Stop::Empty => Err(SweepError::EmptyMesh),
         }
@@ -280,7 +304,41 @@ impl<'s> Session<'s> {
     pub fn memory_bytes(&self) -> usize {
         4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
             + self.queue.bytes()
+            + self.shape.as_ref().map_or(0, Shape::bytes)
             + 4 * (self.undone.capacity() + self.touched.capacity() + self.touched_at.capacity())
+    }
+
+    /// Current position of vertex `v` (mesh coordinates).
+    fn position(&self, v: u32) -> DVec3 {
+        match &self.shape {
+            Some(shape) => shape
+                .positions()
+                .get(v as usize)
+                .copied()
+                .unwrap_or(DVec3::ZERO),
+            None => self.refinement.position(v),
+        }
+    }
+
+    /// Current radius of present vertex `v`.
+    fn radius(&self, v: u32) -> f64 {
+        match &self.shape {
+            // The tables were checked when the shape was set (invariant); an infinite
+            // radius would only make the bound useless, never wrong.
+            Some(shape) => self
+                .refinement
+                .radius_in(v, shape.radii())
+                .unwrap_or(f64::INFINITY),
+            None => self.refinement.radius(v),
+        }
+    }
+
+    /// `answer` (mesh coordinates) in world coordinates.
+    fn to_world(&self, answer: ClosestPoint) -> ClosestPoint {
+        ClosestPoint {
+            point: self.pose.to_world(answer.point),
+            ..answer
+        }
     }
 
     /// The bounded query behind [`Session::closest_within`] and
@@ -291,7 +349,7 @@ impl<'s> Session<'s> {
         tolerance: Option<Tolerance>,
         max_splits: usize,
     ) -> Result<DistanceBounds, SweepError> {
-        let p = check_point(p)?;
+        let p = self.pose.to_local(check_point(p)?);
         self.stats.queries += 1;
         self.move_to(p);
         let before = self.stats.splits;
@@ -303,7 +361,7 @@ impl<'s> Session<'s> {
                 Ok(DistanceBounds {
                     lower: answer.distance,
                     upper: answer.distance,
-                    closest: Some(answer),
+                    closest: Some(self.to_world(answer)),
                     splits,
                 })
             }
@@ -320,7 +378,7 @@ impl<'s> Session<'s> {
     /// Takes leaves off the queue in order of distance while fewer than `k` are taken and
     /// the front's lower bound is at most `limit`; puts them back afterwards.
     fn collect(&mut self, p: DVec3, k: usize, limit: f64) -> Result<Vec<ClosestPoint>, SweepError> {
-        let p = check_point(p)?;
+        let p = self.pose.to_local(check_point(p)?);
         self.stats.queries += 1;
         self.move_to(p);
         let mut taken: Vec<Entry> = Vec::new();
@@ -332,7 +390,7 @@ impl<'s> Session<'s> {
                     if answer.distance > limit {
                         break;
                     }
-                    answers.push(answer);
+                    answers.push(self.to_world(answer));
                     taken.extend(self.queue.remove(t));
                 }
                 None => break,
@@ -458,7 +516,7 @@ impl<'s> Session<'s> {
             .into_iter()
             .filter(|&c| self.refinement.can_split(c))
             .max_by(|&a, &b| {
-                let (ra, rb) = (self.refinement.radius(a), self.refinement.radius(b));
+                let (ra, rb) = (self.radius(a), self.radius(b));
                 ra.total_cmp(&rb).then(b.cmp(&a))
             })
         else {
@@ -531,8 +589,14 @@ impl<'s> Session<'s> {
             return;
         };
         self.stats.distance_evaluations += 1;
-        let positions = corners.map(|c| self.refinement.position(c));
-        let radii = corners.map(|c| self.refinement.radius(c));
+        let positions = corners.map(|c| self.position(c));
+        // A leaf is an input triangle at its true position: it bounds itself, radius 0
+        // (inflated offsets on unsplittable vertices only matter for the other triangles).
+        let radii = if self.is_leaf(t) {
+            [0.0; 3]
+        } else {
+            corners.map(|c| self.radius(c))
+        };
         let triangle = Triangle::new(positions[0], positions[1], positions[2]);
         let hit = closest_point_on_triangle(p, &triangle);
         let d = hit.distance_squared.sqrt();
@@ -559,9 +623,8 @@ impl<'s> Session<'s> {
     /// The closest point of input triangle `t` (a leaf) to `p`.
     fn leaf_answer(&self, t: u32, p: DVec3) -> Option<ClosestPoint> {
         let corners = self.hierarchy.triangle(t)?;
-        let positions = self.hierarchy.positions();
-        let at = |i: usize| positions.get(corners[i] as usize).copied();
-        let triangle = Triangle::new(at(0)?, at(1)?, at(2)?);
+        let at = |i: usize| self.position(corners[i]);
+        let triangle = Triangle::new(at(0), at(1), at(2));
         let hit = closest_point_on_triangle(p, &triangle);
         let original = |i: usize| {
             self.hierarchy
@@ -582,5 +645,18 @@ impl<'s> Session<'s> {
             triangle: self.hierarchy.original_triangle(t).unwrap_or(t),
             feature,
         })
+    }
+}
+
+/// The bounding box of `points` (an empty box far away if there are none).
+pub(crate) fn bounding_box(points: &[DVec3]) -> (DVec3, DVec3) {
+    let (lo, hi) = points.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    if lo.is_finite() && hi.is_finite() {
+        (lo, hi)
+    } else {
+        (DVec3::ZERO, DVec3::ZERO)
     }
 }
