@@ -242,9 +242,9 @@ impl<'a> Hausdorff<'a> {
             Tolerance::Absolute(t) => t,
             Tolerance::Relative(f) => f * joint_diagonal(self.a.hierarchy(), self.b.hierarchy()),
         };
-        let mut sides = vec![Side::new(self.a, self.b, allowed)];
+        let mut sides = vec![Side::new(self.a, self.b)];
         if symmetric {
-            sides.push(Side::new(self.b, self.a, allowed));
+            sides.push(Side::new(self.b, self.a));
         }
         let vertices: usize = sides.iter().map(|s| s.source().vertex_count()).sum();
         let mut tracker = Tracker {

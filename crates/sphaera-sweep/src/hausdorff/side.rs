@@ -10,7 +10,7 @@ use sphaera_simplify::Hierarchy;
 use super::bound::{CornerAnswer, triangle_upper_bound};
 use super::target::{Found, Target};
 use super::{DirectedHausdorff, Tracker, peel};
-use crate::{ClosestPoint, Feature, Session, SweepError, Sweeper, Tolerance};
+use crate::{ClosestPoint, Feature, Session, SweepError, Sweeper};
 
 /// A point of the source mesh with a point found on the target.
 #[derive(Clone, Copy, Debug)]
@@ -34,15 +34,12 @@ pub(super) struct Side<'s> {
     /// A lower bound already certified elsewhere (the other direction's, in a symmetric
     /// computation): samples that cannot beat it are not certified.
     pub(super) floor: f64,
-    /// The gap allowed for a certifying query (below the tolerance, so the lower bound
-    /// can get within it of the maximum).
-    certify_gap: f64,
     pub(super) refined: usize,
     certified: usize,
 }
 
 impl<'s> Side<'s> {
-    pub(super) fn new(source: &'s Sweeper<'s>, target: &'s Sweeper<'s>, allowed: f64) -> Self {
+    pub(super) fn new(source: &'s Sweeper<'s>, target: &'s Sweeper<'s>) -> Self {
         Self {
             source: source.hierarchy(),
             target: Target::new(target.hierarchy()),
@@ -52,7 +49,6 @@ impl<'s> Side<'s> {
             lower: 0.0,
             farthest: None,
             floor: 0.0,
-            certify_gap: 0.25 * allowed,
             refined: 0,
             certified: 0,
         }
@@ -137,8 +133,8 @@ impl<'s> Side<'s> {
     }
 
     /// Certifies sample `i` if the distance found for it could raise the lower bound (or
-    /// beat the [`floor`](Self::floor)): a certified query replaces its point by the exact
-    /// one when it gets there, and raises the lower bound. `false` if it could not.
+    /// beat the [`floor`](Self::floor)): an exact query replaces its point by the closest
+    /// one and raises the lower bound. `false` if it could not.
     fn certify(&mut self, i: usize) -> Result<bool, SweepError> {
         let Some(sample) = self.samples.get(i).copied() else {
             return Ok(false);
@@ -146,17 +142,14 @@ impl<'s> Side<'s> {
         if sample.found.distance <= self.lower.max(self.floor) {
             return Ok(false);
         }
-        let bounds = self
-            .session
-            .closest_within(sample.position, Tolerance::Absolute(self.certify_gap))?;
+        let answer = self.session.closest(sample.position)?;
         self.certified += 1;
-        if let Some(answer) = bounds.closest
-            && let Some(found) = self.found(answer)
+        if let Some(found) = self.found(answer)
             && let Some(slot) = self.samples.get_mut(i)
         {
             slot.found = found;
         }
-        self.raise(bounds.lower, i);
+        self.raise(answer.distance, i);
         Ok(true)
     }
 
