@@ -57,18 +57,25 @@
 //! triangle without touching the queue. [`SessionOptions`] says when a session resets to
 //! the base mesh.
 //!
+//! # Polylines
+//!
+//! The [`polyline`] module answers the same queries on 2D and 3D polylines (paper section
+//! 3) over a Douglas–Peucker hierarchy of capsules; its module docs have a runnable example.
+//!
 //! # What is not here yet
 //!
-//! Hausdorff distances between meshes, polylines, and deforming meshes (paper sections
-//! 3, 5.2–5.3 and 6) are the next steps of this crate.
+//! Hausdorff distances between meshes and deforming meshes (paper sections 5.2–5.3 and 6)
+//! are the next steps of this crate.
 
 mod answer;
 mod error;
+pub mod polyline;
 mod queue;
 mod session;
 mod sweeper;
 
 pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};
 pub use error::SweepError;
+pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};
 pub use sweeper::{Sweeper, build_hierarchy};
