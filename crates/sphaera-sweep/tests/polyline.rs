@@ -1,6 +1,9 @@
 //! Polyline queries against brute force (every segment), in 2D and 3D, open and closed,
 //! fresh and coherent; and the failure cases.
 
+// Exact zeros and exact vertex coordinates are part of the contract checked here.
+#![allow(clippy::float_cmp)]
+
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use sphaera_sweep::polyline::{
@@ -129,7 +132,10 @@ fn points3() -> impl Strategy<Value = Vec<DVec3>> {
         prop::collection::vec(0..60_usize, 0..4),
     )
         .prop_map(|(raw, repeats)| {
-            let mut points: Vec<DVec3> = raw.into_iter().map(|(x, y, z)| DVec3::new(x, y, z)).collect();
+            let mut points: Vec<DVec3> = raw
+                .into_iter()
+                .map(|(x, y, z)| DVec3::new(x, y, z))
+                .collect();
             for r in repeats {
                 let i = r % points.len();
                 points.insert(i, points[i]);
@@ -202,7 +208,8 @@ fn helix(n: usize) -> Vec<DVec3> {
     (0..n)
         .map(|i| {
             let a = i as f64 * 0.02;
-            DVec3::new(a.cos(), a.sin(), 0.05 * a) + 0.01 * DVec3::new((7.0 * a).sin(), 0.0, (5.0 * a).cos())
+            DVec3::new(a.cos(), a.sin(), 0.05 * a)
+                + 0.01 * DVec3::new((7.0 * a).sin(), 0.0, (5.0 * a).cos())
         })
         .collect()
 }
@@ -212,7 +219,7 @@ fn a_long_coherent_path_on_a_helix_is_exact_and_mostly_constant_time() {
     let polyline = Polyline::open(helix(5000)).expect("valid");
     let mut session = polyline.session();
     for i in 0..2000 {
-        let a = i as f64 * 1e-3;
+        let a = f64::from(i) * 1e-3;
         let p = DVec3::new(1.5 * a.cos(), 1.5 * a.sin(), 0.05 * a + 0.3);
         let answer = session.closest(p).expect("finite");
         if i % 50 == 0 {
@@ -237,13 +244,13 @@ fn a_long_coherent_path_on_a_helix_is_exact_and_mostly_constant_time() {
 fn the_centre_of_a_polygonal_circle_splits_every_capsule_and_is_exact() {
     for n in [3, 4, 17, 1000, 10_000] {
         let circle: Vec<DVec2> = (0..n)
-            .map(|i| DVec2::from_angle(std::f64::consts::TAU * i as f64 / n as f64))
+            .map(|i| DVec2::from_angle(std::f64::consts::TAU * f64::from(i) / f64::from(n)))
             .collect();
         let polyline = Polyline::closed(circle.clone()).expect("valid");
         let mut session = polyline.session();
         let answer = session.closest(DVec2::ZERO).expect("finite");
         check_exact(&polyline, DVec2::ZERO, &answer);
-        let expected = (std::f64::consts::PI / n as f64).cos();
+        let expected = (std::f64::consts::PI / f64::from(n)).cos();
         assert!((answer.distance - expected).abs() < 1e-12);
         // The linear worst case of the paper: every inner capsule was split.
         assert_eq!(session.stats().splits, polyline.segment_count() - 1);
@@ -282,7 +289,10 @@ fn invalid_points_are_clear_errors() {
         Polyline::closed(vec![DVec3::ONE; 5]).map(|_| ()),
         invalid(PolylineDefect::AllCoincident { count: 5 })
     );
-    let message = Polyline::open(vec![DVec2::X, DVec2::X]).map(|_| ()).unwrap_err().to_string();
+    let message = Polyline::open(vec![DVec2::X, DVec2::X])
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
     assert_eq!(message, "invalid polyline: all 2 points coincide");
 }
 
@@ -374,7 +384,9 @@ fn the_reset_policy_keeps_answers_exact_and_is_counted() {
     });
     let mut state = 3_u64;
     let mut next = || {
-        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1);
         (state >> 11) as f64 / (1_u64 << 53) as f64 * 4.0 - 2.0
     };
     for _ in 0..50 {
@@ -396,8 +408,14 @@ fn sessions_are_deterministic() {
         (0..200)
             .map(|i| {
                 let a = f64::from(i) * 0.1;
-                let answer = session.closest(DVec3::new(a.sin(), 2.0 * a.cos(), 0.01 * a)).expect("finite");
-                (answer.segment, answer.distance.to_bits(), answer.parameter.to_bits())
+                let answer = session
+                    .closest(DVec3::new(a.sin(), 2.0 * a.cos(), 0.01 * a))
+                    .expect("finite");
+                (
+                    answer.segment,
+                    answer.distance.to_bits(),
+                    answer.parameter.to_bits(),
+                )
             })
             .collect::<Vec<_>>()
     };

@@ -100,9 +100,11 @@ pub(crate) fn build<P: PolylinePoint>(points: &[P], scale: f64) -> Vec<Node> {
         if end - start < 2 {
             continue;
         }
-        let (Some(&a), Some(&b), Some(inner)) =
-            (points.get(start), points.get(end), points.get(start + 1..end))
-        else {
+        let (Some(&a), Some(&b), Some(inner)) = (
+            points.get(start),
+            points.get(end),
+            points.get(start + 1..end),
+        ) else {
             continue;
         };
         let mut farthest = start + 1;
@@ -144,6 +146,7 @@ pub(crate) fn build<P: PolylinePoint>(points: &[P], scale: f64) -> Vec<Node> {
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // exact values on exactly representable inputs
 mod tests {
     use glam::{DVec2, DVec3};
 
@@ -182,8 +185,14 @@ mod tests {
                 assert_eq!(node.error, 0.0);
                 leaves.push(node.start);
             } else {
-                let (l, r) = (nodes[node.first_child as usize], nodes[node.first_child as usize + 1]);
-                assert_eq!((l.start, l.end, r.start, r.end), (node.start, l.end, l.end, node.end));
+                let (l, r) = (
+                    nodes[node.first_child as usize],
+                    nodes[node.first_child as usize + 1],
+                );
+                assert_eq!(
+                    (l.start, l.end, r.start, r.end),
+                    (node.start, l.end, l.end, node.end)
+                );
                 stack.push(node.first_child + 1);
                 stack.push(node.first_child);
             }
@@ -212,7 +221,14 @@ mod tests {
 
     #[test]
     fn repeated_and_collinear_points() {
-        let repeated = [DVec2::ZERO, DVec2::ZERO, DVec2::X, DVec2::X, DVec2::X, DVec2::ONE];
+        let repeated = [
+            DVec2::ZERO,
+            DVec2::ZERO,
+            DVec2::X,
+            DVec2::X,
+            DVec2::X,
+            DVec2::ONE,
+        ];
         check(&repeated);
         let line: Vec<DVec3> = (0..1000).map(|i| DVec3::X * f64::from(i) * 0.1).collect();
         check(&line);

@@ -132,6 +132,7 @@ pub(crate) fn closest_on_segment<P: PolylinePoint>(p: P, a: P, b: P) -> SegmentH
 }
 
 #[cfg(test)]
+#[allow(clippy::float_cmp)] // exact values on exactly representable inputs
 mod tests {
     use super::*;
 

@@ -366,8 +366,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
         if self.query.is_some() {
             let grown = self.queue.len() > self.options.max_front;
             let far = jump > self.options.jump_factor * self.last_distance;
-            let imprecise =
-                self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.polyline.diagonal();
+            let imprecise = self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.polyline.diagonal();
             if grown || far || imprecise || self.generation == u32::MAX {
                 self.reset();
             }
