@@ -421,3 +421,17 @@ fn sessions_are_deterministic() {
     };
     assert_eq!(run(), run());
 }
+
+#[test]
+fn a_long_polyline_builds_without_recursion_and_is_exact() {
+    let polyline = Polyline::open(helix(200_000)).expect("valid");
+    assert_eq!(polyline.node_count(), 2 * 199_999 - 1);
+    let mut session = polyline.session();
+    for p in [
+        DVec3::new(2.0, 0.0, 10.0),
+        DVec3::new(0.1, 0.2, 500.0),
+        DVec3::splat(-50.0),
+    ] {
+        check_exact(&polyline, p, &session.closest(p).expect("finite"));
+    }
+}

@@ -43,8 +43,8 @@
 //!
 //! Building scans each node's vertices once: `O(n · depth)`, `O(n log n)` for curves whose
 //! farthest points fall near the middle of their runs, `O(n²)` in the worst case (a curve
-//! whose farthest point is always next to an end, e.g. a spiral of geometrically
-//! shrinking turns seen from its start). The build is iterative (an explicit stack), so
+//! whose farthest vertex is always next to an end of its run, so that every split peels
+//! off one segment). The build is iterative (an explicit stack), so
 //! depth is never a stack-overflow risk, and deterministic (ties go to the lowest index).
 //! A node takes 24 bytes; a polyline of `s` segments has `2s − 1` nodes.
 
