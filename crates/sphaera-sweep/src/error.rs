@@ -82,6 +82,52 @@ pub enum SweepError {
         /// The hierarchy's error, as text.
         reason: String,
     },
+    /// The points given for a [`Polyline`](crate::polyline::Polyline) do not make one.
+    #[error("invalid polyline: {0}")]
+    InvalidPolyline(PolylineDefect),
+}
+
+/// What makes a list of points not a [`Polyline`](crate::polyline::Polyline), in
+/// [`SweepError::InvalidPolyline`].
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_sweep::{SweepError, polyline::PolylineDefect};
+///
+/// let error = SweepError::InvalidPolyline(PolylineDefect::NonFinitePoint { index: 3 });
+/// assert_eq!(error.to_string(), "invalid polyline: point 3 has a non-finite coordinate");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PolylineDefect {
+    /// Fewer than two points: no segment. Give at least two.
+    #[error("{count} point(s) given, at least 2 are needed")]
+    TooFewPoints {
+        /// The number of points given.
+        count: usize,
+    },
+    /// A coordinate is NaN or infinite. Drop or repair that point.
+    #[error("point {index} has a non-finite coordinate")]
+    NonFinitePoint {
+        /// Its index in the points given.
+        index: usize,
+    },
+    /// Every point is the same point: the polyline has no extent, and no segment has a
+    /// direction. (Repeated points among distinct ones are fine.)
+    #[error("all {count} points coincide")]
+    AllCoincident {
+        /// The number of points given.
+        count: usize,
+    },
+    /// More points than the 32-bit node ids of the hierarchy can index.
+    #[error("{count} points given, at most {max} are supported")]
+    TooManyPoints {
+        /// The number of points given.
+        count: usize,
+        /// The largest number supported.
+        max: usize,
+    },
 }
 
 impl From<sphaera_simplify::SimplifyError> for SweepError {

@@ -69,12 +69,18 @@
 //!
 //! [`hausdorff`] brackets the one-sided or symmetric Hausdorff distance between two
 //! meshes with certified bounds at a chosen tolerance (paper section 6).
+//!
+//! # Polylines
+//!
+//! The [`polyline`] module answers the same queries on 2D and 3D polylines (paper section
+//! 3) over a Douglas–Peucker hierarchy of capsules; its module docs have a runnable example.
 
 mod answer;
 mod error;
 mod hausdorff;
 mod motion;
 mod motion_pose;
+pub mod polyline;
 mod queue;
 mod session;
 mod sweeper;
@@ -85,5 +91,6 @@ pub use hausdorff::{
     DirectedHausdorff, Direction, Hausdorff, HausdorffDistance, HausdorffProgress, hausdorff,
 };
 pub use motion::Shape;
+pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};
 pub use sweeper::{Sweeper, build_hierarchy};
