@@ -1,6 +1,9 @@
 //! Certified Hausdorff distances against dense brute-force sampling (small meshes) and
 //! against the independent parry3d-based sampler of `sphaera-tests` (real meshes).
 
+// The real-mesh test prints its figures.
+#![allow(clippy::print_stderr)]
+
 use proptest::prelude::*;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
@@ -122,7 +125,7 @@ proptest! {
             Direction::AToB => &result.a_to_b,
             Direction::BToA => back,
         };
-        prop_assert_eq!(result.lower, dominating.lower);
+        prop_assert!(result.lower.total_cmp(&dominating.lower).is_eq());
         prop_assert!(result.upper >= result.a_to_b.upper.max(back.upper) - 1e-15);
 
         // One-sided agrees with the symmetric run's direction.
@@ -149,9 +152,9 @@ fn identical_meshes_are_at_distance_zero_with_both_bounds() {
             .tolerance(Tolerance::Absolute(0.0))
             .symmetric()
             .expect("tolerance 0 is valid");
-        assert_eq!((result.lower, result.upper), (0.0, 0.0));
+        assert!(result.lower <= 0.0 && result.upper <= 0.0, "{result:?}");
         assert!(result.converged);
-        assert!(result.a_to_b.vertex_distances.iter().all(|&d| d == 0.0));
+        assert!(result.a_to_b.vertex_distances.iter().all(|&d| d <= 0.0));
     }
 }
 
@@ -232,7 +235,7 @@ fn open_single_triangle_and_unused_vertices() {
     assert!(result.gap() <= 1e-9);
     let back = result.b_to_a.expect("symmetric");
     assert_eq!(back.vertex_distances.len(), 4);
-    assert_eq!(back.vertex_distances[3], 0.0);
+    assert!(back.vertex_distances[3] <= 0.0);
 
     // An open grid against a closed cube: the grid's far corners dominate.
     let grid = open_grid(6, 2.0);

@@ -120,7 +120,7 @@ fn bisector(a: DVec3, b: DVec3) -> Option<(DVec3, f64)> {
 fn solve_three_planes(n: [DVec3; 3], k: [f64; 3]) -> Option<DVec3> {
     let det = n[0].dot(n[1].cross(n[2]));
     let scale = n[0].length() * n[1].length() * n[2].length();
-    if !(det.abs() > 1e-12 * scale) {
+    if det.is_nan() || det.abs() <= 1e-12 * scale {
         return None;
     }
     let p = (k[0] * n[1].cross(n[2]) + k[1] * n[2].cross(n[0]) + k[2] * n[0].cross(n[1])) / det;
@@ -197,7 +197,7 @@ mod tests {
         let x = [DVec3::new(0.1, 0.2, 0.0), DVec3::X, DVec3::Y];
         let corners = x.map(|p| answer(p, p));
         assert!(bisector_bound(&corners) > 0.4);
-        assert_eq!(triangle_upper_bound(&corners, &[target]), 0.0);
+        assert!(triangle_upper_bound(&corners, &[target]) <= 0.0);
         let lifted = x.map(|p| answer(p + DVec3::Z, p));
         let bound = triangle_upper_bound(&lifted, &[target]);
         assert!((1.0..1.0 + 1e-9).contains(&bound), "{bound}");

@@ -1,0 +1,80 @@
+//! End-to-end tests of `sphaera distance` and `sphaera hausdorff`.
+
+use std::process::{Command, Output};
+
+fn sphaera(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_sphaera"))
+        .args(args)
+        .output()
+        .expect("the sphaera binary runs")
+}
+
+fn json(output: &Output) -> serde_json::Value {
+    assert!(
+        output.status.success(),
+        "stderr: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).expect("valid JSON")
+}
+
+fn number(value: &serde_json::Value) -> f64 {
+    value.as_f64().expect("a number")
+}
+
+#[test]
+fn hausdorff_of_the_embedded_bunny_and_its_simplification_is_certified() {
+    let report = json(&sphaera(&["hausdorff", "--json", "--tolerance", "0.01%"]));
+    let (lower, upper) = (number(&report["lower"]), number(&report["upper"]));
+    assert!(0.0 < lower && lower <= upper, "[{lower}, {upper}]");
+    assert!(upper - lower <= number(&report["tolerance"]) + 1e-15);
+    assert_eq!(report["converged"], true);
+    // The simplifier's certified bound holds the true distance.
+    assert!(number(&report["simplifier_bound"]) >= lower);
+    assert!(report["b_to_a"].is_object());
+}
+
+#[test]
+fn hausdorff_writes_a_coloured_ply_and_refuses_other_formats() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("field.ply");
+    let report = json(&sphaera(&[
+        "hausdorff",
+        "--json",
+        "--one-sided",
+        "--tolerance",
+        "0.1%",
+        "--colors",
+        path.to_str().expect("utf-8"),
+    ]));
+    assert!(report["b_to_a"].is_null());
+    let bytes = std::fs::read(&path).expect("written");
+    assert!(String::from_utf8_lossy(&bytes).contains("property uchar red"));
+
+    let wrong = dir.path().join("field.obj");
+    let output = sphaera(&["hausdorff", "--colors", wrong.to_str().expect("utf-8")]);
+    assert!(!output.status.success());
+    assert!(!wrong.exists());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("PLY"), "{message}");
+}
+
+#[test]
+fn hausdorff_reports_missing_files_and_bad_tolerances() {
+    let output = sphaera(&["hausdorff", "/no/such/mesh.obj"]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("/no/such/mesh.obj"));
+    let output = sphaera(&["hausdorff", "--tolerance", "-1"]);
+    assert!(!output.status.success());
+}
+
+#[test]
+fn distance_answers_random_points_exactly() {
+    let report = json(&sphaera(&["distance", "--random", "50", "--json"]));
+    let answers = report["answers"].as_array().expect("answers");
+    assert_eq!(answers.len(), 50);
+    for answer in answers {
+        assert_eq!(answer["lower"], answer["upper"]);
+        assert!(answer["point"].is_array());
+    }
+}
