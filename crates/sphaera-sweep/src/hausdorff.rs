@@ -112,7 +112,7 @@ pub struct HausdorffProgress {
 ///   bound through one target triangle, whichever is smaller: see `bound.rs`).
 ///
 /// The samples start as the vertices of `A`, visited along spiral *peel* paths so that
-/// successive queries of one [`Session`] on `B` are coherent. Then the triangle with the
+/// successive queries of one [`Session`](crate::Session) on `B` are coherent. Then the triangle with the
 /// largest upper bound is split in four at its edge midpoints, the midpoints are queried,
 /// and its children are queued, until the largest upper bound is within the tolerance of
 /// the lower bound: only triangles whose bound can still exceed the lower bound are ever
