@@ -15,6 +15,10 @@ use crate::error::check_non_negative;
 use crate::{SweepError, Sweeper, Tolerance};
 use side::Side;
 
+/// The error of the target's level of detail used for bounds, as a fraction of the lower
+/// bound after the vertices.
+const LEVEL_FRACTION: f64 = 0.5;
+
 /// A direction of a one-sided Hausdorff distance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Direction {
@@ -104,21 +108,27 @@ pub struct HausdorffProgress {
 ///
 /// The one-sided distance `h(A → B) = max over x ∈ A of d(x, B)` is bracketed:
 ///
-/// - the **lower bound** is the largest exact distance found at a sample of `A` (every
-///   sample is a point of `A`, so it cannot exceed the maximum);
-/// - the **upper bound** is the largest, over a set of triangles covering `A`, of an upper
-///   bound of the distance from every point of the triangle to `B`, computed from the exact
-///   answers at its corners (the paper's bisector-plane bound of Fig. 9, and a tighter
-///   bound through one target triangle, whichever is smaller: see `bound.rs`).
+/// - the **lower bound** is the largest exact distance at a sample of `A`, each from a
+///   closest-point query of a [`Session`](crate::Session) on `B` (a sample is a point of
+///   `A`, so it cannot exceed the maximum);
+/// - the **upper bound** is the largest, over triangles covering `A`, of a bound of the
+///   distance from every point of the triangle to `B`, from points of `B` known near its
+///   corners: the paper's bisector-plane bound (Fig. 9), a bound through one triangle of
+///   `B` (the distance to a triangle is convex), the same split across an edge shared by
+///   two triangles of `B`, and a bound through a level of detail of `B` (its triangles are
+///   larger, and lie within their error radii of `B`). The smallest applies.
 ///
-/// The samples start as the vertices of `A`, visited along spiral *peel* paths so that
-/// successive queries of one [`Session`](crate::Session) on `B` are coherent. Then the triangle with the
-/// largest upper bound is split in four at its edge midpoints, the midpoints are queried,
+/// An upper bound needs *a* point of `B`, not the closest one, so most samples only get a
+/// local walk over `B`'s triangles from a neighbour's answer (visiting the vertices of `A`
+/// along spiral *peel* paths, so a neighbour has always been answered); a sample is given
+/// an exact query only when the distance its walk found could raise the lower bound.
+/// Then the triangle with the largest upper bound is split in four at its edge midpoints
 /// and its children are queued, until the largest upper bound is within the tolerance of
 /// the lower bound: only triangles whose bound can still exceed the lower bound are ever
 /// refined. For the symmetric `H(A, B) = max(h(A → B), h(B → A))` both directions share
-/// one queue, so the direction that dominates is the only one refined once the other's
-/// bounds fall below it.
+/// one queue and one lower bound, so once one direction's bounds fall below the other's
+/// lower bound it is never refined again (its own lower bound is then only as tight as
+/// it needed to be).
 ///
 /// # Examples
 ///
@@ -258,6 +268,14 @@ impl<'a> Hausdorff<'a> {
             side.floor = floor;
             side.query_vertices(self.exact_vertex_distances, &mut tracker)?;
             floor = floor.max(side.lower);
+        }
+        // A level of detail of each target at a quarter of the lower bound: its larger
+        // triangles bound whole source triangles where input triangles cannot.
+        let lower = sides.iter().map(|s| s.lower).fold(0.0_f64, f64::max);
+        if lower > 0.0 {
+            for side in &mut sides {
+                side.attach_level(LEVEL_FRACTION * lower);
+            }
         }
         let mut queue = BinaryHeap::new();
         let mut nodes = Vec::new();

@@ -19,6 +19,14 @@
 //!   edge, every triangle around that feature. Tight where one target triangle lies under
 //!   the whole of `t`, which the bisector bound never is (it grows with the size of `t`
 //!   even on two coincident planes).
+//! - **Level bound**: a level of detail of the target (from its hierarchy) has larger
+//!   triangles, each within its error radius of the target surface, so one of them often
+//!   lies under the whole of `t` where no input triangle does (see `level_upper_bound`).
+//! - **Split bound**: where `t` straddles the edge shared by two target triangles (their
+//!   corner answers lie on both), neither triangle alone lies under all of `t`; a plane
+//!   through the shared edge cuts `t` into two convex pieces, each bounded by the
+//!   triangle on its side (see `split_bound_squared`). Without it, every triangle that
+//!   straddles an edge of the target would be refined down to tolerance.
 //!
 //! Both are computed in floating point; [`ROUNDING`] times the coordinate scale is added
 //! (the envelope is 1-Lipschitz, so a candidate located a little off moves it by no more
@@ -45,7 +53,11 @@ pub(crate) struct CornerAnswer {
 ///
 /// A bound computed as exactly zero (every corner found exactly on one target triangle,
 /// as for identical meshes) stays zero; any other gets the rounding slack.
-pub(crate) fn triangle_upper_bound(corners: &[CornerAnswer; 3], targets: &[Triangle]) -> f64 {
+pub(crate) fn triangle_upper_bound(
+    corners: &[CornerAnswer; 3],
+    targets: &[Triangle],
+    pairs: &[TrianglePair],
+) -> f64 {
     let bisector = bisector_bound(corners);
     // The smallest over targets of the largest squared corner distance, each target
     // abandoned as soon as a corner exceeds the best so far.
@@ -60,6 +72,10 @@ pub(crate) fn triangle_upper_bound(corners: &[CornerAnswer; 3], targets: &[Trian
         }
         best = best.min(worst);
     }
+    let x = corners.map(|c| c.position);
+    for pair in pairs {
+        best = best.min(split_bound_squared(x, pair));
+    }
     let triangle = best.sqrt();
     let bound = bisector.min(triangle);
     if bound == 0.0 {
@@ -70,6 +86,83 @@ pub(crate) fn triangle_upper_bound(corners: &[CornerAnswer; 3], targets: &[Trian
         .flat_map(|c| [c.position, c.closest])
         .fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
     bound + ROUNDING * scale
+}
+
+/// Two target triangles sharing the edge `(p, q)`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TrianglePair {
+    pub first: Triangle,
+    pub second: Triangle,
+    pub p: DVec3,
+    pub q: DVec3,
+}
+
+/// The split bound (squared): a plane through the pair's shared edge (containing the
+/// average of their normals) cuts the triangle `x` into two convex pieces; on the first
+/// triangle's side `d(·, first)` bounds the distance to the mesh, on the other side
+/// `d(·, second)`; each is convex, so its largest value on a piece is at one of the
+/// piece's vertices (corners of `x` on that side, and crossings of `x`'s edges with the
+/// plane). Any plane would do; this one makes the bound tight where the mesh is smooth
+/// across the edge and `x` straddles it, where neither triangle alone is. Infinite when
+/// the pair is degenerate.
+fn split_bound_squared(x: [DVec3; 3], pair: &TrianglePair) -> f64 {
+    let (Some(n1), Some(n2)) = (pair.first.unit_normal(), pair.second.unit_normal()) else {
+        return f64::INFINITY;
+    };
+    let edge = pair.q - pair.p;
+    let across = (n1 + n2).cross(edge);
+    let side_of = |v: DVec3| across.dot(v - pair.p);
+    let first_side = side_of(pair.first.centroid());
+    let second_side = side_of(pair.second.centroid());
+    let product = first_side * second_side;
+    if product.is_nan() || product >= 0.0 {
+        return f64::INFINITY;
+    }
+    let f = x.map(side_of);
+    let mut worst = 0.0_f64;
+    for i in 0..3 {
+        let target = if f[i] * first_side >= 0.0 {
+            &pair.first
+        } else {
+            &pair.second
+        };
+        worst = worst.max(point_triangle_distance_squared(x[i], target));
+        let j = (i + 1) % 3;
+        if f[i] * f[j] < 0.0 {
+            // The crossing belongs to both pieces.
+            let crossing = x[i] + (f[i] / (f[i] - f[j])) * (x[j] - x[i]);
+            worst = worst
+                .max(point_triangle_distance_squared(crossing, &pair.first))
+                .max(point_triangle_distance_squared(crossing, &pair.second));
+        }
+    }
+    worst
+}
+
+/// The bound through a level of detail of the target: every point of a level triangle `Q`
+/// lies within `r` (its largest corner radius) of the target surface (the simplifier's
+/// invariant (B)), so `d(x, M) ≤ d(x, Q) + r`, convex in `x`: its largest value over the
+/// triangle `x` is at a corner. Pairs of level triangles sharing an edge are split as in
+/// the split bound, with the larger radius. The smallest of all candidates is returned
+/// (infinite without candidates), with the rounding slack.
+pub(crate) fn level_upper_bound(
+    x: [DVec3; 3],
+    candidates: &[(Triangle, f64)],
+    pairs: &[(TrianglePair, f64)],
+) -> f64 {
+    let mut best = f64::INFINITY;
+    for (q, r) in candidates {
+        let worst = x
+            .iter()
+            .map(|&p| point_triangle_distance_squared(p, q))
+            .fold(0.0_f64, f64::max);
+        best = best.min(worst.sqrt() + r);
+    }
+    for (pair, r) in pairs {
+        best = best.min(split_bound_squared(x, pair).sqrt() + r);
+    }
+    let scale = x.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+    best + ROUNDING * scale
 }
 
 /// The paper's bound: the largest value of `min_i |x − c_i|` over the triangle.
@@ -197,9 +290,9 @@ mod tests {
         let x = [DVec3::new(0.1, 0.2, 0.0), DVec3::X, DVec3::Y];
         let corners = x.map(|p| answer(p, p));
         assert!(bisector_bound(&corners) > 0.4);
-        assert!(triangle_upper_bound(&corners, &[target]) <= 0.0);
+        assert!(triangle_upper_bound(&corners, &[target], &[]) <= 0.0);
         let lifted = x.map(|p| answer(p + DVec3::Z, p));
-        let bound = triangle_upper_bound(&lifted, &[target]);
+        let bound = triangle_upper_bound(&lifted, &[target], &[]);
         assert!((1.0..1.0 + 1e-9).contains(&bound), "{bound}");
     }
 
@@ -212,9 +305,60 @@ mod tests {
             DVec3::new(0.0, 2.0, 1.0),
         ];
         let corners = x.map(|p| answer(p, DVec3::ZERO));
-        let bound = triangle_upper_bound(&corners, &[target]);
+        let bound = triangle_upper_bound(&corners, &[target], &[]);
         assert!((bound - 5f64.sqrt()).abs() < 1e-9, "{bound}");
         // With no target triangle, the bisector bound alone (one point: the farthest corner).
-        assert!((triangle_upper_bound(&corners, &[]) - 5f64.sqrt()).abs() < 1e-9);
+        assert!((triangle_upper_bound(&corners, &[], &[]) - 5f64.sqrt()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn split_bound_is_tight_across_a_flat_edge_where_single_triangles_are_not() {
+        // A unit square split along its diagonal; a triangle 0.1 above it, straddling the
+        // diagonal.
+        let (a, b, c, d) = (DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y);
+        let (first, second) = (Triangle::new(a, b, c), Triangle::new(a, c, d));
+        let x = [
+            DVec3::new(0.9, 0.1, 0.1),
+            DVec3::new(0.1, 0.9, 0.1),
+            DVec3::new(0.8, 0.6, 0.1),
+        ];
+        let pair = TrianglePair {
+            first,
+            second,
+            p: a,
+            q: c,
+        };
+        let split = split_bound_squared(x, &pair).sqrt();
+        assert!((split - 0.1).abs() < 1e-12, "{split}");
+        let corners = x.map(|p| answer(p, p - 0.1 * DVec3::Z));
+        let single = triangle_upper_bound(&corners, &[first, second], &[]);
+        assert!(single > 0.3, "{single}");
+        let with_pair = triangle_upper_bound(&corners, &[first, second], &[pair]);
+        assert!((with_pair - 0.1).abs() < 1e-9, "{with_pair}");
+        // A folded pair (both on one side of the plane) gives nothing.
+        let folded = TrianglePair {
+            first,
+            second: first,
+            p: a,
+            q: c,
+        };
+        assert!(split_bound_squared(x, &folded).is_infinite());
+    }
+
+    #[test]
+    fn level_bound_adds_the_radius() {
+        let q = triangle([
+            DVec3::new(-2.0, -2.0, 0.0),
+            DVec3::new(3.0, -2.0, 0.0),
+            DVec3::new(0.0, 3.0, 0.0),
+        ]);
+        let x = [
+            DVec3::new(0.0, 0.0, 0.5),
+            DVec3::new(1.0, 0.0, 0.25),
+            DVec3::new(0.0, 1.0, 0.5),
+        ];
+        let bound = level_upper_bound(x, &[(q, 0.1)], &[]);
+        assert!((bound - 0.6).abs() < 1e-9, "{bound}");
+        assert!(level_upper_bound(x, &[], &[]).is_infinite());
     }
 }

@@ -7,8 +7,8 @@ use glam::DVec3;
 use sphaera_mesh::geometry::Triangle;
 use sphaera_simplify::Hierarchy;
 
-use super::bound::{CornerAnswer, triangle_upper_bound};
-use super::target::{Found, Target};
+use super::bound::{CornerAnswer, level_upper_bound, triangle_upper_bound};
+use super::target::{Found, Rows, Target};
 use super::{DirectedHausdorff, Tracker, peel};
 use crate::{ClosestPoint, Feature, Session, SweepError, Sweeper};
 
@@ -18,13 +18,20 @@ struct Sample {
     position: DVec3,
     /// The nearest point found (exact once certified, usually exact before).
     found: Found,
+    /// The nearest triangle found on the level of detail (`u32::MAX`: none yet).
+    level: u32,
 }
 
 /// One direction: the source mesh's samples, the target's geometry, and a session on the
 /// target for certified lower bounds.
 pub(super) struct Side<'s> {
     source: &'s Hierarchy,
-    target: Target<'s>,
+    target_hierarchy: &'s Hierarchy,
+    target: Target,
+    /// A level of detail of the target, for the level bound (after the vertices).
+    level: Option<Target>,
+    /// The peel order of the vertices and their neighbours.
+    peel: Option<(Vec<u32>, Rows)>,
     session: Session<'s>,
     samples: Vec<Sample>,
     midpoints: HashMap<(u32, u32), u32>,
@@ -42,7 +49,10 @@ impl<'s> Side<'s> {
     pub(super) fn new(source: &'s Sweeper<'s>, target: &'s Sweeper<'s>) -> Self {
         Self {
             source: source.hierarchy(),
+            target_hierarchy: target.hierarchy(),
             target: Target::new(target.hierarchy()),
+            level: None,
+            peel: None,
             session: target.session(),
             samples: Vec::new(),
             midpoints: HashMap::new(),
@@ -80,7 +90,7 @@ impl<'s> Side<'s> {
         let (order, neighbours) = peel::peel_order(positions.len(), &triangles);
         let mut found: Vec<Option<Found>> = vec![None; positions.len()];
         let mut exact_at: Vec<(usize, f64)> = Vec::new();
-        for v in order {
+        for &v in &order {
             let p = positions.get(v as usize).copied().unwrap_or(DVec3::NAN);
             // Walk from the nearest answer among the neighbours already visited (peel
             // paths visit a ring after the one inside it, so there almost always is one).
@@ -110,9 +120,16 @@ impl<'s> Side<'s> {
         self.samples = positions
             .iter()
             .zip(found)
-            .map(|(&position, found)| found.map(|found| Sample { position, found }))
+            .map(|(&position, found)| {
+                found.map(|found| Sample {
+                    position,
+                    found,
+                    level: u32::MAX,
+                })
+            })
             .collect::<Option<Vec<_>>>()
             .ok_or(SweepError::EmptyMesh)?;
+        self.peel = Some((order, neighbours));
         for (i, d) in exact_at {
             self.raise(d, i);
         }
@@ -130,6 +147,42 @@ impl<'s> Side<'s> {
             }
         }
         Ok(())
+    }
+
+    /// Extracts the level of detail of the target whose radii are at most `error` and
+    /// finds each vertex sample's nearest level triangle, walking along the peel paths.
+    pub(super) fn attach_level(&mut self, error: f64) {
+        let level = Target::level(&self.target_hierarchy.level_by_error(error));
+        if level.triangle_count() == 0 {
+            return;
+        }
+        if let Some((order, neighbours)) = &self.peel {
+            let mut at: Vec<u32> = vec![u32::MAX; self.samples.len()];
+            for &v in order {
+                if neighbours.row(v).is_empty() {
+                    continue;
+                }
+                let Some(sample) = self.samples.get(v as usize) else {
+                    continue;
+                };
+                let start = neighbours
+                    .row(v)
+                    .iter()
+                    .filter_map(|&n| at.get(n as usize).copied())
+                    .find(|&t| t != u32::MAX);
+                let found = match start {
+                    Some(t) => level.walk(sample.position, t),
+                    None => level.nearest(sample.position),
+                };
+                if let (Some(found), Some(slot)) = (found, at.get_mut(v as usize)) {
+                    *slot = found.triangle;
+                }
+            }
+            for (sample, t) in self.samples.iter_mut().zip(at) {
+                sample.level = t;
+            }
+        }
+        self.level = Some(level);
     }
 
     /// Certifies sample `i` if the distance found for it could raise the lower bound (or
@@ -208,8 +261,20 @@ impl<'s> Side<'s> {
             Some(found) => found,
             None => self.exact(p)?,
         };
+        let level = self.level.as_ref().map_or(u32::MAX, |level| {
+            [sa.level, sb.level]
+                .into_iter()
+                .filter(|&t| t != u32::MAX)
+                .filter_map(|t| level.walk(p, t))
+                .min_by(|x, y| x.distance.total_cmp(&y.distance))
+                .map_or(u32::MAX, |f| f.triangle)
+        });
         let index = self.samples.len();
-        self.samples.push(Sample { position: p, found });
+        self.samples.push(Sample {
+            position: p,
+            found,
+            level,
+        });
         self.midpoints.insert(key, index as u32);
         self.certify(index)?;
         Ok(index as u32)
@@ -238,7 +303,58 @@ impl<'s> Side<'s> {
             .iter()
             .filter_map(|&t| self.target.triangle(t))
             .collect();
-        Some(triangle_upper_bound(&answers, &targets))
+        // Pairs of the corners' own triangles that share an edge.
+        let own: Vec<u32> = {
+            let mut own: Vec<u32> = corners
+                .iter()
+                .filter_map(|&s| self.samples.get(s as usize).map(|x| x.found.triangle))
+                .collect();
+            own.sort_unstable();
+            own.dedup();
+            own
+        };
+        let mut pairs = Vec::new();
+        for (i, &a) in own.iter().enumerate() {
+            for &b in own.iter().skip(i + 1) {
+                if let Some(pair) = self.target.pair(a, b) {
+                    pairs.push(pair);
+                }
+            }
+        }
+        let bound = triangle_upper_bound(&answers, &targets, &pairs);
+        Some(bound.min(self.level_bound(corners)))
+    }
+
+    /// The level bound of the triangle of samples `corners` (infinite without a level).
+    fn level_bound(&self, corners: [u32; 3]) -> f64 {
+        let Some(level) = &self.level else {
+            return f64::INFINITY;
+        };
+        let mut ids: Vec<u32> = corners
+            .iter()
+            .filter_map(|&s| self.samples.get(s as usize).map(|x| x.level))
+            .filter(|&t| t != u32::MAX)
+            .collect();
+        ids.sort_unstable();
+        ids.dedup();
+        let candidates: Vec<(Triangle, f64)> = ids
+            .iter()
+            .filter_map(|&t| Some((level.triangle(t)?, level.radius(t))))
+            .collect();
+        let mut pairs = Vec::new();
+        for (i, &a) in ids.iter().enumerate() {
+            for &b in ids.iter().skip(i + 1) {
+                if let Some(pair) = level.pair(a, b) {
+                    pairs.push((pair, level.radius(a).max(level.radius(b))));
+                }
+            }
+        }
+        let x = corners.map(|s| {
+            self.samples
+                .get(s as usize)
+                .map_or(DVec3::NAN, |x| x.position)
+        });
+        level_upper_bound(x, &candidates, &pairs)
     }
 
     /// The direction's result with its upper bound.

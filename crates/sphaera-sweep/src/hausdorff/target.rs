@@ -8,7 +8,9 @@
 
 use glam::DVec3;
 use sphaera_mesh::geometry::{self, Triangle, closest_point_on_triangle};
-use sphaera_simplify::Hierarchy;
+use sphaera_simplify::{Hierarchy, Simplified};
+
+use super::bound::TrianglePair;
 
 /// The most triangles a walk moves through before it settles for what it found.
 const MAX_STEPS: usize = 64;
@@ -73,24 +75,42 @@ impl Found {
     }
 }
 
-/// The target mesh's geometry and adjacency.
-pub(crate) struct Target<'h> {
-    hierarchy: &'h Hierarchy,
-    /// The hierarchy triangles around each input vertex.
+/// A target mesh's geometry and adjacency: the input mesh (from a hierarchy), or a level
+/// of detail whose vertices carry error radii.
+pub(crate) struct Target {
+    /// Positions by vertex key (input vertex for the input mesh).
+    positions: Vec<DVec3>,
+    /// The error radius of each vertex (empty: all zero).
+    radii: Vec<f64>,
+    /// Triangles, as vertex keys.
+    triangles: Vec<[u32; 3]>,
+    /// The triangles around each vertex key.
     around: Rows,
-    /// The hierarchy triangle of each input triangle.
+    /// The triangle of each input triangle (input mesh only).
     of_input: Vec<u32>,
 }
 
-impl<'h> Target<'h> {
-    pub(crate) fn new(hierarchy: &'h Hierarchy) -> Self {
+impl Target {
+    /// The input mesh of `hierarchy`; triangles keep the hierarchy's ids.
+    pub(crate) fn new(hierarchy: &Hierarchy) -> Self {
         let count = hierarchy.triangle_count() as u32;
-        let mut pairs = Vec::with_capacity(3 * count as usize);
+        let key = |v: u32| hierarchy.original_vertex(v).unwrap_or(v);
+        let hierarchy_positions = hierarchy.positions();
+        let keys = (0..hierarchy_positions.len() as u32)
+            .map(key)
+            .max()
+            .map_or(0, |k| k as usize + 1);
+        let mut positions = vec![DVec3::ZERO; keys];
+        for (v, &p) in hierarchy_positions.iter().enumerate() {
+            if let Some(slot) = positions.get_mut(key(v as u32) as usize) {
+                *slot = p;
+            }
+        }
+        let mut triangles = Vec::with_capacity(count as usize);
         let mut of_input = Vec::new();
         for t in 0..count {
-            for v in hierarchy.triangle(t).into_iter().flatten() {
-                pairs.push((hierarchy.original_vertex(v).unwrap_or(v), t));
-            }
+            let corners = hierarchy.triangle(t).map_or([u32::MAX; 3], |c| c.map(key));
+            triangles.push(corners);
             if let Some(i) = hierarchy.original_triangle(t) {
                 let i = i as usize;
                 if of_input.len() <= i {
@@ -99,19 +119,48 @@ impl<'h> Target<'h> {
                 of_input[i] = t;
             }
         }
-        let rows = pairs
-            .iter()
-            .map(|&(v, _)| v as usize + 1)
-            .max()
-            .unwrap_or(0);
+        Self::assemble(positions, Vec::new(), triangles, of_input)
+    }
+
+    /// A level of detail of the target: every point of its triangles lies within the
+    /// radius interpolated there of the input surface (the simplifier's invariant (B)).
+    pub(crate) fn level(level: &Simplified) -> Self {
+        Self::assemble(
+            level.mesh.positions().to_vec(),
+            level.vertex_radii.clone(),
+            level.mesh.triangles().to_vec(),
+            Vec::new(),
+        )
+    }
+
+    fn assemble(
+        positions: Vec<DVec3>,
+        radii: Vec<f64>,
+        triangles: Vec<[u32; 3]>,
+        of_input: Vec<u32>,
+    ) -> Self {
+        let mut pairs = Vec::with_capacity(3 * triangles.len());
+        for (t, corners) in triangles.iter().enumerate() {
+            for &v in corners {
+                pairs.push((v, t as u32));
+            }
+        }
+        let around = Rows::from_pairs(positions.len(), pairs);
         Self {
-            hierarchy,
-            around: Rows::from_pairs(rows, pairs),
+            positions,
+            radii,
+            triangles,
+            around,
             of_input,
         }
     }
 
-    /// The hierarchy triangle of input triangle `i`.
+    /// Triangles.
+    pub(crate) fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// The triangle of input triangle `i`.
     pub(crate) fn of_input(&self, i: u32) -> Option<u32> {
         self.of_input
             .get(i as usize)
@@ -119,29 +168,59 @@ impl<'h> Target<'h> {
             .filter(|&t| t != u32::MAX)
     }
 
-    /// The hierarchy triangles around input vertex `v` (none for `u32::MAX`).
+    /// The triangles around vertex key `v` (none for `u32::MAX`).
     pub(crate) fn around(&self, v: u32) -> &[u32] {
         self.around.row(v)
     }
 
-    /// The geometry of hierarchy triangle `t`.
+    /// The geometry of triangle `t`.
     pub(crate) fn triangle(&self, t: u32) -> Option<Triangle> {
-        let corners = self.hierarchy.triangle(t)?;
-        let positions = self.hierarchy.positions();
-        let at = |i: usize| positions.get(corners[i] as usize).copied();
+        let corners = self.triangles.get(t as usize)?;
+        let at = |i: usize| self.positions.get(corners[i] as usize).copied();
         Some(Triangle::new(at(0)?, at(1)?, at(2)?))
+    }
+
+    /// The largest error radius at a corner of triangle `t` (0 for the input mesh).
+    pub(crate) fn radius(&self, t: u32) -> f64 {
+        self.triangles.get(t as usize).map_or(f64::INFINITY, |c| {
+            c.iter()
+                .map(|&v| {
+                    if self.radii.is_empty() {
+                        0.0
+                    } else {
+                        self.radii.get(v as usize).copied().unwrap_or(f64::INFINITY)
+                    }
+                })
+                .fold(0.0, f64::max)
+        })
+    }
+
+    /// Triangles `a` and `b` with their shared edge, if they share one.
+    pub(crate) fn pair(&self, a: u32, b: u32) -> Option<TrianglePair> {
+        let (ia, ib) = (
+            self.triangles.get(a as usize)?,
+            self.triangles.get(b as usize)?,
+        );
+        let (ta, tb) = (self.triangle(a)?, self.triangle(b)?);
+        let shared: Vec<usize> = (0..3).filter(|&k| ib.contains(&ia[k])).collect();
+        let [k, l] = shared.as_slice() else {
+            return None;
+        };
+        let corners = ta.corners();
+        Some(TrianglePair {
+            first: ta,
+            second: tb,
+            p: corners[*k],
+            q: corners[*l],
+        })
     }
 
     /// The closest point of triangle `t` to `x`, as a [`Found`].
     pub(crate) fn on_triangle(&self, x: DVec3, t: u32) -> Option<Found> {
-        let corners = self.hierarchy.triangle(t)?;
+        let corners = self.triangles.get(t as usize)?;
         let hit = closest_point_on_triangle(x, &self.triangle(t)?);
-        let input = |i: u8| {
-            let v = corners[usize::from(i)];
-            self.hierarchy.original_vertex(v).unwrap_or(v)
-        };
         let feature_vertex = match hit.feature {
-            geometry::Feature::Vertex(i) | geometry::Feature::Edge(i) => input(i),
+            geometry::Feature::Vertex(i) | geometry::Feature::Edge(i) => corners[usize::from(i)],
             geometry::Feature::Face => u32::MAX,
         };
         Some(Found {
@@ -152,23 +231,32 @@ impl<'h> Target<'h> {
         })
     }
 
-    /// A point of the mesh near `x`, by a greedy walk from triangle `start`: moves to the
-    /// nearest triangle around the current one's corners while that gets closer (at most
-    /// [`MAX_STEPS`] moves). `None` only if `start` is not a triangle.
+    /// The nearest triangle to `x` by trying every one (for a walk's first start).
+    pub(crate) fn nearest(&self, x: DVec3) -> Option<Found> {
+        (0..self.triangles.len() as u32)
+            .filter_map(|t| self.on_triangle(x, t))
+            .min_by(|a, b| a.distance.total_cmp(&b.distance))
+    }
+
+    /// A point of the mesh near `x`, by a greedy walk from triangle `start`: while the
+    /// nearest point found lies on a vertex or an edge, the triangles around that feature
+    /// (the surface near the point) are tried, and the walk moves to a nearer one (at most
+    /// [`MAX_STEPS`] moves). It stops at a local minimum of the distance over the surface:
+    /// a point inside a face, or on a feature none of whose triangles is nearer. `None`
+    /// only if `start` is not a triangle.
     pub(crate) fn walk(&self, x: DVec3, start: u32) -> Option<Found> {
         let mut best = self.on_triangle(x, start)?;
         for _ in 0..MAX_STEPS {
+            if best.feature_vertex == u32::MAX {
+                break;
+            }
             let current = best.triangle;
-            let corners = self.hierarchy.triangle(current)?;
-            for v in corners {
-                let v = self.hierarchy.original_vertex(v).unwrap_or(v);
-                for &t in self.around(v) {
-                    if t != current
-                        && let Some(found) = self.on_triangle(x, t)
-                        && found.distance < best.distance
-                    {
-                        best = found;
-                    }
+            for &t in self.around(best.feature_vertex) {
+                if t != current
+                    && let Some(found) = self.on_triangle(x, t)
+                    && found.distance < best.distance
+                {
+                    best = found;
                 }
             }
             if best.triangle == current {
