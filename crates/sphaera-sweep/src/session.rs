@@ -305,7 +305,11 @@ impl<'s> Session<'s> {
     pub fn reset(&mut self) {
         // A deformed session goes back to the base mesh: the warm start's bounds are for
         // the hierarchy's own geometry.
-        let keep = if self.shape.is_none() { self.warm_undone } else { 0 };
+        let keep = if self.shape.is_none() {
+            self.warm_undone
+        } else {
+            0
+        };
         self.refinement.reset_to(keep);
         self.queue.clear();
         self.query = None;
@@ -441,9 +445,7 @@ impl<'s> Session<'s> {
             > self.options.max_triangles;
         let far = jump > self.options.jump_factor * self.last_distance;
         let imprecise = self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.diagonal;
-        if self.query.is_some()
-            && (grown || far || imprecise || self.generation >= u32::MAX - 1)
-        {
+        if self.query.is_some() && (grown || far || imprecise || self.generation >= u32::MAX - 1) {
             self.reset();
         }
         if self.query.is_none() || self.queue.len() == 0 {
@@ -689,7 +691,11 @@ impl<'s> Session<'s> {
                 .get(t as usize)
                 .is_some_and(|&m| m != u32::MAX && m > self.warm_mark);
             if !touched {
-                debug_assert_eq!(self.refinement.corners(t), Some(c), "untouched warm corners");
+                debug_assert_eq!(
+                    self.refinement.corners(t),
+                    Some(c),
+                    "untouched warm corners"
+                );
                 self.evaluate_corners(t, c, p);
             }
         }

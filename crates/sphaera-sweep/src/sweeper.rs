@@ -6,8 +6,8 @@ use sphaera_simplify::{Hierarchy, Simplifier, SimplifyError};
 #[path = "warm_start.rs"]
 mod warm_start;
 
-pub(crate) use warm_start::{Contents, WarmStart};
 use warm_start::WARM_START_DIVISOR;
+pub(crate) use warm_start::{Contents, WarmStart};
 
 use crate::{Session, SessionOptions, SweepError};
 

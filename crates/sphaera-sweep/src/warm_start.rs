@@ -78,7 +78,9 @@ impl WarmStart {
             .collect();
         let position = |v: u32| refinement.position(v);
         let mut nodes = vec![Node::default()];
-        build_node(&mut live, 0, 0, &mut nodes, &position, &|v| refinement.radius(v));
+        build_node(&mut live, 0, 0, &mut nodes, &position, &|v| {
+            refinement.radius(v)
+        });
         Self {
             collapses,
             triangles: live.iter().map(|&(t, _)| t).collect(),
@@ -177,13 +179,20 @@ fn build_node(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(a, b), &v| (a.min(position(v)), b.max(position(v))),
     );
-    let center = if min.is_finite() { 0.5 * (min + max) } else { DVec3::ZERO };
-    let (reach, eps) = live
-        .iter()
-        .flat_map(|(_, c)| c.iter())
-        .fold((0.0_f64, 0.0_f64), |(reach, eps), &v| {
-            (reach.max((position(v) - center).length()), eps.max(radius(v)))
-        });
+    let center = if min.is_finite() {
+        0.5 * (min + max)
+    } else {
+        DVec3::ZERO
+    };
+    let (reach, eps) =
+        live.iter()
+            .flat_map(|(_, c)| c.iter())
+            .fold((0.0_f64, 0.0_f64), |(reach, eps), &v| {
+                (
+                    reach.max((position(v) - center).length()),
+                    eps.max(radius(v)),
+                )
+            });
     let mut node = Node {
         center,
         radius: reach + eps,
@@ -210,5 +219,69 @@ fn build_node(
     }
     if let Some(slot) = nodes.get_mut(n) {
         *slot = node;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
+    use sphaera_mesh::shapes;
+
+    /// Every node's bound is below `d − ε` of every triangle under it (brute force), and
+    /// the leaves hold each warm triangle once.
+    #[test]
+    fn node_bounds_hold_every_triangle_below() {
+        let torus = shapes::torus(1.0, 0.3, 20).expect("torus");
+        let hierarchy = crate::build_hierarchy(&torus).expect("hierarchy");
+        let warm = WarmStart::new(&hierarchy, hierarchy.finest_triangle_count() / 3, 3.0);
+        let mut refinement = hierarchy.refinement();
+        let mut out = Vec::new();
+        for &c in warm.collapses() {
+            refinement.undo_collapse(c, &mut out).expect("valid");
+        }
+        assert_eq!(refinement.live_triangle_count(), warm.triangle_count());
+        let key = |t: u32, p: DVec3| {
+            let c = refinement.corners(t).expect("live");
+            let q = c.map(|v| refinement.position(v));
+            let d = closest_point_on_triangle(p, &Triangle::new(q[0], q[1], q[2]))
+                .distance_squared
+                .sqrt();
+            d - c
+                .map(|v| refinement.radius(v))
+                .into_iter()
+                .fold(0.0, f64::max)
+        };
+        let mut seen = Vec::new();
+        let points = [
+            DVec3::ZERO,
+            DVec3::new(1.0, 0.2, 0.1),
+            DVec3::new(-3.0, 2.0, 1.0),
+        ];
+        for n in 0..warm.node_count() {
+            let mut stack = vec![n];
+            let mut under = Vec::new();
+            while let Some(m) = stack.pop() {
+                match warm.node(m) {
+                    Contents::Children(a, b) => stack.extend([a as usize, b as usize]),
+                    Contents::Triangles(ts, cs) => {
+                        for (&t, &c) in ts.iter().zip(cs) {
+                            assert_eq!(refinement.corners(t), Some(c));
+                            under.push(t);
+                        }
+                    }
+                }
+            }
+            if let Contents::Triangles(ts, _) = warm.node(n) {
+                seen.extend_from_slice(ts);
+            }
+            for &p in &points {
+                let bound = warm.lower_bound(n, p);
+                assert!(under.iter().all(|&t| bound <= key(t, p)), "node {n}");
+            }
+        }
+        seen.sort_unstable();
+        let live: Vec<u32> = refinement.live_triangles().collect();
+        assert_eq!(seen, live);
     }
 }
