@@ -280,8 +280,41 @@ impl<'h> Refinement<'h> {
     /// Back to the base mesh, re-applying the undone collapses in reverse order:
     /// `O(changed)`.
     pub fn reset(&mut self) {
+        self.reset_to(0);
+    }
+
+    /// Back to the state this refinement had when [`Refinement::undone_count`] was
+    /// `undone` (re-applying the collapses undone since, in reverse order): a warm start
+    /// kept as a prefix of the undo history. Does nothing if fewer have been undone.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::Simplifier;
+    ///
+    /// let sphere = shapes::sphere(1.0, 12)?;
+    /// let hierarchy = Simplifier::new(&sphere).target_triangles(20).build_hierarchy()?;
+    /// let mut refinement = hierarchy.refinement();
+    /// refinement.refine_to_error(0.1);
+    /// let (kept, live) = (refinement.undone_count(), refinement.live_triangle_count());
+    /// refinement.refine_to_error(0.01);
+    /// assert!(refinement.live_triangle_count() > live);
+    /// refinement.reset_to(kept);
+    /// assert_eq!(refinement.live_triangle_count(), live);
+    /// assert_eq!(refinement.undone_count(), kept);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// `O(undone_count − undone)`.
+    pub fn reset_to(&mut self, undone: usize) {
         let tables = &self.hierarchy.tables;
-        while let Some(c) = self.undone.pop() {
+        while self.undone.len() > undone {
+            let Some(c) = self.undone.pop() else {
+                break;
+            };
             let c = c as usize;
             self.state[tables.removed[c] as usize] |= REMOVED;
             self.state[tables.parent[c] as usize] += 1;

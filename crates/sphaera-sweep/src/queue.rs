@@ -65,6 +65,11 @@ impl Queue {
         self.heap.clear();
     }
 
+    /// Whether `id` is queued.
+    pub(crate) fn contains(&self, id: u32) -> bool {
+        self.slot.get(id as usize).is_some_and(|&s| s != ABSENT)
+    }
+
     /// The first entry.
     pub(crate) fn first(&self) -> Option<Entry> {
         self.heap.first().copied()

@@ -7,6 +7,7 @@ use sphaera_simplify::{Hierarchy, Refinement};
 use crate::error::{check_non_negative, check_point};
 use crate::motion_pose::Pose;
 use crate::queue::{Entry, Queue};
+use crate::sweeper::{Contents, WarmStart};
 use crate::{
     ClosestPoint, DistanceBounds, Feature, SessionStats, Shape, SweepError, Sweeper, Tolerance,
 };
@@ -118,6 +119,16 @@ struct SafeBall {
 pub struct Session<'s> {
     hierarchy: &'s Hierarchy,
     base: &'s [u32],
+    /// The pre-refined state a reset goes back to; queue ids from `triangles` on are its
+    /// spatial groups.
+    warm: &'s WarmStart,
+    /// Collapses undone at the warm start.
+    warm_undone: usize,
+    /// The split mark when the warm start's groups were last queued: a member touched by
+    /// a later split has its own entry and is skipped when its group is expanded.
+    warm_mark: u32,
+    /// Hierarchy triangles (the first group id).
+    triangles: u32,
     /// The bounding-box diagonal of the finest mesh (the scale of the precision rule).
     diagonal: f64,
     options: SessionOptions,
@@ -162,13 +173,25 @@ enum Stop {
 impl<'s> Session<'s> {
     pub(crate) fn new(sweeper: &'s Sweeper<'s>, options: SessionOptions) -> Self {
         let hierarchy = sweeper.hierarchy();
+        let warm = sweeper.warm_start();
+        let mut refinement = hierarchy.refinement();
+        let mut undone = Vec::new();
+        for &c in warm.collapses() {
+            // The warm start's collapses are valid and in a valid order (invariant);
+            // an error would only leave the session colder.
+            let _ = refinement.undo_collapse(c, &mut undone);
+        }
         Self {
             hierarchy,
             base: sweeper.base_triangles(),
+            warm,
+            warm_undone: refinement.undone_count(),
+            warm_mark: 0,
+            triangles: hierarchy.triangle_count() as u32,
             diagonal: sweeper.diagonal(),
             options,
-            refinement: hierarchy.refinement(),
-            queue: Queue::new(hierarchy.triangle_count()),
+            refinement,
+            queue: Queue::new(hierarchy.triangle_count() + warm.node_count()),
             query: None,
             motion: 0.0,
             generation: 0,
@@ -280,7 +303,14 @@ impl<'s> Session<'s> {
 
     /// Back to the base mesh (also done automatically, see [`SessionOptions`]).
     pub fn reset(&mut self) {
-        self.refinement.reset();
+        // A deformed session goes back to the base mesh: the warm start's bounds are for
+        // the hierarchy's own geometry.
+        let keep = if self.shape.is_none() {
+            self.warm_undone
+        } else {
+            0
+        };
+        self.refinement.reset_to(keep);
         self.queue.clear();
         self.query = None;
         self.motion = 0.0;
@@ -303,6 +333,7 @@ impl<'s> Session<'s> {
     /// tables are shared).
     pub fn memory_bytes(&self) -> usize {
         4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
+            + 4 * self.refinement.undone_count()
             + self.queue.bytes()
             + self.shape.as_ref().map_or(0, Shape::bytes)
             + 4 * (self.undone.capacity() + self.touched.capacity() + self.touched_at.capacity())
@@ -407,10 +438,14 @@ impl<'s> Session<'s> {
     fn move_to(&mut self, p: DVec3) {
         self.safe = None;
         let jump = self.query.map_or(0.0, |q| (p - q).length());
-        let grown = self.refinement.live_triangle_count() > self.options.max_triangles;
+        let grown = self
+            .refinement
+            .live_triangle_count()
+            .saturating_sub(self.warm.triangle_count())
+            > self.options.max_triangles;
         let far = jump > self.options.jump_factor * self.last_distance;
         let imprecise = self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.diagonal;
-        if self.query.is_some() && (grown || far || imprecise || self.generation == u32::MAX) {
+        if self.query.is_some() && (grown || far || imprecise || self.generation >= u32::MAX - 1) {
             self.reset();
         }
         if self.query.is_none() || self.queue.len() == 0 {
@@ -431,7 +466,13 @@ impl<'s> Session<'s> {
     /// Queues every live triangle of the current mesh for `p` (after a reset: the base
     /// mesh).
     fn refill(&mut self, p: DVec3) {
-        if self.refinement.undone_count() == 0 {
+        if self.shape.is_none()
+            && self.refinement.undone_count() == self.warm_undone
+            && self.warm.node_count() > 0
+        {
+            self.warm_mark = self.mark;
+            self.evaluate(self.triangles, p);
+        } else if self.refinement.undone_count() == 0 {
             for i in 0..self.base.len() {
                 let t = self.base[i];
                 self.evaluate(t, p);
@@ -454,6 +495,10 @@ impl<'s> Session<'s> {
             };
             if front.stamp != self.generation {
                 self.evaluate(front.triangle, p);
+                continue;
+            }
+            if front.triangle >= self.triangles {
+                self.expand(front.triangle, p);
                 continue;
             }
             if self.is_leaf(front.triangle) {
@@ -485,6 +530,10 @@ impl<'s> Session<'s> {
             }
             if self.lower(front.key) > limit {
                 return None;
+            }
+            if front.triangle >= self.triangles {
+                self.expand(front.triangle, p);
+                continue;
             }
             if self.is_leaf(front.triangle) {
                 if self.is_current(front, p) {
@@ -534,8 +583,16 @@ impl<'s> Session<'s> {
         self.touched.clear();
         self.mark += 1;
         if self.mark == u32::MAX {
+            // The marks start over: expand every pending group first, so no member
+            // needs to know whether it was touched before.
+            for n in 0..self.warm.node_count() as u32 {
+                if self.queue.contains(self.triangles + n) {
+                    self.expand_all(self.triangles + n, p);
+                }
+            }
             self.touched_at.fill(u32::MAX);
             self.mark = 0;
+            self.warm_mark = 0;
         }
         let mark = self.mark;
         for &c in &self.undone {
@@ -555,10 +612,11 @@ impl<'s> Session<'s> {
         }
         for i in 0..self.touched.len() {
             let t = self.touched[i];
-            if self.refinement.corners(t).is_some() {
-                self.evaluate(t, p);
-            } else {
-                self.queue.remove(t);
+            match self.refinement.corners(t) {
+                Some(corners) => self.evaluate_corners(t, corners, p),
+                None => {
+                    self.queue.remove(t);
+                }
             }
         }
         true
@@ -583,16 +641,73 @@ impl<'s> Session<'s> {
             .is_some_and(|now| now.triangle == entry.triangle && now.key <= entry.key)
     }
 
+    /// Replaces node `id` in the queue by every triangle under it (as [`Session::expand`]).
+    fn expand_all(&mut self, id: u32, p: DVec3) {
+        let mut stack = vec![id];
+        while let Some(id) = stack.pop() {
+            if let Contents::Children(a, b) = self.warm.node((id - self.triangles) as usize) {
+                self.queue.remove(id);
+                stack.extend([self.triangles + a, self.triangles + b]);
+            } else {
+                self.expand(id, p);
+            }
+        }
+    }
+
     /// Computes the interval of live triangle `t` for `p` and queues it.
     fn evaluate(&mut self, t: u32, p: DVec3) {
-        let Some(corners) = self.refinement.corners(t) else {
-            return;
+        if t >= self.triangles {
+            // A group of the warm start: one bound for all its members (with a deformed
+            // shape none is known: the group is expanded as soon as it is seen).
+            let lower = match self.shape {
+                Some(_) => f64::NEG_INFINITY,
+                None => self.warm.lower_bound((t - self.triangles) as usize, p),
+            };
+            self.queue.set(Entry {
+                key: lower + self.motion,
+                triangle: t,
+                stamp: self.generation,
+            });
+        } else if let Some(corners) = self.refinement.corners(t) {
+            self.evaluate_corners(t, corners, p);
+        }
+    }
+
+    /// Replaces group `id` in the queue by the exact intervals of its members, except
+    /// those a split touched since the group was queued (they have their own entries).
+    fn expand(&mut self, id: u32, p: DVec3) {
+        self.queue.remove(id);
+        let (members, corners) = match self.warm.node((id - self.triangles) as usize) {
+            Contents::Children(a, b) => {
+                self.evaluate(self.triangles + a, p);
+                self.evaluate(self.triangles + b, p);
+                return;
+            }
+            Contents::Triangles(members, corners) => (members, corners),
         };
+        for (&t, &c) in members.iter().zip(corners) {
+            let touched = self
+                .touched_at
+                .get(t as usize)
+                .is_some_and(|&m| m != u32::MAX && m > self.warm_mark);
+            if !touched {
+                debug_assert_eq!(
+                    self.refinement.corners(t),
+                    Some(c),
+                    "untouched warm corners"
+                );
+                self.evaluate_corners(t, c, p);
+            }
+        }
+    }
+
+    /// [`Session::evaluate`] for live triangle `t` with its current `corners`.
+    fn evaluate_corners(&mut self, t: u32, corners: [u32; 3], p: DVec3) {
         self.stats.distance_evaluations += 1;
         let positions = corners.map(|c| self.position(c));
         // A leaf is an input triangle at its true position: it bounds itself, radius 0
         // (inflated offsets on unsplittable vertices only matter for the other triangles).
-        let radii = if self.is_leaf(t) {
+        let radii = if corners.iter().all(|&c| !self.refinement.can_split(c)) {
             [0.0; 3]
         } else {
             corners.map(|c| self.radius(c))

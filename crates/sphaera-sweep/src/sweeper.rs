@@ -3,6 +3,12 @@
 use sphaera_mesh::{DVec3, TriMesh};
 use sphaera_simplify::{Hierarchy, Simplifier, SimplifyError};
 
+#[path = "warm_start.rs"]
+mod warm_start;
+
+use warm_start::WARM_START_DIVISOR;
+pub(crate) use warm_start::{Contents, WarmStart};
+
 use crate::{Session, SessionOptions, SweepError};
 
 /// Closest-point queries on the mesh a [`Hierarchy`] was built from (Meshsweeper).
@@ -30,6 +36,7 @@ pub struct Sweeper<'h> {
     hierarchy: &'h Hierarchy,
     base: Vec<u32>,
     diagonal: f64,
+    warm: WarmStart,
 }
 
 impl<'h> Sweeper<'h> {
@@ -41,8 +48,47 @@ impl<'h> Sweeper<'h> {
     ///
     /// # Performance
     ///
-    /// One scan of the hierarchy's triangles to list the base mesh (`O(T × depth)`).
+    /// As [`Sweeper::with_warm_start`] with half the finest mesh's triangles.
     pub fn new(hierarchy: &'h Hierarchy) -> Result<Self, SweepError> {
+        let target = hierarchy.finest_triangle_count() / WARM_START_DIVISOR;
+        Self::with_warm_start(hierarchy, target)
+    }
+
+    /// The sweeper of `hierarchy` whose sessions start (and reset to) a state refined to
+    /// at least `triangles` live triangles (the vertex with the largest radius split
+    /// first), instead of [`Sweeper::new`]'s half of the finest mesh. `0` starts from the
+    /// base mesh, as the paper does; the finest mesh's count or more never splits and
+    /// answers every cold query from a bounding-sphere tree over the input triangles.
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::EmptyMesh`] if the hierarchy has no triangle.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, shapes};
+    /// use sphaera_sweep::{Sweeper, build_hierarchy};
+    ///
+    /// let torus = shapes::torus(1.0, 0.25, 24)?;
+    /// let hierarchy = build_hierarchy(&torus)?;
+    /// let p = DVec3::new(2.0, 0.0, 0.0);
+    /// let cold = Sweeper::with_warm_start(&hierarchy, 0)?;
+    /// let warm = Sweeper::with_warm_start(&hierarchy, usize::MAX)?;
+    /// let (mut a, mut b) = (cold.session(), warm.session());
+    /// assert_eq!(a.closest(p)?.distance, b.closest(p)?.distance);
+    /// assert_eq!(b.stats().splits, 0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// A split per warm-start vertex and a scan of the triangles (`O(T × depth)`), then
+    /// an `O(n log n)` tree build over the `n` warm triangles; the sweeper keeps about
+    /// 24 bytes per warm triangle, shared by its sessions. A cold query from a larger warm
+    /// start makes fewer splits (each undoing its dependants), at the cost of a reset that
+    /// re-applies everything the query undid (see `docs/benchmarks.md`).
+    pub fn with_warm_start(hierarchy: &'h Hierarchy, triangles: usize) -> Result<Self, SweepError> {
         let base: Vec<u32> = hierarchy.refinement().live_triangles().collect();
         if base.is_empty() {
             return Err(SweepError::EmptyMesh);
@@ -52,11 +98,30 @@ impl<'h> Sweeper<'h> {
             |(lo, hi), &p| (lo.min(p), hi.max(p)),
         );
         let diagonal = (max - min).length();
+        let diagonal = if diagonal.is_finite() { diagonal } else { 0.0 };
         Ok(Self {
             hierarchy,
             base,
-            diagonal: if diagonal.is_finite() { diagonal } else { 0.0 },
+            diagonal,
+            warm: WarmStart::new(hierarchy, triangles, diagonal),
         })
+    }
+
+    /// Live triangles of the state every session starts from and resets to (see
+    /// [`Sweeper::with_warm_start`]).
+    pub fn warm_start_triangles(&self) -> usize {
+        self.warm.triangle_count()
+    }
+
+    /// Bytes of the sweeper's own tables (the base mesh and the warm start; the
+    /// hierarchy is not counted).
+    pub fn memory_bytes(&self) -> usize {
+        4 * self.base.len() + self.warm.bytes()
+    }
+
+    /// The warm start sessions begin from and reset to.
+    pub(crate) fn warm_start(&self) -> &WarmStart {
+        &self.warm
     }
 
     /// The hierarchy queried.
@@ -69,7 +134,8 @@ impl<'h> Sweeper<'h> {
         self.diagonal
     }
 
-    /// The triangles of the base mesh (where every session starts and resets to).
+    /// The triangles of the base mesh (the coarsest state; sessions start from the warm
+    /// start, see [`Sweeper::with_warm_start`]).
     pub fn base_triangles(&self) -> &[u32] {
         &self.base
     }
