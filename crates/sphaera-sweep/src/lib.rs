@@ -83,6 +83,7 @@ mod motion_pose;
 pub mod polyline;
 mod queue;
 mod session;
+mod shifted_keys;
 mod sweeper;
 
 pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};

@@ -3,9 +3,10 @@
 
 use glam::{DAffine3, DVec3};
 
-use super::{MOTION_ROUNDING, Session, bounding_box};
+use super::{Session, bounding_box};
 use crate::motion::{check_tables, max_displacement};
 use crate::motion_pose::Pose;
+use crate::shifted_keys::MOTION_ROUNDING;
 use crate::{Shape, SweepError};
 
 impl Session<'_> {
@@ -250,11 +251,10 @@ impl Session<'_> {
         }
         let amount = amount * (1.0 + MOTION_ROUNDING);
         let far = amount > self.options.jump_factor * self.last_distance;
-        if far || self.generation == u32::MAX {
+        if far || self.keys.exhausted(amount, self.diagonal) {
             self.reset();
         } else if amount > 0.0 {
-            self.motion += amount;
-            self.generation += 1;
+            self.keys.widen(amount);
             self.best_upper += amount;
         }
     }

@@ -7,6 +7,7 @@ use sphaera_simplify::{Hierarchy, Refinement};
 use crate::error::{check_non_negative, check_point};
 use crate::motion_pose::Pose;
 use crate::queue::{Entry, Queue};
+use crate::shifted_keys::ShiftedKeys;
 use crate::sweeper::{Contents, WarmStart};
 use crate::{
     ClosestPoint, DistanceBounds, Feature, SessionStats, Shape, SweepError, Sweeper, Tolerance,
@@ -14,14 +15,6 @@ use crate::{
 
 #[path = "motion_session.rs"]
 mod motion_session;
-
-/// The relative rounding of a shifted key (a few ulps of the total motion).
-const MOTION_ROUNDING: f64 = 4.0 * f64::EPSILON;
-
-/// A session resets when the total motion since its last reset passes this many times the
-/// mesh's bounding-box diagonal, so the shifted keys keep their precision (the rounding
-/// slack stays below `1e-13` of the diagonal).
-const MAX_MOTION_IN_DIAGONALS: f64 = 64.0;
 
 /// When a [`Session`] goes back to the base mesh before a query.
 ///
@@ -136,10 +129,8 @@ pub struct Session<'s> {
     queue: Queue,
     /// The point the queue's intervals are computed for (widened by the motion since).
     query: Option<DVec3>,
-    /// Total motion of the query point since the last reset (the key shift).
-    motion: f64,
-    /// Incremented whenever the query point moves: entries with an older stamp are dirty.
-    generation: u32,
+    /// The key shift (total motion since the last reset) and the generation.
+    keys: ShiftedKeys,
     /// The smallest upper bound seen for the current query point (widened by motion).
     best_upper: f64,
     /// The distance of the last answer (for the jump policy).
@@ -193,8 +184,7 @@ impl<'s> Session<'s> {
             refinement,
             queue: Queue::new(hierarchy.triangle_count() + warm.node_count()),
             query: None,
-            motion: 0.0,
-            generation: 0,
+            keys: ShiftedKeys::default(),
             best_upper: f64::INFINITY,
             last_distance: f64::INFINITY,
             safe: None,
@@ -313,7 +303,7 @@ impl<'s> Session<'s> {
         self.refinement.reset_to(keep);
         self.queue.clear();
         self.query = None;
-        self.motion = 0.0;
+        self.keys.restart();
         self.best_upper = f64::INFINITY;
         self.safe = None;
         self.stats.resets += 1;
@@ -444,21 +434,20 @@ impl<'s> Session<'s> {
             .saturating_sub(self.warm.triangle_count())
             > self.options.max_triangles;
         let far = jump > self.options.jump_factor * self.last_distance;
-        let imprecise = self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.diagonal;
-        if self.query.is_some() && (grown || far || imprecise || self.generation >= u32::MAX - 1) {
+        let imprecise = self.keys.exhausted(jump, self.diagonal);
+        if self.query.is_some() && (grown || far || imprecise) {
             self.reset();
         }
         if self.query.is_none() || self.queue.len() == 0 {
             self.query = Some(p);
-            self.generation = self.generation.wrapping_add(1);
+            self.keys.restart();
             self.best_upper = f64::INFINITY;
             self.refill(p);
             return;
         }
         if jump > 0.0 {
             self.query = Some(p);
-            self.motion += jump;
-            self.generation += 1;
+            self.keys.widen(jump);
             self.best_upper += jump;
         }
     }
@@ -493,7 +482,7 @@ impl<'s> Session<'s> {
             let Some(front) = self.queue.first() else {
                 return Stop::Empty;
             };
-            if front.stamp != self.generation {
+            if front.stamp != self.keys.stamp() {
                 self.evaluate(front.triangle, p);
                 continue;
             }
@@ -524,7 +513,7 @@ impl<'s> Session<'s> {
     fn sweep_until(&mut self, p: DVec3, limit: f64) -> Option<u32> {
         loop {
             let front = self.queue.first()?;
-            if front.stamp != self.generation {
+            if front.stamp != self.keys.stamp() {
                 self.evaluate(front.triangle, p);
                 continue;
             }
@@ -626,7 +615,7 @@ impl<'s> Session<'s> {
     /// since the reset, minus a rounding slack proportional to the motion (so the bound
     /// stays conservative however the shift rounded).
     fn lower(&self, key: f64) -> f64 {
-        key - self.motion - MOTION_ROUNDING * self.motion
+        self.keys.lower(key)
     }
 
     /// Whether `entry` (a clean leaf at the front) was computed with the radii its corners
@@ -664,9 +653,9 @@ impl<'s> Session<'s> {
                 None => self.warm.lower_bound((t - self.triangles) as usize, p),
             };
             self.queue.set(Entry {
-                key: lower + self.motion,
+                key: self.keys.key(lower),
                 triangle: t,
-                stamp: self.generation,
+                stamp: self.keys.stamp(),
             });
         } else if let Some(corners) = self.refinement.corners(t) {
             self.evaluate_corners(t, corners, p);
@@ -721,9 +710,9 @@ impl<'s> Session<'s> {
             + hit.barycentric[2] * radii[2];
         self.best_upper = self.best_upper.min(d + at_point);
         self.queue.set(Entry {
-            key: (d - eps) + self.motion,
+            key: self.keys.key(d - eps),
             triangle: t,
-            stamp: self.generation,
+            stamp: self.keys.stamp(),
         });
     }
 

@@ -7,14 +7,8 @@ use super::point::{PolylinePoint, closest_on_segment};
 use super::{PolylineBounds, PolylineClosest};
 use crate::error::check_non_negative;
 use crate::queue::{Entry, Queue};
+use crate::shifted_keys::ShiftedKeys;
 use crate::{SessionStats, SweepError, Tolerance};
-
-/// The relative rounding of a shifted key (a few ulps of the total motion).
-const MOTION_ROUNDING: f64 = 4.0 * f64::EPSILON;
-
-/// A session resets when the total motion since its last reset passes this many times
-/// the polyline's bounding-box diagonal, so the shifted keys keep their precision.
-const MAX_MOTION_IN_DIAGONALS: f64 = 64.0;
 
 /// When a [`PolylineSession`] goes back to the root capsule before a query.
 ///
@@ -132,10 +126,8 @@ pub struct PolylineSession<'p, P> {
     queue: Queue,
     /// The point the queue's intervals were computed for (widened by the motion since).
     query: Option<P>,
-    /// Total motion of the query point since the last reset (the key shift).
-    motion: f64,
-    /// Incremented whenever the query point moves: entries with an older stamp are stale.
-    generation: u32,
+    /// The key shift (total motion since the last reset) and the generation.
+    keys: ShiftedKeys,
     /// The smallest upper bound seen for the current query point (widened by motion).
     best_upper: f64,
     /// The distance of the last exact answer (for the jump policy).
@@ -151,8 +143,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
             options,
             queue: Queue::new(polyline.node_count()),
             query: None,
-            motion: 0.0,
-            generation: 0,
+            keys: ShiftedKeys::default(),
             best_upper: f64::INFINITY,
             last_distance: f64::INFINITY,
             safe: None,
@@ -302,7 +293,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
     pub fn reset(&mut self) {
         self.queue.clear();
         self.query = None;
-        self.motion = 0.0;
+        self.keys.restart();
         self.best_upper = f64::INFINITY;
         self.safe = None;
         self.stats.resets += 1;
@@ -366,24 +357,22 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
         if self.query.is_some() {
             let grown = self.queue.len() > self.options.max_front;
             let far = jump > self.options.jump_factor * self.last_distance;
-            let imprecise = self.motion + jump > MAX_MOTION_IN_DIAGONALS * self.polyline.diagonal();
-            if grown || far || imprecise || self.generation == u32::MAX {
+            let imprecise = self.keys.exhausted(jump, self.polyline.diagonal());
+            if grown || far || imprecise {
                 self.reset();
             }
         }
         if self.query.is_none() || self.queue.len() == 0 {
             self.queue.clear();
             self.query = Some(p);
-            self.motion = 0.0;
-            self.generation = self.generation.wrapping_add(1);
+            self.keys.restart();
             self.best_upper = f64::INFINITY;
             self.evaluate(ROOT, p);
             return;
         }
         if jump > 0.0 {
             self.query = Some(p);
-            self.motion += jump;
-            self.generation += 1;
+            self.keys.widen(jump);
             self.best_upper += jump;
         }
     }
@@ -399,7 +388,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
                 self.evaluate(ROOT, p);
                 continue;
             };
-            if front.stamp != self.generation {
+            if front.stamp != self.keys.stamp() {
                 self.evaluate(front.triangle, p);
                 continue;
             }
@@ -428,7 +417,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
     /// The lower end of the interval of an entry with `key`: the key minus the motion
     /// since the reset, minus a rounding slack proportional to the motion.
     fn lower(&self, key: f64) -> f64 {
-        key - self.motion - MOTION_ROUNDING * self.motion
+        self.keys.lower(key)
     }
 
     /// Computes the interval of capsule `id` for `p` and queues it.
@@ -452,9 +441,9 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
         };
         self.best_upper = self.best_upper.min(upper);
         self.queue.set(Entry {
-            key: (d - node.error) + self.motion,
+            key: self.keys.key(d - node.error),
             triangle: id,
-            stamp: self.generation,
+            stamp: self.keys.stamp(),
         });
     }
 
