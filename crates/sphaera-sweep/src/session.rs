@@ -18,11 +18,13 @@ mod motion_session;
 
 /// When a [`Session`] goes back to the base mesh before a query.
 ///
-/// A session only refines (paper section 4.2); it coarsens all at once, by a reset. A reset
-/// costs `O(changed + base triangles)`; not resetting costs re-evaluating stale intervals.
-/// The defaults reset when the refined mesh has grown past `max_triangles`, or when the
-/// query point jumped farther than `jump_factor` times the previous distance (then almost
-/// every interval is stale, and the base mesh is cheaper to start from).
+/// A session only refines (paper section 4.2); it coarsens all at once, by a reset to the
+/// sweeper's warm start (see [`Sweeper::with_warm_start`]; the base mesh without one). A
+/// reset costs `O(changed)`; not resetting costs re-evaluating stale intervals. The
+/// defaults reset when the refined mesh has grown by more than `max_triangles` live
+/// triangles beyond the warm start, or when the query point jumped farther than
+/// `jump_factor` times the previous distance (then almost every interval is stale, and the
+/// warm start is cheaper to start from).
 ///
 /// # Examples
 ///
@@ -34,7 +36,8 @@ mod motion_session;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SessionOptions {
-    /// Reset before a query when the refined mesh has more live triangles than this.
+    /// Reset before a query when the refined mesh has grown by more than this many live
+    /// triangles beyond the warm start.
     pub max_triangles: usize,
     /// Reset before a query when the query point moved more than this many times the
     /// previous answer's distance (`f64::INFINITY`: never for motion).
