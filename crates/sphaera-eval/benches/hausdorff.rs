@@ -1,5 +1,5 @@
 //! Certified symmetric Hausdorff distance: the 69k-triangle bunny against its 15 % quadric
-//! simplification (`stanford-bunny-qem15.obj`, made by MeshLab), to a gap of 1e-5 of the
+//! simplification (`stanford-bunny-qem15.obj`, made by `MeshLab`), to a gap of 1e-5 of the
 //! joint diagonal (the target: under 0.5 s on one thread), and the paper's naive
 //! alternative in the same run.
 //!

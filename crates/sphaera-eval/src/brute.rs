@@ -64,7 +64,10 @@ pub fn naive_hausdorff(a: &TriMesh, b: &TriMesh, stride: usize) -> NaiveHausdorf
     };
     for (source, target) in [(a, b), (b, a)] {
         let target = BruteForce::new(target);
-        for p in referenced_vertices(source).into_iter().step_by(stride.max(1)) {
+        for p in referenced_vertices(source)
+            .into_iter()
+            .step_by(stride.max(1))
+        {
             result.value = result.value.max(target.distance(p));
             result.samples += 1;
             result.evaluations += target.triangle_count();
@@ -93,24 +96,24 @@ pub fn referenced_vertices(mesh: &TriMesh) -> Vec<DVec3> {
 
 #[cfg(test)]
 mod tests {
-    use sphaera::mesh::shapes;
-
-    use super::*;
+    // No `use` here: the benches include this file with `#[path]`, where the tests are
+    // compiled out and an import would be unused.
 
     #[test]
     fn brute_force_matches_a_cube() {
-        let cube = shapes::cube(2.0, 2).unwrap();
-        let brute = BruteForce::new(&cube);
-        assert!((brute.distance(DVec3::new(3.0, 0.0, 0.0)) - 2.0).abs() < 1e-12);
-        assert!((brute.distance(DVec3::ZERO) - 1.0).abs() < 1e-12);
+        let cube = sphaera::mesh::shapes::cube(2.0, 2).unwrap();
+        let brute = super::BruteForce::new(&cube);
+        assert!((brute.distance(super::DVec3::new(3.0, 0.0, 0.0)) - 2.0).abs() < 1e-12);
+        assert!((brute.distance(super::DVec3::ZERO) - 1.0).abs() < 1e-12);
     }
 
     #[test]
     fn naive_hausdorff_of_nested_cubes() {
-        let small = shapes::cube(2.0, 2).unwrap();
+        let small = sphaera::mesh::shapes::cube(2.0, 2).unwrap();
         let (positions, triangles) = small.clone().into_parts();
-        let big = TriMesh::new(positions.iter().map(|&p| 1.5 * p).collect(), triangles).unwrap();
-        let naive = naive_hausdorff(&small, &big, 1);
+        let big =
+            super::TriMesh::new(positions.iter().map(|&p| 1.5 * p).collect(), triangles).unwrap();
+        let naive = super::naive_hausdorff(&small, &big, 1);
         // The big cube's corners are √3 × 0.5 from the small one's.
         assert!((naive.value - 0.5 * 3f64.sqrt()).abs() < 1e-12);
         assert_eq!(naive.samples, 2 * small.vertex_count());

@@ -72,3 +72,37 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
         (SET_NAMES[2], path),
     ])
 }
+
+#[cfg(test)]
+mod tests {
+    // No `use` here: the `sweep_vs_parry` bench includes this file with `#[path]`, where
+    // the tests are compiled out and an import would be unused.
+
+    #[test]
+    fn query_sets_are_where_they_say() {
+        let sphere = sphaera::mesh::shapes::sphere(1.0, 16).unwrap();
+        let diagonal = sphere.bounding_box_diagonal();
+        let sets = super::query_sets(&sphere, 100).unwrap();
+        let names: Vec<&str> = sets.iter().map(|(name, _)| *name).collect();
+        assert_eq!(names, super::SET_NAMES);
+        for (name, points) in &sets {
+            assert_eq!(points.len(), 100, "{name}");
+        }
+        // Uniform: inside the 1.5× box. Near: within 1 % of the diagonal of the sphere
+        // (whose tessellation is within a few % of the unit sphere).
+        assert!(sets[0].1.iter().all(|p| p.abs().max_element() <= 1.5));
+        assert!(
+            sets[1]
+                .1
+                .iter()
+                .all(|p| (p.length() - 1.0).abs() <= 0.01 * diagonal + 0.05)
+        );
+        // Path: small steps, independent of `n`.
+        let step = sets[2].1.windows(2).map(|w| w[0].distance(w[1]));
+        assert!(step.fold(0.0, f64::max) < 0.01 * diagonal);
+        let fewer = super::query_sets(&sphere, 10).unwrap();
+        assert_eq!(fewer[2].1[..], sets[2].1[..10]);
+        // Deterministic.
+        assert_eq!(super::query_sets(&sphere, 100).unwrap(), sets);
+    }
+}

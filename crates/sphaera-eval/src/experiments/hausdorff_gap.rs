@@ -2,7 +2,7 @@
 //! tolerances, with the paper's naive alternative beside it.
 //!
 //! Two pairs of meshes ([`PAIRS`]): the 69k-triangle bunny against its 15 % quadric
-//! simplification made by MeshLab (`stanford-bunny-qem15.obj`), and the 3.7k-triangle
+//! simplification made by `MeshLab` (`stanford-bunny-qem15.obj`), and the 3.7k-triangle
 //! `bunny_lowres.obj` against Sphaera's own 15 % simplification of it
 //! (`Simplifier::new(&m).target_ratio(0.15)`, defaults otherwise).
 //!
@@ -162,7 +162,8 @@ fn report(row: Option<&Row>) {
         eprintln!(
             "  {:<8} tolerance {:<6} {:>9.4} s  lower {:.6} %  upper {}  gap {}  {} samples{}",
             r.method,
-            r.tolerance.map_or_else(|| "-".to_owned(), |t| format!("{t:e}")),
+            r.tolerance
+                .map_or_else(|| "-".to_owned(), |t| format!("{t:e}")),
             r.seconds,
             100.0 * r.lower,
             r.upper
@@ -225,7 +226,10 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
     let mut gaps = Vec::new();
     let mut bounds = Vec::new();
     for &(file, label, _) in PAIRS {
-        let sphaera = || rows.iter().filter(|r| r.file == file && r.method == "sphaera");
+        let sphaera = || {
+            rows.iter()
+                .filter(|r| r.file == file && r.method == "sphaera")
+        };
         let mut gap = Series::new(&format!("Sphaera, {label}"));
         gap.points = sphaera()
             .filter_map(|r| r.upper.map(|u| (r.seconds, u - r.lower)))
@@ -253,12 +257,14 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
             Panel {
                 spec: ChartSpec {
                     title: "Certified Hausdorff gap against time",
-                    x_label: &format!("seconds, one thread (best of {RUNS}; hierarchies not timed)"),
+                    x_label: &format!(
+                        "seconds, one thread (best of {RUNS}; hierarchies not timed)"
+                    ),
                     y_label: "upper − lower, / joint diagonal",
                 },
                 series: &gaps,
                 diagonal: false,
-                legend: SeriesLabelPosition::LowerLeft,
+                legend: SeriesLabelPosition::UpperRight,
             },
             Panel {
                 spec: ChartSpec {
