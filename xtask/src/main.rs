@@ -186,6 +186,21 @@ const CHARTS: &[(&str, Coverage)] = &[
         "simplify_error_vs_time",
         Coverage::Only(&["stanford-bunny.obj", "dragon_vrip.ply"]),
     ),
+    (
+        "sweep_throughput",
+        Coverage::Only(&[
+            "bunny_lowres.obj",
+            "dragon_vrip_res4.ply",
+            "dragon_vrip_res3.ply",
+            "stanford-bunny.obj",
+            "dragon_vrip_res2.ply",
+            "dragon_vrip.ply",
+        ]),
+    ),
+    (
+        "hausdorff_gap_vs_time",
+        Coverage::Only(&["stanford-bunny.obj", "bunny_lowres.obj"]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

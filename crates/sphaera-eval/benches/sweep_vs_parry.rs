@@ -1,7 +1,8 @@
 //! Closest-point queries: Sphaera's Meshsweeper sessions against parry3d-f64's `TriMesh`
 //! point projection (its BVH), in the same run.
 //!
-//! Query sets (seeded), on the 69k-triangle bunny and the 871k-triangle dragon:
+//! Query sets (seeded; `src/query_sets.rs`, shared with the `sweep_throughput`
+//! experiment), on the 69k-triangle bunny and the 871k-triangle dragon:
 //! - `uniform`: points uniform in the bounding box scaled 1.5×;
 //! - `near`: points within 1 % of the diagonal of the surface (a surface sample moved
 //!   along a random direction);
@@ -18,10 +19,17 @@ use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphaera::{
-    mesh::{DVec3, TriMesh, io, sampling},
+    mesh::io,
     sweep::{Sweeper, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
+
+// Shared with the `sweep_throughput` experiment, which measures the same query sets.
+#[allow(dead_code)]
+#[path = "../src/query_sets.rs"]
+mod query_sets;
+
+use query_sets::query_sets;
 
 /// Queries per measured block.
 const QUERIES: usize = 2_000;
@@ -31,49 +39,6 @@ const MESHES: &[(&str, &str)] = &[
     ("bunny_69k", "stanford-bunny.obj"),
     ("dragon_871k", "dragon_vrip.ply"),
 ];
-
-/// A small deterministic generator (uniform in `[0, 1)`).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1_u64 << 53) as f64
-    }
-}
-
-/// The three query sets of the module docs.
-fn query_sets(mesh: &TriMesh) -> Vec<(&'static str, Vec<DVec3>)> {
-    let bounds = mesh.bounding_box();
-    let center = 0.5 * (bounds.min + bounds.max);
-    let half = 0.5 * (bounds.max - bounds.min);
-    let diagonal = mesh.bounding_box_diagonal();
-    let mut rng = Lcg(7);
-    let uniform = (0..QUERIES)
-        .map(|_| {
-            let u = DVec3::new(rng.next(), rng.next(), rng.next());
-            center + 1.5 * half * (2.0 * u - DVec3::ONE)
-        })
-        .collect();
-    let samples = sampling::random(mesh, QUERIES, 11).expect("the mesh has area");
-    let near = samples
-        .iter()
-        .map(|s| {
-            let d = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - DVec3::ONE;
-            s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.next())
-        })
-        .collect();
-    let path = (0..QUERIES)
-        .map(|i| {
-            let a = std::f64::consts::TAU * i as f64 / QUERIES as f64;
-            center + 0.9 * half * DVec3::new(a.cos(), a.sin(), 0.5 * (3.0 * a).sin())
-        })
-        .collect();
-    vec![("uniform", uniform), ("near", near), ("path", path)]
-}
 
 fn sweep_vs_parry(c: &mut Criterion) {
     let Some(data) = sphaera_tests::data_dir("sweep_vs_parry bench") else {
@@ -99,7 +64,7 @@ fn sweep_vs_parry(c: &mut Criterion) {
         let hierarchy = build_hierarchy(&mesh).expect("builds");
         let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
         let parry = DistanceToMesh::new(&mesh);
-        for (set, points) in query_sets(&mesh) {
+        for (set, points) in query_sets(&mesh, QUERIES).expect("the mesh has area") {
             let mut group = c.benchmark_group(format!("sweep/{name}/{set}_{QUERIES}"));
             group.sample_size(10);
             group.warm_up_time(Duration::from_millis(300));

@@ -14,9 +14,11 @@
 // An experiment runner reports on the terminal.
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
+mod brute;
 mod chart;
 mod experiments;
 mod methods;
+mod query_sets;
 
 use std::path::PathBuf;
 

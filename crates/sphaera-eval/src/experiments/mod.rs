@@ -1,7 +1,9 @@
 //! The experiments, one module each.
 
+mod hausdorff_gap;
 mod load_topology;
 mod simplify_error;
+mod sweep_throughput;
 
 use std::path::Path;
 
@@ -9,13 +11,20 @@ use anyhow::{Result, bail};
 
 /// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
 /// `NAME.svg` and `NAME.csv`.
-pub const NAMES: &[&str] = &[load_topology::NAME, simplify_error::NAME];
+pub const NAMES: &[&str] = &[
+    load_topology::NAME,
+    simplify_error::NAME,
+    sweep_throughput::NAME,
+    hausdorff_gap::NAME,
+];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
 pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
     match name {
         load_topology::NAME => load_topology::run(data, out),
         simplify_error::NAME => simplify_error::run(data, out),
+        sweep_throughput::NAME => sweep_throughput::run(data, out),
+        hausdorff_gap::NAME => hausdorff_gap::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }

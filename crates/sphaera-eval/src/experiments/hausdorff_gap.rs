@@ -1,0 +1,281 @@
+//! Certified Hausdorff distance: the gap `upper − lower` against time, over a ladder of
+//! tolerances, with the paper's naive alternative beside it.
+//!
+//! Two pairs of meshes ([`PAIRS`]): the 69k-triangle bunny against its 15 % quadric
+//! simplification made by `MeshLab` (`stanford-bunny-qem15.obj`), and the 3.7k-triangle
+//! `bunny_lowres.obj` against Sphaera's own 15 % simplification of it
+//! (`Simplifier::new(&m).target_ratio(0.15)`, defaults otherwise).
+//!
+//! - **Sphaera**: `hausdorff(&a, &b).tolerance(Tolerance::Relative(t)).symmetric()` for
+//!   each `t` of [`TOLERANCES`] (relative to the bounding-box diagonal of both meshes
+//!   together). The hierarchies and sweepers are built once per pair, **outside** the
+//!   timing (their build time, which is parallel, is in the CSV as `build_seconds`); the
+//!   computation itself is single-threaded. Time: minimum of [`RUNS`] runs.
+//! - **Naive** (paper section 6): every referenced vertex of each mesh against every
+//!   triangle of the other, by brute force on one thread ([`naive_hausdorff`]), timed once.
+//!   Its value is only a **lower bound** of the distance: it certifies nothing, so it has
+//!   no gap and appears only on the right panel.
+//!
+//! Distances and gaps are relative to the joint diagonal. By design this chart covers only
+//! the first meshes of [`PAIRS`]; `cargo xtask charts --check` checks them.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use sphaera::{
+    mesh::{TriMesh, io},
+    simplify::Simplifier,
+    sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff},
+};
+
+use super::min_time;
+use crate::brute::naive_hausdorff;
+use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
+
+/// The experiment's name: its files are `hausdorff_gap_vs_time.{svg,csv}`.
+pub const NAME: &str = "hausdorff_gap_vs_time";
+
+/// The pairs: first mesh (file in `shared/data`), label, second mesh (a file in
+/// `shared/data`, or `None` for Sphaera's 15 % simplification of the first).
+pub const PAIRS: &[(&str, &str, Option<&str>)] = &[
+    (
+        "stanford-bunny.obj",
+        "bunny 69k vs MeshLab 15 %",
+        Some("stanford-bunny-qem15.obj"),
+    ),
+    ("bunny_lowres.obj", "bunny 3.7k vs Sphaera 15 %", None),
+];
+
+/// The tolerances, relative to the joint diagonal.
+pub const TOLERANCES: &[f64] = &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6];
+
+/// Timing runs per tolerance (the minimum is kept).
+pub const RUNS: usize = 3;
+
+/// Name of Sphaera's simplification in the CSV's `other` column.
+const SIMPLIFIED: &str = "sphaera_target_ratio_0.15";
+
+/// One measured point.
+struct Row {
+    file: &'static str,
+    other: String,
+    method: &'static str,
+    tolerance: Option<f64>,
+    seconds: f64,
+    build_seconds: Option<f64>,
+    lower: f64,
+    upper: Option<f64>,
+    samples: usize,
+    converged: bool,
+}
+
+pub fn run(data: &Path, out: &Path) -> Result<()> {
+    let mut rows = Vec::new();
+    for &(file, label, other) in PAIRS {
+        let path = data.join(file);
+        if !path.is_file() {
+            eprintln!("{file}: not in {}, skipped", data.display());
+            continue;
+        }
+        let a = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        let (b, other) = match other {
+            Some(name) => {
+                let path = data.join(name);
+                let b =
+                    io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+                (b, name.to_owned())
+            }
+            None => {
+                let simplified = Simplifier::new(&a)
+                    .target_ratio(0.15)
+                    .build()
+                    .context("cannot simplify")?;
+                (simplified.mesh, SIMPLIFIED.to_owned())
+            }
+        };
+        eprintln!(
+            "{label}: {} vs {} triangles",
+            a.triangle_count(),
+            b.triangle_count()
+        );
+        measure_pair(file, &other, (&a, &b), &mut rows)?;
+    }
+    write_table(out, &rows)?;
+    draw(out, &rows)
+}
+
+/// The tolerance ladder and the naive estimate on one pair.
+fn measure_pair(
+    file: &'static str,
+    other: &str,
+    (a, b): (&TriMesh, &TriMesh),
+    rows: &mut Vec<Row>,
+) -> Result<()> {
+    let diagonal = a.bounding_box().union(b.bounding_box()).diagonal();
+    let (build_seconds, (ha, hb)) = min_time(1, || {
+        Ok((
+            build_hierarchy(a).context("cannot build a hierarchy")?,
+            build_hierarchy(b).context("cannot build a hierarchy")?,
+        ))
+    })?;
+    let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
+    for &tolerance in TOLERANCES {
+        let (seconds, result) = min_time(RUNS, || {
+            Ok(hausdorff(&sa, &sb)
+                .tolerance(Tolerance::Relative(tolerance))
+                .symmetric()?)
+        })?;
+        let samples = result.a_to_b.samples + result.b_to_a.as_ref().map_or(0, |s| s.samples);
+        rows.push(Row {
+            file,
+            other: other.to_owned(),
+            method: "sphaera",
+            tolerance: Some(tolerance),
+            seconds,
+            build_seconds: Some(build_seconds),
+            lower: result.lower / diagonal,
+            upper: Some(result.upper / diagonal),
+            samples,
+            converged: result.converged,
+        });
+        report(rows.last());
+    }
+    let (seconds, naive) = min_time(1, || Ok(naive_hausdorff(a, b, 1)))?;
+    rows.push(Row {
+        file,
+        other: other.to_owned(),
+        method: "naive",
+        tolerance: None,
+        seconds,
+        build_seconds: None,
+        lower: naive.value / diagonal,
+        upper: None,
+        samples: naive.samples,
+        converged: false,
+    });
+    report(rows.last());
+    Ok(())
+}
+
+fn report(row: Option<&Row>) {
+    if let Some(r) = row {
+        eprintln!(
+            "  {:<8} tolerance {:<6} {:>9.4} s  lower {:.6} %  upper {}  gap {}  {} samples{}",
+            r.method,
+            r.tolerance
+                .map_or_else(|| "-".to_owned(), |t| format!("{t:e}")),
+            r.seconds,
+            100.0 * r.lower,
+            r.upper
+                .map_or_else(|| "-".to_owned(), |u| format!("{:.6} %", 100.0 * u)),
+            r.upper
+                .map_or_else(|| "-".to_owned(), |u| format!("{:.2e}", u - r.lower)),
+            r.samples,
+            if r.converged || r.upper.is_none() {
+                ""
+            } else {
+                " (sample budget ran out)"
+            },
+        );
+    }
+}
+
+fn write_table(out: &Path, rows: &[Row]) -> Result<()> {
+    let optional = |v: Option<f64>| v.map_or_else(String::new, |v| format!("{v:.6e}"));
+    let table: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.file.to_owned(),
+                r.other.clone(),
+                r.method.to_owned(),
+                optional(r.tolerance),
+                format!("{:.6}", r.seconds),
+                r.build_seconds
+                    .map_or_else(String::new, |s| format!("{s:.6}")),
+                format!("{:.8e}", r.lower),
+                r.upper.map_or_else(String::new, |u| format!("{u:.8e}")),
+                optional(r.upper.map(|u| u - r.lower)),
+                r.samples.to_string(),
+                r.converged.to_string(),
+            ]
+        })
+        .collect();
+    write_csv(
+        &out.join(format!("{NAME}.csv")),
+        &[
+            "file",
+            "other",
+            "method",
+            "tolerance_relative",
+            "seconds",
+            "build_seconds",
+            "lower_relative",
+            "upper_relative",
+            "gap_relative",
+            "samples",
+            "converged",
+        ],
+        &table,
+    )
+}
+
+/// Left: the certified gap against time, one series per pair. Right: the bounds against
+/// time, and the naive value (a lower bound only). A pair keeps its colours in both panels.
+fn draw(out: &Path, rows: &[Row]) -> Result<()> {
+    let mut gaps = Vec::new();
+    let mut bounds = Vec::new();
+    for &(file, label, _) in PAIRS {
+        let sphaera = || {
+            rows.iter()
+                .filter(|r| r.file == file && r.method == "sphaera")
+        };
+        let mut gap = Series::new(&format!("Sphaera, {label}"));
+        gap.points = sphaera()
+            .filter_map(|r| r.upper.map(|u| (r.seconds, u - r.lower)))
+            .collect();
+        let mut upper = Series::new(&format!("Sphaera upper, {label}"));
+        upper.points = sphaera()
+            .filter_map(|r| r.upper.map(|u| (r.seconds, u)))
+            .collect();
+        let mut lower = Series::new(&format!("Sphaera lower, {label}"));
+        lower.points = sphaera().map(|r| (r.seconds, r.lower)).collect();
+        let mut naive = Series::new(&format!("naive (lower bound only), {label}"));
+        naive.points = rows
+            .iter()
+            .filter(|r| r.file == file && r.method == "naive")
+            .map(|r| (r.seconds, r.lower))
+            .collect();
+        // Same index, same colour: the gap series takes the upper bound's colour, and the
+        // two slots after it stay empty on the left (not drawn).
+        gaps.extend([gap, Series::new(""), Series::new("")]);
+        bounds.extend([upper, lower, naive]);
+    }
+    log_log_panels(
+        &out.join(format!("{NAME}.svg")),
+        &[
+            Panel {
+                spec: ChartSpec {
+                    title: "Certified Hausdorff gap against time",
+                    x_label: &format!(
+                        "seconds, one thread (best of {RUNS}; hierarchies not timed)"
+                    ),
+                    y_label: "upper − lower, / joint diagonal",
+                },
+                series: &gaps,
+                diagonal: false,
+                legend: SeriesLabelPosition::UpperRight,
+            },
+            Panel {
+                spec: ChartSpec {
+                    title: "Bounds against time, and the naive all-pairs estimate",
+                    x_label: "seconds, one thread",
+                    y_label: "symmetric Hausdorff distance / joint diagonal",
+                },
+                series: &bounds,
+                diagonal: false,
+                legend: SeriesLabelPosition::UpperRight,
+            },
+        ],
+    )
+}

@@ -1,0 +1,108 @@
+//! The closest-point query sets, shared by the `sweep_throughput` experiment and the
+//! `sweep_vs_parry` bench (which includes this file with `#[path]`), so both measure the
+//! same points.
+//!
+//! Three sets, each of `n` points and seeded (the same mesh and `n` give the same points):
+//! - `uniform`: points uniform in the bounding box scaled 1.5× about its centre;
+//! - `near`: points within 1 % of the diagonal of the surface (a uniform surface sample
+//!   moved along a random direction by a random fraction of that distance);
+//! - `path`: a smooth closed curve around the centre (a tilted, wavy ellipse at 0.9× the
+//!   half-extents) walked in steps of `1 / PATH_STEPS_PER_LOOP` of a turn, i.e. about
+//!   0.15 % of the diagonal per step: coherent queries. The step does not depend on `n`
+//!   (fewer points walk part of the loop).
+
+use anyhow::{Context, Result};
+use sphaera::mesh::{DVec3, TriMesh, sampling};
+
+/// Steps of the `path` set per full turn of its curve.
+pub const PATH_STEPS_PER_LOOP: usize = 2_000;
+
+/// The names of the query sets, in the order [`query_sets`] returns them.
+pub const SET_NAMES: [&str; 3] = ["uniform", "near", "path"];
+
+/// A small deterministic generator (uniform in `[0, 1)`).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next value, uniform in `[0, 1)`.
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        // The top 53 bits, exactly representable.
+        (self.0 >> 11) as f64 / (1_u64 << 53) as f64
+    }
+}
+
+/// The three query sets of the module docs, `n` points each, named as in [`SET_NAMES`].
+///
+/// # Errors
+///
+/// If the mesh has no area (no surface to sample the `near` set from).
+pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVec3>)>> {
+    let bounds = mesh.bounding_box();
+    let center = 0.5 * (bounds.min + bounds.max);
+    let half = 0.5 * (bounds.max - bounds.min);
+    let diagonal = mesh.bounding_box_diagonal();
+    let mut rng = Lcg(7);
+    let uniform = (0..n)
+        .map(|_| {
+            let u = DVec3::new(rng.next(), rng.next(), rng.next());
+            center + 1.5 * half * (2.0 * u - DVec3::ONE)
+        })
+        .collect();
+    let samples = sampling::random(mesh, n, 11).context("the mesh has no area to sample")?;
+    let near = samples
+        .iter()
+        .map(|s| {
+            let d = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - DVec3::ONE;
+            s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.next())
+        })
+        .collect();
+    let path = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / PATH_STEPS_PER_LOOP as f64;
+            center + 0.9 * half * DVec3::new(a.cos(), a.sin(), 0.5 * (3.0 * a).sin())
+        })
+        .collect();
+    Ok(vec![
+        (SET_NAMES[0], uniform),
+        (SET_NAMES[1], near),
+        (SET_NAMES[2], path),
+    ])
+}
+
+#[cfg(test)]
+mod tests {
+    // No `use` here: the `sweep_vs_parry` bench includes this file with `#[path]`, where
+    // the tests are compiled out and an import would be unused.
+
+    #[test]
+    fn query_sets_are_where_they_say() {
+        let sphere = sphaera::mesh::shapes::sphere(1.0, 16).unwrap();
+        let diagonal = sphere.bounding_box_diagonal();
+        let sets = super::query_sets(&sphere, 100).unwrap();
+        let names: Vec<&str> = sets.iter().map(|(name, _)| *name).collect();
+        assert_eq!(names, super::SET_NAMES);
+        for (name, points) in &sets {
+            assert_eq!(points.len(), 100, "{name}");
+        }
+        // Uniform: inside the 1.5× box. Near: within 1 % of the diagonal of the sphere
+        // (whose tessellation is within a few % of the unit sphere).
+        assert!(sets[0].1.iter().all(|p| p.abs().max_element() <= 1.5));
+        assert!(
+            sets[1]
+                .1
+                .iter()
+                .all(|p| (p.length() - 1.0).abs() <= 0.01 * diagonal + 0.05)
+        );
+        // Path: small steps, independent of `n`.
+        let step = sets[2].1.windows(2).map(|w| w[0].distance(w[1]));
+        assert!(step.fold(0.0, f64::max) < 0.01 * diagonal);
+        let fewer = super::query_sets(&sphere, 10).unwrap();
+        assert_eq!(fewer[2].1[..], sets[2].1[..10]);
+        // Deterministic.
+        assert_eq!(super::query_sets(&sphere, 100).unwrap(), sets);
+    }
+}
