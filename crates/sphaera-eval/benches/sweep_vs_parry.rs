@@ -9,7 +9,11 @@
 //! - `path`: a smooth closed path of small steps (coherent queries).
 //!
 //! Each measurement answers a block of `QUERIES` queries with one session (Sphaera) or
-//! one BVH (parry); criterion reports the time per block. Hierarchy and BVH builds are
+//! one BVH (parry); criterion reports the time per block. On the path, parry also runs
+//! with the previous answer as a distance bound (`project_local_point_with_max_dist` with
+//! the previous distance plus the step, which the answer cannot exceed). The paper's
+//! linear worst case is timed too: queries at the centre of a sphere mesh (within 1e-9
+//! of it), each from a fresh session. Hierarchy and BVH builds are
 //! benched beside. Run with `cargo bench -p sphaera-eval --bench sweep_vs_parry` (append
 //! `-- bunny` for the bunny only). Needs `../shared/data`; without it the bench says so.
 
@@ -18,8 +22,10 @@
 use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use parry3d_f64::query::PointQuery;
+use parry3d_f64::shape::{TriMesh as ParryTriMesh, TriMeshFlags};
 use sphaera::{
-    mesh::io,
+    mesh::{DVec3, TriMesh, io, shapes},
     sweep::{Sweeper, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
@@ -81,9 +87,85 @@ fn sweep_vs_parry(c: &mut Criterion) {
             group.bench_function("parry", |b| {
                 b.iter(|| points.iter().map(|&p| parry.distance(p)).sum::<f64>());
             });
+            if set == "path" {
+                let bounded = parry_mesh(&mesh);
+                group.bench_function("parry_previous_bound", |b| {
+                    b.iter(|| path_with_previous_bound(&bounded, &points));
+                });
+            }
             group.finish();
         }
     }
+    worst_case(c);
+}
+
+/// parry's mesh of `mesh` (no topology needed for projection).
+fn parry_mesh(mesh: &TriMesh) -> ParryTriMesh {
+    ParryTriMesh::with_flags(
+        mesh.positions().to_vec(),
+        mesh.triangles().to_vec(),
+        TriMeshFlags::empty(),
+    )
+    .expect("a non-empty mesh")
+}
+
+/// The sum of distances along a path, each projection bounded by the previous distance
+/// plus the step (1-Lipschitz), falling back to an unbounded one if that ever failed.
+fn path_with_previous_bound(mesh: &ParryTriMesh, points: &[DVec3]) -> f64 {
+    let mut previous: Option<(DVec3, f64)> = None;
+    let mut sum = 0.0;
+    for &p in points {
+        let d = match previous {
+            Some((q, d)) => mesh
+                .project_local_point_with_max_dist(p, false, d + (p - q).length() + 1e-12)
+                .map_or_else(
+                    || mesh.distance_to_local_point(p, false),
+                    |projection| (projection.point - p).length(),
+                ),
+            None => mesh.distance_to_local_point(p, false),
+        };
+        previous = Some((p, d));
+        sum += d;
+    }
+    sum
+}
+
+/// The linear worst case: the centre of a sphere mesh (every triangle at about the same
+/// distance), 100 queries within 1e-9 of it, a fresh session each.
+fn worst_case(c: &mut Criterion) {
+    let sphere = shapes::sphere(1.0, 48).expect("a sphere");
+    let hierarchy = build_hierarchy(&sphere).expect("builds");
+    let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
+    let parry = parry_mesh(&sphere);
+    let points: Vec<DVec3> = (0..100)
+        .map(|i| {
+            let t = f64::from(i);
+            1e-9 * DVec3::new(t.sin(), (2.0 * t).cos(), (3.0 * t).sin())
+        })
+        .collect();
+    let mut group = c.benchmark_group(format!(
+        "sweep_worst_case/sphere_{}_centre_100",
+        sphere.triangle_count()
+    ));
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(2));
+    group.bench_function("sphaera_fresh_sessions", |b| {
+        b.iter(|| {
+            points
+                .iter()
+                .map(|&p| sweeper.session().closest(p).expect("finite").distance)
+                .sum::<f64>()
+        });
+    });
+    group.bench_function("parry", |b| {
+        b.iter(|| {
+            points
+                .iter()
+                .map(|&p| parry.distance_to_local_point(p, false))
+                .sum::<f64>()
+        });
+    });
+    group.finish();
 }
 
 criterion_group!(benches, sweep_vs_parry);
