@@ -106,6 +106,7 @@
 mod aabb;
 mod error;
 pub mod geometry;
+pub mod indexed_heap;
 pub mod io;
 mod mesh;
 pub mod sampling;

@@ -6,10 +6,7 @@
 //! `key = (d − ε) + G₀`; with the total motion now `G`, its interval's lower end is
 //! `key − G`. Every interval widens by the same amount, so the order is unchanged.
 
-use std::cmp::Ordering;
-
-/// No heap slot.
-const ABSENT: u32 = u32::MAX;
+use sphaera_mesh::indexed_heap::{HeapItem, IndexedHeap};
 
 /// A queued triangle.
 #[derive(Clone, Copy, Debug)]
@@ -22,31 +19,32 @@ pub(crate) struct Entry {
     pub stamp: u32,
 }
 
-impl Entry {
+impl HeapItem for Entry {
+    fn id(&self) -> u32 {
+        self.triangle
+    }
+
     /// The queue order: the lowest key first, then the lowest triangle (total and
     /// deterministic).
     fn before(&self, other: &Self) -> bool {
         self.key
             .total_cmp(&other.key)
             .then(self.triangle.cmp(&other.triangle))
-            == Ordering::Less
+            .is_lt()
     }
 }
 
 /// The queue, at most one entry per triangle.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Queue {
-    heap: Vec<Entry>,
-    /// Heap slot of each triangle, or [`ABSENT`].
-    slot: Vec<u32>,
+    heap: IndexedHeap<Entry>,
 }
 
 impl Queue {
     /// An empty queue for triangle ids below `triangles`.
     pub(crate) fn new(triangles: usize) -> Self {
         Self {
-            heap: Vec::new(),
-            slot: vec![ABSENT; triangles],
+            heap: IndexedHeap::new(triangles),
         }
     }
 
@@ -57,17 +55,12 @@ impl Queue {
 
     /// Removes every entry (`O(len)`).
     pub(crate) fn clear(&mut self) {
-        for e in &self.heap {
-            if let Some(s) = self.slot.get_mut(e.triangle as usize) {
-                *s = ABSENT;
-            }
-        }
         self.heap.clear();
     }
 
     /// Whether `id` is queued.
     pub(crate) fn contains(&self, id: u32) -> bool {
-        self.slot.get(id as usize).is_some_and(|&s| s != ABSENT)
+        self.heap.contains(id)
     }
 
     /// The first entry.
@@ -78,101 +71,22 @@ impl Queue {
     /// The smaller key of the first entry's two children: a lower bound on every entry
     /// but the first.
     pub(crate) fn second_key(&self) -> Option<f64> {
-        match (self.heap.get(1), self.heap.get(2)) {
-            (Some(a), Some(b)) => Some(a.key.min(b.key)),
-            (Some(a), None) => Some(a.key),
-            _ => None,
-        }
+        self.heap.runners_up().map(|e| e.key).reduce(f64::min)
     }
 
     /// Inserts or replaces the entry of `entry.triangle`.
     pub(crate) fn set(&mut self, entry: Entry) {
-        let Some(&i) = self.slot.get(entry.triangle as usize) else {
-            return;
-        };
-        let i = if i == ABSENT {
-            self.heap.push(entry);
-            self.heap.len() - 1
-        } else {
-            self.heap[i as usize] = entry;
-            i as usize
-        };
-        self.slot[entry.triangle as usize] = i as u32;
-        let i = self.sift_up(i);
-        self.sift_down(i);
+        self.heap.set(entry);
     }
 
     /// Removes the entry of `triangle`, if queued.
     pub(crate) fn remove(&mut self, triangle: u32) -> Option<Entry> {
-        let i = *self.slot.get(triangle as usize)?;
-        if i == ABSENT {
-            return None;
-        }
-        let entry = self.heap[i as usize];
-        self.remove_at(i as usize);
-        Some(entry)
-    }
-
-    /// Removes the entry in heap slot `i`.
-    fn remove_at(&mut self, i: usize) {
-        let last = self.heap.len() - 1;
-        self.heap.swap(i, last);
-        if let Some(gone) = self.heap.pop() {
-            self.slot[gone.triangle as usize] = ABSENT;
-        }
-        if i < self.heap.len() {
-            self.slot[self.heap[i].triangle as usize] = i as u32;
-            let i = self.sift_up(i);
-            self.sift_down(i);
-        }
-    }
-
-    /// Moves the entry in slot `i` up to its place; returns its new slot.
-    fn sift_up(&mut self, mut i: usize) -> usize {
-        let e = self.heap[i];
-        while i > 0 {
-            let parent = (i - 1) / 2;
-            if !e.before(&self.heap[parent]) {
-                break;
-            }
-            self.heap[i] = self.heap[parent];
-            self.slot[self.heap[i].triangle as usize] = i as u32;
-            i = parent;
-        }
-        self.heap[i] = e;
-        self.slot[e.triangle as usize] = i as u32;
-        i
-    }
-
-    /// Moves the entry in slot `i` down to its place.
-    fn sift_down(&mut self, mut i: usize) {
-        let e = self.heap[i];
-        let n = self.heap.len();
-        loop {
-            let left = 2 * i + 1;
-            if left >= n {
-                break;
-            }
-            let right = left + 1;
-            let child = if right < n && self.heap[right].before(&self.heap[left]) {
-                right
-            } else {
-                left
-            };
-            if !self.heap[child].before(&e) {
-                break;
-            }
-            self.heap[i] = self.heap[child];
-            self.slot[self.heap[i].triangle as usize] = i as u32;
-            i = child;
-        }
-        self.heap[i] = e;
-        self.slot[e.triangle as usize] = i as u32;
+        self.heap.remove(triangle)
     }
 
     /// Bytes held (heap capacity and slots).
     pub(crate) fn bytes(&self) -> usize {
-        self.heap.capacity() * size_of::<Entry>() + self.slot.capacity() * size_of::<u32>()
+        self.heap.bytes()
     }
 }
 

@@ -7,12 +7,8 @@
 //! per vertex keeps the heap small (a few hundred kilobytes for a 70k-triangle mesh)
 //! instead of growing with every re-evaluation.
 
-use std::cmp::Ordering;
-
+use sphaera_mesh::indexed_heap::{HeapItem, IndexedHeap};
 use sphaera_mesh::topology::HalfEdgeId;
-
-/// No heap slot.
-const ABSENT: u32 = u32::MAX;
 
 /// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated.
 #[derive(Clone, Copy, Debug)]
@@ -22,7 +18,11 @@ pub(super) struct Candidate {
     pub halfedge: u32,
 }
 
-impl Candidate {
+impl HeapItem for Candidate {
+    fn id(&self) -> u32 {
+        self.vertex
+    }
+
     /// The queue order: the lowest cost first, then the lowest vertex (total and
     /// deterministic; the half-edge never decides, as vertices are unique).
     fn before(&self, other: &Self) -> bool {
@@ -30,142 +30,53 @@ impl Candidate {
             .total_cmp(&other.cost)
             .then(self.vertex.cmp(&other.vertex))
             .then(self.halfedge.cmp(&other.halfedge))
-            == Ordering::Less
+            .is_lt()
     }
 }
 
 /// The queue of current candidates, at most one per vertex.
 #[derive(Debug)]
 pub(super) struct Queue {
-    heap: Vec<Candidate>,
-    /// Heap slot of each vertex's candidate, or [`ABSENT`].
-    slot: Vec<u32>,
+    heap: IndexedHeap<Candidate>,
 }
 
 impl Queue {
     /// The queue holding `initial[u]` for every vertex `u`.
     pub(super) fn new(initial: &[Option<(f64, HalfEdgeId)>]) -> Self {
-        let mut queue = Self {
-            heap: initial
-                .iter()
-                .enumerate()
-                .filter_map(|(u, c)| {
-                    c.map(|(cost, h)| Candidate {
-                        cost,
-                        vertex: u as u32,
-                        halfedge: h.0,
-                    })
-                })
-                .collect(),
-            slot: vec![ABSENT; initial.len()],
-        };
-        for (i, c) in queue.heap.iter().enumerate() {
-            queue.slot[c.vertex as usize] = i as u32;
+        let items = initial.iter().enumerate().filter_map(|(u, c)| {
+            c.map(|(cost, h)| Candidate {
+                cost,
+                vertex: u as u32,
+                halfedge: h.0,
+            })
+        });
+        Self {
+            heap: IndexedHeap::from_items(initial.len(), items),
         }
-        for i in (0..queue.heap.len() / 2).rev() {
-            queue.sift_down(i);
-        }
-        queue
     }
 
     /// The current candidate of vertex `u`.
     pub(super) fn get(&self, u: u32) -> Option<(f64, HalfEdgeId)> {
-        let i = *self.slot.get(u as usize)?;
-        let c = self.heap.get(i as usize)?;
-        Some((c.cost, HalfEdgeId(c.halfedge)))
+        self.heap.get(u).map(|c| (c.cost, HalfEdgeId(c.halfedge)))
     }
 
     /// Removes and returns the first candidate.
     pub(super) fn pop(&mut self) -> Option<Candidate> {
-        let top = *self.heap.first()?;
-        self.remove_at(0);
-        Some(top)
+        self.heap.pop()
     }
 
     /// Makes `candidate` the current candidate of vertex `u` (`None` removes it).
     pub(super) fn set(&mut self, u: u32, candidate: Option<(f64, HalfEdgeId)>) {
-        let Some(&i) = self.slot.get(u as usize) else {
-            return;
-        };
-        match (candidate, i) {
-            (None, ABSENT) => {}
-            (None, i) => self.remove_at(i as usize),
-            (Some((cost, h)), i) => {
-                let c = Candidate {
-                    cost,
-                    vertex: u,
-                    halfedge: h.0,
-                };
-                let i = if i == ABSENT {
-                    self.heap.push(c);
-                    self.heap.len() - 1
-                } else {
-                    self.heap[i as usize] = c;
-                    i as usize
-                };
-                self.slot[u as usize] = i as u32;
-                let i = self.sift_up(i);
-                self.sift_down(i);
+        match candidate {
+            None => {
+                self.heap.remove(u);
             }
+            Some((cost, h)) => self.heap.set(Candidate {
+                cost,
+                vertex: u,
+                halfedge: h.0,
+            }),
         }
-    }
-
-    /// Removes the candidate in heap slot `i`.
-    fn remove_at(&mut self, i: usize) {
-        let last = self.heap.len() - 1;
-        self.heap.swap(i, last);
-        let gone = self.heap.pop().map(|c| c.vertex);
-        if let Some(g) = gone {
-            self.slot[g as usize] = ABSENT;
-        }
-        if i < self.heap.len() {
-            self.slot[self.heap[i].vertex as usize] = i as u32;
-            let i = self.sift_up(i);
-            self.sift_down(i);
-        }
-    }
-
-    /// Moves the candidate in slot `i` up to its place; returns its new slot.
-    fn sift_up(&mut self, mut i: usize) -> usize {
-        let c = self.heap[i];
-        while i > 0 {
-            let parent = (i - 1) / 2;
-            if !c.before(&self.heap[parent]) {
-                break;
-            }
-            self.heap[i] = self.heap[parent];
-            self.slot[self.heap[i].vertex as usize] = i as u32;
-            i = parent;
-        }
-        self.heap[i] = c;
-        self.slot[c.vertex as usize] = i as u32;
-        i
-    }
-
-    /// Moves the candidate in slot `i` down to its place.
-    fn sift_down(&mut self, mut i: usize) {
-        let c = self.heap[i];
-        let n = self.heap.len();
-        loop {
-            let left = 2 * i + 1;
-            if left >= n {
-                break;
-            }
-            let right = left + 1;
-            let child = if right < n && self.heap[right].before(&self.heap[left]) {
-                right
-            } else {
-                left
-            };
-            if !self.heap[child].before(&c) {
-                break;
-            }
-            self.heap[i] = self.heap[child];
-            self.slot[self.heap[i].vertex as usize] = i as u32;
-            i = child;
-        }
-        self.heap[i] = c;
-        self.slot[c.vertex as usize] = i as u32;
     }
 }
 
