@@ -1,0 +1,88 @@
+//! A full consistency check of the data structure and the Delaunay property, used by the
+//! tests and available to callers who want proof.
+
+use super::predicates::orient;
+use super::{DEAD, Delaunay, INFINITE, NONE, TetId};
+use crate::DelaunayError;
+
+impl Delaunay {
+    /// Checks every invariant: each live tetrahedron has four distinct vertices (at most
+    /// one of them [`INFINITE`](super::INFINITE)); finite ones are positively oriented
+    /// (no flat tetrahedra); neighbourhood is symmetric and neighbours share exactly the
+    /// face between them; each non-duplicate vertex knows an incident tetrahedron; and every
+    /// face is locally Delaunay under the perturbation (the fourth vertex of each neighbour
+    /// is not in conflict), which implies the whole tetrahedralization is Delaunay and the
+    /// hull convex.
+    ///
+    /// # Errors
+    ///
+    /// [`DelaunayError::Invalid`] naming the first violation.
+    ///
+    /// # Performance
+    ///
+    /// `O(n)` predicates: a few times the cost of building.
+    pub fn validate(&self) -> Result<(), DelaunayError> {
+        let fail = |what: String| Err(DelaunayError::Invalid(what));
+        for (t, &vertices) in self.tets.iter().enumerate() {
+            if vertices[0] == DEAD {
+                continue;
+            }
+            let t = t as TetId;
+            let infinite = vertices.iter().filter(|&&v| v == INFINITE).count();
+            let mut sorted = vertices;
+            sorted.sort_unstable();
+            if infinite > 1 || sorted.windows(2).any(|w| w[0] == w[1]) {
+                return fail(format!("tetrahedron {t} has vertices {vertices:?}"));
+            }
+            if infinite == 0 {
+                let [a, b, c, d] = self.corners(vertices);
+                if orient(a, b, c, d) <= 0.0 {
+                    return fail(format!("tetrahedron {t} {vertices:?} is not positive"));
+                }
+            }
+            for i in 0..4 {
+                let n = self.adjacent[t as usize][i];
+                if n == NONE || !self.is_live(n) {
+                    return fail(format!("tetrahedron {t} has no live neighbour {i}"));
+                }
+                let backs = self.adjacent[n as usize]
+                    .iter()
+                    .filter(|&&x| x == t)
+                    .count();
+                if backs != 1 {
+                    return fail(format!("neighbours {t} and {n} are not symmetric"));
+                }
+                let Some(back) = self.adjacent[n as usize].iter().position(|&x| x == t) else {
+                    continue;
+                };
+                let mut ours: Vec<u32> = (0..4).filter(|&k| k != i).map(|k| vertices[k]).collect();
+                let theirs_all = self.tets[n as usize];
+                let mut theirs: Vec<u32> = (0..4)
+                    .filter(|&k| k != back)
+                    .map(|k| theirs_all[k])
+                    .collect();
+                ours.sort_unstable();
+                theirs.sort_unstable();
+                if ours != theirs {
+                    return fail(format!("tetrahedra {t} and {n} do not share a face"));
+                }
+                let apex = theirs_all[back];
+                if apex != INFINITE && self.conflicts(t, self.points[apex as usize]) {
+                    return fail(format!(
+                        "face between {t} and {n} is not locally Delaunay (vertex {apex})"
+                    ));
+                }
+            }
+        }
+        for (v, &t) in self.vertex_tet.iter().enumerate() {
+            let duplicate = self.duplicate_of[v] != NONE;
+            if duplicate != (t == NONE) {
+                return fail(format!("vertex {v}: duplicate flag and incidence disagree"));
+            }
+            if !duplicate && (!self.is_live(t) || !self.tets[t as usize].contains(&(v as u32))) {
+                return fail(format!("vertex {v} points at tetrahedron {t} without it"));
+            }
+        }
+        Ok(())
+    }
+}

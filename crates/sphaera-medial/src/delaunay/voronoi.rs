@@ -1,0 +1,111 @@
+//! The Voronoi dual: a Voronoi vertex per finite tetrahedron (its circumcentre), Voronoi
+//! edges between neighbouring tetrahedra, and the cell of each input point.
+
+use glam::DVec3;
+
+use super::{Delaunay, INFINITE, NONE, TetId};
+
+/// The Voronoi cell of one point: the finite tetrahedra around it (their circumcentres are
+/// the cell's vertices), and whether the cell is unbounded (the point is on the hull).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct VoronoiCell {
+    /// Finite tetrahedra incident to the point, in discovery order.
+    pub tetrahedra: Vec<TetId>,
+    /// Whether the point is on the convex hull (its cell extends to infinity).
+    pub unbounded: bool,
+}
+
+impl Delaunay {
+    /// The circumcentre and circumradius of finite tetrahedron `t` (the Voronoi vertex it
+    /// stands for, and its distance to the four forming points), or `None` for a ghost or
+    /// a removed id.
+    ///
+    /// The centre is computed in `f64` relative to a corner; for a nearly flat tetrahedron
+    /// it is far away and approximate, like the true one.
+    #[must_use]
+    pub fn circumsphere(&self, t: TetId) -> Option<(DVec3, f64)> {
+        if !self.is_finite(t) {
+            return None;
+        }
+        let [a, b, c, d] = self.corners(self.tets[t as usize]);
+        Some(circumsphere(a, b, c, d))
+    }
+
+    /// The Voronoi cell of vertex `v`; `None` if `v` is a duplicate or not a vertex id.
+    #[must_use]
+    pub fn voronoi_cell(&self, v: u32) -> Option<VoronoiCell> {
+        let mut cell = VoronoiCell::default();
+        self.voronoi_cell_into(v, &mut cell).then_some(cell)
+    }
+
+    /// [`Delaunay::voronoi_cell`] into a reused buffer; returns `false` (and leaves `cell`
+    /// empty) for a duplicate or an invalid id.
+    pub fn voronoi_cell_into(&self, v: u32, cell: &mut VoronoiCell) -> bool {
+        cell.tetrahedra.clear();
+        cell.unbounded = false;
+        let Some(&start) = self.vertex_tet.get(v as usize) else {
+            return false;
+        };
+        if start == NONE {
+            return false;
+        }
+        // Depth-first search over the tetrahedra around v, through faces that contain v.
+        let mut seen: Vec<TetId> = vec![start];
+        let mut stack = vec![start];
+        while let Some(t) = stack.pop() {
+            let vertices = self.tets[t as usize];
+            if vertices.contains(&INFINITE) {
+                cell.unbounded = true;
+            } else {
+                cell.tetrahedra.push(t);
+            }
+            for (i, &u) in vertices.iter().enumerate() {
+                if u == v {
+                    continue;
+                }
+                let n = self.adjacent[t as usize][i];
+                if !seen.contains(&n) {
+                    seen.push(n);
+                    stack.push(n);
+                }
+            }
+        }
+        true
+    }
+
+    /// Whether vertex `v` is on the convex hull.
+    #[must_use]
+    pub fn is_hull_vertex(&self, v: u32) -> bool {
+        self.voronoi_cell(v).is_some_and(|c| c.unbounded)
+    }
+}
+
+/// The sphere through four points.
+pub(crate) fn circumsphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> (DVec3, f64) {
+    let (ab, ac, ad) = (b - a, c - a, d - a);
+    let (bc, cd) = (ac.cross(ad), ad.cross(ab));
+    let db = ab.cross(ac);
+    let denominator = 2.0 * ab.dot(bc);
+    let offset = (ab.length_squared() * bc + ac.length_squared() * cd + ad.length_squared() * db)
+        / denominator;
+    (a + offset, offset.length())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn circumsphere_passes_through_the_four_points() {
+        let p = [
+            DVec3::new(0.3, -1.0, 2.0),
+            DVec3::new(1.5, 0.2, -0.4),
+            DVec3::new(-0.7, 0.9, 0.1),
+            DVec3::new(0.2, 0.4, 1.3),
+        ];
+        let (centre, radius) = circumsphere(p[0], p[1], p[2], p[3]);
+        for q in p {
+            assert!(((q - centre).length() - radius).abs() < 1e-12);
+        }
+    }
+}
