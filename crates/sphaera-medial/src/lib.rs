@@ -27,6 +27,7 @@
 
 pub mod delaunay;
 mod error;
+pub mod point_sets;
 
 pub use delaunay::{Delaunay, INFINITE, Insertion, TetId, VoronoiCell};
 pub use error::DelaunayError;

@@ -21,6 +21,7 @@
 
 mod edge_map;
 mod insert;
+mod integer;
 mod order;
 mod predicates;
 mod validate;

@@ -25,6 +25,8 @@
 use glam::DVec3;
 use robust::Coord3D;
 
+use super::integer;
+
 fn coord(p: DVec3) -> Coord3D<f64> {
     Coord3D {
         x: p.x,
@@ -37,7 +39,31 @@ fn coord(p: DVec3) -> Coord3D<f64> {
 /// exact; the magnitude is six times the signed volume, approximately).
 #[inline]
 pub(crate) fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
-    robust::orient3d(coord(a), coord(b), coord(c), coord(d))
+    let fast = robust_filter_orient(a, b, c, d);
+    if fast != 0.0 {
+        return fast;
+    }
+    match integer::orient_sign(a, b, c, d) {
+        Some(sign) => f64::from(sign),
+        None => robust::orient3d(coord(a), coord(b), coord(c), coord(d)),
+    }
+}
+
+/// The floating-point orientation when its sign is certain (Shewchuk's first-stage error
+/// bound), else 0.
+#[inline]
+fn robust_filter_orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+    let (u, v, w) = (a - d, b - d, c - d);
+    let (vw0, vw1, vw2) = (v.y * w.z, v.z * w.y, v.z * w.x);
+    let (wv0, wv1, wv2) = (v.x * w.z, v.x * w.y, v.y * w.x);
+    let det = u.x * (vw0 - vw1) + u.y * (vw2 - wv0) + u.z * (wv1 - wv2);
+    let permanent = (vw0.abs() + vw1.abs()) * u.x.abs()
+        + (vw2.abs() + wv0.abs()) * u.y.abs()
+        + (wv1.abs() + wv2.abs()) * u.z.abs();
+    // (7 + 56ε)ε, Shewchuk's o3derrboundA.
+    let epsilon = f64::EPSILON / 2.0;
+    let bound = (7.0 + 56.0 * epsilon) * epsilon * permanent;
+    if det > bound || -det > bound { det } else { 0.0 }
 }
 
 /// Whether `p` lies strictly inside the circumsphere of the positive tetrahedron
@@ -45,11 +71,58 @@ pub(crate) fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
 /// `p` must differ from the four corners.
 pub(crate) fn in_sphere(corners: [DVec3; 4], p: DVec3) -> bool {
     let [a, b, c, d] = corners;
-    let det = robust::insphere(coord(a), coord(b), coord(c), coord(d), coord(p));
+    let mut det = filtered_insphere(a, b, c, d, p);
+    if det == 0.0 {
+        det = match integer::insphere_sign(a, b, c, d, p) {
+            Some(sign) => f64::from(sign),
+            None => robust::insphere(coord(a), coord(b), coord(c), coord(d), coord(p)),
+        };
+    }
     if det != 0.0 {
         return det > 0.0;
     }
     perturbed_in_sphere([a, b, c, d, p])
+}
+
+/// The floating-point in-sphere determinant when its sign is certain (Shewchuk's
+/// first-stage error bound, `isperrboundA`), else 0.
+#[inline]
+fn filtered_insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> f64 {
+    let (ae, be, ce, de) = (a - e, b - e, c - e, d - e);
+    let (aexbey, bexaey) = (ae.x * be.y, be.x * ae.y);
+    let (bexcey, cexbey) = (be.x * ce.y, ce.x * be.y);
+    let (cexdey, dexcey) = (ce.x * de.y, de.x * ce.y);
+    let (dexaey, aexdey) = (de.x * ae.y, ae.x * de.y);
+    let (aexcey, cexaey) = (ae.x * ce.y, ce.x * ae.y);
+    let (bexdey, dexbey) = (be.x * de.y, de.x * be.y);
+    let ab = aexbey - bexaey;
+    let bc = bexcey - cexbey;
+    let cd = cexdey - dexcey;
+    let da = dexaey - aexdey;
+    let ac = aexcey - cexaey;
+    let bd = bexdey - dexbey;
+    let abc = ae.z * bc - be.z * ac + ce.z * ab;
+    let bcd = be.z * cd - ce.z * bd + de.z * bc;
+    let cda = ce.z * da + de.z * ac + ae.z * cd;
+    let dab = de.z * ab + ae.z * bd + be.z * da;
+    let (alift, blift) = (ae.length_squared(), be.length_squared());
+    let (clift, dlift) = (ce.length_squared(), de.length_squared());
+    let det = (dlift * abc - clift * dab) + (blift * cda - alift * bcd);
+    let (aez, bez, cez, dez) = (ae.z.abs(), be.z.abs(), ce.z.abs(), de.z.abs());
+    let (aexbey, bexaey) = (aexbey.abs(), bexaey.abs());
+    let (bexcey, cexbey) = (bexcey.abs(), cexbey.abs());
+    let (cexdey, dexcey) = (cexdey.abs(), dexcey.abs());
+    let (dexaey, aexdey) = (dexaey.abs(), aexdey.abs());
+    let (aexcey, cexaey) = (aexcey.abs(), cexaey.abs());
+    let (bexdey, dexbey) = (bexdey.abs(), dexbey.abs());
+    let permanent = ((cexdey + dexcey) * bez + (dexbey + bexdey) * cez + (bexcey + cexbey) * dez)
+        * alift
+        + ((dexaey + aexdey) * cez + (aexcey + cexaey) * dez + (cexdey + dexcey) * aez) * blift
+        + ((aexbey + bexaey) * dez + (bexdey + dexbey) * aez + (dexaey + aexdey) * bez) * clift
+        + ((bexcey + cexbey) * aez + (cexaey + aexcey) * bez + (aexbey + bexaey) * cez) * dlift;
+    let epsilon = f64::EPSILON / 2.0;
+    let bound = (16.0 + 224.0 * epsilon) * epsilon * permanent;
+    if det > bound || -det > bound { det } else { 0.0 }
 }
 
 /// The sign of the perturbed in-sphere determinant when the exact one is zero.
@@ -140,6 +213,45 @@ mod tests {
         // The square base (±x, ±y) is coplanar, so only four of the five 4-subsets are
         // tetrahedra; the perturbation picks one diagonal: two empty tetrahedra.
         assert_eq!(empty, 2);
+    }
+
+    fn sign(v: f64) -> i8 {
+        if v > 0.0 {
+            1
+        } else if v < 0.0 {
+            -1
+        } else {
+            0
+        }
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3_000))]
+
+        #[test]
+        fn filters_agree_with_robust_when_they_answer(
+            raw in proptest::collection::vec(-1.0..1.0_f64, 15),
+            near in 0..3_usize,
+        ) {
+            let mut p: Vec<DVec3> = raw.chunks(3).map(|c| DVec3::new(c[0], c[1], c[2])).collect();
+            // Push some cases close to a tie so the filter has to abstain.
+            if near == 1 {
+                p[4] = p[0] + (p[1] - p[0]) * 0.5 + DVec3::splat(1e-15);
+            } else if near == 2 {
+                p[3] = (p[0] + p[1] + p[2]) / 3.0;
+            }
+            let (a, b, c, d, e) = (p[0], p[1], p[2], p[3], p[4]);
+            let fast = robust_filter_orient(a, b, c, d);
+            if fast != 0.0 {
+                proptest::prop_assert_eq!(sign(fast), sign(robust::orient3d(coord(a), coord(b), coord(c), coord(d))));
+            }
+            proptest::prop_assert_eq!(sign(orient(a, b, c, d)), sign(robust::orient3d(coord(a), coord(b), coord(c), coord(d))));
+            let fast = filtered_insphere(a, b, c, d, e);
+            let exact = robust::insphere(coord(a), coord(b), coord(c), coord(d), coord(e));
+            if fast != 0.0 {
+                proptest::prop_assert_eq!(sign(fast), sign(exact));
+            }
+        }
     }
 
     #[test]

@@ -1,0 +1,74 @@
+//! Reproducible point sets for tests and benchmarks, including the degenerate ones a
+//! Delaunay code must survive (grids, exactly cospherical and cocircular points).
+
+use glam::DVec3;
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// `n` points uniform in the unit cube, from `seed`.
+///
+/// # Examples
+///
+/// ```
+/// let points = sphaera_medial::point_sets::random_in_cube(100, 7);
+/// assert_eq!(points, sphaera_medial::point_sets::random_in_cube(100, 7));
+/// assert!(points.iter().all(|p| p.min_element() >= 0.0 && p.max_element() < 1.0));
+/// ```
+#[must_use]
+pub fn random_in_cube(n: usize, seed: u64) -> Vec<DVec3> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|_| DVec3::new(rng.random(), rng.random(), rng.random()))
+        .collect()
+}
+
+/// About `n` points on the surface of the cube `[0, k]³` at the integer grid points, with
+/// `k` chosen so that the count is closest to `n`: every face is a plane of cocircular
+/// squares, the worst case for ties.
+///
+/// # Examples
+///
+/// ```
+/// let points = sphaera_medial::point_sets::cube_surface_grid(100_000);
+/// assert!(points.len().abs_diff(100_000) < 1_000);
+/// ```
+#[must_use]
+pub fn cube_surface_grid(n: usize) -> Vec<DVec3> {
+    // A k-cube has (k+1)³ − (k−1)³ = 6k² + 2 surface grid points.
+    let k = ((n as f64 - 2.0).max(6.0) / 6.0).sqrt().round().max(1.0) as i32;
+    let mut points = Vec::with_capacity(6 * (k as usize).pow(2) + 2);
+    for x in 0..=k {
+        for y in 0..=k {
+            for z in 0..=k {
+                let on_surface = [x, y, z].iter().any(|&c| c == 0 || c == k);
+                if on_surface {
+                    points.push(DVec3::new(f64::from(x), f64::from(y), f64::from(z)));
+                }
+            }
+        }
+    }
+    points
+}
+
+/// The integer points with `x² + y² + z² = r²`: exactly cospherical.
+///
+/// # Examples
+///
+/// ```
+/// let points = sphaera_medial::point_sets::integer_sphere(5);
+/// assert!(points.iter().all(|p| p.length_squared() == 25.0));
+/// ```
+#[must_use]
+pub fn integer_sphere(r: i32) -> Vec<DVec3> {
+    let mut points = Vec::new();
+    for x in -r..=r {
+        for y in -r..=r {
+            for z in -r..=r {
+                if x * x + y * y + z * z == r * r {
+                    points.push(DVec3::new(f64::from(x), f64::from(y), f64::from(z)));
+                }
+            }
+        }
+    }
+    points
+}
