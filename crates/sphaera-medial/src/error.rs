@@ -33,3 +33,54 @@ pub enum DelaunayError {
     #[error("invalid tetrahedralization: {0}")]
     Invalid(String),
 }
+
+/// Why a medial approximation could not be built or refined.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MedialError {
+    /// The mesh is empty or invalid.
+    #[error(transparent)]
+    Mesh(#[from] sphaera_mesh::MeshError),
+    /// The closest-point engine could not be built.
+    #[error(transparent)]
+    Distance(#[from] sphaera_sweep::SweepError),
+    /// The hierarchy was built from another mesh.
+    #[error("the hierarchy is of a mesh with {hierarchy} vertices, the mesh has {mesh}")]
+    HierarchyMismatch {
+        /// Vertices of the mesh.
+        mesh: usize,
+        /// Input vertices of the hierarchy.
+        hierarchy: usize,
+    },
+    /// Inside and outside are meaningless for this mesh (a flat sheet, an open patch, an
+    /// inside-out mesh).
+    #[error(
+        "the mesh has no meaningful inside: only {:.0} % of probes across its surface see \
+         the winding number jump from 1 to 0 (a flat sheet or open patch?)",
+        fraction * 100.0
+    )]
+    NoInside {
+        /// Fraction of probes with a clear jump (at least one half is required).
+        fraction: f64,
+    },
+    /// A surface sample has a NaN or infinite coordinate.
+    #[error("surface sample {index} has a NaN or infinite coordinate")]
+    NonFiniteSample {
+        /// Index of the sample.
+        index: usize,
+    },
+    /// Too few distinct surface samples for a tetrahedralization.
+    #[error("the medial approximation needs at least 4 distinct, non-coplanar samples: {0}")]
+    TooFewSamples(DelaunayError),
+    /// A parameter is out of range.
+    #[error("invalid parameter: {0}")]
+    InvalidParameter(String),
+    /// A region refers to a sample that does not exist.
+    #[error("region sample {index} is out of range ({count} samples)")]
+    RegionOutOfRange {
+        /// The bad index.
+        index: u32,
+        /// The number of samples.
+        count: usize,
+    },
+}

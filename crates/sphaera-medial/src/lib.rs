@@ -27,8 +27,13 @@
 
 pub mod delaunay;
 mod error;
+pub mod medial;
 pub mod point_sets;
 
 pub use delaunay::{Delaunay, INFINITE, Insertion, TetId, VoronoiCell};
-pub use error::DelaunayError;
+pub use error::{DelaunayError, MedialError};
+pub use medial::{
+    CoverCriterion, MedialApproximation, MedialParams, MedialSphere, MedialStats, RegionGoal,
+    RegionOutcome, SphereKind, Surface,
+};
 pub use glam::DVec3;

@@ -73,6 +73,67 @@ impl Delaunay {
         true
     }
 
+    /// Appends to `out` the vertices joined to `v` by an edge (its Delaunay neighbours,
+    /// whose Voronoi cells share a face with `v`'s); nothing for a duplicate or an
+    /// invalid id.
+    pub fn vertex_neighbors_into(&self, v: u32, out: &mut Vec<u32>) {
+        let start = out.len();
+        let Some(&first) = self.vertex_tet.get(v as usize) else {
+            return;
+        };
+        if first == NONE {
+            return;
+        }
+        let mut seen: Vec<TetId> = vec![first];
+        let mut stack = vec![first];
+        while let Some(t) = stack.pop() {
+            let vertices = self.tets[t as usize];
+            for (i, &u) in vertices.iter().enumerate() {
+                if u == v {
+                    continue;
+                }
+                if u != INFINITE && !out[start..].contains(&u) {
+                    out.push(u);
+                }
+                let n = self.adjacent[t as usize][i];
+                if !seen.contains(&n) {
+                    seen.push(n);
+                    stack.push(n);
+                }
+            }
+        }
+    }
+
+    /// The vertex nearest to `p` (Euclidean; ties to the first found), by a greedy walk
+    /// on the Delaunay graph from vertex `start` (which is exact: a vertex that is not the
+    /// nearest always has a nearer neighbour). `None` only for an invalid or duplicate
+    /// `start`.
+    #[must_use]
+    pub fn nearest_vertex(&self, p: DVec3, start: u32) -> Option<u32> {
+        if self.vertex_tet.get(start as usize).is_none_or(|&t| t == NONE) {
+            return None;
+        }
+        let mut current = start;
+        let mut best = (self.points[current as usize] - p).length_squared();
+        let mut neighbours = Vec::new();
+        loop {
+            neighbours.clear();
+            self.vertex_neighbors_into(current, &mut neighbours);
+            let mut next = current;
+            for &u in &neighbours {
+                let d = (self.points[u as usize] - p).length_squared();
+                if d < best {
+                    best = d;
+                    next = u;
+                }
+            }
+            if next == current {
+                return Some(current);
+            }
+            current = next;
+        }
+    }
+
     /// Whether vertex `v` is on the convex hull.
     #[must_use]
     pub fn is_hull_vertex(&self, v: u32) -> bool {
