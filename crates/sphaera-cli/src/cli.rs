@@ -39,6 +39,63 @@ pub enum Command {
     /// and an upper bound at most `--tolerance` apart, where the maximum is reached, and
     /// optionally a PLY of the first mesh coloured by its distance to the second.
     Hausdorff(HausdorffArgs),
+    /// Adaptive medial-axis approximation (Bradshaw and O'Sullivan 2004, section 4):
+    /// spheres on the internal Voronoi vertices of surface samples, plus cover spheres, so
+    /// that every sample is covered, improved by replacing the worst sphere until the
+    /// target count or error is reached.
+    Medial(MedialArgs),
+}
+
+/// Arguments of `sphaera medial`.
+#[derive(Debug, Args)]
+pub struct MedialArgs {
+    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted. It must
+    /// enclose a volume (holes and non-manifold edges are fine; a flat sheet is not).
+    pub mesh: Option<PathBuf>,
+
+    /// Improve until the set has at least this many spheres (default 500 when
+    /// `--max-error` is not given).
+    #[arg(long, conflicts_with = "max_error")]
+    pub spheres: Option<usize>,
+
+    /// Improve until no sphere reaches farther than this beyond the surface: an absolute
+    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`1%`).
+    #[arg(long, value_parser = parse_max_error)]
+    pub max_error: Option<MaxErrorArg>,
+
+    /// Surface samples that must be covered (Poisson-disk, reproducible).
+    #[arg(long, default_value_t = 10_000)]
+    pub samples: usize,
+
+    /// How an uncovered sample chooses its cover sphere.
+    #[arg(long, value_enum, default_value_t = CoverArg::SmallestError)]
+    pub cover: CoverArg,
+
+    /// Hubbard's static baseline instead: the Voronoi diagram of this many samples, no
+    /// improvement, coverage not completed.
+    #[arg(long, conflicts_with_all = ["spheres", "max_error"])]
+    pub static_points: Option<usize>,
+
+    /// Seed of the surface sampling.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+
+    /// Write the spheres as JSON (centre, radius, error, kind, covered sample count),
+    /// atomically.
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
+}
+
+/// `--cover`: the paper's two criteria.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum CoverArg {
+    /// The candidate sphere with the smallest error (tighter).
+    SmallestError,
+    /// The candidate sphere covering the most uncovered samples (fewer cover spheres).
+    LargestCoverage,
 }
 
 /// Arguments of `sphaera hausdorff`.

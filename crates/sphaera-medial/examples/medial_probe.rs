@@ -24,7 +24,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     for n in [target / 4, target / 2, target] {
         let start = Instant::now();
-        let medial = MedialApproximation::build(&surface, &samples, &MedialParams::default().spheres(n))?;
+        let medial =
+            MedialApproximation::build(&surface, &samples, &MedialParams::default().spheres(n))?;
         println!(
             "target {n}: {} spheres, worst error {:.4} ({:.3} % diag), uncovered {}, {:?}, {:.3} s",
             medial.sphere_count(),
@@ -35,7 +36,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             start.elapsed().as_secs_f64()
         );
     }
-    let medial = MedialApproximation::build(&surface, &samples, &MedialParams::default().spheres(target))?;
+    let medial =
+        MedialApproximation::build(&surface, &samples, &MedialParams::default().spheres(target))?;
     let mut spheres = medial.spheres();
     spheres.sort_by(|a, b| b.error.total_cmp(&a.error));
     for s in spheres.iter().take(5) {

@@ -32,8 +32,8 @@ pub mod point_sets;
 
 pub use delaunay::{Delaunay, INFINITE, Insertion, TetId, VoronoiCell};
 pub use error::{DelaunayError, MedialError};
-pub use medial::{
-    CoverCriterion, MedialApproximation, MedialParams, MedialSphere, MedialStats, RegionGoal,
-    RegionOutcome, SphereKind, Surface,
-};
 pub use glam::DVec3;
+pub use medial::{
+    CoverCriterion, MedialApproximation, MedialParams, MedialProgress, MedialSphere, MedialStats,
+    RegionGoal, RegionOutcome, SphereKind, Surface,
+};

@@ -5,8 +5,7 @@
 #![allow(clippy::print_stderr)]
 
 use sphaera_medial::{
-    CoverCriterion, MedialApproximation, MedialError, MedialParams, RegionGoal, SphereKind,
-    Surface,
+    CoverCriterion, MedialApproximation, MedialError, MedialParams, RegionGoal, SphereKind, Surface,
 };
 use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
 use sphaera_tests::hausdorff::DistanceToMesh;
@@ -96,7 +95,10 @@ fn the_error_target_is_reached_and_errors_shrink() {
     assert!(fine.worst_error() <= 0.02);
     assert!(fine.worst_error() < coarse.worst_error());
     check(&mesh, &fine, "capsule");
-    for criterion in [CoverCriterion::SmallestError, CoverCriterion::LargestCoverage] {
+    for criterion in [
+        CoverCriterion::SmallestError,
+        CoverCriterion::LargestCoverage,
+    ] {
         let medial = build(
             &surface,
             &points,
@@ -184,12 +186,7 @@ fn thin_parts_touching_components_and_duplicate_samples() {
 fn bad_input_gets_clear_errors() {
     // A flat open sheet: inside is meaningless.
     let sheet = TriMesh::new(
-        vec![
-            DVec3::ZERO,
-            DVec3::X,
-            DVec3::new(1.0, 1.0, 0.0),
-            DVec3::Y,
-        ],
+        vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
         vec![[0, 1, 2], [0, 2, 3]],
     )
     .unwrap();
@@ -229,7 +226,11 @@ fn bad_input_gets_clear_errors() {
         Err(MedialError::InvalidParameter(_))
     ));
     assert!(matches!(
-        MedialApproximation::build(&surface, &points, &MedialParams::default().initial_points(2)),
+        MedialApproximation::build(
+            &surface,
+            &points,
+            &MedialParams::default().initial_points(2)
+        ),
         Err(MedialError::InvalidParameter(_))
     ));
     // A hierarchy of another mesh.
@@ -262,7 +263,12 @@ fn static_sampling_leaves_gaps_that_coverage_closes() {
     );
     assert!(covered.uncovered_samples().is_empty());
     check(&mesh, &covered, "static with coverage");
-    assert!(hubbard.spheres().iter().all(|s| s.kind == SphereKind::Internal));
+    assert!(
+        hubbard
+            .spheres()
+            .iter()
+            .all(|s| s.kind == SphereKind::Internal)
+    );
 }
 
 #[test]

@@ -12,9 +12,10 @@
 //! |---|---|---|
 //! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, winding numbers, surface sampling, procedural test shapes |
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | edge-collapse simplification whose reported error bound holds in both directions (error spheres) |
-//! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions |
+//! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions, motion, polylines and certified Hausdorff distances |
+//! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
 //!
-//! Later capabilities (Hausdorff distances, medial-axis sphere-trees, HAL trees,
+//! Later capabilities (sphere-trees, HAL trees,
 //! silhouette labels) join this table as their crates land; see `docs/architecture.md` in
 //! the repository.
 //!
@@ -34,6 +35,8 @@
 //! # Feature flags
 #![doc = document_features::document_features!()]
 
+#[cfg(feature = "medial")]
+pub use sphaera_medial as medial;
 pub use sphaera_mesh as mesh;
 #[cfg(feature = "simplify")]
 pub use sphaera_simplify as simplify;

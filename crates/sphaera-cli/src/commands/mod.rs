@@ -3,6 +3,7 @@
 mod distance;
 mod hausdorff;
 mod info;
+mod medial;
 mod simplify;
 
 use anyhow::Result;
@@ -16,5 +17,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Simplify(args) => simplify::run(args, cli.quiet),
         Command::Distance(args) => distance::run(args, cli.quiet),
         Command::Hausdorff(args) => hausdorff::run(args, cli.quiet),
+        Command::Medial(args) => medial::run(args, cli.quiet),
     }
 }

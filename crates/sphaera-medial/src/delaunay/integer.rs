@@ -78,7 +78,8 @@ pub(crate) fn insphere_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) ->
     // 2×2 minors of the first two columns, then the Laplace expansion along them.
     let m = |p: [i128; 3], q: [i128; 3]| p[0] * q[1] - p[1] * q[0];
     let n = |p: [i128; 3], q: [i128; 3]| p[2] * lift(q) - lift(p) * q[2];
-    let det = m(r0, r1) * n(r2, r3) - m(r0, r2) * n(r1, r3) + m(r0, r3) * n(r1, r2)
+    let det = m(r0, r1) * n(r2, r3) - m(r0, r2) * n(r1, r3)
+        + m(r0, r3) * n(r1, r2)
         + m(r1, r2) * n(r0, r3)
         - m(r1, r3) * n(r0, r2)
         + m(r2, r3) * n(r0, r1);
@@ -109,8 +110,9 @@ mod tests {
     }
 
     fn point() -> impl Strategy<Value = DVec3> {
-        (-6_i32..6, -6_i32..6, -6_i32..6, 0..3_i32)
-            .prop_map(|(x, y, z, s)| DVec3::new(f64::from(x), f64::from(y), f64::from(z)) * 0.5f64.powi(s))
+        (-6_i32..6, -6_i32..6, -6_i32..6, 0..3_i32).prop_map(|(x, y, z, s)| {
+            DVec3::new(f64::from(x), f64::from(y), f64::from(z)) * 0.5f64.powi(s)
+        })
     }
 
     proptest! {

@@ -63,7 +63,11 @@ fn robust_filter_orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     // (7 + 56ε)ε, Shewchuk's o3derrboundA.
     let epsilon = f64::EPSILON / 2.0;
     let bound = (7.0 + 56.0 * epsilon) * epsilon * permanent;
-    if det > bound || -det > bound { det } else { 0.0 }
+    if det > bound || -det > bound {
+        det
+    } else {
+        0.0
+    }
 }
 
 /// Whether `p` lies strictly inside the circumsphere of the positive tetrahedron
@@ -122,7 +126,11 @@ fn filtered_insphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3, e: DVec3) -> f64 {
         + ((bexcey + cexbey) * aez + (cexaey + aexcey) * bez + (aexbey + bexaey) * cez) * dlift;
     let epsilon = f64::EPSILON / 2.0;
     let bound = (16.0 + 224.0 * epsilon) * epsilon * permanent;
-    if det > bound || -det > bound { det } else { 0.0 }
+    if det > bound || -det > bound {
+        det
+    } else {
+        0.0
+    }
 }
 
 /// The sign of the perturbed in-sphere determinant when the exact one is zero.

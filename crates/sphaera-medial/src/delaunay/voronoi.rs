@@ -110,7 +110,11 @@ impl Delaunay {
     /// `start`.
     #[must_use]
     pub fn nearest_vertex(&self, p: DVec3, start: u32) -> Option<u32> {
-        if self.vertex_tet.get(start as usize).is_none_or(|&t| t == NONE) {
+        if self
+            .vertex_tet
+            .get(start as usize)
+            .is_none_or(|&t| t == NONE)
+        {
             return None;
         }
         let mut current = start;

@@ -31,7 +31,11 @@ impl SampleGrid {
         let n = points.len().max(1) as f64;
         let mut cell = (area / n).sqrt().max(extent.max_element() / 1024.0) * 2.0;
         let dims = loop {
-            let dims = (extent / cell).floor().as_uvec3().to_array().map(|d| d as usize + 1);
+            let dims = (extent / cell)
+                .floor()
+                .as_uvec3()
+                .to_array()
+                .map(|d| d as usize + 1);
             if dims.iter().product::<usize>() <= 4 * points.len().max(64) {
                 break dims;
             }
@@ -98,7 +102,10 @@ impl SampleGrid {
         for k in z.0..=z.1 {
             for j in y.0..=y.1 {
                 let row = self.dims[0] * (j + self.dims[1] * k);
-                let (a, b) = (self.starts[row + x.0] as usize, self.starts[row + x.1 + 1] as usize);
+                let (a, b) = (
+                    self.starts[row + x.0] as usize,
+                    self.starts[row + x.1 + 1] as usize,
+                );
                 for &i in &self.ids[a..b] {
                     if (points[i as usize] - centre).length_squared() <= r2 {
                         out.push(i);

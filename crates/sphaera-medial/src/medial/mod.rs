@@ -75,6 +75,17 @@ pub struct MedialStats {
     pub stuck: usize,
 }
 
+/// Progress of [`MedialApproximation::build_with_progress`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MedialProgress {
+    /// Spheres in the set now.
+    pub spheres: usize,
+    /// The largest error in the set now.
+    pub worst_error: f64,
+    /// Improvement steps so far.
+    pub improvements: usize,
+}
+
 /// What [`MedialApproximation::refine_region`] reached.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RegionOutcome {
@@ -156,10 +167,25 @@ impl<'s> MedialApproximation<'s> {
         samples: &[DVec3],
         params: &MedialParams,
     ) -> Result<Self, MedialError> {
+        Self::build_with_progress(surface, samples, params, &|_| {})
+    }
+
+    /// [`MedialApproximation::build`], calling `progress` after coverage and then every
+    /// few improvement steps (for progress bars).
+    ///
+    /// # Errors
+    ///
+    /// As [`MedialApproximation::build`].
+    pub fn build_with_progress(
+        surface: &'s Surface<'s>,
+        samples: &[DVec3],
+        params: &MedialParams,
+        progress: &dyn Fn(&MedialProgress),
+    ) -> Result<Self, MedialError> {
         validate_params(params)?;
         let mut medial = Self::start(surface, samples, params.initial_points, params.cover)?;
         medial.ensure_coverage()?;
-        medial.improve(params)?;
+        medial.improve(params, progress)?;
         Ok(medial)
     }
 
@@ -178,12 +204,7 @@ impl<'s> MedialApproximation<'s> {
         forming: usize,
         cover: Option<CoverCriterion>,
     ) -> Result<Self, MedialError> {
-        let mut medial = Self::start(
-            surface,
-            samples,
-            forming.max(4),
-            cover.unwrap_or_default(),
-        )?;
+        let mut medial = Self::start(surface, samples, forming.max(4), cover.unwrap_or_default())?;
         if cover.is_some() {
             medial.ensure_coverage()?;
         }
@@ -381,17 +402,26 @@ impl<'s> MedialApproximation<'s> {
     }
 
     /// Improvement steps until the target.
-    fn improve(&mut self, params: &MedialParams) -> Result<(), MedialError> {
+    fn improve(
+        &mut self,
+        params: &MedialParams,
+        progress: &dyn Fn(&MedialProgress),
+    ) -> Result<(), MedialError> {
         if params.target_spheres.is_none() && params.max_error.is_none() {
             return Ok(());
         }
-        for _ in 0..params.max_iterations {
+        for step in 0..params.max_iterations {
+            if step % 16 == 0 {
+                progress(&MedialProgress {
+                    spheres: self.members.len(),
+                    worst_error: self.worst_error(),
+                    improvements: self.stats.improvements,
+                });
+            }
             let count_reached = params
                 .target_spheres
                 .is_some_and(|n| self.members.len() >= n);
-            let error_reached = params
-                .max_error
-                .is_some_and(|e| self.worst_error() <= e);
+            let error_reached = params.max_error.is_some_and(|e| self.worst_error() <= e);
             if count_reached || error_reached {
                 break;
             }
@@ -444,7 +474,10 @@ impl<'s> MedialApproximation<'s> {
 
     /// Inserts a forming point and updates the spheres; `false` if it already was one.
     fn insert_point(&mut self, p: DVec3) -> Result<bool, MedialError> {
-        let report = self.delaunay.insert(p).map_err(MedialError::TooFewSamples)?;
+        let report = self
+            .delaunay
+            .insert(p)
+            .map_err(MedialError::TooFewSamples)?;
         if report.duplicate {
             return Ok(false);
         }
@@ -630,8 +663,12 @@ impl<'s> MedialApproximation<'s> {
                 CoverCriterion::SmallestError => -r.error,
                 CoverCriterion::LargestCoverage => {
                     let mut inside = Vec::new();
-                    self.grid
-                        .within(&self.samples, r.centre, r.radius + self.tolerance, &mut inside);
+                    self.grid.within(
+                        &self.samples,
+                        r.centre,
+                        r.radius + self.tolerance,
+                        &mut inside,
+                    );
                     inside
                         .iter()
                         .filter(|&&s| self.cover_count[s as usize] == 0)
@@ -657,7 +694,8 @@ impl<'s> MedialApproximation<'s> {
         {
             self.nearest_hint
         } else {
-            (0..self.delaunay.vertex_count() as u32).find(|&v| self.delaunay.duplicate_of(v).is_none())?
+            (0..self.delaunay.vertex_count() as u32)
+                .find(|&v| self.delaunay.duplicate_of(v).is_none())?
         };
         let nearest = self.delaunay.nearest_vertex(p, start)?;
         self.nearest_hint = nearest;
@@ -723,12 +761,13 @@ fn farthest_points(samples: &[DVec3], k: usize) -> Vec<u32> {
         .collect();
     let mut chosen = vec![first as u32];
     while chosen.len() < k.min(samples.len()) {
-        let (next, d) = distance
-            .iter()
-            .enumerate()
-            .fold((0, f64::NEG_INFINITY), |best, (i, &d)| {
-                if d > best.1 { (i, d) } else { best }
-            });
+        let (next, d) =
+            distance
+                .iter()
+                .enumerate()
+                .fold((0, f64::NEG_INFINITY), |best, (i, &d)| {
+                    if d > best.1 { (i, d) } else { best }
+                });
         if d <= 0.0 {
             break;
         }
