@@ -44,7 +44,7 @@ fn to_grid<const N: usize>(points: [DVec3; N]) -> Option<[[i64; 3]; N]> {
         return Some([[0; 3]; N]); // all zero
     }
     // Scaled magnitudes are below 2^(top + shift).
-    if top.saturating_add(shift) > BITS || shift > 1000 || shift < -1000 {
+    if top.saturating_add(shift) > BITS || !(-1000..=1000).contains(&shift) {
         return None;
     }
     let scale = 2f64.powi(shift);
