@@ -7,7 +7,7 @@ use crate::DelaunayError;
 
 impl Delaunay {
     /// Checks every invariant: each live tetrahedron has four distinct vertices (at most
-    /// one of them [`INFINITE`](super::INFINITE)); finite ones are positively oriented
+    /// one of them [`INFINITE`]); finite ones are positively oriented
     /// (no flat tetrahedra); neighbourhood is symmetric and neighbours share exactly the
     /// face between them; each non-duplicate vertex knows an incident tetrahedron; and every
     /// face is locally Delaunay under the perturbation (the fourth vertex of each neighbour
