@@ -108,6 +108,10 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
     };
     let mut params = MedialParams::default().cover(cover);
     let target = match (args.spheres, args.max_error) {
+        _ if args.static_points.is_some() => format!(
+            "{} forming points, no improvement",
+            args.static_points.unwrap_or_default()
+        ),
         (_, Some(error)) => {
             let e = match error {
                 MaxErrorArg::Absolute(e) => e,
