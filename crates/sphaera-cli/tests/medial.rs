@@ -1,22 +1,8 @@
 //! End-to-end tests of `sphaera medial`.
 
-use std::process::{Command, Output};
+mod common;
 
-fn sphaera(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_sphaera"))
-        .args(args)
-        .output()
-        .expect("the sphaera binary runs")
-}
-
-fn json(output: &Output) -> serde_json::Value {
-    assert!(
-        output.status.success(),
-        "stderr: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).expect("valid JSON")
-}
+use common::{json, sphaera};
 
 #[test]
 fn medial_of_the_embedded_bunny_covers_every_sample_and_writes_the_spheres() {

@@ -8,6 +8,7 @@
 use std::collections::BTreeSet;
 
 use proptest::prelude::*;
+use sphaera_medial::point_sets::integer_sphere;
 use sphaera_medial::{DVec3, Delaunay, DelaunayError, INFINITE};
 
 fn signed_volume(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
@@ -139,21 +140,6 @@ fn cube_surface(n: i32) -> Vec<DVec3> {
         .into_iter()
         .filter(|p| p.min_element() == 0.0 || p.max_element() == f64::from(n))
         .collect()
-}
-
-/// Integer points with x² + y² + z² = r²: exactly cospherical.
-fn integer_sphere(r: i32) -> Vec<DVec3> {
-    let mut points = Vec::new();
-    for x in -r..=r {
-        for y in -r..=r {
-            for z in -r..=r {
-                if x * x + y * y + z * z == r * r {
-                    points.push(DVec3::new(f64::from(x), f64::from(y), f64::from(z)));
-                }
-            }
-        }
-    }
-    points
 }
 
 /// Integer points on the circle x² + y² = 25 at several heights: an exactly cocircular
