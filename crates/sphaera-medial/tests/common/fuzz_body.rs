@@ -134,14 +134,11 @@ fn expected_error(points: &[DVec3]) -> Option<DelaunayError> {
     }
     let a = distinct[0];
     let b = distinct[1];
-    let coord = |p: DVec3, x: usize, y: usize| robust::Coord {
-        x: p[x],
-        y: p[y],
-    };
+    let coord = |p: DVec3, x: usize, y: usize| robust::Coord { x: p[x], y: p[y] };
     let collinear = |c: DVec3| {
-        [(0, 1), (1, 2), (2, 0)].iter().all(|&(x, y)| {
-            robust::orient2d(coord(a, x, y), coord(b, x, y), coord(c, x, y)) == 0.0
-        })
+        [(0, 1), (1, 2), (2, 0)]
+            .iter()
+            .all(|&(x, y)| robust::orient2d(coord(a, x, y), coord(b, x, y), coord(c, x, y)) == 0.0)
     };
     let Some(&c) = distinct.iter().find(|&&c| !collinear(c)) else {
         return Some(DelaunayError::Flat { dimension: 1 });
@@ -179,7 +176,10 @@ fn check_built(delaunay: &Delaunay) {
         match delaunay.duplicate_of(id) {
             Some(original) => {
                 assert_eq!(points[original as usize], p, "vertex {v}: wrong original");
-                assert!(used[original as usize] && !used[v], "vertex {v}: duplicate in use");
+                assert!(
+                    used[original as usize] && !used[v],
+                    "vertex {v}: duplicate in use"
+                );
                 assert!(delaunay.duplicate_of(original).is_none());
             }
             None => {
