@@ -10,6 +10,7 @@ mod common;
 
 use common::fuzz_body::{check, decode};
 use proptest::prelude::*;
+use sphaera_medial::DVec3;
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(1024))]
@@ -51,14 +52,14 @@ fn decoder_modes() {
     let decoded = decode(&[8, 2, 1, 2, 3, 5, 6, 7, 0, 0, 0]);
     assert_eq!(decoded.initial.len(), 1);
     assert_eq!(decoded.inserted.len(), 2);
-    assert_eq!(decoded.initial[0].to_array(), [1.0, 2.0, 3.0]);
-    assert_eq!(decoded.inserted[0].to_array(), [1.0, 2.0, 3.0]);
+    assert_eq!(decoded.initial[0], DVec3::new(1.0, 2.0, 3.0));
+    assert_eq!(decoded.inserted[0], DVec3::new(1.0, 2.0, 3.0));
     // Mode 3: little-endian i32 / 65536.
     let mut bytes = vec![3, 0];
     for value in [65_536_i32, -32_768, 0] {
         bytes.extend(value.to_le_bytes());
     }
-    assert_eq!(decode(&bytes).initial[0].to_array(), [1.0, -0.5, 0.0]);
+    assert_eq!(decode(&bytes).initial[0], DVec3::new(1.0, -0.5, 0.0));
 }
 
 #[test]
