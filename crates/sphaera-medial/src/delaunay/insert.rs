@@ -282,7 +282,8 @@ impl Delaunay {
         let boundary = std::mem::take(&mut self.scratch.boundary);
         let cavity = std::mem::take(&mut self.scratch.cavity);
         // Read the boundary faces before any cavity id is recycled.
-        let mut faces: Vec<([u32; 4], u8, TetId, u8)> = Vec::with_capacity(boundary.len());
+        let mut faces = std::mem::take(&mut self.scratch.faces);
+        faces.clear();
         for &(t, slot, outside, back) in &boundary {
             let mut vertices = self.tets[t as usize];
             vertices[slot as usize] = v;
@@ -327,5 +328,6 @@ impl Delaunay {
         }
         self.scratch.boundary = boundary;
         self.scratch.cavity = cavity;
+        self.scratch.faces = faces;
     }
 }

@@ -105,6 +105,9 @@ struct Scratch {
     /// tet's slot facing it).
     boundary: Vec<(TetId, u8, TetId, u8)>,
     created: Vec<TetId>,
+    /// The new tetrahedra to create: vertices, the slot facing outside, the outside
+    /// tetrahedron and its slot facing in.
+    faces: Vec<([u32; 4], u8, TetId, u8)>,
     edges: EdgeMap,
 }
 

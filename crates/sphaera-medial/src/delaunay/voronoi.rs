@@ -49,27 +49,13 @@ impl Delaunay {
         if start == NONE {
             return false;
         }
-        // Depth-first search over the tetrahedra around v, through faces that contain v.
-        let mut seen: Vec<TetId> = vec![start];
-        let mut stack = vec![start];
-        while let Some(t) = stack.pop() {
-            let vertices = self.tets[t as usize];
+        self.around_vertex(start, v, |t, vertices| {
             if vertices.contains(&INFINITE) {
                 cell.unbounded = true;
             } else {
                 cell.tetrahedra.push(t);
             }
-            for (i, &u) in vertices.iter().enumerate() {
-                if u == v {
-                    continue;
-                }
-                let n = self.adjacent[t as usize][i];
-                if !seen.contains(&n) {
-                    seen.push(n);
-                    stack.push(n);
-                }
-            }
-        }
+        });
         true
     }
 
@@ -84,16 +70,26 @@ impl Delaunay {
         if first == NONE {
             return;
         }
+        self.around_vertex(first, v, |_, vertices| {
+            for u in vertices {
+                if u != v && u != INFINITE && !out[start..].contains(&u) {
+                    out.push(u);
+                }
+            }
+        });
+    }
+
+    /// Calls `visit` on every live tetrahedron incident to `v` (finite and ghost), found
+    /// by a depth-first search from `first` through the faces that contain `v`.
+    fn around_vertex(&self, first: TetId, v: u32, mut visit: impl FnMut(TetId, [u32; 4])) {
         let mut seen: Vec<TetId> = vec![first];
         let mut stack = vec![first];
         while let Some(t) = stack.pop() {
             let vertices = self.tets[t as usize];
+            visit(t, vertices);
             for (i, &u) in vertices.iter().enumerate() {
                 if u == v {
                     continue;
-                }
-                if u != INFINITE && !out[start..].contains(&u) {
-                    out.push(u);
                 }
                 let n = self.adjacent[t as usize][i];
                 if !seen.contains(&n) {

@@ -89,8 +89,8 @@ pub struct MedialProgress {
 /// What [`MedialApproximation::refine_region`] reached.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RegionOutcome {
-    /// Indices (into [`MedialApproximation::spheres`]' order at the time of the call's
-    /// end) are not stable; these are the spheres themselves that cover some region sample.
+    /// The spheres of the set that cover at least one sample of the region, ordered by
+    /// their Voronoi vertex.
     pub spheres: Vec<MedialSphere>,
     /// The largest error among them.
     pub worst_error: f64,
