@@ -86,19 +86,23 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 }
 
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
-/// `tests/`, and the doctests (all run by `cargo test`); then the mesh crate again without
-/// its default `parallel` feature, whose results must be identical.
+/// `tests/`, and the doctests (all run by `cargo test`); then the mesh and medial crates
+/// again without their default `parallel` feature, whose results must be identical (the
+/// medial tests compare a digest of their spheres with the same recorded value both ways).
 fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
-    cargo(&[
-        "test",
-        "--locked",
-        "-p",
-        "sphaera-mesh",
-        "--no-default-features",
-        "--lib",
-        "--tests",
-    ])
+    for crate_name in ["sphaera-mesh", "sphaera-medial"] {
+        cargo(&[
+            "test",
+            "--locked",
+            "-p",
+            crate_name,
+            "--no-default-features",
+            "--lib",
+            "--tests",
+        ])?;
+    }
+    Ok(())
 }
 
 fn ci() -> Result<()> {

@@ -15,8 +15,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         None => shapes::capsule(0.5, 2.0, 12)?,
     };
     let target: usize = args.get(2).map_or(Ok(500), |s| s.parse())?;
-    let hierarchy = sphaera_sweep::build_hierarchy(&mesh)?;
-    let surface = Surface::new(&mesh, &hierarchy)?;
+    let surface = Surface::new(&mesh)?;
     let samples: Vec<_> = sampling::poisson_disk(&mesh, 10_000, 1)?
         .samples
         .iter()

@@ -44,14 +44,6 @@ pub enum MedialError {
     /// The closest-point engine could not be built.
     #[error(transparent)]
     Distance(#[from] sphaera_sweep::SweepError),
-    /// The hierarchy was built from another mesh.
-    #[error("the hierarchy is of a mesh with {hierarchy} vertices, the mesh has {mesh}")]
-    HierarchyMismatch {
-        /// Vertices of the mesh.
-        mesh: usize,
-        /// Input vertices of the hierarchy.
-        hierarchy: usize,
-    },
     /// Inside and outside are meaningless for this mesh (a flat sheet, an open patch, an
     /// inside-out mesh).
     #[error(

@@ -54,7 +54,7 @@ fn check(mesh: &TriMesh, medial: &MedialApproximation<'_>, name: &str) {
 }
 
 fn build<'s>(
-    surface: &'s Surface<'s>,
+    surface: &'s Surface,
     points: &[DVec3],
     params: &MedialParams,
 ) -> MedialApproximation<'s> {
@@ -69,8 +69,7 @@ fn shapes_with_cospherical_and_coplanar_samples_are_covered() {
         ("cylinder", shapes::cylinder(0.5, 2.0, 16).unwrap()),
         ("torus", shapes::torus(1.0, 0.3, 16).unwrap()),
     ] {
-        let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-        let surface = Surface::new(&mesh, &hierarchy).unwrap();
+        let surface = Surface::new(&mesh).unwrap();
         let points = samples(&mesh, 1_500);
         let medial = build(&surface, &points, &MedialParams::default().spheres(150));
         assert!(medial.sphere_count() >= 150, "{name}");
@@ -87,8 +86,7 @@ fn shapes_with_cospherical_and_coplanar_samples_are_covered() {
 #[test]
 fn the_error_target_is_reached_and_errors_shrink() {
     let mesh = shapes::capsule(0.5, 2.0, 16).unwrap();
-    let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-    let surface = Surface::new(&mesh, &hierarchy).unwrap();
+    let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 3_000);
     let coarse = build(&surface, &points, &MedialParams::default());
     let fine = build(&surface, &points, &MedialParams::default().max_error(0.02));
@@ -111,8 +109,7 @@ fn the_error_target_is_reached_and_errors_shrink() {
 #[test]
 fn the_same_input_gives_the_same_spheres() {
     let mesh = shapes::torus(1.0, 0.4, 16).unwrap();
-    let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-    let surface = Surface::new(&mesh, &hierarchy).unwrap();
+    let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 2_000);
     let params = MedialParams::default().spheres(200);
     let a = build(&surface, &points, &params).spheres();
@@ -120,11 +117,45 @@ fn the_same_input_gives_the_same_spheres() {
     assert_eq!(a, b);
 }
 
+/// A digest of the spheres (their bits), to compare runs across feature sets.
+fn digest(spheres: &[sphaera_medial::MedialSphere]) -> u64 {
+    let mut hash = 0xcbf2_9ce4_8422_2325_u64;
+    for s in spheres {
+        for bits in [s.centre.x, s.centre.y, s.centre.z, s.radius, s.error].map(f64::to_bits) {
+            hash = (hash ^ bits).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    hash
+}
+
+/// The same spheres with and without the `parallel` feature: `cargo xtask test` runs this
+/// test both ways against the same recorded digest. (A change to the algorithm changes
+/// the digest: record the new value printed on failure, after checking that both builds
+/// agree.)
+#[test]
+fn the_parallel_feature_does_not_change_the_spheres() {
+    // An L-shaped block: no sine or cosine, whose last bit could differ between system
+    // libraries.
+    let mesh = shapes::l_block(2.0, 1.0, 0.5, 4).unwrap();
+    let surface = Surface::new(&mesh).unwrap();
+    let points = samples(&mesh, 2_000);
+    let medial = build(&surface, &points, &MedialParams::default().spheres(300));
+    let spheres = medial.spheres();
+    assert_eq!(
+        digest(&spheres),
+        EXPECTED_DIGEST,
+        "digest {:#x} of {} spheres",
+        digest(&spheres),
+        spheres.len()
+    );
+}
+
+const EXPECTED_DIGEST: u64 = 0x5c31_a9a8_1e24_8005;
+
 #[test]
 fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     let mesh = shapes::capsule(0.5, 2.0, 16).unwrap();
-    let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-    let surface = Surface::new(&mesh, &hierarchy).unwrap();
+    let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 2_000);
     let mut medial = build(&surface, &points, &MedialParams::default().spheres(40));
     // The samples of the top half.
@@ -138,9 +169,19 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     assert!(outcome.reached, "{outcome:?}");
     assert!(outcome.spheres.len() >= 50);
     assert!(outcome.worst_error <= before / 4.0);
-    for s in &outcome.spheres {
-        assert!(s.covers.iter().any(|c| region.contains(c)));
-    }
+    // Exactly the set's spheres covering a region sample, by brute force.
+    let expected: Vec<_> = medial
+        .spheres()
+        .into_iter()
+        .filter(|s| s.covers.iter().any(|c| region.contains(c)))
+        .collect();
+    assert_eq!(outcome.spheres, expected);
+    // A second call with a goal already met changes nothing.
+    let again = medial
+        .refine_region(&region, RegionGoal::new(10, before))
+        .unwrap();
+    assert_eq!(again.improvements, 0);
+    assert_eq!(again.spheres, expected);
     check(&mesh, &medial, "capsule after region refinement");
     assert!(matches!(
         medial.refine_region(&[u32::MAX], RegionGoal::new(1, 1.0)),
@@ -172,8 +213,7 @@ fn thin_parts_touching_components_and_duplicate_samples() {
     triangles.extend(cube.triangles().iter().map(|t| t.map(|v| v + offset)));
     let twins = TriMesh::new(positions, triangles).unwrap();
     for (name, mesh) in [("thin plate", plate), ("touching cubes", twins)] {
-        let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-        let surface = Surface::new(&mesh, &hierarchy).unwrap();
+        let surface = Surface::new(&mesh).unwrap();
         let mut points = samples(&mesh, 1_500);
         // Every sample twice.
         points.extend(points.clone());
@@ -190,14 +230,12 @@ fn bad_input_gets_clear_errors() {
         vec![[0, 1, 2], [0, 2, 3]],
     )
     .unwrap();
-    let hierarchy = sphaera_sweep::build_hierarchy(&sheet).unwrap();
-    let err = Surface::new(&sheet, &hierarchy).unwrap_err();
+    let err = Surface::new(&sheet).unwrap_err();
     assert!(matches!(err, MedialError::NoInside { .. }), "{err}");
     eprintln!("flat sheet: {err}");
 
     let cube = shapes::cube(1.0, 2).unwrap();
-    let hierarchy = sphaera_sweep::build_hierarchy(&cube).unwrap();
-    let surface = Surface::new(&cube, &hierarchy).unwrap();
+    let surface = Surface::new(&cube).unwrap();
     let params = MedialParams::default();
     // Fewer than 4 samples, and flat samples.
     let three = [DVec3::ZERO, DVec3::X, DVec3::Y];
@@ -233,20 +271,12 @@ fn bad_input_gets_clear_errors() {
         ),
         Err(MedialError::InvalidParameter(_))
     ));
-    // A hierarchy of another mesh.
-    let sphere = shapes::sphere(1.0, 12).unwrap();
-    assert_ne!(sphere.vertex_count(), cube.vertex_count());
-    assert!(matches!(
-        Surface::new(&sphere, &hierarchy),
-        Err(MedialError::HierarchyMismatch { .. })
-    ));
 }
 
 #[test]
 fn static_sampling_leaves_gaps_that_coverage_closes() {
     let mesh = shapes::torus(1.0, 0.3, 16).unwrap();
-    let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-    let surface = Surface::new(&mesh, &hierarchy).unwrap();
+    let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 2_000);
     let hubbard = MedialApproximation::build_static(&surface, &points, 60, None).unwrap();
     let covered = MedialApproximation::build_static(
@@ -285,8 +315,7 @@ fn real_meshes_open_and_non_manifold_are_covered() {
         "teapot.obj",
     ] {
         let mesh = io::load(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let hierarchy = sphaera_sweep::build_hierarchy(&mesh).unwrap();
-        let surface = match Surface::new(&mesh, &hierarchy) {
+        let surface = match Surface::new(&mesh) {
             Ok(surface) => surface,
             Err(e) => panic!("{name}: {e}"),
         };

@@ -85,6 +85,7 @@ mod queue;
 mod session;
 mod shifted_keys;
 mod sweeper;
+mod triangle_tree;
 
 pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};
 pub use error::SweepError;
@@ -95,3 +96,4 @@ pub use motion::Shape;
 pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};
 pub use sweeper::{Sweeper, build_hierarchy};
+pub use triangle_tree::TriangleTree;

@@ -10,7 +10,6 @@ use sphaera::{
         CoverCriterion, MedialApproximation, MedialParams, MedialProgress, SphereKind, Surface,
     },
     mesh::{DVec3, io::write_atomic, sampling},
-    sweep::build_hierarchy,
 };
 
 use crate::{
@@ -53,7 +52,7 @@ struct Report {
 #[derive(Debug, Serialize)]
 struct Seconds {
     load: f64,
-    /// Sampling the surface, the distance hierarchy and the inside test.
+    /// Sampling the surface, the closest-point tree and the inside test.
     prepare: f64,
     /// The medial approximation itself.
     medial: f64,
@@ -86,19 +85,19 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
         args.samples
     );
 
-    let spinner = progress::spinner(
-        quiet,
-        "sampling the surface, building the distance hierarchy",
-    );
+    let spinner = progress::spinner(quiet, "sampling the surface, preparing distance queries");
     let started = Instant::now();
     let prepared = sampling::poisson_disk(mesh, args.samples, args.seed)
         .map_err(anyhow::Error::from)
-        .and_then(|s| Ok((s, build_hierarchy(mesh)?)));
+        .and_then(|poisson| {
+            let surface = Surface::new(mesh).with_context(|| {
+                format!("{} cannot be approximated by medial spheres", input.source)
+            })?;
+            Ok((poisson, surface))
+        });
     spinner.finish_and_clear();
-    let (poisson, hierarchy) = prepared?;
+    let (poisson, surface) = prepared?;
     let samples: Vec<DVec3> = poisson.samples.iter().map(|s| s.position).collect();
-    let surface = Surface::new(mesh, &hierarchy)
-        .with_context(|| format!("{} cannot be approximated by medial spheres", input.source))?;
     let prepare_seconds = started.elapsed().as_secs_f64();
 
     let diagonal = surface.diagonal();

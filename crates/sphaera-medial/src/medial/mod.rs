@@ -19,7 +19,7 @@
 //!    ([`MedialApproximation::refine_region`]).
 //!
 //! **Error** (the paper's eq. 2): for a centre `v` inside, `e = r − ‖q − v‖` with `q` the
-//! closest surface point (exact, from `sphaera-sweep`): any point of the sphere outside the
+//! closest surface point (exact, from `sphaera-sweep`'s [`sphaera_sweep::TriangleTree`]): any point of the sphere outside the
 //! object is at most `e` from the surface, since the radius through it crosses the surface
 //! at least `‖q − v‖` from `v`. For a centre outside (cover spheres), `e = r + ‖q − v‖`:
 //! every point of the sphere is within `r` of `v`, which is within `‖q − v‖` of the surface.
@@ -30,7 +30,6 @@ mod sphere;
 mod surface;
 
 use glam::DVec3;
-use sphaera_sweep::Session;
 
 pub use params::{CoverCriterion, MedialParams, RegionGoal};
 pub use sphere::{MedialSphere, SphereKind};
@@ -44,6 +43,10 @@ const NONE: u32 = u32::MAX;
 /// Coverage tolerance relative to the bounding-box diagonal (forming points lie on their
 /// spheres up to rounding).
 const COVER_TOLERANCE: f64 = 1e-9;
+
+/// Fewest new spheres worth measuring on several threads.
+#[cfg(feature = "parallel")]
+const PARALLEL_MIN_SPHERES: usize = 8;
 
 /// One Voronoi vertex's sphere.
 #[derive(Debug, Clone)]
@@ -110,8 +113,7 @@ pub struct RegionOutcome {
 /// use sphaera_medial::{MedialApproximation, MedialParams, Surface};
 ///
 /// let mesh = shapes::capsule(0.5, 2.0, 12)?;
-/// let hierarchy = sphaera_sweep::build_hierarchy(&mesh)?;
-/// let surface = Surface::new(&mesh, &hierarchy)?;
+/// let surface = Surface::new(&mesh)?;
 /// let samples: Vec<_> = sampling::poisson_disk(&mesh, 2_000, 1)?
 ///     .samples
 ///     .iter()
@@ -132,8 +134,7 @@ pub struct RegionOutcome {
 /// ```
 #[derive(Debug)]
 pub struct MedialApproximation<'s> {
-    surface: &'s Surface<'s>,
-    session: Session<'s>,
+    surface: &'s Surface,
     samples: Vec<DVec3>,
     grid: SampleGrid,
     delaunay: Delaunay,
@@ -145,6 +146,8 @@ pub struct MedialApproximation<'s> {
     tolerance: f64,
     cover: CoverCriterion,
     nearest_hint: u32,
+    /// Members that joined, recorded while a region is refined.
+    journal: Option<Vec<TetId>>,
     stats: MedialStats,
 }
 
@@ -163,7 +166,7 @@ impl<'s> MedialApproximation<'s> {
     ///
     /// Never.
     pub fn build(
-        surface: &'s Surface<'s>,
+        surface: &'s Surface,
         samples: &[DVec3],
         params: &MedialParams,
     ) -> Result<Self, MedialError> {
@@ -177,7 +180,7 @@ impl<'s> MedialApproximation<'s> {
     ///
     /// As [`MedialApproximation::build`].
     pub fn build_with_progress(
-        surface: &'s Surface<'s>,
+        surface: &'s Surface,
         samples: &[DVec3],
         params: &MedialParams,
         progress: &dyn Fn(&MedialProgress),
@@ -199,7 +202,7 @@ impl<'s> MedialApproximation<'s> {
     ///
     /// As [`MedialApproximation::build`].
     pub fn build_static(
-        surface: &'s Surface<'s>,
+        surface: &'s Surface,
         samples: &[DVec3],
         forming: usize,
         cover: Option<CoverCriterion>,
@@ -212,7 +215,7 @@ impl<'s> MedialApproximation<'s> {
     }
 
     fn start(
-        surface: &'s Surface<'s>,
+        surface: &'s Surface,
         samples: &[DVec3],
         initial: usize,
         cover: CoverCriterion,
@@ -229,7 +232,6 @@ impl<'s> MedialApproximation<'s> {
         let delaunay = initial_diagram(samples, initial)?;
         let mut medial = Self {
             surface,
-            session: surface.session(),
             samples: samples.to_vec(),
             grid: SampleGrid::new(samples),
             delaunay,
@@ -241,12 +243,16 @@ impl<'s> MedialApproximation<'s> {
             tolerance: COVER_TOLERANCE * surface.diagonal(),
             cover,
             nearest_hint: 0,
+            journal: None,
             stats: MedialStats::default(),
         };
-        let tets: Vec<TetId> = medial.delaunay.tetrahedra().map(|(t, _)| t).collect();
-        for t in tets {
-            medial.evaluate(t);
-        }
+        let tets: Vec<TetId> = medial
+            .delaunay
+            .tetrahedra()
+            .map(|(t, _)| t)
+            .filter(|&t| medial.delaunay.is_finite(t))
+            .collect();
+        medial.evaluate_all(&tets);
         Ok(medial)
     }
 
@@ -355,46 +361,58 @@ impl<'s> MedialApproximation<'s> {
         for &s in region {
             in_region[s as usize] = true;
         }
+        // The region's spheres, kept up to date from the journal of members that joined
+        // since (ids of removed tetrahedra are reused, so every joiner is re-checked).
+        let mut spheres: Vec<TetId> = self
+            .members
+            .iter()
+            .copied()
+            .filter(|&t| self.covers_region(t, &in_region))
+            .collect();
+        self.journal = Some(Vec::new());
         let mut improvements = 0;
-        loop {
-            let spheres = self.region_members(&in_region);
-            let worst = spheres
-                .iter()
-                .filter_map(|&t| self.record(t).map(|r| (t, r.error, r.stuck)))
-                .fold((NONE, f64::NEG_INFINITY), |best, (t, e, stuck)| {
-                    if !stuck && e > best.1 { (t, e) } else { best }
-                });
-            let worst_error = spheres
-                .iter()
-                .filter_map(|&t| self.record(t))
-                .map(|r| r.error)
-                .fold(0.0, f64::max);
+        let outcome = loop {
+            let joined = self.journal.replace(Vec::new()).unwrap_or_default();
+            if !joined.is_empty() {
+                spheres.extend(joined);
+                spheres.sort_unstable();
+                spheres.dedup();
+            }
+            spheres.retain(|&t| self.covers_region(t, &in_region));
+            let mut worst: Option<(TetId, f64)> = None;
+            let mut worst_error = 0.0_f64;
+            for &t in &spheres {
+                let Some(r) = self.record(t) else { continue };
+                worst_error = worst_error.max(r.error);
+                if !r.stuck && worst.is_none_or(|(_, e)| r.error > e) {
+                    worst = Some((t, r.error));
+                }
+            }
             let reached = spheres.len() >= goal.min_spheres && worst_error <= goal.max_error;
-            if reached || improvements >= goal.max_iterations || worst.0 == NONE {
-                let mut ids = spheres;
-                ids.sort_unstable();
-                return Ok(RegionOutcome {
-                    spheres: ids.iter().filter_map(|&t| self.sphere(t)).collect(),
+            let stop = reached || improvements >= goal.max_iterations;
+            let Some((t, _)) = worst.filter(|_| !stop) else {
+                spheres.sort_unstable();
+                break RegionOutcome {
+                    spheres: spheres.iter().filter_map(|&t| self.sphere(t)).collect(),
                     worst_error,
                     reached,
                     improvements,
-                });
+                };
+            };
+            if let Err(e) = self.replace(t) {
+                self.journal = None;
+                return Err(e);
             }
-            self.replace(worst.0)?;
             improvements += 1;
-        }
+        };
+        self.journal = None;
+        Ok(outcome)
     }
 
-    /// Members covering at least one marked sample.
-    fn region_members(&self, in_region: &[bool]) -> Vec<TetId> {
-        self.members
-            .iter()
-            .copied()
-            .filter(|&t| {
-                self.record(t)
-                    .is_some_and(|r| r.covers.iter().any(|&s| in_region[s as usize]))
-            })
-            .collect()
+    /// Whether `t` is a member covering at least one marked sample.
+    fn covers_region(&self, t: TetId, in_region: &[bool]) -> bool {
+        self.record(t)
+            .is_some_and(|r| r.member.is_some() && r.covers.iter().any(|&s| in_region[s as usize]))
     }
 
     fn record(&self, t: TetId) -> Option<&Record> {
@@ -487,50 +505,44 @@ impl<'s> MedialApproximation<'s> {
                 *slot = None;
             }
         }
-        for &t in &report.created {
-            if self.delaunay.is_finite(t) {
-                self.evaluate(t);
-            }
-        }
+        let created: Vec<TetId> = report
+            .created
+            .iter()
+            .copied()
+            .filter(|&t| self.delaunay.is_finite(t))
+            .collect();
+        self.evaluate_all(&created);
         Ok(true)
     }
 
-    /// Computes the sphere of finite tetrahedron `t`; internal ones join the set.
-    fn evaluate(&mut self, t: TetId) {
-        let Some((centre, radius)) = self.delaunay.circumsphere(t) else {
-            return;
+    /// Computes the spheres of finite tetrahedra `tets` (on all cores with the `parallel`
+    /// feature; each is a pure function of the diagram, so the result is the same); the
+    /// internal ones join the set, in the order given.
+    fn evaluate_all(&mut self, tets: &[TetId]) {
+        let measure = |&t: &TetId| {
+            let (centre, radius) = self.delaunay.circumsphere(t)?;
+            Some((t, measure_sphere(self.surface, centre, radius)))
         };
-        let (inside, error, closest) = if centre.is_finite() && radius.is_finite() {
-            let inside = self.surface.is_inside(centre);
-            match self.session.closest(centre) {
-                Ok(answer) => {
-                    let error = if inside {
-                        radius - answer.distance
-                    } else {
-                        radius + answer.distance
-                    };
-                    (inside, error.max(0.0), answer.point)
-                }
-                Err(_) => (false, f64::INFINITY, centre),
+        #[cfg(feature = "parallel")]
+        let measured: Vec<Option<(TetId, Record)>> = {
+            use rayon::prelude::*;
+            if tets.len() >= PARALLEL_MIN_SPHERES {
+                tets.par_iter().map(measure).collect()
+            } else {
+                tets.iter().map(measure).collect()
             }
-        } else {
-            (false, f64::INFINITY, centre)
         };
-        if self.records.len() <= t as usize {
-            self.records.resize(t as usize + 1, None);
-        }
-        self.records[t as usize] = Some(Record {
-            centre,
-            radius,
-            error,
-            closest,
-            inside,
-            member: None,
-            covers: Vec::new(),
-            stuck: false,
-        });
-        if inside {
-            self.add_member(t, SphereKind::Internal);
+        #[cfg(not(feature = "parallel"))]
+        let measured: Vec<Option<(TetId, Record)>> = tets.iter().map(measure).collect();
+        for (t, record) in measured.into_iter().flatten() {
+            if self.records.len() <= t as usize {
+                self.records.resize(t as usize + 1, None);
+            }
+            let inside = record.inside;
+            self.records[t as usize] = Some(record);
+            if inside {
+                self.add_member(t, SphereKind::Internal);
+            }
         }
     }
 
@@ -559,6 +571,9 @@ impl<'s> MedialApproximation<'s> {
         }
         self.member_slot[t as usize] = self.members.len() as u32;
         self.members.push(t);
+        if let Some(journal) = &mut self.journal {
+            journal.push(t);
+        }
     }
 
     fn remove_member(&mut self, t: TetId) {
@@ -700,6 +715,37 @@ impl<'s> MedialApproximation<'s> {
         let nearest = self.delaunay.nearest_vertex(p, start)?;
         self.nearest_hint = nearest;
         Some(nearest)
+    }
+}
+
+/// The record of the sphere `(centre, radius)`: inside or not, its error and closest
+/// surface point; not a member yet.
+fn measure_sphere(surface: &Surface, centre: DVec3, radius: f64) -> Record {
+    let (inside, error, closest) = if centre.is_finite() && radius.is_finite() {
+        let inside = surface.is_inside(centre);
+        match surface.closest(centre) {
+            Ok(answer) => {
+                let error = if inside {
+                    radius - answer.distance
+                } else {
+                    radius + answer.distance
+                };
+                (inside, error.max(0.0), answer.point)
+            }
+            Err(_) => (false, f64::INFINITY, centre),
+        }
+    } else {
+        (false, f64::INFINITY, centre)
+    };
+    Record {
+        centre,
+        radius,
+        error,
+        closest,
+        inside,
+        member: None,
+        covers: Vec::new(),
+        stuck: false,
     }
 }
 

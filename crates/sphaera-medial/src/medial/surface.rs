@@ -1,13 +1,12 @@
 //! The object a medial approximation describes: its inside test (generalized winding
-//! number) and its closest-point engine (Meshsweeper), checked once for a meaningful
-//! inside.
+//! number) and its exact closest points (`sphaera-sweep`'s triangle tree), checked once for
+//! a meaningful inside.
 
 use glam::DVec3;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::sampling;
 use sphaera_mesh::winding::WindingNumber;
-use sphaera_simplify::Hierarchy;
-use sphaera_sweep::{Session, Sweeper};
+use sphaera_sweep::{ClosestPoint, SweepError, TriangleTree};
 
 use crate::MedialError;
 
@@ -19,7 +18,7 @@ const INSIDE_QUORUM: f64 = 0.5;
 
 /// A mesh prepared for medial approximation: the generalized winding number decides
 /// inside and outside (robust to holes, non-manifold edges and open parts), and a
-/// [`Sweeper`] gives exact closest points.
+/// [`TriangleTree`] gives exact closest points. Immutable and `Sync`: threads share it.
 ///
 /// # Examples
 ///
@@ -28,44 +27,44 @@ const INSIDE_QUORUM: f64 = 0.5;
 /// use sphaera_medial::Surface;
 ///
 /// let mesh = shapes::sphere(1.0, 12)?;
-/// let hierarchy = sphaera_sweep::build_hierarchy(&mesh)?;
-/// let surface = Surface::new(&mesh, &hierarchy)?;
+/// let surface = Surface::new(&mesh)?;
 /// assert!(surface.is_inside(DVec3::ZERO));
 /// assert!(!surface.is_inside(DVec3::splat(2.0)));
+/// let closest = surface.closest(DVec3::ZERO)?;
+/// // The inscribed polyhedron: within 1, its faces a little closer.
+/// assert!(closest.distance <= 1.0 && closest.distance > 0.9);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug)]
-pub struct Surface<'h> {
+pub struct Surface {
     winding: WindingNumber,
-    sweeper: Sweeper<'h>,
+    tree: TriangleTree,
     diagonal: f64,
     triangles: usize,
 }
 
-impl<'h> Surface<'h> {
-    /// Prepares `mesh`, whose distance hierarchy is `hierarchy` (from
-    /// [`sphaera_sweep::build_hierarchy`] of the same mesh).
+impl Surface {
+    /// Prepares `mesh`.
     ///
     /// # Errors
     ///
-    /// [`MedialError::Mesh`] for an empty or invalid mesh, [`MedialError::Distance`] if
-    /// the hierarchy is empty, [`MedialError::HierarchyMismatch`] if it was built from
-    /// another mesh, and [`MedialError::NoInside`] when inside is meaningless: a flat
+    /// [`MedialError::Mesh`] for an invalid mesh, [`MedialError::Distance`] for a mesh
+    /// without triangles, and [`MedialError::NoInside`] when inside is meaningless: a flat
     /// sheet, a single open patch, a mesh whose winding number does not jump from about 1
     /// to about 0 across most of its surface (an inside-out mesh is reported the same way).
-    pub fn new(mesh: &TriMesh, hierarchy: &'h Hierarchy) -> Result<Self, MedialError> {
-        if hierarchy.input_vertex_count() != mesh.vertex_count() {
-            return Err(MedialError::HierarchyMismatch {
-                mesh: mesh.vertex_count(),
-                hierarchy: hierarchy.input_vertex_count(),
-            });
-        }
+    ///
+    /// # Performance
+    ///
+    /// Two `O(n log n)` tree builds over the `n` triangles (the winding number's and the
+    /// closest-point tree) and 512 winding-number probes: about 0.15 s for the 69k-triangle
+    /// bunny.
+    pub fn new(mesh: &TriMesh) -> Result<Self, MedialError> {
         let winding = WindingNumber::new(mesh)?;
-        let sweeper = Sweeper::new(hierarchy)?;
+        let tree = TriangleTree::new(mesh)?;
         let diagonal = mesh.bounding_box_diagonal();
         let surface = Self {
             winding,
-            sweeper,
+            tree,
             diagonal,
             triangles: mesh.triangle_count(),
         };
@@ -121,9 +120,18 @@ impl<'h> Surface<'h> {
         self.triangles
     }
 
-    /// A closest-point session (one per thread).
+    /// The exact closest point of the surface to `p`.
+    ///
+    /// # Errors
+    ///
+    /// [`SweepError::NonFiniteQuery`] for a NaN or infinite coordinate.
+    pub fn closest(&self, p: DVec3) -> Result<ClosestPoint, SweepError> {
+        self.tree.closest(p)
+    }
+
+    /// The closest-point tree over the mesh's triangles.
     #[must_use]
-    pub fn session(&self) -> Session<'_> {
-        self.sweeper.session()
+    pub fn tree(&self) -> &TriangleTree {
+        &self.tree
     }
 }
