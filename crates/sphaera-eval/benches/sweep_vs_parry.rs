@@ -1,5 +1,5 @@
-//! Closest-point queries: Sphaera's Meshsweeper sessions against parry3d-f64's `TriMesh`
-//! point projection (its BVH), in the same run.
+//! Closest-point queries: Sphaera's Meshsweeper sessions and its static `TriangleTree`
+//! against parry3d-f64's `TriMesh` point projection (its BVH), in the same run.
 //!
 //! Query sets (seeded; `src/query_sets.rs`, shared with the `sweep_throughput`
 //! experiment), on the 69k-triangle bunny and the 871k-triangle dragon:
@@ -26,7 +26,7 @@ use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh as ParryTriMesh, TriMeshFlags};
 use sphaera::{
     mesh::{DVec3, TriMesh, io, shapes},
-    sweep::{Sweeper, build_hierarchy},
+    sweep::{Sweeper, TriangleTree, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
 
@@ -63,10 +63,14 @@ fn sweep_vs_parry(c: &mut Criterion) {
         group.bench_function("sphaera_hierarchy", |b| {
             b.iter(|| build_hierarchy(black_box(&mesh)).expect("builds"));
         });
+        group.bench_function("sphaera_triangle_tree", |b| {
+            b.iter(|| TriangleTree::new(black_box(&mesh)).expect("builds"));
+        });
         group.bench_function("parry_bvh", |b| {
             b.iter(|| DistanceToMesh::new(black_box(&mesh)));
         });
         group.finish();
+        let tree = TriangleTree::new(&mesh).expect("non-empty");
         let hierarchy = build_hierarchy(&mesh).expect("builds");
         let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
         let parry = DistanceToMesh::new(&mesh);
@@ -81,6 +85,14 @@ fn sweep_vs_parry(c: &mut Criterion) {
                     points
                         .iter()
                         .map(|&p| session.closest(p).expect("finite").distance)
+                        .sum::<f64>()
+                });
+            });
+            group.bench_function("sphaera_triangle_tree", |b| {
+                b.iter(|| {
+                    points
+                        .iter()
+                        .map(|&p| tree.closest(p).expect("finite").distance)
                         .sum::<f64>()
                 });
             });
