@@ -1,0 +1,1 @@
+//! Fit evaluation of sphere sets (work in progress).

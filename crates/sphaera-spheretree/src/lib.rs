@@ -1,0 +1,15 @@
+//! # sphaera-spheretree
+//!
+//! Sphere-trees for time-critical collision detection, after Bradshaw and O'Sullivan
+//! (*Adaptive Medial-Axis Approximation for Sphere-Tree Construction*, 2004): the
+//! adaptive medial approximation of `sphaera-medial` reduced to a few spheres per node by
+//! merge, burst, expand-select or their combination, with coverage of the surface itself
+//! certified at every level, fit evaluation, and interruptible traversal.
+
+mod error;
+pub mod evaluate;
+pub mod sph;
+
+pub use error::SphereTreeError;
+pub use glam::DVec3;
+pub use sphaera_mesh::Sphere;

@@ -1,0 +1,1 @@
+//! The classic `.sph` sphere-tree text format (work in progress).
