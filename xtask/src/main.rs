@@ -205,6 +205,10 @@ const CHARTS: &[(&str, Coverage)] = &[
         "hausdorff_gap_vs_time",
         Coverage::Only(&["stanford-bunny.obj", "bunny_lowres.obj"]),
     ),
+    (
+        "medial_static_vs_adaptive",
+        Coverage::Only(&["stanford-bunny.obj", "dragon_vrip.ply"]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

@@ -2,6 +2,7 @@
 
 mod hausdorff_gap;
 mod load_topology;
+mod medial_static_vs_adaptive;
 mod simplify_error;
 mod sweep_throughput;
 
@@ -16,6 +17,7 @@ pub const NAMES: &[&str] = &[
     simplify_error::NAME,
     sweep_throughput::NAME,
     hausdorff_gap::NAME,
+    medial_static_vs_adaptive::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -25,6 +27,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         simplify_error::NAME => simplify_error::run(data, out),
         sweep_throughput::NAME => sweep_throughput::run(data, out),
         hausdorff_gap::NAME => hausdorff_gap::run(data, out),
+        medial_static_vs_adaptive::NAME => medial_static_vs_adaptive::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }
