@@ -6,10 +6,17 @@
 //! merge, burst, expand-select or their combination, with coverage of the surface itself
 //! certified at every level, fit evaluation, and interruptible traversal.
 
+mod build;
 mod error;
 pub mod evaluate;
+pub mod reduce;
+pub mod segment;
 pub mod sph;
+mod tree;
 
+pub use build::{BuildProgress, Params, build, build_with_progress};
 pub use error::SphereTreeError;
 pub use glam::DVec3;
+pub use reduce::Reducer;
 pub use sphaera_mesh::Sphere;
+pub use tree::{SphereTree, TreeNode};

@@ -1,0 +1,326 @@
+//! Expand and select (section 5.3): expand every candidate to a common standoff `e` from
+//! the surface, greedily select a subset covering every point, and search the smallest
+//! standoff whose selection fits the target count.
+
+use sphaera_mesh::Sphere;
+
+use super::{FittedSphere, ReductionInput, centre_depth};
+use crate::SphereTreeError;
+
+/// Bisection steps of the standoff search.
+const SEARCH_STEPS: usize = 40;
+
+/// The greedy ranking of the selection.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Selection {
+    /// Pick the sphere that makes the most remaining candidates redundant (the paper's
+    /// choice: it takes complicated areas first and grows from chosen spheres, leaving
+    /// fewer gaps to fill).
+    #[default]
+    MaxElim,
+    /// Pick the sphere covering the most uncovered points.
+    MaxCover,
+}
+
+/// What [`expand_select`] found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpandOutcome {
+    /// The selected spheres, all with error [`ExpandOutcome::standoff`].
+    pub spheres: Vec<FittedSphere>,
+    /// The standoff `e`: every sphere reaches at most `e` beyond the surface (eq. 2;
+    /// exact for convex parts, an over-estimate for concave ones).
+    pub standoff: f64,
+    /// Whether the count equals the target. When the selection jumps over it (the
+    /// paper's "25 or 55" case), this is `false` and the set is the largest one found
+    /// below the target.
+    pub exact: bool,
+    /// The smallest count above the target seen during the search, if any: what a
+    /// slightly smaller standoff gives.
+    pub next_count_above: Option<usize>,
+}
+
+/// One candidate, expanded.
+struct Expandable {
+    centre: glam::DVec3,
+    depth: f64,
+    inside: bool,
+}
+
+impl Expandable {
+    /// The radius at standoff `e` (`None` when the sphere would vanish).
+    fn radius(&self, e: f64) -> Option<f64> {
+        let r = if self.inside {
+            e + self.depth
+        } else {
+            e - self.depth
+        };
+        (r > 0.0).then_some(r)
+    }
+
+    /// The standoff at which it starts to cover `p`.
+    fn needed(&self, p: glam::DVec3) -> f64 {
+        let d = p.distance(self.centre);
+        if self.inside {
+            d - self.depth
+        } else {
+            d + self.depth
+        }
+    }
+}
+
+/// Expands the candidates to the smallest common standoff at which the greedy selection
+/// covers every point with at most `target` spheres.
+///
+/// # Errors
+///
+/// As [`super::merge`].
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::{DVec3, Sphere, shapes};
+/// use sphaera_medial::Surface;
+/// use sphaera_spheretree::reduce::{Candidate, ReductionInput, Selection, expand_select};
+///
+/// let mesh = shapes::capsule(0.5, 2.0, 12)?;
+/// let surface = Surface::new(&mesh)?;
+/// let points: Vec<DVec3> = (0..20).map(|i| DVec3::new(0.0, 0.5, -0.9 + 0.09 * f64::from(i))).collect();
+/// let candidates: Vec<Candidate> = (0..20)
+///     .map(|i| Candidate {
+///         sphere: Sphere::new(DVec3::new(0.0, 0.0, points[i].z), 0.5),
+///         covers: vec![i as u32],
+///     })
+///     .collect();
+/// let input = ReductionInput { surface: &surface, points: &points, candidates: &candidates };
+/// let outcome = expand_select(&input, 4, Selection::MaxElim)?;
+/// assert!(outcome.spheres.len() <= 4);
+/// for s in &outcome.spheres {
+///     assert_eq!(s.error, outcome.standoff);
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn expand_select(
+    input: &ReductionInput<'_>,
+    target: usize,
+    selection: Selection,
+) -> Result<ExpandOutcome, SphereTreeError> {
+    if target == 0 {
+        return Err(SphereTreeError::InvalidParameter(
+            "the target sphere count must be at least 1".into(),
+        ));
+    }
+    input.validate()?;
+    let expandable: Vec<Expandable> = input
+        .candidates
+        .iter()
+        .map(|c| {
+            let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+            Expandable {
+                centre: c.sphere.center,
+                depth,
+                inside,
+            }
+        })
+        .collect();
+    // Below `low` some point is covered by no expanded candidate; at `high` one covers
+    // them all.
+    let low = input
+        .points
+        .iter()
+        .map(|&p| {
+            expandable
+                .iter()
+                .map(|x| x.needed(p))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(0.0_f64, f64::max);
+    let high = expandable
+        .iter()
+        .map(|x| {
+            input
+                .points
+                .iter()
+                .map(|&p| x.needed(p))
+                .fold(0.0_f64, f64::max)
+        })
+        .fold(f64::INFINITY, f64::min)
+        .max(low);
+    // An infeasible standoff (rounding at `low`) counts as too many spheres.
+    let run = |e: f64| {
+        select(input, &expandable, e, selection).unwrap_or_else(|| vec![usize::MAX; target + 1])
+    };
+    let mut best = run(high);
+    let mut best_e = high;
+    let mut next_above: Option<usize> = None;
+    let at_low = run(low);
+    if at_low.len() <= target {
+        best = at_low;
+        best_e = low;
+    } else {
+        next_above = Some(at_low.len());
+        let (mut lo, mut hi) = (low, high);
+        for _ in 0..SEARCH_STEPS {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            let chosen = run(mid);
+            if chosen.len() <= target {
+                hi = mid;
+                if chosen.len() >= best.len() || mid < best_e {
+                    best = chosen;
+                    best_e = mid;
+                }
+            } else {
+                lo = mid;
+                next_above = Some(next_above.map_or(chosen.len(), |n| n.min(chosen.len())));
+            }
+        }
+    }
+    let spheres = best
+        .iter()
+        .filter_map(|&i| {
+            let x = expandable.get(i)?;
+            let radius = x.radius(best_e)?;
+            let sphere = Sphere::new(x.centre, radius);
+            Some(FittedSphere {
+                sphere,
+                error: best_e,
+                covers: super::points_within(input.points, &sphere),
+            })
+        })
+        .collect::<Vec<_>>();
+    Ok(ExpandOutcome {
+        exact: spheres.len() == target,
+        spheres,
+        standoff: best_e,
+        next_count_above: next_above,
+    })
+}
+
+/// A bit set over the points.
+#[derive(Clone)]
+struct Bits(Vec<u64>);
+
+impl Bits {
+    fn new(n: usize) -> Self {
+        Self(vec![0; n.div_ceil(64)])
+    }
+    fn set(&mut self, i: usize) {
+        self.0[i / 64] |= 1 << (i % 64);
+    }
+    fn count_and(&self, other: &Self) -> u32 {
+        self.0
+            .iter()
+            .zip(&other.0)
+            .map(|(a, b)| (a & b).count_ones())
+            .sum()
+    }
+    /// Whether `self ∩ mask ⊆ other`.
+    fn subset_within(&self, mask: &Self, other: &Self) -> bool {
+        self.0
+            .iter()
+            .zip(&mask.0)
+            .zip(&other.0)
+            .all(|((a, m), o)| a & m & !o == 0)
+    }
+    fn remove(&mut self, other: &Self) {
+        for (a, b) in self.0.iter_mut().zip(&other.0) {
+            *a &= !b;
+        }
+    }
+    fn is_empty(&self) -> bool {
+        self.0.iter().all(|&w| w == 0)
+    }
+}
+
+/// The greedy selection at standoff `e`: indices of the chosen candidates (`None` when
+/// some point cannot be covered), with spheres that cover nothing uniquely dropped at the
+/// end.
+fn select(
+    input: &ReductionInput<'_>,
+    expandable: &[Expandable],
+    e: f64,
+    selection: Selection,
+) -> Option<Vec<usize>> {
+    let n = input.points.len();
+    let covers: Vec<Option<Bits>> = expandable
+        .iter()
+        .map(|x| {
+            let r = x.radius(e)?;
+            let mut bits = Bits::new(n);
+            let mut any = false;
+            for (i, p) in input.points.iter().enumerate() {
+                if p.distance(x.centre) <= r * (1.0 + 1e-12) {
+                    bits.set(i);
+                    any = true;
+                }
+            }
+            any.then_some(bits)
+        })
+        .collect();
+    let mut uncovered = Bits::new(n);
+    for i in 0..n {
+        uncovered.set(i);
+    }
+    let mut remaining: Vec<usize> = (0..covers.len()).filter(|&i| covers[i].is_some()).collect();
+    let mut chosen = Vec::new();
+    while !uncovered.is_empty() {
+        remaining.retain(|&j| {
+            covers[j]
+                .as_ref()
+                .is_some_and(|c| c.count_and(&uncovered) > 0)
+        });
+        let best = remaining.iter().copied().max_by_key(|&i| {
+            let Some(ci) = covers[i].as_ref() else {
+                return (0, 0, std::cmp::Reverse(i));
+            };
+            let gain = ci.count_and(&uncovered);
+            let rank = match selection {
+                Selection::MaxCover => gain,
+                Selection::MaxElim => remaining
+                    .iter()
+                    .filter(|&&j| j != i)
+                    .filter(|&&j| {
+                        covers[j]
+                            .as_ref()
+                            .is_some_and(|cj| cj.subset_within(&uncovered, ci))
+                    })
+                    .count() as u32,
+            };
+            (rank, gain, std::cmp::Reverse(i))
+        });
+        let best = best?;
+        if let Some(c) = covers[best].as_ref() {
+            uncovered.remove(c);
+        }
+        chosen.push(best);
+        remaining.retain(|&j| j != best);
+    }
+    // Drop spheres that cover nothing uniquely, latest first.
+    let mut k = chosen.len();
+    while k > 0 {
+        k -= 1;
+        let mut others = Bits::new(n);
+        for (m, &j) in chosen.iter().enumerate() {
+            if m != k
+                && let Some(c) = covers[j].as_ref()
+            {
+                for (w, cw) in others.0.iter_mut().zip(&c.0) {
+                    *w |= cw;
+                }
+            }
+        }
+        let mut all = Bits::new(n);
+        for i in 0..n {
+            all.set(i);
+        }
+        if covers[chosen[k]]
+            .as_ref()
+            .is_some_and(|c| c.subset_within(&all, &others))
+        {
+            chosen.remove(k);
+        }
+    }
+    Some(chosen)
+}

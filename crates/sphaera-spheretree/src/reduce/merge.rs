@@ -1,0 +1,309 @@
+//! Merge (section 5.1): repeatedly replace the pair of neighbouring spheres whose union is
+//! covered most tightly by one sphere.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use glam::DVec3;
+use sphaera_mesh::Sphere;
+use sphaera_mesh::geometry::minimum_enclosing_ball;
+
+use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
+use crate::SphereTreeError;
+
+/// Once the set is this many times the target, every pair may merge, not only
+/// intersecting ones (the paper: "2 or 3 times the target").
+const ALL_PAIRS_FACTOR: usize = 3;
+
+/// A live sphere of the merge.
+#[derive(Debug, Clone)]
+struct Live {
+    sphere: Sphere,
+    error: f64,
+    depth: f64,
+    inside: bool,
+    covers: Vec<u32>,
+    version: u32,
+}
+
+/// A candidate merge in the queue (smallest error first).
+#[derive(Debug, Clone, Copy)]
+struct PairMerge {
+    error: f64,
+    a: u32,
+    b: u32,
+    version_a: u32,
+    version_b: u32,
+}
+
+impl PartialEq for PairMerge {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for PairMerge {}
+impl PartialOrd for PairMerge {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for PairMerge {
+    /// Reversed, so that `BinaryHeap` pops the smallest error (ties: smallest ids).
+    fn cmp(&self, other: &Self) -> Ordering {
+        other
+            .error
+            .total_cmp(&self.error)
+            .then(other.a.cmp(&self.a))
+            .then(other.b.cmp(&self.b))
+    }
+}
+
+/// Reduces the candidates to at most `target` spheres by merging: each step replaces the
+/// pair whose merged sphere has the smallest error. The merged sphere is the tightest of
+/// three: the first sphere grown (same centre) to cover both sets of points, the second
+/// grown likewise, and the minimum enclosing ball of the union — so a sphere stays on the
+/// medial axis unless moving it pays. Pairs start as intersecting spheres (a superset of
+/// Voronoi neighbours, whose circumspheres share three forming points); once the set is
+/// at most three times the target, every pair is considered.
+///
+/// # Errors
+///
+/// [`SphereTreeError::InvalidParameter`] for `target == 0` or points no candidate
+/// covers, [`SphereTreeError::InvalidSphere`] for a NaN or negative candidate.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::{DVec3, Sphere, shapes};
+/// use sphaera_medial::Surface;
+/// use sphaera_spheretree::reduce::{Candidate, ReductionInput, merge};
+///
+/// let mesh = shapes::capsule(0.5, 2.0, 12)?;
+/// let surface = Surface::new(&mesh)?;
+/// // Points along the capsule's axis, each covered by a small sphere.
+/// let points: Vec<DVec3> = (0..20).map(|i| DVec3::new(0.0, 0.0, -0.9 + 0.09 * f64::from(i))).collect();
+/// let candidates: Vec<Candidate> = (0..20)
+///     .map(|i| Candidate { sphere: Sphere::new(points[i], 0.1), covers: vec![i as u32] })
+///     .collect();
+/// let input = ReductionInput { surface: &surface, points: &points, candidates: &candidates };
+/// let merged = merge(&input, 3)?;
+/// assert!(merged.len() <= 3);
+/// // Every point is still covered, by a sphere that lists it.
+/// for (i, p) in points.iter().enumerate() {
+///     assert!(merged.iter().any(|s| s.covers.contains(&(i as u32))
+///         && s.sphere.contains_point(*p, 1e-9)));
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn merge(
+    input: &ReductionInput<'_>,
+    target: usize,
+) -> Result<Vec<FittedSphere>, SphereTreeError> {
+    if target == 0 {
+        return Err(SphereTreeError::InvalidParameter(
+            "the target sphere count must be at least 1".into(),
+        ));
+    }
+    input.validate()?;
+    let mut live: Vec<Option<Live>> = input
+        .candidates
+        .iter()
+        .map(|c| {
+            let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+            Some(Live {
+                sphere: c.sphere,
+                error: eq2_error(c.sphere.radius, depth, inside),
+                depth,
+                inside,
+                covers: c.covers.clone(),
+                version: 0,
+            })
+        })
+        .collect();
+    let mut count = live.len();
+    let mut heap = BinaryHeap::new();
+    let mut all_pairs = count <= ALL_PAIRS_FACTOR * target;
+    for a in 0..live.len() {
+        for b in a + 1..live.len() {
+            if all_pairs || intersect(&live, a, b) {
+                push_pair(input, &live, a, b, &mut heap);
+            }
+        }
+    }
+    while count > target {
+        let Some(best) = heap.pop() else {
+            // No pair left (only possible before switching to all pairs): switch now.
+            all_pairs = true;
+            push_all_pairs(input, &live, &mut heap);
+            if heap.is_empty() {
+                break;
+            }
+            continue;
+        };
+        let (a, b) = (best.a as usize, best.b as usize);
+        let current = |i: usize, v: u32| live[i].as_ref().is_some_and(|l| l.version == v);
+        if !current(a, best.version_a) || !current(b, best.version_b) {
+            continue;
+        }
+        let merged = match (&live[a], &live[b]) {
+            (Some(x), Some(y)) => best_merge(input, x, y),
+            _ => continue,
+        };
+        live[b] = None;
+        if let Some(slot) = live[a].as_mut() {
+            let version = slot.version + 1;
+            *slot = Live { version, ..merged };
+        }
+        count -= 1;
+        if !all_pairs && count <= ALL_PAIRS_FACTOR * target {
+            all_pairs = true;
+            push_all_pairs(input, &live, &mut heap);
+        } else {
+            for other in 0..live.len() {
+                if other != a && live[other].is_some() && (all_pairs || intersect(&live, a, other))
+                {
+                    push_pair(input, &live, a.min(other), a.max(other), &mut heap);
+                }
+            }
+        }
+    }
+    Ok(live
+        .into_iter()
+        .flatten()
+        .map(|l| FittedSphere {
+            sphere: l.sphere,
+            error: l.error,
+            covers: l.covers,
+        })
+        .collect())
+}
+
+fn intersect(live: &[Option<Live>], a: usize, b: usize) -> bool {
+    match (&live[a], &live[b]) {
+        (Some(x), Some(y)) => x.sphere.intersects(&y.sphere),
+        _ => false,
+    }
+}
+
+fn push_all_pairs(
+    input: &ReductionInput<'_>,
+    live: &[Option<Live>],
+    heap: &mut BinaryHeap<PairMerge>,
+) {
+    heap.clear();
+    for a in 0..live.len() {
+        for b in a + 1..live.len() {
+            if live[a].is_some() && live[b].is_some() {
+                push_pair(input, live, a, b, heap);
+            }
+        }
+    }
+}
+
+fn push_pair(
+    input: &ReductionInput<'_>,
+    live: &[Option<Live>],
+    a: usize,
+    b: usize,
+    heap: &mut BinaryHeap<PairMerge>,
+) {
+    let (Some(x), Some(y)) = (&live[a], &live[b]) else {
+        return;
+    };
+    let merged = best_merge(input, x, y);
+    heap.push(PairMerge {
+        error: merged.error,
+        a: a as u32,
+        b: b as u32,
+        version_a: x.version,
+        version_b: y.version,
+    });
+}
+
+/// The tightest of the three merged spheres of `x` and `y` (version 0).
+fn best_merge(input: &ReductionInput<'_>, x: &Live, y: &Live) -> Live {
+    let covers = union(&x.covers, &y.covers);
+    let pts: Vec<DVec3> = covers.iter().map(|&i| input.points[i as usize]).collect();
+    let grown = |l: &Live| {
+        let radius = pts
+            .iter()
+            .map(|p| p.distance(l.sphere.center))
+            .fold(0.0, f64::max);
+        Live {
+            sphere: Sphere::new(l.sphere.center, radius),
+            error: eq2_error(radius, l.depth, l.inside),
+            depth: l.depth,
+            inside: l.inside,
+            covers: Vec::new(),
+            version: 0,
+        }
+    };
+    let mut best = grown(x);
+    let other = grown(y);
+    if other.error < best.error {
+        best = other;
+    }
+    if let Ok(ball) = minimum_enclosing_ball(&pts) {
+        // Rounding: grow by a hair so that every point is inside.
+        let radius = pts
+            .iter()
+            .map(|p| p.distance(ball.center))
+            .fold(ball.radius, f64::max);
+        let (depth, inside) = centre_depth(input.surface, ball.center);
+        let error = eq2_error(radius, depth, inside);
+        if error < best.error {
+            best = Live {
+                sphere: Sphere::new(ball.center, radius),
+                error,
+                depth,
+                inside,
+                covers: Vec::new(),
+                version: 0,
+            };
+        }
+    }
+    best.covers = covers;
+    best
+}
+
+/// The sorted union of two ascending lists.
+fn union(a: &[u32], b: &[u32]) -> Vec<u32> {
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        let next = match (a.get(i), b.get(j)) {
+            (Some(&x), Some(&y)) if x == y => {
+                i += 1;
+                j += 1;
+                x
+            }
+            (Some(&x), Some(&y)) if x < y => {
+                i += 1;
+                x
+            }
+            (Some(_), Some(&y)) | (None, Some(&y)) => {
+                j += 1;
+                y
+            }
+            (Some(&x), None) => {
+                i += 1;
+                x
+            }
+            (None, None) => break,
+        };
+        out.push(next);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::union;
+
+    #[test]
+    fn union_is_sorted_and_deduplicated() {
+        assert_eq!(union(&[1, 3, 5], &[2, 3, 9]), vec![1, 2, 3, 5, 9]);
+        assert_eq!(union(&[], &[4]), vec![4]);
+        assert_eq!(union(&[7], &[]), vec![7]);
+    }
+}

@@ -1,0 +1,171 @@
+//! Sphere reducers (section 5 of the paper): from many medial spheres covering a set of
+//! surface points, a few spheres covering the same points as tightly as possible.
+//!
+//! Every reducer takes a [`ReductionInput`] — the points to cover and candidate spheres,
+//! each with the points it covers, whose union covers them all — and returns at most the
+//! target number of [`FittedSphere`]s covering every point. Each fitted sphere's error is
+//! the paper's eq. 2 measure: for a centre inside the object, `r − d` (d the distance
+//! from the centre to the surface), a bound on how far the sphere reaches beyond the
+//! surface that is exact for convex parts; for a centre outside, `r + d`. The certified
+//! per-sphere error of a finished tree comes from [`crate::evaluate`].
+//!
+//! - [`merge`]: combine Voronoi-neighbour pairs, tightest result first.
+//! - [`expand_select`]: expand every candidate to a common standoff and greedily select a
+//!   covering subset (`MaxElim` or `MaxCover`), searching the standoff that meets the count.
+//! - [`combined`]: both, keeping the tighter set.
+
+mod expand;
+mod merge;
+
+pub use expand::{ExpandOutcome, Selection, expand_select};
+pub use merge::merge;
+
+use glam::DVec3;
+use sphaera_medial::Surface;
+use sphaera_mesh::Sphere;
+
+use crate::SphereTreeError;
+
+/// A candidate sphere and the indices (into [`ReductionInput::points`]) of the points it
+/// covers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Candidate {
+    /// The sphere.
+    pub sphere: Sphere,
+    /// Indices of the points it covers, ascending.
+    pub covers: Vec<u32>,
+}
+
+/// A sphere chosen by a reducer, with its eq. 2 error and the points it covers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FittedSphere {
+    /// The sphere.
+    pub sphere: Sphere,
+    /// Its error (eq. 2 of the paper; see the module docs).
+    pub error: f64,
+    /// Indices of the points it covers, ascending.
+    pub covers: Vec<u32>,
+}
+
+/// The problem every reducer solves.
+#[derive(Debug, Clone, Copy)]
+pub struct ReductionInput<'a> {
+    /// The object (inside test and distances).
+    pub surface: &'a Surface,
+    /// The points to cover.
+    pub points: &'a [DVec3],
+    /// Candidate spheres whose covers together contain every point.
+    pub candidates: &'a [Candidate],
+}
+
+impl ReductionInput<'_> {
+    /// Checks the input: valid spheres, covers in range, every point covered.
+    pub(crate) fn validate(&self) -> Result<(), SphereTreeError> {
+        let mut covered = vec![false; self.points.len()];
+        for (index, c) in self.candidates.iter().enumerate() {
+            if !c.sphere.is_valid() {
+                return Err(SphereTreeError::InvalidSphere { index });
+            }
+            for &p in &c.covers {
+                match covered.get_mut(p as usize) {
+                    Some(slot) => *slot = true,
+                    None => {
+                        return Err(SphereTreeError::InvalidParameter(format!(
+                            "candidate {index} covers point {p}, but there are only {}",
+                            self.points.len()
+                        )));
+                    }
+                }
+            }
+        }
+        if let Some(p) = covered.iter().position(|&c| !c) {
+            return Err(SphereTreeError::InvalidParameter(format!(
+                "point {p} is covered by no candidate"
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Distance from `centre` to the surface and whether it is inside.
+pub(crate) fn centre_depth(surface: &Surface, centre: DVec3) -> (f64, bool) {
+    let inside = surface.is_inside(centre);
+    let d = surface
+        .closest(centre)
+        .map_or(f64::INFINITY, |c| c.distance);
+    (d, inside)
+}
+
+/// The eq. 2 error of a sphere of radius `radius` whose centre is `depth` from the
+/// surface, inside or not.
+pub(crate) fn eq2_error(radius: f64, depth: f64, inside: bool) -> f64 {
+    if inside {
+        (radius - depth).max(0.0)
+    } else {
+        radius + depth
+    }
+}
+
+/// Indices (ascending) of `points` within `sphere` (with a relative tolerance for
+/// rounding).
+pub(crate) fn points_within(points: &[DVec3], sphere: &Sphere) -> Vec<u32> {
+    let tolerance = 1e-12 * sphere.radius.max(1.0);
+    (0..points.len() as u32)
+        .filter(|&i| sphere.contains_point(points[i as usize], tolerance))
+        .collect()
+}
+
+/// Which reducer to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reducer {
+    /// [`merge`].
+    Merge,
+    /// [`expand_select`] with `MaxElim`.
+    Expand,
+    /// Both, keeping the set with the smaller worst error ([`combined`]).
+    #[default]
+    Combined,
+}
+
+/// Runs both [`merge`] and [`expand_select`] (`MaxElim`) and keeps the set with the smaller
+/// worst error (ties: merge), the paper's fallback for shapes where expand-select fails,
+/// such as a thick tube whose medial spheres sit in its wall.
+///
+/// # Errors
+///
+/// As [`merge`].
+pub fn combined(
+    input: &ReductionInput<'_>,
+    target: usize,
+) -> Result<Vec<FittedSphere>, SphereTreeError> {
+    let merged = merge(input, target)?;
+    let expanded = expand_select(input, target, Selection::MaxElim)?.spheres;
+    if worst(&expanded) < worst(&merged) {
+        Ok(expanded)
+    } else {
+        Ok(merged)
+    }
+}
+
+/// Runs the chosen reducer.
+///
+/// # Errors
+///
+/// As [`merge`].
+pub fn reduce(
+    reducer: Reducer,
+    input: &ReductionInput<'_>,
+    target: usize,
+) -> Result<Vec<FittedSphere>, SphereTreeError> {
+    match reducer {
+        Reducer::Merge => merge(input, target),
+        Reducer::Expand => Ok(expand_select(input, target, Selection::MaxElim)?.spheres),
+        Reducer::Combined => combined(input, target),
+    }
+}
+
+/// The largest error of a set (0 when empty).
+pub fn worst(spheres: &[FittedSphere]) -> f64 {
+    spheres.iter().map(|s| s.error).fold(0.0, f64::max)
+}
