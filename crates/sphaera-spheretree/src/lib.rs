@@ -11,5 +11,7 @@ pub mod evaluate;
 pub mod sph;
 
 pub use error::SphereTreeError;
+pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
+pub use sph::{SphFile, read_sph, write_sph};
 pub use sphaera_mesh::Sphere;

@@ -89,6 +89,17 @@
 //! nearest sphere's surface). Both are estimates from samples, not certificates (the
 //! sphere-tree construction certifies coverage itself).
 //!
+//! # Performance
+//!
+//! Each patch costs one closest-point query and, away from the surface, one winding-number
+//! inside test. 512 spheres poking out of `bunny_lowres.obj` (3,674 triangles) by 0.1–0.8 %
+//! of the diagonal, release build, 2 shared cores: 1.1 s at the default tolerance (10⁻⁴
+//! of the diagonal, 920 patches per sphere on average, 5,300 at most, all converged),
+//! 0.54 s at 10⁻³ (430 per sphere); the coverage of 100,000 samples, 35 ms
+//! (`cargo test --release -p sphaera-spheretree --test evaluate bunny_512 -- --ignored
+//! --nocapture`). Flat maxima cost the most: a sphere concentric with a 16-segment
+//! sphere mesh needs 7,000–15,000 patches.
+//!
 //! # Determinism
 //!
 //! Results depend only on the inputs: the heap breaks ties by creation order, the

@@ -244,7 +244,7 @@ pub(crate) fn fit(
 }
 
 /// [`sphere_error`] for every sphere, in parallel with the `parallel` feature (the results
-/// are identical either way).
+/// are identical either way). An empty slice gives an empty vector.
 ///
 /// # Examples
 ///
