@@ -30,4 +30,8 @@ pub enum SphereTreeError {
         /// What is wrong there.
         message: String,
     },
+    /// An evaluation was asked for a set without spheres (its error and coverage would be
+    /// meaningless).
+    #[error("the sphere set is empty")]
+    EmptySphereSet,
 }

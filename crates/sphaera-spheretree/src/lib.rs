@@ -16,7 +16,9 @@ mod tree;
 
 pub use build::{BuildProgress, Params, build, build_with_progress};
 pub use error::SphereTreeError;
+pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
 pub use reduce::Reducer;
+pub use sph::{SphFile, read_sph, write_sph};
 pub use sphaera_mesh::Sphere;
 pub use tree::{SphereTree, TreeNode};

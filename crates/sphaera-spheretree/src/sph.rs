@@ -1,1 +1,389 @@
-//! The classic `.sph` sphere-tree text format (work in progress).
+//! The classic `.sph` sphere-tree text format of the original sphere-tree construction
+//! toolkit (Bradshaw and O'Sullivan), so sphere-trees built by other tools can be
+//! evaluated beside ours, and ours read by them.
+//!
+//! # The format
+//!
+//! ```text
+//! 3 2                  ← levels (including the root) and branching factor B
+//! 0 0 0 2 1            ← node 0, the root: x y z radius importance
+//! -1 0 0 1 1           ← nodes 1 … B: the root's children
+//! 1 0 0 1 1
+//! -1.5 0 0 0.5 1       ← nodes B+1 … B+B²: the grandchildren
+//! -0.5 0 0 0.5 1
+//! 0 0 0 -1 1           ← an unused slot (radius ≤ 0)
+//! 0 0 0 -1 1
+//! ```
+//!
+//! - Line 1: the number of **levels including the root** (a root alone is 1 level) and
+//!   the branching factor `B`.
+//! - Then the nodes of a **complete** `B`-ary tree stored as a flat array, level by level:
+//!   `1 + B + B² + … + B^(levels−1)` lines. The children of node `N` are nodes
+//!   `N·B + 1 … N·B + B`, its parent `(N − 1) / B`.
+//! - A node line is `x y z r importance`. A radius `r ≤ 0` marks an unused slot (the
+//!   toolkit writes `-1`; it also treats `r = 0` as unused). The importance is 1 for
+//!   every sphere the toolkit writes. Older tools write the centres relative to the
+//!   mesh's bounding-box centre: [`read_sph`] adds an offset to every centre, and
+//!   [`write_sph`] subtracts one.
+//!
+//! The reader also accepts what the toolkit itself accepts: blank lines anywhere, node
+//! lines of 4 fields (`x y z r`, importance 1), and the toolkit's 10-field lines, whose
+//! last five fields (an auxiliary sphere and its error decrease, written by some of its
+//! optimisers) are ignored. Trailing lines beyond the complete tree are accepted only when
+//! they are unused slots (the toolkit allocates `1 + B` nodes even for a single level).
+//! Anything else is a [`SphereTreeError::Format`] naming the line.
+
+use std::fmt::Write as _;
+use std::ops::Range;
+
+use glam::DVec3;
+
+use crate::{Sphere, SphereTreeError};
+
+/// Importance written for an unused slot, as the original toolkit does.
+const UNUSED_IMPORTANCE: f64 = 1.0;
+
+/// A sphere-tree in `.sph` layout: a complete `branch`-ary tree of `levels` levels as a
+/// flat array of optional nodes (a sphere and its importance).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::sph::SphFile;
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let root = Sphere::new(DVec3::ZERO, 2.0);
+/// let left = Sphere::new(DVec3::new(-1.0, 0.0, 0.0), 1.0);
+/// let tree = SphFile {
+///     levels: 2,
+///     branch: 3,
+///     nodes: vec![Some((root, 1.0)), Some((left, 1.0)), None, None],
+/// };
+/// assert_eq!(SphFile::node_count(2, 3), Some(4));
+/// assert_eq!(tree.children(0), 1..4);
+/// assert_eq!(tree.level(0), vec![root]);
+/// assert_eq!(tree.level(1), vec![left]);
+/// assert!(tree.level(2).is_empty());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct SphFile {
+    /// The number of levels, including the root (at least 1).
+    pub levels: usize,
+    /// The branching factor (at least 1).
+    pub branch: usize,
+    /// The nodes, level by level: `None` for an unused slot, else the sphere and its
+    /// importance. A complete tree has [`SphFile::node_count`] nodes.
+    pub nodes: Vec<Option<(Sphere, f64)>>,
+}
+
+impl SphFile {
+    /// The number of nodes of a complete `branch`-ary tree of `levels` levels,
+    /// `1 + B + … + B^(levels−1)`; `None` when it overflows `usize`.
+    #[must_use]
+    pub fn node_count(levels: usize, branch: usize) -> Option<usize> {
+        let mut total = 0_usize;
+        let mut width = 1_usize;
+        for level in 0..levels {
+            total = total.checked_add(width)?;
+            if level + 1 < levels {
+                width = width.checked_mul(branch)?;
+            }
+        }
+        Some(total)
+    }
+
+    /// The indices of the nodes of `level` (0 is the root), clamped to the stored nodes:
+    /// empty beyond the last level.
+    #[must_use]
+    pub fn level_range(&self, level: usize) -> Range<usize> {
+        if level >= self.levels {
+            return 0..0;
+        }
+        let start = Self::node_count(level, self.branch).unwrap_or(usize::MAX);
+        let end = Self::node_count(level + 1, self.branch).unwrap_or(usize::MAX);
+        start.min(self.nodes.len())..end.min(self.nodes.len())
+    }
+
+    /// The used spheres of `level` (0 is the root), in slot order.
+    #[must_use]
+    pub fn level(&self, level: usize) -> Vec<Sphere> {
+        self.nodes[self.level_range(level)]
+            .iter()
+            .filter_map(|n| n.map(|(s, _)| s))
+            .collect()
+    }
+
+    /// The slots of the children of `node`: `node·B + 1 … node·B + B`, clamped to the
+    /// stored nodes.
+    #[must_use]
+    pub fn children(&self, node: usize) -> Range<usize> {
+        let first = node
+            .saturating_mul(self.branch)
+            .saturating_add(1)
+            .min(self.nodes.len());
+        first..first.saturating_add(self.branch).min(self.nodes.len())
+    }
+}
+
+/// Reads a `.sph` file, adding `offset` to every centre (pass the mesh's bounding-box
+/// centre for files written relative to it, else [`DVec3::ZERO`]).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::sph::read_sph;
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let text = "2 2\n0 0 0 2 1\n-1 0 0 1 1\n0 0 0 -1 1\n";
+/// let tree = read_sph(text, DVec3::new(10.0, 0.0, 0.0))?;
+/// assert_eq!((tree.levels, tree.branch), (2, 2));
+/// assert_eq!(tree.level(1), vec![Sphere::new(DVec3::new(9.0, 0.0, 0.0), 1.0)]);
+/// assert_eq!(tree.nodes[2], None);
+///
+/// let error = read_sph("2 2\n0 0 0 2 1\n-1 0 zero 1 1\n0 0 0 -1 1\n", DVec3::ZERO).unwrap_err();
+/// assert_eq!(error.to_string(), "line 3: field 3 is not a number: \"zero\"");
+/// # Ok::<(), sphaera_spheretree::SphereTreeError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::Format`] with the 1-based line number: a header that is not two
+/// integers, zero levels or branching factor, a tree too large for memory, a node line
+/// without 4, 5 or 10 numeric fields, a NaN or infinite field, fewer node lines than the
+/// complete tree has, or used spheres beyond it.
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// Linear in the text's length.
+pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty());
+    let Some((header_line, header)) = lines.next() else {
+        return Err(format_error(
+            1,
+            "empty file: expected a header \"levels branch\"",
+        ));
+    };
+    let (levels, branch) = parse_header(header_line, header)?;
+    let expected = SphFile::node_count(levels, branch)
+        .filter(|&n| n <= text.len())
+        .ok_or_else(|| {
+            format_error(
+                header_line,
+                format!(
+                    "a complete tree of {levels} levels and branching factor {branch} has more nodes than the file has characters"
+                ),
+            )
+        })?;
+    let mut nodes = Vec::with_capacity(expected);
+    let mut last_line = header_line;
+    for (number, line) in lines {
+        last_line = number;
+        let node = parse_node(number, line, offset)?;
+        if nodes.len() < expected {
+            nodes.push(node);
+        } else if node.is_some() {
+            return Err(format_error(
+                number,
+                format!("a used sphere beyond the {expected} nodes of the complete tree"),
+            ));
+        }
+    }
+    if nodes.len() < expected {
+        return Err(format_error(
+            last_line + 1,
+            format!(
+                "the file ends after {} of the {expected} nodes of a complete tree of {levels} levels and branching factor {branch}",
+                nodes.len()
+            ),
+        ));
+    }
+    Ok(SphFile {
+        levels,
+        branch,
+        nodes,
+    })
+}
+
+/// Writes `file` in `.sph` format, subtracting `offset` from every centre. Numbers are
+/// written with Rust's shortest exact representation (no exponent), so
+/// `read_sph(&write_sph(f, DVec3::ZERO)?, DVec3::ZERO)` gives `f` back bit for bit.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::sph::{SphFile, read_sph, write_sph};
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let tree = SphFile {
+///     levels: 2,
+///     branch: 2,
+///     nodes: vec![
+///         Some((Sphere::new(DVec3::ZERO, 2.0), 1.0)),
+///         Some((Sphere::new(DVec3::new(-1.0, 0.0, 0.5), 1.0), 1.0)),
+///         None,
+///     ],
+/// };
+/// let text = write_sph(&tree, DVec3::ZERO)?;
+/// assert_eq!(text, "2 2\n0 0 0 2 1\n-1 0 0.5 1 1\n0 0 0 -1 1\n");
+/// assert_eq!(read_sph(&text, DVec3::ZERO)?, tree);
+/// # Ok::<(), sphaera_spheretree::SphereTreeError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::InvalidParameter`] for zero levels or branching factor, a node
+/// count other than [`SphFile::node_count`], or a NaN or infinite importance;
+/// [`SphereTreeError::InvalidSphere`] (with the node index) for a sphere with a
+/// non-finite centre or radius, or a radius that is not positive (the format reads it as
+/// an unused slot).
+///
+/// # Panics
+///
+/// Never.
+pub fn write_sph(file: &SphFile, offset: DVec3) -> Result<String, SphereTreeError> {
+    if file.levels == 0 || file.branch == 0 {
+        return Err(SphereTreeError::InvalidParameter(format!(
+            "a .sph tree needs at least one level and a branching factor of at least 1, got {} levels and branching factor {}",
+            file.levels, file.branch
+        )));
+    }
+    let expected = SphFile::node_count(file.levels, file.branch);
+    if expected != Some(file.nodes.len()) {
+        return Err(SphereTreeError::InvalidParameter(format!(
+            "a complete tree of {} levels and branching factor {} has {} nodes, got {}",
+            file.levels,
+            file.branch,
+            expected.map_or_else(|| "too many".to_owned(), |n| n.to_string()),
+            file.nodes.len()
+        )));
+    }
+    let mut text = String::with_capacity(32 * file.nodes.len() + 16);
+    // Writing to a `String` cannot fail.
+    let _ = writeln!(text, "{} {}", file.levels, file.branch);
+    for (index, node) in file.nodes.iter().enumerate() {
+        match node {
+            Some((sphere, importance)) => {
+                let center = sphere.center - offset;
+                if !(center.is_finite() && sphere.radius.is_finite() && sphere.radius > 0.0) {
+                    return Err(SphereTreeError::InvalidSphere { index });
+                }
+                if !importance.is_finite() {
+                    return Err(SphereTreeError::InvalidParameter(format!(
+                        "node {index} has a non-finite importance {importance}"
+                    )));
+                }
+                let _ = writeln!(
+                    text,
+                    "{} {} {} {} {}",
+                    center.x, center.y, center.z, sphere.radius, importance
+                );
+            }
+            None => {
+                let _ = writeln!(text, "0 0 0 -1 {UNUSED_IMPORTANCE}");
+            }
+        }
+    }
+    Ok(text)
+}
+
+/// The header's levels and branching factor.
+fn parse_header(number: usize, line: &str) -> Result<(usize, usize), SphereTreeError> {
+    let fields: Vec<&str> = line.split_whitespace().collect();
+    let [levels, branch] = fields.as_slice() else {
+        return Err(format_error(
+            number,
+            format!(
+                "expected a header of two integers \"levels branch\", found {} fields",
+                fields.len()
+            ),
+        ));
+    };
+    let integer = |name: &str, field: &str| {
+        field.parse::<usize>().map_err(|_| {
+            format_error(
+                number,
+                format!("the {name} is not a non-negative integer: {field:?}"),
+            )
+        })
+    };
+    let levels = integer("number of levels", levels)?;
+    let branch = integer("branching factor", branch)?;
+    if levels == 0 {
+        return Err(format_error(
+            number,
+            "a tree has at least one level (the root)",
+        ));
+    }
+    if branch == 0 {
+        return Err(format_error(
+            number,
+            "the branching factor must be at least 1",
+        ));
+    }
+    Ok((levels, branch))
+}
+
+/// One node line: `None` for an unused slot (radius ≤ 0).
+fn parse_node(
+    number: usize,
+    line: &str,
+    offset: DVec3,
+) -> Result<Option<(Sphere, f64)>, SphereTreeError> {
+    let mut values = [0.0_f64; 10];
+    let mut count = 0;
+    for (i, field) in line.split_whitespace().enumerate() {
+        let value: f64 = field.parse().map_err(|_| {
+            format_error(
+                number,
+                format!("field {} is not a number: {field:?}", i + 1),
+            )
+        })?;
+        if !value.is_finite() {
+            return Err(format_error(
+                number,
+                format!("field {} is not finite: {field:?}", i + 1),
+            ));
+        }
+        if let Some(slot) = values.get_mut(i) {
+            *slot = value;
+        }
+        count = i + 1;
+    }
+    if !matches!(count, 4 | 5 | 10) {
+        return Err(format_error(
+            number,
+            format!(
+                "expected 4, 5 or 10 fields (x y z r [importance [auxiliary sphere]]), found {count}"
+            ),
+        ));
+    }
+    let [x, y, z, radius, importance, ..] = values;
+    if radius <= 0.0 {
+        return Ok(None);
+    }
+    let importance = if count == 4 { 1.0 } else { importance };
+    let center = DVec3::new(x, y, z) + offset;
+    if !center.is_finite() {
+        return Err(format_error(
+            number,
+            "the centre is not finite once the offset is added",
+        ));
+    }
+    Ok(Some((Sphere::new(center, radius), importance)))
+}
+
+/// A [`SphereTreeError::Format`] at `line`.
+fn format_error(line: usize, message: impl Into<String>) -> SphereTreeError {
+    SphereTreeError::Format {
+        line,
+        message: message.into(),
+    }
+}

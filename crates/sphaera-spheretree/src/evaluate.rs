@@ -1,1 +1,0 @@
-//! Fit evaluation of sphere sets (work in progress).

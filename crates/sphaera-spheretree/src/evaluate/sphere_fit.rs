@@ -1,0 +1,299 @@
+//! The certified error of one sphere: branch and bound over its surface.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use glam::DVec3;
+use sphaera_medial::Surface;
+
+use super::EvaluationOptions;
+use super::patch::{Patch, Probe, icosahedron, upper_bound};
+use crate::{Sphere, SphereTreeError};
+
+/// Fraction of the tolerance below which a point's inside/outside classification is not
+/// trusted (the guard band, see the [module documentation](super)).
+const GUARD_FRACTION: f64 = 0.25;
+
+/// The certified error of one sphere: the largest distance from a point of its surface
+/// lying outside the object to the object's surface lies in `[lower, upper]`.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::Surface;
+/// use sphaera_mesh::shapes;
+/// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let mesh = shapes::cube(2.0, 1)?; // [-1, 1]³
+/// let surface = Surface::new(&mesh)?;
+/// // A ball poking 0.5 out of the top face: its error is 0.5.
+/// let fit = sphere_error(&surface, &Sphere::new(DVec3::new(0.0, 0.0, 0.5), 1.0),
+///     &EvaluationOptions::default())?;
+/// assert!(fit.converged && fit.lower <= 0.5 + 1e-9 && 0.5 <= fit.upper + 1e-9);
+/// assert!(fit.upper - fit.lower <= EvaluationOptions::default().tolerance_for(surface.diagonal()));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SphereFit {
+    /// A true value of the error: `f` at an evaluated point of the sphere's surface (0 when
+    /// no evaluated point lies outside the object beyond the guard band).
+    pub lower: f64,
+    /// A certified bound of the error: no point of the sphere's surface lies outside the
+    /// object farther than this from the object's surface.
+    pub upper: f64,
+    /// Whether `upper − lower` reached the tolerance within the patch budget. When
+    /// `false` the interval is still valid, only wider.
+    pub converged: bool,
+    /// The number of patches evaluated (the cost: one closest-point query and at most one
+    /// inside test each).
+    pub patches: usize,
+    /// The evaluated point where `lower` was found (`None` when `lower` is 0).
+    pub witness: Option<DVec3>,
+}
+
+/// A patch in the queue, ordered by its upper bound (then by creation order, for
+/// determinism).
+struct Queued {
+    upper: f64,
+    order: usize,
+    patch: Patch,
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Queued {}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // Largest bound first; among equal bounds the oldest patch first.
+        self.upper
+            .total_cmp(&other.upper)
+            .then_with(|| other.order.cmp(&self.order))
+    }
+}
+
+/// The state of one sphere's branch and bound.
+struct Search<'a> {
+    surface: &'a Surface,
+    center: DVec3,
+    radius: f64,
+    guard: f64,
+    lower: f64,
+    witness: Option<DVec3>,
+    patches: usize,
+}
+
+impl Search<'_> {
+    /// Evaluates the representative point of `patch`, raises the lower bound and returns
+    /// the patch's upper bound.
+    fn evaluate(&mut self, patch: &Patch) -> Result<f64, SphereTreeError> {
+        self.patches += 1;
+        let point = self.center + self.radius * patch.direction;
+        let closest = self.surface.closest(point)?;
+        let distance = closest.distance;
+        let (trusted_outside, trusted_inside) = if distance > self.guard {
+            let inside = self.surface.is_inside(point);
+            (!inside, inside)
+        } else {
+            (false, false)
+        };
+        if trusted_outside && distance > self.lower {
+            self.lower = distance;
+            self.witness = Some(point);
+        }
+        let probe = Probe {
+            distance,
+            closest: closest.point,
+            trusted_inside,
+        };
+        Ok(upper_bound(patch, self.center, self.radius, &probe))
+    }
+}
+
+/// The certified error of `sphere` against the object of `surface`: an interval
+/// `[lower, upper]` containing `E = max f` over the sphere's surface, where `f(x)` is the
+/// distance from `x` to the mesh surface when `x` is outside the object and 0 inside.
+///
+/// Branch and bound over spherical-triangle patches of the sphere's surface (see the
+/// [module documentation](super)), best first by upper bound, until `upper − lower` is at
+/// most the tolerance of `options` or the patch budget is spent (`converged: false`).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::Surface;
+/// use sphaera_mesh::shapes;
+/// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let surface = Surface::new(&shapes::sphere(1.0, 24)?)?;
+/// let options = EvaluationOptions::default();
+/// // Inside: no error.
+/// let inside = sphere_error(&surface, &Sphere::new(DVec3::ZERO, 0.5), &options)?;
+/// assert_eq!((inside.lower, inside.upper), (0.0, 0.0));
+/// // Outside, 1 from the unit ball: the farthest point is 1 + 2·0.5 = 2 away.
+/// let outside = sphere_error(&surface, &Sphere::new(DVec3::new(2.5, 0.0, 0.0), 0.5), &options)?;
+/// assert!(outside.converged && (outside.lower - 2.0).abs() < 2e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::InvalidSphere`] (index 0) for a NaN or infinite centre or radius or a
+/// negative radius; [`SphereTreeError::InvalidParameter`] for bad options.
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// Each patch costs one closest-point query and (away from the surface) one
+/// winding-number inside test. A sphere whose error is attained at a single point
+/// converges in a few hundred patches; flat maxima (a sphere concentric with a round
+/// object) need more, up to the budget.
+pub fn sphere_error(
+    surface: &Surface,
+    sphere: &Sphere,
+    options: &EvaluationOptions,
+) -> Result<SphereFit, SphereTreeError> {
+    let tolerance = options.checked_tolerance(surface.diagonal())?;
+    if !sphere.is_valid() {
+        return Err(SphereTreeError::InvalidSphere { index: 0 });
+    }
+    fit(surface, sphere, tolerance, options.max_patches())
+}
+
+/// The branch and bound, for a valid sphere and a checked tolerance.
+pub(crate) fn fit(
+    surface: &Surface,
+    sphere: &Sphere,
+    tolerance: f64,
+    max_patches: usize,
+) -> Result<SphereFit, SphereTreeError> {
+    let mut search = Search {
+        surface,
+        center: sphere.center,
+        radius: sphere.radius,
+        guard: GUARD_FRACTION * tolerance,
+        lower: 0.0,
+        witness: None,
+        patches: 0,
+    };
+    let mut queue = BinaryHeap::new();
+    // The largest upper bound of the patches dropped because they can no longer matter.
+    let mut dropped = 0.0_f64;
+    let mut order = 0_usize;
+    for patch in icosahedron() {
+        let upper = search.evaluate(&patch)?;
+        queue.push(Queued {
+            upper,
+            order,
+            patch,
+        });
+        order += 1;
+    }
+    let converged = loop {
+        let Some(top) = queue.pop() else {
+            break true;
+        };
+        if top.upper - search.lower <= tolerance {
+            queue.push(top);
+            break true;
+        }
+        if search.patches + 4 > max_patches {
+            queue.push(top);
+            break false;
+        }
+        for child in top.patch.split() {
+            // A child's bound may exceed its parent's (each is computed independently);
+            // the parent's also holds on the child, so keep the smaller.
+            let upper = search.evaluate(&child)?.min(top.upper);
+            if upper - search.lower <= tolerance {
+                dropped = dropped.max(upper);
+            } else {
+                queue.push(Queued {
+                    upper,
+                    order,
+                    patch: child,
+                });
+            }
+            order += 1;
+        }
+    };
+    let open = queue.peek().map_or(0.0, |q| q.upper);
+    let upper = open.max(dropped).max(search.lower);
+    Ok(SphereFit {
+        lower: search.lower,
+        upper,
+        converged,
+        patches: search.patches,
+        witness: search.witness,
+    })
+}
+
+/// [`sphere_error`] for every sphere, in parallel with the `parallel` feature (the results
+/// are identical either way). An empty slice gives an empty vector.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::Surface;
+/// use sphaera_mesh::shapes;
+/// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_errors};
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let surface = Surface::new(&shapes::cube(2.0, 1)?)?;
+/// let spheres = [Sphere::new(DVec3::ZERO, 0.5), Sphere::new(DVec3::new(1.0, 0.0, 0.0), 0.25)];
+/// let fits = sphere_errors(&surface, &spheres, &EvaluationOptions::default())?;
+/// assert_eq!(fits[0].upper, 0.0);
+/// assert!((fits[1].lower - 0.25).abs() < 1e-3 && fits[1].upper >= 0.25 - 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::InvalidSphere`] with the index of the first invalid sphere;
+/// [`SphereTreeError::InvalidParameter`] for bad options.
+///
+/// # Panics
+///
+/// Never.
+pub fn sphere_errors(
+    surface: &Surface,
+    spheres: &[Sphere],
+    options: &EvaluationOptions,
+) -> Result<Vec<SphereFit>, SphereTreeError> {
+    let tolerance = options.checked_tolerance(surface.diagonal())?;
+    check_spheres(spheres)?;
+    let max_patches = options.max_patches();
+    let one = |s: &Sphere| fit(surface, s, tolerance, max_patches);
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        spheres.par_iter().map(one).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        spheres.iter().map(one).collect()
+    }
+}
+
+/// `Ok` when every sphere is valid, else the index of the first invalid one.
+pub(crate) fn check_spheres(spheres: &[Sphere]) -> Result<(), SphereTreeError> {
+    match spheres.iter().position(|s| !s.is_valid()) {
+        Some(index) => Err(SphereTreeError::InvalidSphere { index }),
+        None => Ok(()),
+    }
+}
