@@ -5,8 +5,9 @@
 
 use std::time::Instant;
 
+use sphaera_medial::Surface;
 use sphaera_mesh::{io, shapes};
-use sphaera_spheretree::{Params, Reducer, build};
+use sphaera_spheretree::{EvaluationOptions, Params, Reducer, build, evaluate_set};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -26,13 +27,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{reducer:?}: built in {:.2} s",
         started.elapsed().as_secs_f64()
     );
+    let surface = Surface::new(&mesh)?;
+    let options = EvaluationOptions::default().with_relative_tolerance(1e-3);
     for level in 0..tree.level_count() {
         let nodes = tree.level(level);
         let worst = nodes.iter().map(|n| n.error).fold(0.0, f64::max);
+        let evaluation = evaluate_set(&surface, &mesh, &tree.level_spheres(level), &options)?;
         println!(
-            "level {level}: {} spheres, worst eq. 2 error {:.2} % of the diagonal",
+            "level {level}: {} spheres, worst eq. 2 error {:.2} %, certified worst error {:.2}–{:.2} %, \
+             uncovered surface {:.3} % (largest gap {:.3} %)",
             nodes.len(),
-            100.0 * worst / diagonal
+            100.0 * worst / diagonal,
+            100.0 * evaluation.worst_lower / diagonal,
+            100.0 * evaluation.worst_upper / diagonal,
+            100.0 * evaluation.coverage.uncovered_fraction,
+            100.0 * evaluation.coverage.largest_gap / diagonal,
         );
     }
     Ok(())
