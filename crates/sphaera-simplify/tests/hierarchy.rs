@@ -215,3 +215,27 @@ fn refining_everything_gives_back_the_input() {
     let memory = hierarchy.memory();
     assert!(memory.bytes_per_triangle(memory.fixed_tables) > 0.0);
 }
+
+/// A case proptest found on a fresh CI run (2026-11-21): on the open height-field grid
+/// with optimal placement, three splits leave a refined state where invariant (A) fails by
+/// 8.8e-4. A real bug in the refinement's radii, not yet fixed: ignored so that CI stays
+/// usable, and to be fixed first (`cargo test -p sphaera-simplify --test hierarchy --
+/// --ignored`).
+#[test]
+#[ignore = "known bug: invariant (A) fails in a refined state of the open grid (see the doc comment)"]
+fn refined_open_grid_with_optimal_placement_keeps_invariant_a() {
+    let mesh = shape(3, 6);
+    let hierarchy = Simplifier::new(&mesh)
+        .placement(Placement::Optimal)
+        .build_hierarchy()
+        .unwrap();
+    let mut refinement = hierarchy.refinement();
+    for pick in [386_499_168_u32, 1_059_914_931, 147_362_565] {
+        let splittable: Vec<u32> = (0..hierarchy.vertex_count() as u32)
+            .filter(|&v| refinement.can_split(v))
+            .collect();
+        let v = splittable[pick as usize % splittable.len()];
+        refinement.split_vertex(v).unwrap();
+    }
+    check_invariants(&mesh, &refinement.to_simplified(), 0);
+}
