@@ -1,7 +1,7 @@
 //! Sphere-tree construction: structure, coverage of the samples at every level, the
 //! trivial cases and clear errors.
 
-use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_mesh::{DVec3, TriMesh, sampling, shapes};
 use sphaera_spheretree::{Params, Reducer, SphereTree, SphereTreeError, build};
 
 /// Every node's children are in the next level and point back to it; no node has more
@@ -48,6 +48,18 @@ fn every_reducer_builds_a_consistent_tree_on_a_capsule() {
             // Regions partition the samples.
             let total: u32 = tree.level(level).iter().map(|n| n.region_samples).sum();
             assert_eq!(total, 1_500, "{reducer:?} level {level}");
+        }
+        // Every surface sample (the same ones: same count and seed) lies in a sphere of
+        // every level.
+        let samples = sampling::poisson_disk(&mesh, 1_500, 1).unwrap().samples;
+        for level in 0..tree.level_count() {
+            let spheres = tree.level_spheres(level);
+            for s in &samples {
+                assert!(
+                    spheres.iter().any(|b| b.contains_point(s.position, 1e-9)),
+                    "{reducer:?}: a sample is outside every sphere of level {level}"
+                );
+            }
         }
         // Errors shrink level by level.
         let worst = |l: usize| tree.level(l).iter().map(|n| n.error).fold(0.0, f64::max);

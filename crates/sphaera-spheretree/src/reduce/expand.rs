@@ -134,48 +134,46 @@ pub fn expand_select(
                 .fold(f64::INFINITY, f64::min)
         })
         .fold(0.0_f64, f64::max);
-    let high = expandable
+    // At `high`, the candidate needing the smallest standoff to reach every point covers
+    // them all alone: the search's feasible end.
+    let (single, high) = expandable
         .iter()
-        .map(|x| {
-            input
+        .enumerate()
+        .map(|(i, x)| {
+            let needed = input
                 .points
                 .iter()
                 .map(|&p| x.needed(p))
-                .fold(0.0_f64, f64::max)
+                .fold(0.0_f64, f64::max);
+            (i, needed)
         })
-        .fold(f64::INFINITY, f64::min)
-        .max(low);
-    // An infeasible standoff (rounding at `low`) counts as too many spheres.
-    let run = |e: f64| {
-        select(input, &expandable, e, selection).unwrap_or_else(|| vec![usize::MAX; target + 1])
-    };
-    let mut best = run(high);
+        .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
+        .map_or((0, low), |(i, e)| (i, e.max(low)));
+    let mut best = vec![single];
     let mut best_e = high;
     let mut next_above: Option<usize> = None;
-    let at_low = run(low);
-    if at_low.len() <= target {
-        best = at_low;
-        best_e = low;
-    } else {
-        next_above = Some(at_low.len());
-        let (mut lo, mut hi) = (low, high);
-        for _ in 0..SEARCH_STEPS {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
+    // Bisection on the standoff for the smallest one whose selection fits the target; a
+    // standoff where rounding leaves a point uncoverable counts as too small.
+    let (mut lo, mut hi) = (low, high);
+    let mut probe = low;
+    for _ in 0..SEARCH_STEPS {
+        match select(input, &expandable, probe, selection) {
+            Some(chosen) if chosen.len() <= target => {
+                hi = probe;
+                best = chosen;
+                best_e = probe;
             }
-            let chosen = run(mid);
-            if chosen.len() <= target {
-                hi = mid;
-                if chosen.len() >= best.len() || mid < best_e {
-                    best = chosen;
-                    best_e = mid;
-                }
-            } else {
-                lo = mid;
+            Some(chosen) => {
+                lo = probe;
                 next_above = Some(next_above.map_or(chosen.len(), |n| n.min(chosen.len())));
             }
+            None => lo = probe,
         }
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        probe = mid;
     }
     let spheres = best
         .iter()
