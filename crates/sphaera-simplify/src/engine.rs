@@ -359,7 +359,7 @@ pub(crate) fn run(
         };
         let v = mesh.target(h);
         if let Some(recorder) = recorder.as_deref_mut() {
-            recorder.before(&mesh, h);
+            recorder.before(&mesh, h, target_position != mesh.position(v));
         }
         if mesh.collapse_edge(h, target_position).is_err() {
             // The checks above passed, so this does not happen; skip the vertex if it does

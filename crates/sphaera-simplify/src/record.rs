@@ -2,7 +2,8 @@
 //! wrote, from which the fixed tables of the [`Hierarchy`](crate::Hierarchy) are built.
 //!
 //! A collapse of `u` into `v` *reads* the radii of the closed one-ring of `u` (they enter
-//! its radius) and the faces around `u` and `v`; it *writes* the radius of `v` and the
+//! its radius) and the faces around `u` and `v`; a full-edge collapse, which moves `v`,
+//! also reads the positions and radii of `v`'s one-ring (the triangles around `v` move); it *writes* the radius of `v` and the
 //! faces of `u`'s fan that survive (they now have `v` as a corner). It depends on the
 //! latest earlier collapse that wrote anything it read. Undoing a collapse requires
 //! undoing every applied collapse that depends on it first; with that rule, every
@@ -64,8 +65,10 @@ impl Recorder {
         }
     }
 
-    /// Records what collapsing `h` reads, just before the collapse.
-    pub fn before(&mut self, mesh: &HalfEdgeMesh, h: HalfEdgeId) {
+    /// Records what collapsing `h` reads, just before the collapse; `moves_parent` says
+    /// whether the collapse moves the kept vertex (a full-edge collapse), in which case it
+    /// also reads the kept vertex's one-ring.
+    pub fn before(&mut self, mesh: &HalfEdgeMesh, h: HalfEdgeId, moves_parent: bool) {
         let u = mesh.origin(h);
         let v = mesh.target(h);
         let edge_faces: SmallVec<[u32; 2]> = std::iter::once(h)
@@ -83,6 +86,9 @@ impl Recorder {
         depends_on.push(vertex_writer(u));
         depends_on.push(vertex_writer(v));
         depends_on.extend(mesh.neighbors(u).map(vertex_writer));
+        if moves_parent {
+            depends_on.extend(mesh.neighbors(v).map(vertex_writer));
+        }
         let face_writer = |f: FaceId| self.last_face_writer[f.0 as usize];
         depends_on.extend(mesh.vertex_faces(u).map(face_writer));
         depends_on.extend(mesh.vertex_faces(v).map(face_writer));

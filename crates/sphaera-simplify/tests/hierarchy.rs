@@ -217,12 +217,11 @@ fn refining_everything_gives_back_the_input() {
 }
 
 /// A case proptest found on a fresh CI run (2026-11-21): on the open height-field grid
-/// with optimal placement, three splits leave a refined state where invariant (A) fails by
-/// 8.8e-4. A real bug in the refinement's radii, not yet fixed: ignored so that CI stays
-/// usable, and to be fixed first (`cargo test -p sphaera-simplify --test hierarchy --
-/// --ignored`).
+/// with optimal placement, three splits left a refined state where invariant (A) failed by
+/// 8.8e-4. The cause: a full-edge collapse moves the kept vertex, so its radius reads the
+/// kept vertex's one-ring too, and the recorder did not make it depend on the collapses
+/// into those neighbours; undoing one of them left the moved vertex's radius stale.
 #[test]
-#[ignore = "known bug: invariant (A) fails in a refined state of the open grid (see the doc comment)"]
 fn refined_open_grid_with_optimal_placement_keeps_invariant_a() {
     let mesh = shape(3, 6);
     let hierarchy = Simplifier::new(&mesh)
