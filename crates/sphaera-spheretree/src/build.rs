@@ -218,12 +218,10 @@ pub fn build_with_progress(
             &problems,
             params,
         )?;
-        for (parent, fitted) in parents.clone().zip(reduced) {
+        let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, params);
+        for ((parent, fitted), groups) in parents.clone().zip(reduced).zip(divisions) {
             let first = nodes.len() as u32;
             let region = regions[parent].clone();
-            let points: Vec<DVec3> = region.iter().map(|&i| samples[i as usize]).collect();
-            let spheres: Vec<_> = fitted.iter().map(|f| f.sphere).collect();
-            let groups = divide(&points, &spheres, params.balance_regions);
             for (f, group) in fitted.iter().zip(groups) {
                 // A child left without points is redundant: its siblings cover its part.
                 if group.is_empty() {
@@ -263,6 +261,39 @@ fn candidates(region: &[u32], spheres: &[sphaera_medial::MedialSphere]) -> Vec<C
         })
         .filter(|c| !c.covers.is_empty())
         .collect()
+}
+
+/// Divides every parent's region between its reduced spheres (in parallel with the
+/// `parallel` feature; each division is independent, so the result is the same): per
+/// parent, the groups of local region indices, one per sphere.
+fn divide_all(
+    samples: &[DVec3],
+    regions: &[Vec<u32>],
+    parents: std::ops::Range<usize>,
+    reduced: &[Vec<FittedSphere>],
+    params: &Params,
+) -> Vec<Vec<Vec<u32>>> {
+    let one = |(parent, fitted): (usize, &Vec<FittedSphere>)| {
+        let points: Vec<DVec3> = regions[parent]
+            .iter()
+            .map(|&i| samples[i as usize])
+            .collect();
+        let spheres: Vec<_> = fitted.iter().map(|f| f.sphere).collect();
+        divide(&points, &spheres, params.balance_regions)
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        parents
+            .into_par_iter()
+            .zip(reduced.par_iter())
+            .map(one)
+            .collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        parents.zip(reduced.iter()).map(one).collect()
+    }
 }
 
 /// Reduces every parent's candidates (in parallel with the `parallel` feature; each

@@ -16,6 +16,9 @@ use sphaera_mesh::geometry::minimum_enclosing_ball;
 /// Simplex iterations of the balancing search.
 const BALANCE_ITERATIONS: usize = 80;
 
+/// The simplex search stops when its values agree to this relative spread.
+const CONVERGED: f64 = 1e-9;
+
 /// For each point, the index of the sphere it is assigned to: among the spheres that
 /// contain it (with a relative tolerance), the one of smallest weighted power; a point no
 /// sphere contains goes to the sphere whose surface is nearest.
@@ -86,15 +89,24 @@ fn groups(assignment: &[usize], k: usize) -> Vec<Vec<u32>> {
     out
 }
 
+/// Regions with at least this many points measure their groups' enclosing balls in
+/// parallel (with the `parallel` feature).
+#[cfg(feature = "parallel")]
+const PARALLEL_POINTS: usize = 2_000;
+
 /// The largest enclosing-ball radius among the groups of a weighted division.
 fn largest_region(points: &[DVec3], spheres: &[Sphere], weights: &[f64]) -> f64 {
-    groups(&assign(points, spheres, weights), spheres.len())
-        .iter()
-        .map(|g| {
-            let pts: Vec<DVec3> = g.iter().map(|&i| points[i as usize]).collect();
-            minimum_enclosing_ball(&pts).map_or(0.0, |b| b.radius)
-        })
-        .fold(0.0, f64::max)
+    let radius = |g: &Vec<u32>| {
+        let pts: Vec<DVec3> = g.iter().map(|&i| points[i as usize]).collect();
+        minimum_enclosing_ball(&pts).map_or(0.0, |b| b.radius)
+    };
+    let groups = groups(&assign(points, spheres, weights), spheres.len());
+    #[cfg(feature = "parallel")]
+    if points.len() >= PARALLEL_POINTS {
+        use rayon::prelude::*;
+        return groups.par_iter().map(radius).reduce(|| 0.0, f64::max);
+    }
+    groups.iter().map(radius).fold(0.0, f64::max)
 }
 
 /// Minimizes `f` from `start` with the Nelder–Mead simplex method (reflection 1,
@@ -117,6 +129,10 @@ fn nelder_mead(f: impl Fn(&[f64]) -> f64, start: &[f64], step: f64, iterations: 
     };
     for _ in 0..iterations {
         simplex.sort_by(|a, b| a.1.total_cmp(&b.1));
+        // Converged (the objective is piecewise constant: a flat simplex stays flat).
+        if simplex[n].1 - simplex[0].1 <= CONVERGED * simplex[0].1.abs() {
+            break;
+        }
         let centroid: Vec<f64> = (0..n)
             .map(|j| simplex[..n].iter().map(|(x, _)| x[j]).sum::<f64>() / n as f64)
             .collect();

@@ -108,6 +108,33 @@ impl Surface {
         self.winding.is_inside(p)
     }
 
+    /// [`Surface::is_inside`] with the answer of the exact generalized winding number
+    /// (`sphaera_mesh::winding::WindingNumber::is_inside_certified`): where the fast
+    /// value's error bound cannot decide, the point is evaluated again more finely, and
+    /// exactly as a last resort. Exact except within rounding of the surface itself.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_medial::Surface;
+    /// use sphaera_mesh::shapes;
+    ///
+    /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
+    /// assert!(surface.is_inside_certified(DVec3::new(0.0, 0.0, 0.9)));
+    /// assert!(!surface.is_inside_certified(DVec3::new(0.0, 0.0, 1.01)));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// 4 to 15 times the cost of [`Surface::is_inside`] on random points, more very near
+    /// the surface.
+    #[must_use]
+    pub fn is_inside_certified(&self, p: DVec3) -> bool {
+        self.winding.is_inside_certified(p)
+    }
+
     /// The bounding-box diagonal of the mesh.
     #[must_use]
     pub fn diagonal(&self) -> f64 {

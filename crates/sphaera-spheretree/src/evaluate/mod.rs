@@ -37,7 +37,7 @@
 //! point `p` (the normalised sum of its corners): the exact closest surface point `q` and
 //! distance `d(p)` (`sphaera-sweep`'s triangle tree, through
 //! [`Surface::closest`](sphaera_medial::Surface::closest)) and the inside test
-//! ([`Surface::is_inside`](sphaera_medial::Surface::is_inside)). With `ρ` the largest
+//! ([`Surface::is_inside_certified`](sphaera_medial::Surface::is_inside_certified)). With `ρ` the largest
 //! distance from `p` to the patch (the chord of the cap through its corners: a cap of at
 //! most 90° is spherically convex, so it contains the geodesic triangle), `f` is bounded
 //! on the patch by the smallest of:
@@ -60,17 +60,14 @@
 //!
 //! # What the certificate assumes
 //!
-//! - **The inside test.** [`Surface::is_inside`](sphaera_medial::Surface::is_inside)
-//!   thresholds a fast (approximate) generalized winding number at ½. Its approximation
-//!   error is far below ½ except right at the surface, where the exact value jumps; a point
-//!   within about 10⁻³ of the local triangle size of the surface may be misclassified. So
-//!   a probe closer to the surface than a **guard band** (a quarter of the tolerance) is
-//!   not classified at all: its patch gets the bound valid on both sides (`d(p) + ρ`, or
-//!   the closest-point bound) and it never raises `lower`. Farther probes are trusted.
-//!   Hence the interval is exact provided the inside test is right at every probe farther
-//!   than the guard band from the surface, which the winding number's documented accuracy
-//!   gives for closed meshes; otherwise a misclassified probe at distance `δ` could make
-//!   `lower` too high by `δ`, or an upper bound too low by up to `2δ`.
+//! - **The inside test.**
+//!   [`Surface::is_inside_certified`](sphaera_medial::Surface::is_inside_certified) gives
+//!   the exact generalized winding number's answer (it refines the fast approximation
+//!   until its error bound decides, exactly as a last resort), except within rounding of
+//!   the surface itself. A probe closer to the surface than a **guard band** (a quarter of
+//!   the tolerance) is not classified at all: its patch gets the bound valid on both sides
+//!   (`d(p) + ρ`, or the closest-point bound) and it never raises `lower`. So on a closed
+//!   mesh the interval is rigorous up to floating-point rounding.
 //! - **Open meshes** (the Stanford bunny's holes). "Inside" is then the winding number's
 //!   region `w > ½`, whose boundary spans the holes where the mesh has none: a path from
 //!   inside to outside through a hole crosses no triangle, so the inside bound

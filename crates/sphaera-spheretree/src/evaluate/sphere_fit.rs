@@ -103,7 +103,7 @@ impl Search<'_> {
         let closest = self.surface.closest(point)?;
         let distance = closest.distance;
         let (trusted_outside, trusted_inside) = if distance > self.guard {
-            let inside = self.surface.is_inside(point);
+            let inside = self.surface.is_inside_certified(point);
             (!inside, inside)
         } else {
             (false, false)

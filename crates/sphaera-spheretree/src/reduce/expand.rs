@@ -7,8 +7,12 @@ use sphaera_mesh::Sphere;
 use super::{FittedSphere, ReductionInput, centre_depth};
 use crate::SphereTreeError;
 
-/// Bisection steps of the standoff search.
+/// Bisection steps of the standoff search at most.
 const SEARCH_STEPS: usize = 40;
+
+/// The standoff search stops when its bracket is narrower than this fraction of the
+/// mesh's diagonal: far below any error worth telling apart, and it halves the work.
+const SEARCH_RESOLUTION: f64 = 1e-6;
 
 /// The greedy ranking of the selection.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -44,6 +48,9 @@ struct Expandable {
     centre: glam::DVec3,
     depth: f64,
     inside: bool,
+    /// Every point's distance from the centre and index, nearest first: the points
+    /// within radius `r` are a prefix.
+    by_distance: Vec<(f64, u32)>,
 }
 
 impl Expandable {
@@ -115,10 +122,18 @@ pub fn expand_select(
         .iter()
         .map(|c| {
             let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+            let mut by_distance: Vec<(f64, u32)> = input
+                .points
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (p.distance(c.sphere.center), i as u32))
+                .collect();
+            by_distance.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             Expandable {
                 centre: c.sphere.center,
                 depth,
                 inside,
+                by_distance,
             }
         })
         .collect();
@@ -156,6 +171,7 @@ pub fn expand_select(
     // standoff where rounding leaves a point uncoverable counts as too small.
     let (mut lo, mut hi) = (low, high);
     let mut probe = low;
+    let resolution = SEARCH_RESOLUTION * input.surface.diagonal();
     for _ in 0..SEARCH_STEPS {
         match select(input, &expandable, probe, selection) {
             Some(chosen) if chosen.len() <= target => {
@@ -170,7 +186,7 @@ pub fn expand_select(
             None => lo = probe,
         }
         let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
+        if mid <= lo || mid >= hi || hi - lo <= resolution {
             break;
         }
         probe = mid;
@@ -245,16 +261,13 @@ fn select(
     let covers: Vec<Option<Bits>> = expandable
         .iter()
         .map(|x| {
-            let r = x.radius(e)?;
+            let reach = x.radius(e)? * (1.0 + 1e-12);
+            let within = x.by_distance.partition_point(|&(d, _)| d <= reach);
             let mut bits = Bits::new(n);
-            let mut any = false;
-            for (i, p) in input.points.iter().enumerate() {
-                if p.distance(x.centre) <= r * (1.0 + 1e-12) {
-                    bits.set(i);
-                    any = true;
-                }
+            for &(_, i) in &x.by_distance[..within] {
+                bits.set(i as usize);
             }
-            any.then_some(bits)
+            (within > 0).then_some(bits)
         })
         .collect();
     let mut uncovered = Bits::new(n);

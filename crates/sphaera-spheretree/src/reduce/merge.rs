@@ -26,10 +26,13 @@ struct Live {
     version: u32,
 }
 
-/// A candidate merge in the queue (smallest error first).
+/// A candidate merge in the queue (smallest key first). The key is the merged sphere's
+/// error when `exact`, else a lower bound on it: the surface queries of the minimum
+/// enclosing ball's centre wait until the pair reaches the front of the queue.
 #[derive(Debug, Clone, Copy)]
 struct PairMerge {
-    error: f64,
+    key: f64,
+    exact: bool,
     a: u32,
     b: u32,
     version_a: u32,
@@ -48,11 +51,13 @@ impl PartialOrd for PairMerge {
     }
 }
 impl Ord for PairMerge {
-    /// Reversed, so that `BinaryHeap` pops the smallest error (ties: smallest ids).
+    /// Reversed, so that `BinaryHeap` pops the smallest key (ties: exact first, then
+    /// smallest ids).
     fn cmp(&self, other: &Self) -> Ordering {
         other
-            .error
-            .total_cmp(&self.error)
+            .key
+            .total_cmp(&self.key)
+            .then(self.exact.cmp(&other.exact))
             .then(other.a.cmp(&self.a))
             .then(other.b.cmp(&self.b))
     }
@@ -123,13 +128,11 @@ pub fn merge(
     let mut count = live.len();
     let mut heap = BinaryHeap::new();
     let mut all_pairs = count <= ALL_PAIRS_FACTOR * target;
-    for a in 0..live.len() {
-        for b in a + 1..live.len() {
-            if all_pairs || intersect(&live, a, b) {
-                push_pair(input, &live, a, b, &mut heap);
-            }
-        }
-    }
+    let pairs: Vec<(usize, usize)> = (0..live.len())
+        .flat_map(|a| (a + 1..live.len()).map(move |b| (a, b)))
+        .filter(|&(a, b)| all_pairs || intersect(&live, a, b))
+        .collect();
+    heap.extend(bound_pairs(input, &live, &pairs));
     while count > target {
         let Some(best) = heap.pop() else {
             // No pair left (only possible before switching to all pairs): switch now.
@@ -149,6 +152,15 @@ pub fn merge(
             (Some(x), Some(y)) => best_merge(input, x, y),
             _ => continue,
         };
+        if !best.exact {
+            // Its key was a lower bound: queue it again with its exact error.
+            heap.push(PairMerge {
+                key: merged.error,
+                exact: true,
+                ..best
+            });
+            continue;
+        }
         live[b] = None;
         if let Some(slot) = live[a].as_mut() {
             let version = slot.version + 1;
@@ -159,12 +171,13 @@ pub fn merge(
             all_pairs = true;
             push_all_pairs(input, &live, &mut heap);
         } else {
-            for other in 0..live.len() {
-                if other != a && live[other].is_some() && (all_pairs || intersect(&live, a, other))
-                {
-                    push_pair(input, &live, a.min(other), a.max(other), &mut heap);
-                }
-            }
+            let pairs: Vec<(usize, usize)> = (0..live.len())
+                .filter(|&other| {
+                    other != a && live[other].is_some() && (all_pairs || intersect(&live, a, other))
+                })
+                .map(|other| (a.min(other), a.max(other)))
+                .collect();
+            heap.extend(bound_pairs(input, &live, &pairs));
         }
     }
     Ok(live
@@ -191,33 +204,96 @@ fn push_all_pairs(
     heap: &mut BinaryHeap<PairMerge>,
 ) {
     heap.clear();
-    for a in 0..live.len() {
-        for b in a + 1..live.len() {
-            if live[a].is_some() && live[b].is_some() {
-                push_pair(input, live, a, b, heap);
+    let pairs: Vec<(usize, usize)> = (0..live.len())
+        .flat_map(|a| (a + 1..live.len()).map(move |b| (a, b)))
+        .filter(|&(a, b)| live[a].is_some() && live[b].is_some())
+        .collect();
+    heap.extend(bound_pairs(input, live, &pairs));
+}
+
+/// Pairs bounded in one batch at least before the work is split between threads.
+#[cfg(feature = "parallel")]
+const PARALLEL_PAIRS: usize = 64;
+
+/// The queue entries of `pairs` (both live), in the order given (computed in parallel
+/// with the `parallel` feature; each is a pure function of the pair, so the result is the
+/// same).
+fn bound_pairs(
+    input: &ReductionInput<'_>,
+    live: &[Option<Live>],
+    pairs: &[(usize, usize)],
+) -> Vec<PairMerge> {
+    let one = |&(a, b): &(usize, usize)| {
+        let (Some(x), Some(y)) = (&live[a], &live[b]) else {
+            return None;
+        };
+        let (key, exact) = merge_bound(input, x, y);
+        Some(PairMerge {
+            key,
+            exact,
+            a: a as u32,
+            b: b as u32,
+            version_a: x.version,
+            version_b: y.version,
+        })
+    };
+    #[cfg(feature = "parallel")]
+    if pairs.len() >= PARALLEL_PAIRS {
+        use rayon::prelude::*;
+        return pairs
+            .par_iter()
+            .with_min_len(PARALLEL_PAIRS / 2)
+            .filter_map(one)
+            .collect();
+    }
+    pairs.iter().filter_map(one).collect()
+}
+
+/// The error of [`best_merge`] of `x` and `y` without surface queries: exact (`true`)
+/// when a grown sphere is known to win, else a lower bound (`false`).
+fn merge_bound(input: &ReductionInput<'_>, x: &Live, y: &Live) -> (f64, bool) {
+    let pts: Vec<DVec3> = union(&x.covers, &y.covers)
+        .iter()
+        .map(|&i| input.points[i as usize])
+        .collect();
+    let grown = |l: &Live| {
+        let radius = pts
+            .iter()
+            .map(|p| p.distance(l.sphere.center))
+            .fold(0.0, f64::max);
+        eq2_error(radius, l.depth, l.inside)
+    };
+    let best = grown(x).min(grown(y));
+    match minimum_enclosing_ball(&pts) {
+        Ok(ball) => {
+            let bound = ball_bound(&pts, &ball);
+            if bound < best {
+                (bound, false)
+            } else {
+                (best, true)
             }
         }
+        Err(_) => (best, true),
     }
 }
 
-fn push_pair(
-    input: &ReductionInput<'_>,
-    live: &[Option<Live>],
-    a: usize,
-    b: usize,
-    heap: &mut BinaryHeap<PairMerge>,
-) {
-    let (Some(x), Some(y)) = (&live[a], &live[b]) else {
-        return;
-    };
-    let merged = best_merge(input, x, y);
-    heap.push(PairMerge {
-        error: merged.error,
-        a: a as u32,
-        b: b as u32,
-        version_a: x.version,
-        version_b: y.version,
-    });
+/// For the minimum enclosing ball of `pts` (surface points): its radius grown by a hair
+/// to contain every point despite rounding, and a lower bound on its eq. 2 error. The
+/// centre is at most the nearest point's distance from the surface, so the error is at
+/// least `radius − nearest`, whether the centre is inside or not.
+fn ball_bound(pts: &[DVec3], ball: &Sphere) -> f64 {
+    let (radius, nearest) = enclosing_radius(pts, ball);
+    radius - nearest
+}
+
+/// The largest distance from `ball`'s centre to `pts` (at least its radius) and the
+/// smallest.
+fn enclosing_radius(pts: &[DVec3], ball: &Sphere) -> (f64, f64) {
+    pts.iter()
+        .map(|p| p.distance(ball.center))
+        .fold((ball.radius, f64::INFINITY), |(far, near), d| {
+            (far.max(d), near.min(d))
+        })
 }
 
 /// The tightest of the three merged spheres of `x` and `y` (version 0).
@@ -245,21 +321,21 @@ fn best_merge(input: &ReductionInput<'_>, x: &Live, y: &Live) -> Live {
     }
     if let Ok(ball) = minimum_enclosing_ball(&pts) {
         // Rounding: grow by a hair so that every point is inside.
-        let radius = pts
-            .iter()
-            .map(|p| p.distance(ball.center))
-            .fold(ball.radius, f64::max);
-        let (depth, inside) = centre_depth(input.surface, ball.center);
-        let error = eq2_error(radius, depth, inside);
-        if error < best.error {
-            best = Live {
-                sphere: Sphere::new(ball.center, radius),
-                error,
-                depth,
-                inside,
-                covers: Vec::new(),
-                version: 0,
-            };
+        let (radius, nearest) = enclosing_radius(&pts, &ball);
+        // Skip the surface queries when the lower bound cannot beat the grown spheres.
+        if radius - nearest < best.error {
+            let (depth, inside) = centre_depth(input.surface, ball.center);
+            let error = eq2_error(radius, depth, inside);
+            if error < best.error {
+                best = Live {
+                    sphere: Sphere::new(ball.center, radius),
+                    error,
+                    depth,
+                    inside,
+                    covers: Vec::new(),
+                    version: 0,
+                };
+            }
         }
     }
     best.covers = covers;
