@@ -41,6 +41,14 @@ pub struct Params {
     pub balance_regions: bool,
     /// Seed of the surface sampling.
     pub seed: u64,
+    /// Certify that every level covers the whole surface, not only the samples, growing
+    /// spheres where needed ([`crate::cover`]; default on).
+    pub certify_coverage: bool,
+    /// The certification's resolution, as a fraction of the mesh's bounding-box
+    /// diagonal (default 10⁻³): triangle pieces are split down to this size before a
+    /// sphere is grown to contain one, so a sphere grows by about this much at most
+    /// where two spheres barely overlap, and by the gap's size where a gap was.
+    pub coverage_resolution: f64,
 }
 
 impl Default for Params {
@@ -55,6 +63,8 @@ impl Default for Params {
             reducer: Reducer::Combined,
             balance_regions: true,
             seed: 1,
+            certify_coverage: true,
+            coverage_resolution: 1e-3,
         }
     }
 }
@@ -102,6 +112,13 @@ impl Params {
         self
     }
 
+    /// With surface-coverage certification on or off.
+    #[must_use]
+    pub fn certify_coverage(mut self, on: bool) -> Self {
+        self.certify_coverage = on;
+        self
+    }
+
     /// With the given sampling seed.
     #[must_use]
     pub fn seed(mut self, seed: u64) -> Self {
@@ -116,6 +133,12 @@ impl Params {
         }
         if self.samples < 4 {
             return bad(format!("samples {} must be at least 4", self.samples));
+        }
+        if !(self.coverage_resolution > 0.0 && self.coverage_resolution.is_finite()) {
+            return bad(format!(
+                "coverage_resolution {} must be positive and finite",
+                self.coverage_resolution
+            ));
         }
         if !(self.error_fraction > 0.0 && self.error_fraction <= 1.0) {
             return bad(format!(
@@ -180,11 +203,17 @@ pub fn build_with_progress(
     let mut regions: Vec<Vec<u32>> = vec![(0..samples.len() as u32).collect()];
     let mut level_starts = vec![0, 1];
     if params.depth == 0 {
-        return Ok(SphereTree {
-            branch: params.branch,
-            nodes,
-            level_starts,
-        });
+        return Ok(finish(
+            mesh,
+            &surface,
+            params,
+            SphereTree {
+                branch: params.branch,
+                nodes,
+                level_starts,
+                coverage: Vec::new(),
+            },
+        ));
     }
     let medial_params = MedialParams::default().spheres(params.initial_spheres);
     let mut medial = MedialApproximation::build(&surface, &samples, &medial_params)?;
@@ -241,11 +270,26 @@ pub fn build_with_progress(
         }
         level_starts.push(nodes.len());
     }
-    Ok(SphereTree {
-        branch: params.branch,
-        nodes,
-        level_starts,
-    })
+    Ok(finish(
+        mesh,
+        &surface,
+        params,
+        SphereTree {
+            branch: params.branch,
+            nodes,
+            level_starts,
+            coverage: Vec::new(),
+        },
+    ))
+}
+
+/// Certifies the tree's coverage of the surface when asked to.
+fn finish(mesh: &TriMesh, surface: &Surface, params: &Params, mut tree: SphereTree) -> SphereTree {
+    if params.certify_coverage {
+        let resolution = params.coverage_resolution * mesh.bounding_box_diagonal();
+        crate::cover::certify_tree(mesh, surface, &mut tree, resolution);
+    }
+    tree
 }
 
 /// The medial spheres of a region as reducer candidates, their covers restricted to the

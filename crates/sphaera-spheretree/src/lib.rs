@@ -7,6 +7,7 @@
 //! certified at every level, fit evaluation, and interruptible traversal.
 
 mod build;
+pub mod cover;
 mod error;
 pub mod evaluate;
 pub mod reduce;
@@ -15,6 +16,7 @@ pub mod sph;
 mod tree;
 
 pub use build::{BuildProgress, Params, build, build_with_progress};
+pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;

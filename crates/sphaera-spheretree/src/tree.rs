@@ -3,6 +3,8 @@
 
 use sphaera_mesh::Sphere;
 
+use crate::cover::CoverageCertificate;
+
 /// One node of a [`SphereTree`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct TreeNode {
@@ -29,6 +31,8 @@ pub struct SphereTree {
     pub(crate) nodes: Vec<TreeNode>,
     /// Index of the first node of each level, plus the node count at the end.
     pub(crate) level_starts: Vec<usize>,
+    /// Per level, the surface-coverage certificate (empty when not certified).
+    pub(crate) coverage: Vec<CoverageCertificate>,
 }
 
 impl SphereTree {
@@ -66,6 +70,14 @@ impl SphereTree {
     #[must_use]
     pub fn level_spheres(&self, level: usize) -> Vec<Sphere> {
         self.level(level).iter().map(|n| n.sphere).collect()
+    }
+
+    /// Per level, how its coverage of the whole surface was certified
+    /// ([`crate::cover::certify_coverage`]): empty when the tree was built without
+    /// certification ([`crate::Params::certify_coverage`] off).
+    #[must_use]
+    pub fn coverage(&self) -> &[CoverageCertificate] {
+        &self.coverage
     }
 
     /// The children of node `index`.
