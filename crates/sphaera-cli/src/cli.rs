@@ -44,6 +44,77 @@ pub enum Command {
     /// that every sample is covered, improved by replacing the worst sphere until the
     /// target count or error is reached.
     Medial(MedialArgs),
+    /// Sphere-tree for collision detection (Bradshaw and O'Sullivan 2004): the root is the
+    /// mesh's minimum enclosing ball; each level refines the adaptive medial
+    /// approximation in every node's region and reduces it to `--branch` children.
+    /// Every level is certified to cover the whole surface. The main job: with no
+    /// arguments it builds the embedded bunny's tree.
+    Spheretree(SpheretreeArgs),
+}
+
+/// Arguments of `sphaera spheretree`.
+#[derive(Debug, Args)]
+pub struct SpheretreeArgs {
+    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted. It must
+    /// enclose a volume (holes and non-manifold edges are fine; a flat sheet is not).
+    pub mesh: Option<PathBuf>,
+
+    /// How a node's medial spheres are reduced to its children.
+    #[arg(long, value_enum, default_value_t = MethodArg::Combined)]
+    pub method: MethodArg,
+
+    /// Levels below the root.
+    #[arg(long, default_value_t = 3)]
+    pub depth: usize,
+
+    /// Children per node at most.
+    #[arg(long, default_value_t = 8)]
+    pub branch: usize,
+
+    /// Surface samples standing for the surface (Poisson-disk, reproducible).
+    #[arg(long, default_value_t = 10_000)]
+    pub samples: usize,
+
+    /// Spheres of the initial medial approximation.
+    #[arg(long, default_value_t = 500)]
+    pub initial_spheres: usize,
+
+    /// Medial spheres each node's region is refined to before reduction.
+    #[arg(long, default_value_t = 100)]
+    pub min_spheres_per_node: usize,
+
+    /// Report the shallowest level whose worst error is at most this: an absolute
+    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`2%`).
+    #[arg(long, value_parser = parse_max_error)]
+    pub tolerance: Option<MaxErrorArg>,
+
+    /// Skip the certified evaluation of every level (worst error by branch and bound,
+    /// coverage on 100,000 independent samples); report the construction error only.
+    #[arg(long)]
+    pub no_evaluation: bool,
+
+    /// Seed of the surface sampling.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+
+    /// Write the tree, atomically: `.json` (levels, spheres, errors, parents) or `.sph`
+    /// (the classic sphere-tree format).
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
+}
+
+/// `--method`: the reducers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Merge neighbouring spheres, tightest result first.
+    Merge,
+    /// Expand the medial spheres to a common standoff and select a covering subset.
+    Expand,
+    /// Both per node, keeping the tighter.
+    Combined,
 }
 
 /// Arguments of `sphaera medial`.

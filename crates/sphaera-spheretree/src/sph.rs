@@ -40,6 +40,10 @@ use glam::DVec3;
 
 use crate::{Sphere, SphereTreeError};
 
+/// The most slots a `.sph` file made from a tree may have (a complete tree of depth 4
+/// and branching factor 16 has 69,905).
+const MAX_SLOTS: usize = 1 << 24;
+
 /// Importance written for an unused slot, as the original toolkit does.
 const UNUSED_IMPORTANCE: f64 = 1.0;
 
@@ -77,6 +81,60 @@ pub struct SphFile {
 }
 
 impl SphFile {
+    /// The `.sph` layout of `tree`: node `N`'s `k`-th child goes to slot `N·B + 1 + k`,
+    /// unused slots stay `None`, every importance is 1.
+    ///
+    /// # Errors
+    ///
+    /// [`SphereTreeError::InvalidParameter`] when the complete tree of the tree's depth
+    /// and branching factor has more slots than memory can address.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_spheretree::{Params, build, sph::SphFile};
+    ///
+    /// let mesh = shapes::capsule(0.5, 2.0, 8)?;
+    /// let params = Params::default().depth(1).branch(4).samples(800).initial_spheres(60)
+    ///     .min_spheres_per_node(20);
+    /// let tree = build(&mesh, &params)?;
+    /// let file = SphFile::from_tree(&tree)?;
+    /// assert_eq!((file.levels, file.branch, file.nodes.len()), (2, 4, 5));
+    /// assert_eq!(file.level(1).len(), tree.level(1).len());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn from_tree(tree: &crate::SphereTree) -> Result<Self, SphereTreeError> {
+        let levels = tree.level_count().max(1);
+        let branch = tree.branch().max(1);
+        let count = Self::node_count(levels, branch)
+            .filter(|&n| n <= MAX_SLOTS)
+            .ok_or_else(|| {
+                SphereTreeError::InvalidParameter(format!(
+                    "a complete .sph tree of {levels} levels and branching factor {branch} has too many slots"
+                ))
+            })?;
+        let mut nodes = vec![None; count];
+        // Flat slot of every tree node, the root first (parents precede children).
+        let mut slot = vec![0_usize; tree.nodes().len()];
+        for (i, node) in tree.nodes().iter().enumerate() {
+            let s = slot[i];
+            if let Some(entry) = nodes.get_mut(s) {
+                *entry = Some((node.sphere, 1.0));
+            }
+            for (k, child) in (node.children.start..node.children.end).enumerate() {
+                if let Some(c) = slot.get_mut(child as usize) {
+                    *c = s * branch + 1 + k;
+                }
+            }
+        }
+        Ok(Self {
+            levels,
+            branch,
+            nodes,
+        })
+    }
+
     /// The number of nodes of a complete `branch`-ary tree of `levels` levels,
     /// `1 + B + … + B^(levels−1)`; `None` when it overflows `usize`.
     #[must_use]

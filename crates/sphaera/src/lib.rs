@@ -14,8 +14,9 @@
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | edge-collapse simplification whose reported error bound holds in both directions (error spheres) |
 //! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions, motion, polylines and certified Hausdorff distances |
 //! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
+//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection (merge, expand-select and combined reducers), with coverage of the whole surface certified at every level, certified fit evaluation and `.sph` files |
 //!
-//! Later capabilities (sphere-trees, HAL trees,
+//! Later capabilities (HAL trees,
 //! silhouette labels) join this table as their crates land; see `docs/architecture.md` in
 //! the repository.
 //!
@@ -40,6 +41,8 @@ pub use sphaera_medial as medial;
 pub use sphaera_mesh as mesh;
 #[cfg(feature = "simplify")]
 pub use sphaera_simplify as simplify;
+#[cfg(feature = "spheretree")]
+pub use sphaera_spheretree as spheretree;
 #[cfg(feature = "sweep")]
 pub use sphaera_sweep as sweep;
 

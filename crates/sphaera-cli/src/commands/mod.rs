@@ -5,6 +5,7 @@ mod hausdorff;
 mod info;
 mod medial;
 mod simplify;
+mod spheretree;
 
 use anyhow::Result;
 
@@ -18,5 +19,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Distance(args) => distance::run(args, cli.quiet),
         Command::Hausdorff(args) => hausdorff::run(args, cli.quiet),
         Command::Medial(args) => medial::run(args, cli.quiet),
+        Command::Spheretree(args) => spheretree::run(args, cli.quiet),
     }
 }

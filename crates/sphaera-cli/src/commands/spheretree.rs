@@ -1,0 +1,357 @@
+//! `sphaera spheretree`: the main job, a sphere-tree of a mesh with every level
+//! evaluated the same way (certified worst error, coverage of the surface).
+
+use std::io::Write;
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use serde::Serialize;
+use sphaera::medial::Surface;
+use sphaera::mesh::io::write_atomic;
+use sphaera::spheretree::{
+    BuildProgress, EvaluationOptions, Params, Reducer, SphereTree, build_with_progress,
+    evaluate_set, sph::SphFile, write_sph,
+};
+
+use crate::{
+    cli::{MaxErrorArg, MethodArg, SpheretreeArgs},
+    input::read_mesh,
+    output::{print_json, thousands},
+    progress,
+};
+
+/// The certified evaluation's tolerance, as a fraction of the diagonal.
+const EVALUATION_TOLERANCE: f64 = 1e-3;
+
+/// Everything `sphaera spheretree` reports; also its JSON schema.
+#[derive(Debug, Serialize)]
+struct Report {
+    mesh: String,
+    triangles: usize,
+    method: &'static str,
+    depth: usize,
+    branch: usize,
+    samples: usize,
+    diagonal: f64,
+    levels: Vec<LevelReport>,
+    /// The shallowest level whose worst error meets `--tolerance` (absolute), if asked.
+    tolerance: Option<f64>,
+    level_for_tolerance: Option<usize>,
+    output: Option<String>,
+    seconds: Seconds,
+}
+
+/// One level of the tree.
+#[derive(Debug, Serialize)]
+struct LevelReport {
+    level: usize,
+    spheres: usize,
+    /// The construction error (eq. 2 of the paper), largest over the level.
+    construction_error: f64,
+    /// The certified worst error: the true worst error lies in `[lower, upper]`
+    /// (absent with `--no-evaluation`).
+    worst_error_lower: Option<f64>,
+    worst_error_upper: Option<f64>,
+    /// Mean and variance of the per-sphere certified errors (upper bounds).
+    mean_error: Option<f64>,
+    error_variance: Option<f64>,
+    /// Fraction of 100,000 independent surface samples outside every sphere.
+    uncovered_fraction: Option<f64>,
+    largest_gap: Option<f64>,
+    /// Triangle pieces of the coverage certificate, spheres grown and the largest growth.
+    certified_pieces: usize,
+    grown_spheres: usize,
+    largest_growth: f64,
+    /// Evaluation time of the level.
+    evaluation_seconds: f64,
+}
+
+#[derive(Debug, Serialize)]
+struct Seconds {
+    load: f64,
+    build: f64,
+    evaluate: f64,
+}
+
+pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
+    let input = read_mesh(args.mesh.as_deref(), quiet)?;
+    let mesh = &input.loaded.mesh;
+    let reducer = match args.method {
+        MethodArg::Merge => Reducer::Merge,
+        MethodArg::Expand => Reducer::Expand,
+        MethodArg::Combined => Reducer::Combined,
+    };
+    let params = Params::default()
+        .reducer(reducer)
+        .depth(args.depth)
+        .branch(args.branch)
+        .samples(args.samples)
+        .initial_spheres(args.initial_spheres)
+        .min_spheres_per_node(args.min_spheres_per_node)
+        .seed(args.seed);
+    if let Some(path) = &args.output {
+        output_format(path)?;
+    }
+
+    let bar = progress::bar(quiet, "sampling, initial medial approximation", 1);
+    let report_progress = |p: &BuildProgress| {
+        bar.set_length(p.total.max(1) as u64);
+        bar.set_position(p.done as u64);
+        bar.set_message(format!(
+            "level {} of {}: node {} of {}",
+            p.level,
+            args.depth,
+            thousands(p.done + 1),
+            thousands(p.total)
+        ));
+    };
+    let started = Instant::now();
+    let tree = build_with_progress(mesh, &params, &report_progress);
+    bar.finish_and_clear();
+    let tree = tree.with_context(|| format!("cannot build a sphere-tree of {}", input.source))?;
+    let build_seconds = started.elapsed().as_secs_f64();
+
+    let diagonal = mesh.bounding_box_diagonal();
+    let started = Instant::now();
+    let levels = evaluate_levels(mesh, &tree, args.no_evaluation, quiet)?;
+    let evaluate_seconds = started.elapsed().as_secs_f64();
+
+    let tolerance = args.tolerance.map(|t| match t {
+        MaxErrorArg::Absolute(e) => e,
+        MaxErrorArg::RelativeToDiagonal(f) => f * diagonal,
+    });
+    let level_for_tolerance = tolerance.and_then(|t| {
+        levels
+            .iter()
+            .find(|l| l.worst_error_upper.unwrap_or(l.construction_error) <= t)
+            .map(|l| l.level)
+    });
+    if let Some(path) = &args.output {
+        write_tree(path, &tree, &levels)?;
+    }
+    let report = Report {
+        mesh: input.source.clone(),
+        triangles: mesh.triangle_count(),
+        method: match args.method {
+            MethodArg::Merge => "merge",
+            MethodArg::Expand => "expand",
+            MethodArg::Combined => "combined",
+        },
+        depth: args.depth,
+        branch: args.branch,
+        samples: args.samples,
+        diagonal,
+        levels,
+        tolerance,
+        level_for_tolerance,
+        output: args.output.as_ref().map(|p| p.display().to_string()),
+        seconds: Seconds {
+            load: input.seconds,
+            build: build_seconds,
+            evaluate: evaluate_seconds,
+        },
+    };
+    if args.print.json {
+        print_json(&report)
+    } else {
+        print!("{}", report.to_text());
+        Ok(())
+    }
+}
+
+/// Per level: sizes, construction error, certificate and (unless skipped) the certified
+/// evaluation.
+fn evaluate_levels(
+    mesh: &sphaera::mesh::TriMesh,
+    tree: &SphereTree,
+    skip: bool,
+    quiet: bool,
+) -> Result<Vec<LevelReport>> {
+    let surface = if skip {
+        None
+    } else {
+        Some(Surface::new(mesh).context("cannot prepare the evaluation")?)
+    };
+    let options = EvaluationOptions::default().with_relative_tolerance(EVALUATION_TOLERANCE);
+    let bar = progress::bar(quiet, "evaluating", tree.level_count() as u64);
+    let mut out = Vec::with_capacity(tree.level_count());
+    for level in 0..tree.level_count() {
+        bar.set_message(format!("evaluating level {level}"));
+        let nodes = tree.level(level);
+        let started = Instant::now();
+        let evaluation = match &surface {
+            Some(surface) => Some(
+                evaluate_set(surface, mesh, &tree.level_spheres(level), &options)
+                    .with_context(|| format!("cannot evaluate level {level}"))?,
+            ),
+            None => None,
+        };
+        let certificate = tree.coverage().get(level).copied().unwrap_or_default();
+        out.push(LevelReport {
+            level,
+            spheres: nodes.len(),
+            construction_error: nodes.iter().map(|n| n.error).fold(0.0, f64::max),
+            worst_error_lower: evaluation.as_ref().map(|e| e.worst_lower),
+            worst_error_upper: evaluation.as_ref().map(|e| e.worst_upper),
+            mean_error: evaluation.as_ref().map(|e| e.mean_error),
+            error_variance: evaluation.as_ref().map(|e| e.error_variance),
+            uncovered_fraction: evaluation.as_ref().map(|e| e.coverage.uncovered_fraction),
+            largest_gap: evaluation.as_ref().map(|e| e.coverage.largest_gap),
+            certified_pieces: certificate.pieces,
+            grown_spheres: certificate.grown_spheres,
+            largest_growth: certificate.largest_growth,
+            evaluation_seconds: started.elapsed().as_secs_f64(),
+        });
+        bar.inc(1);
+    }
+    bar.finish_and_clear();
+    Ok(out)
+}
+
+/// The output formats, by extension.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Json,
+    Sph,
+}
+
+fn output_format(path: &Path) -> Result<Format> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("json") => Ok(Format::Json),
+        Some("sph") => Ok(Format::Sph),
+        _ => bail!(
+            "{}: unknown output format (use .json or .sph)",
+            path.display()
+        ),
+    }
+}
+
+/// One node in the JSON file.
+#[derive(Debug, Serialize)]
+struct NodeRecord {
+    centre: [f64; 3],
+    radius: f64,
+    error: f64,
+    level: u32,
+    parent: Option<u32>,
+    children: [u32; 2],
+}
+
+/// The JSON file.
+#[derive(Debug, Serialize)]
+struct TreeFile<'a> {
+    branch: usize,
+    levels: &'a [LevelReport],
+    nodes: Vec<NodeRecord>,
+}
+
+fn write_tree(path: &Path, tree: &SphereTree, levels: &[LevelReport]) -> Result<()> {
+    let written = match output_format(path)? {
+        Format::Json => {
+            let file = TreeFile {
+                branch: tree.branch(),
+                levels,
+                nodes: tree
+                    .nodes()
+                    .iter()
+                    .map(|n| NodeRecord {
+                        centre: n.sphere.center.to_array(),
+                        radius: n.sphere.radius,
+                        error: n.error,
+                        level: n.level,
+                        parent: n.parent,
+                        children: [n.children.start, n.children.end],
+                    })
+                    .collect(),
+            };
+            write_atomic(path, |w| {
+                serde_json::to_writer_pretty(&mut *w, &file).map_err(std::io::Error::other)?;
+                w.write_all(b"\n")
+            })
+        }
+        Format::Sph => {
+            let text = write_sph(&SphFile::from_tree(tree)?, sphaera::mesh::DVec3::ZERO)?;
+            write_atomic(path, |w| w.write_all(text.as_bytes()))
+        }
+    };
+    written.with_context(|| format!("cannot write {}", path.display()))
+}
+
+impl Report {
+    fn to_text(&self) -> String {
+        let percent = |x: f64| {
+            if self.diagonal > 0.0 {
+                100.0 * x / self.diagonal
+            } else {
+                0.0
+            }
+        };
+        let mut lines = vec![
+            format!(
+                "mesh      {} ({} triangles)",
+                self.mesh,
+                thousands(self.triangles)
+            ),
+            format!(
+                "tree      {}, depth {}, branch {}, {} surface samples",
+                self.method,
+                self.depth,
+                self.branch,
+                thousands(self.samples)
+            ),
+            "errors in % of the bounding-box diagonal; coverage on 100,000 independent samples"
+                .to_owned(),
+            format!(
+                "{:>5} {:>8} {:>13} {:>17} {:>10} {:>9} {:>7}",
+                "level",
+                "spheres",
+                "construction",
+                "certified worst",
+                "uncovered",
+                "grown",
+                "eval s"
+            ),
+        ];
+        for l in &self.levels {
+            let worst = match (l.worst_error_lower, l.worst_error_upper) {
+                (Some(a), Some(b)) => format!("{:.3}–{:.3}", percent(a), percent(b)),
+                _ => "–".to_owned(),
+            };
+            let uncovered = l
+                .uncovered_fraction
+                .map_or_else(|| "–".to_owned(), |u| format!("{:.3} %", 100.0 * u));
+            lines.push(format!(
+                "{:>5} {:>8} {:>13.3} {:>17} {:>10} {:>9} {:>7.2}",
+                l.level,
+                thousands(l.spheres),
+                percent(l.construction_error),
+                worst,
+                uncovered,
+                thousands(l.grown_spheres),
+                l.evaluation_seconds
+            ));
+        }
+        if let Some(t) = self.tolerance {
+            lines.push(match self.level_for_tolerance {
+                Some(level) => {
+                    format!("tolerance {t:.6e}: level {level} is the shallowest that meets it")
+                }
+                None => format!("tolerance {t:.6e}: no level meets it (build deeper)"),
+            });
+        }
+        if let Some(path) = &self.output {
+            lines.push(format!("written   {path}"));
+        }
+        lines.push(format!(
+            "time      {:.3} s load, {:.3} s build, {:.3} s evaluation",
+            self.seconds.load, self.seconds.build, self.seconds.evaluate
+        ));
+        lines.join("\n") + "\n"
+    }
+}
