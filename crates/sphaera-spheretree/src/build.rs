@@ -229,13 +229,13 @@ pub fn build_with_progress(
                 problems.push(None);
                 continue;
             }
-            let mut goal = RegionGoal::new(
-                params.min_spheres_per_node,
-                params.error_fraction * nodes[parent].error,
-            );
+            // Far more medial spheres than the region has samples cannot help (each is
+            // fixed by four samples) and would spend the refinement cap for nothing.
+            let wanted = params.min_spheres_per_node.min(2 * region.len());
+            let mut goal = RegionGoal::new(wanted, params.error_fraction * nodes[parent].error);
             // The error goal may be out of reach (a part the samples already resolve
             // fully): cap the work per node.
-            goal.max_iterations = REFINE_STEPS_PER_SPHERE * params.min_spheres_per_node.max(1);
+            goal.max_iterations = REFINE_STEPS_PER_SPHERE * wanted.max(1);
             let outcome = medial.refine_region(region, goal)?;
             problems.push(Some(candidates(region, &outcome.spheres)));
         }
