@@ -151,7 +151,7 @@ proptest! {
         let meets = cut.nodes.iter().all(|&k| tree.nodes()[k].error <= tolerance);
         prop_assert_eq!(cut.meets_tolerance, meets);
         let worst = cut.nodes.iter().map(|&k| tree.nodes()[k].error).fold(f64::NEG_INFINITY, f64::max);
-        prop_assert_eq!(cut.worst_error, worst);
+        prop_assert_eq!(cut.worst_error.to_bits(), worst.to_bits());
         // The smallest among all cuts (exhaustive).
         let smallest = all_cut_sizes(&tree, 0, tolerance).into_iter().min();
         prop_assert_eq!(Some(cut.nodes.len()), smallest);
