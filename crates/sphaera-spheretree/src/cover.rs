@@ -19,7 +19,7 @@ use glam::DVec3;
 use sphaera_mesh::{Sphere, TriMesh};
 
 /// What [`certify_coverage`] did to one set of spheres.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct CoverageCertificate {
     /// Triangle pieces found inside a single sphere (the certificate's size).
     pub pieces: usize,

@@ -34,4 +34,8 @@ pub enum SphereTreeError {
     /// meaningless).
     #[error("the sphere set is empty")]
     EmptySphereSet,
+    /// A sphere-tree read from a file is inconsistent (levels, parents and children that
+    /// do not match, a wrong format tag or version).
+    #[error("invalid sphere-tree: {0}")]
+    InvalidTree(String),
 }

@@ -7,20 +7,25 @@
 //! certified at every level, fit evaluation, and interruptible traversal.
 
 mod build;
+pub mod collide;
 pub mod cover;
 mod error;
 pub mod evaluate;
+pub mod export;
 pub mod reduce;
 pub mod segment;
+pub mod select;
 pub mod sph;
 mod tree;
 
 pub use build::{BuildProgress, Params, build, build_with_progress};
+pub use collide::{Budget, Collision, Contact, CostModel, Placement, collide, overlaps};
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
 pub use reduce::Reducer;
+pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sph::{SphFile, read_sph, write_sph};
 pub use sphaera_mesh::Sphere;
 pub use tree::{SphereTree, TreeNode};

@@ -1,0 +1,455 @@
+//! Sphere-tree against sphere-tree overlap under rigid motions: the paper's interruptible,
+//! time-critical collision detection (sections 1 and 6.4–6.5).
+//!
+//! [`collide`] descends both trees **breadth-first, one level at a time and both trees
+//! together**: level 0 tests the roots, level `k + 1` tests the children of every
+//! overlapping pair of level `k` against each other. A node without children (a leaf above
+//! the deepest level, or every node of a shallower tree) stands for itself in the levels
+//! below it. Every completed level is an approximation of the contact: its overlapping
+//! pairs cover every place where the objects can touch, and each pair carries an error
+//! bound (the sum of the two spheres' errors, [`TreeNode::error`]): the objects'
+//! surfaces are within that distance of the pair's spheres. Stopping after any level
+//! therefore still gives the best approximation so far; a [`Budget`] decides when.
+//!
+//! [`overlaps`] answers "do they touch at the deepest level" with a depth-first search that
+//! stops at the first overlapping pair of leaves.
+//!
+//! Both take a [`Placement`] per tree: a rotation and translation, with an optional uniform
+//! scale (a mirror is allowed; shear and non-uniform scale are refused, since they do not
+//! map spheres to spheres).
+//!
+//! [`TreeNode::error`]: crate::TreeNode::error
+
+mod budget;
+mod placement;
+
+use std::ops::Range;
+use std::time::{Duration, Instant};
+
+use sphaera_mesh::Sphere;
+
+pub use budget::{Budget, CostModel};
+pub use placement::Placement;
+
+use crate::SphereTree;
+use crate::SphereTreeError;
+
+/// Pair tests between two looks at the clock under a [`Budget::Time`].
+const CLOCK_STRIDE: u64 = 64;
+
+/// One overlapping pair of spheres: an approximate contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// The node of the first tree (an index into [`SphereTree::nodes`]).
+    pub a: usize,
+    /// The node of the second tree.
+    pub b: usize,
+    /// Node `a`'s sphere in the scene.
+    pub sphere_a: Sphere,
+    /// Node `b`'s sphere in the scene.
+    pub sphere_b: Sphere,
+    /// How far the spheres interpenetrate: the sum of their radii minus the distance of
+    /// their centres (0 when they touch).
+    pub depth: f64,
+    /// The sum of the two nodes' errors ([`TreeNode::error`](crate::TreeNode::error)),
+    /// scaled to the scene: each object's surface is within its sphere's error of the
+    /// sphere, so the true separation of the objects here is at most this.
+    pub error_bound: f64,
+}
+
+/// The work done by a traversal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct TraversalStats {
+    /// `Nu`: spheres placed in the scene (each node at most once).
+    pub updates: u64,
+    /// `Nv`: sphere-pair overlap tests.
+    pub tests: u64,
+}
+
+impl TraversalStats {
+    /// The cost of this work under `model`.
+    #[must_use]
+    pub fn cost(&self, model: &CostModel) -> f64 {
+        model.cost(self.updates, self.tests)
+    }
+}
+
+/// The result of [`collide`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Collision {
+    /// The overlapping pairs of the deepest level completed, sorted by `(a, b)`.
+    pub contacts: Vec<Contact>,
+    /// Whether the traversal reached the end: no pair left, or only pairs of leaves. The
+    /// contacts are then the exact answer of the two trees.
+    pub completed: bool,
+    /// The level the contacts are at (0: the roots). A pair holding a leaf of a shallower
+    /// level is carried down unchanged.
+    pub level: usize,
+    /// The work done, including a level dropped by a [`Budget::Time`].
+    pub stats: TraversalStats,
+}
+
+impl Collision {
+    /// The largest [`Contact::error_bound`], `None` without contacts.
+    #[must_use]
+    pub fn max_error_bound(&self) -> Option<f64> {
+        self.contacts
+            .iter()
+            .map(|c| c.error_bound)
+            .max_by(f64::total_cmp)
+    }
+}
+
+/// One tree in the scene: its placed spheres, filled level by level.
+struct Side<'t> {
+    tree: &'t SphereTree,
+    placement: &'t Placement,
+    placed: Vec<Sphere>,
+}
+
+impl<'t> Side<'t> {
+    fn new(tree: &'t SphereTree, placement: &'t Placement) -> Self {
+        Self {
+            tree,
+            placement,
+            placed: vec![Sphere::default(); tree.nodes.len()],
+        }
+    }
+
+    /// Places node `i` (an index below `tree.nodes.len()`).
+    fn update(&mut self, i: usize) {
+        if let (Some(slot), Some(node)) = (self.placed.get_mut(i), self.tree.nodes.get(i)) {
+            *slot = self.placement.sphere(&node.sphere);
+        }
+    }
+
+    fn sphere(&self, i: usize) -> Sphere {
+        self.placed.get(i).copied().unwrap_or_default()
+    }
+}
+
+/// The roots of `tree` (the nodes of level 0).
+fn roots(tree: &SphereTree) -> Range<usize> {
+    0..tree.level(0).len()
+}
+
+/// The children of node `i`, clamped to the stored nodes.
+fn children(tree: &SphereTree, i: usize) -> Range<usize> {
+    let len = tree.nodes.len();
+    tree.nodes.get(i).map_or(0..0, |n| {
+        let end = (n.children.end as usize).min(len);
+        (n.children.start as usize).min(end)..end
+    })
+}
+
+/// What stands for node `i` one level down: its children, or itself for a leaf.
+fn expansion(tree: &SphereTree, i: usize) -> Range<usize> {
+    let kids = children(tree, i);
+    if kids.is_empty() { i..i + 1 } else { kids }
+}
+
+fn is_leaf(tree: &SphereTree, i: usize) -> bool {
+    children(tree, i).is_empty()
+}
+
+/// Whether two placed spheres overlap (touching counts).
+fn touch(a: &Sphere, b: &Sphere) -> bool {
+    a.intersects(b)
+}
+
+/// Finds the overlapping sphere pairs of two placed sphere-trees, level by level, within
+/// `budget` (see the [module documentation](self) and [`Budget`]).
+///
+/// With [`Budget::Unlimited`] the contacts are exactly the pairs of leaves `(x, y)` whose
+/// spheres overlap and whose ancestors at every level overlap too (a leaf standing for
+/// itself below its level). The result is deterministic: contacts sorted by `(a, b)`.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::collide::{Budget, Placement, collide};
+/// use sphaera_spheretree::{DVec3, Params, build};
+///
+/// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+/// let params = Params::default().depth(1).branch(4).samples(400)
+///     .initial_spheres(60).min_spheres_per_node(20);
+/// let tree = build(&mesh, &params)?;
+/// let here = Placement::IDENTITY;
+/// let near = Placement::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
+///
+/// let exact = collide(&tree, &here, &tree, &near, &Budget::Unlimited)?;
+/// assert!(exact.completed && exact.level == 1 && !exact.contacts.is_empty());
+///
+/// // A budget too small for level 1 stops at the roots: one coarse contact.
+/// let coarse = collide(&tree, &here, &tree, &near, &Budget::cost(5.0))?;
+/// assert!(!coarse.completed);
+/// assert_eq!((coarse.level, coarse.contacts.len()), (0, 1));
+/// assert!(coarse.contacts[0].error_bound >= exact.max_error_bound().unwrap());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::InvalidParameter`] for a [`Budget::Cost`] whose limit or costs are
+/// NaN or negative.
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// Allocates one placed sphere per node of each tree; each node is placed at most once.
+/// Each level costs one test per child pair of the previous level's overlapping pairs.
+/// Two depth-3, branch-8 trees of the low-res bunny (571 nodes each) take about 20 µs in
+/// light contact (4,000 pair tests, 478 contacts) and about 110 µs in deep contact
+/// (13,000 tests, 3,089 contacts), single thread (the `collide_probe` example).
+pub fn collide(
+    a: &SphereTree,
+    placement_a: &Placement,
+    b: &SphereTree,
+    placement_b: &Placement,
+    budget: &Budget,
+) -> Result<Collision, SphereTreeError> {
+    budget.validate()?;
+    let start = Instant::now();
+    let mut sa = Side::new(a, placement_a);
+    let mut sb = Side::new(b, placement_b);
+    let mut stats = TraversalStats::default();
+    // Level 0, whatever the budget.
+    for i in roots(a) {
+        sa.update(i);
+        stats.updates += 1;
+    }
+    for j in roots(b) {
+        sb.update(j);
+        stats.updates += 1;
+    }
+    let mut frontier = Vec::new();
+    for i in roots(a) {
+        for j in roots(b) {
+            stats.tests += 1;
+            if touch(&sa.sphere(i), &sb.sphere(j)) {
+                frontier.push((i, j));
+            }
+        }
+    }
+    let mut level = 0;
+    let completed = loop {
+        let plan = Plan::new(a, b, &frontier);
+        if plan.is_final {
+            break true;
+        }
+        match budget {
+            Budget::Unlimited => {}
+            Budget::Cost { limit, model } => {
+                if stats.cost(model) + model.cost(plan.updates, plan.tests) > *limit {
+                    break false;
+                }
+            }
+            Budget::Time(limit) => {
+                if start.elapsed() >= *limit {
+                    break false;
+                }
+            }
+        }
+        let deadline = match budget {
+            Budget::Time(limit) => Some((start, *limit)),
+            _ => None,
+        };
+        match descend(&mut sa, &mut sb, &frontier, &plan, deadline, &mut stats) {
+            Some(next) => {
+                frontier = next;
+                level += 1;
+            }
+            None => break false,
+        }
+    };
+    let contacts = frontier
+        .iter()
+        .map(|&(i, j)| contact(&sa, &sb, i, j))
+        .collect();
+    Ok(Collision {
+        contacts,
+        completed,
+        level,
+        stats,
+    })
+}
+
+/// The work of the next level, known before it is started.
+struct Plan {
+    /// Nodes of the first tree whose children are placed.
+    parents_a: Vec<usize>,
+    /// Nodes of the second tree whose children are placed.
+    parents_b: Vec<usize>,
+    updates: u64,
+    tests: u64,
+    /// No pair has a node with children: the traversal is over.
+    is_final: bool,
+}
+
+impl Plan {
+    /// `frontier` is sorted by `(a, b)`.
+    fn new(a: &SphereTree, b: &SphereTree, frontier: &[(usize, usize)]) -> Self {
+        let mut parents_a: Vec<usize> = frontier
+            .iter()
+            .map(|p| p.0)
+            .filter(|&i| !is_leaf(a, i))
+            .collect();
+        parents_a.dedup();
+        let mut parents_b: Vec<usize> = frontier
+            .iter()
+            .map(|p| p.1)
+            .filter(|&j| !is_leaf(b, j))
+            .collect();
+        parents_b.sort_unstable();
+        parents_b.dedup();
+        let updates = parents_a
+            .iter()
+            .map(|&i| children(a, i).len() as u64)
+            .chain(parents_b.iter().map(|&j| children(b, j).len() as u64))
+            .sum();
+        let tests = frontier
+            .iter()
+            .filter(|&&(i, j)| !(is_leaf(a, i) && is_leaf(b, j)))
+            .map(|&(i, j)| expansion(a, i).len() as u64 * expansion(b, j).len() as u64)
+            .sum();
+        let is_final = parents_a.is_empty() && parents_b.is_empty();
+        Self {
+            parents_a,
+            parents_b,
+            updates,
+            tests,
+            is_final,
+        }
+    }
+}
+
+/// The overlapping pairs one level below `frontier`, sorted; `None` when the deadline
+/// passes first.
+fn descend(
+    sa: &mut Side<'_>,
+    sb: &mut Side<'_>,
+    frontier: &[(usize, usize)],
+    plan: &Plan,
+    deadline: Option<(Instant, Duration)>,
+    stats: &mut TraversalStats,
+) -> Option<Vec<(usize, usize)>> {
+    for &i in &plan.parents_a {
+        for c in children(sa.tree, i) {
+            sa.update(c);
+            stats.updates += 1;
+        }
+    }
+    for &j in &plan.parents_b {
+        for c in children(sb.tree, j) {
+            sb.update(c);
+            stats.updates += 1;
+        }
+    }
+    let mut next = Vec::with_capacity(frontier.len());
+    for &(i, j) in frontier {
+        if is_leaf(sa.tree, i) && is_leaf(sb.tree, j) {
+            next.push((i, j));
+            continue;
+        }
+        let kids_b = expansion(sb.tree, j);
+        for ci in expansion(sa.tree, i) {
+            let sphere_i = sa.sphere(ci);
+            for cj in kids_b.clone() {
+                stats.tests += 1;
+                if touch(&sphere_i, &sb.sphere(cj)) {
+                    next.push((ci, cj));
+                }
+                if let Some((start, limit)) = deadline
+                    && stats.tests.is_multiple_of(CLOCK_STRIDE)
+                    && start.elapsed() >= limit
+                {
+                    return None;
+                }
+            }
+        }
+    }
+    next.sort_unstable();
+    Some(next)
+}
+
+fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
+    let sphere_a = sa.sphere(i);
+    let sphere_b = sb.sphere(j);
+    let error = |side: &Side<'_>, k: usize| {
+        side.tree.nodes.get(k).map_or(0.0, |n| n.error) * side.placement.scale()
+    };
+    Contact {
+        a: i,
+        b: j,
+        sphere_a,
+        sphere_b,
+        depth: sphere_a.radius + sphere_b.radius - sphere_a.center.distance(sphere_b.center),
+        error_bound: error(sa, i) + error(sb, j),
+    }
+}
+
+/// Whether two placed sphere-trees overlap at their deepest level: some pair of leaves
+/// overlaps whose ancestors all overlap (the same pairs as an unlimited [`collide`]),
+/// found depth-first with an early exit.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::collide::{Placement, overlaps};
+/// use sphaera_spheretree::{DVec3, Params, build};
+///
+/// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+/// let params = Params::default().depth(1).branch(4).samples(400)
+///     .initial_spheres(60).min_spheres_per_node(20);
+/// let tree = build(&mesh, &params)?;
+/// let here = Placement::IDENTITY;
+/// assert!(overlaps(&tree, &here, &tree, &Placement::from_translation(DVec3::X)?));
+/// assert!(!overlaps(&tree, &here, &tree, &Placement::from_translation(DVec3::X * 5.0)?));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// Places spheres on demand (a node may be placed more than once); stops at the first
+/// overlapping pair of leaves, so touching objects usually answer after a few descents.
+#[must_use]
+pub fn overlaps(
+    a: &SphereTree,
+    placement_a: &Placement,
+    b: &SphereTree,
+    placement_b: &Placement,
+) -> bool {
+    let place = |tree: &SphereTree, placement: &Placement, i: usize| {
+        tree.nodes
+            .get(i)
+            .map_or_else(Sphere::default, |n| placement.sphere(&n.sphere))
+    };
+    let mut stack: Vec<(usize, usize)> = Vec::new();
+    for i in roots(a).rev() {
+        for j in roots(b).rev() {
+            stack.push((i, j));
+        }
+    }
+    while let Some((i, j)) = stack.pop() {
+        if !touch(&place(a, placement_a, i), &place(b, placement_b, j)) {
+            continue;
+        }
+        if is_leaf(a, i) && is_leaf(b, j) {
+            return true;
+        }
+        let kids_b = expansion(b, j);
+        for ci in expansion(a, i).rev() {
+            for cj in kids_b.clone().rev() {
+                stack.push((ci, cj));
+            }
+        }
+    }
+    false
+}

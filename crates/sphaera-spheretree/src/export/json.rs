@@ -1,0 +1,448 @@
+//! The JSON form of a sphere-tree, written and read back with validation.
+
+use std::path::Path;
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+use sphaera_mesh::Sphere;
+
+use crate::{SphereTree, SphereTreeError, TreeNode};
+
+/// The value of [`TreeJson::format`].
+pub const JSON_FORMAT: &str = "sphaera-spheretree";
+
+/// The value of [`TreeJson::version`] this crate writes and reads.
+pub const JSON_VERSION: u32 = 1;
+
+/// A sphere-tree as JSON. The field names are stable within a [`JSON_VERSION`]:
+///
+/// ```json
+/// {
+///   "format": "sphaera-spheretree",
+///   "version": 1,
+///   "branch": 8,
+///   "levels": [ { "first": 0, "count": 1, "worst_error": 0.41 }, … ],
+///   "nodes": [
+///     { "center": [x, y, z], "radius": r, "error": e, "level": 0,
+///       "parent": null, "children": [1, 2, 3], "region_samples": 10000 },
+///     …
+///   ]
+/// }
+/// ```
+///
+/// - `nodes` are stored level by level, root first; a node's index is its position, and
+///   parents and children refer to nodes by index.
+/// - `levels[k]` gives the index of the first node of level `k`, its node count and its
+///   worst (largest) node error.
+/// - `error` is the node's construction error ([`TreeNode::error`]), in the mesh's units.
+/// - `children` are consecutive indices in the next level (possibly none).
+/// - `region_samples` is optional on reading (0 when absent); unknown fields are ignored.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::TreeJson;
+/// use sphaera_spheretree::{Params, build};
+///
+/// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+/// let params = Params::default().depth(1).branch(4).samples(400)
+///     .initial_spheres(60).min_spheres_per_node(20);
+/// let tree = build(&mesh, &params)?;
+/// let json = TreeJson::from_tree(&tree);
+/// assert_eq!(json.levels.len(), 2);
+/// assert_eq!(json.nodes[0].parent, None);
+/// assert_eq!(json.to_tree()?, tree);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TreeJson {
+    /// Always [`JSON_FORMAT`].
+    pub format: String,
+    /// Always [`JSON_VERSION`].
+    pub version: u32,
+    /// The branching factor the tree was built with (a node has at most this many
+    /// children).
+    pub branch: usize,
+    /// One entry per level, root first.
+    pub levels: Vec<LevelJson>,
+    /// Every node, level by level.
+    pub nodes: Vec<NodeJson>,
+}
+
+/// One level of a [`TreeJson`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LevelJson {
+    /// The index of the level's first node.
+    pub first: usize,
+    /// The number of nodes of the level.
+    pub count: usize,
+    /// The largest error of the level's nodes.
+    pub worst_error: f64,
+    /// How the level's coverage of the whole surface was certified (`null` when it was
+    /// not; see [`crate::cover`]).
+    #[serde(default)]
+    pub coverage: Option<crate::CoverageCertificate>,
+}
+
+/// One node of a [`TreeJson`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NodeJson {
+    /// The sphere's centre.
+    pub center: [f64; 3],
+    /// The sphere's radius.
+    pub radius: f64,
+    /// The construction error ([`TreeNode::error`]).
+    pub error: f64,
+    /// The depth (0 for the root).
+    pub level: u32,
+    /// The parent's index (`null` for the root).
+    pub parent: Option<u32>,
+    /// The children's indices, consecutive, in the next level.
+    pub children: Vec<u32>,
+    /// The number of surface samples of the node's region (0 when unknown).
+    #[serde(default)]
+    pub region_samples: u32,
+}
+
+impl TreeJson {
+    /// The JSON form of `tree`.
+    ///
+    /// # Examples
+    ///
+    /// See [`TreeJson`].
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    #[must_use]
+    pub fn from_tree(tree: &SphereTree) -> Self {
+        let levels = (0..tree.level_count())
+            .map(|k| {
+                let nodes = tree.level(k);
+                LevelJson {
+                    first: tree.level_starts.get(k).copied().unwrap_or_default(),
+                    count: nodes.len(),
+                    worst_error: worst_error(nodes),
+                    coverage: tree.coverage().get(k).copied(),
+                }
+            })
+            .collect();
+        let nodes = tree
+            .nodes()
+            .iter()
+            .map(|n| NodeJson {
+                center: n.sphere.center.to_array(),
+                radius: n.sphere.radius,
+                error: n.error,
+                level: n.level,
+                parent: n.parent,
+                children: n.children.clone().collect(),
+                region_samples: n.region_samples,
+            })
+            .collect();
+        Self {
+            format: JSON_FORMAT.to_owned(),
+            version: JSON_VERSION,
+            branch: tree.branch(),
+            levels,
+            nodes,
+        }
+    }
+
+    /// The sphere-tree, after checking that the structure is consistent.
+    ///
+    /// # Examples
+    ///
+    /// See [`TreeJson`].
+    ///
+    /// # Errors
+    ///
+    /// - [`SphereTreeError::InvalidTree`] naming what is wrong: a `format` or `version`
+    ///   other than this crate's, a branching factor of 0, no nodes, a first level that
+    ///   is not a single root, levels that do not tile the nodes in order, a `level`,
+    ///   `parent` or `children` field that disagrees with them (children not consecutive,
+    ///   not in the next level, more than `branch`, or not naming their parent back), a
+    ///   non-finite error, or a `worst_error` that is not its level's largest error.
+    /// - [`SphereTreeError::InvalidSphere`] for a NaN or infinite centre or radius, or a
+    ///   negative radius, with the node's index.
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    pub fn to_tree(&self) -> Result<SphereTree, SphereTreeError> {
+        let bad = |message: String| Err(SphereTreeError::InvalidTree(message));
+        if self.format != JSON_FORMAT {
+            return bad(format!(
+                "format is {:?}, expected {JSON_FORMAT:?}",
+                self.format
+            ));
+        }
+        if self.version != JSON_VERSION {
+            return bad(format!(
+                "version {} is not supported (this reader reads version {JSON_VERSION})",
+                self.version
+            ));
+        }
+        if self.branch == 0 {
+            return bad("branch must be at least 1".into());
+        }
+        if self.nodes.is_empty() {
+            return bad("the tree has no nodes".into());
+        }
+        if self.levels.first().map(|l| (l.first, l.count)) != Some((0, 1)) {
+            return bad("level 0 must hold exactly the root, node 0".into());
+        }
+        let mut level_starts = Vec::with_capacity(self.levels.len() + 1);
+        let mut next = 0_usize;
+        for (k, level) in self.levels.iter().enumerate() {
+            if level.first != next || level.count == 0 {
+                return bad(format!(
+                    "level {k} starts at node {} with {} nodes; expected a non-empty level \
+                     starting at node {next}",
+                    level.first, level.count
+                ));
+            }
+            level_starts.push(next);
+            next = next.saturating_add(level.count);
+        }
+        if next != self.nodes.len() {
+            return bad(format!(
+                "the levels hold {next} nodes but there are {}",
+                self.nodes.len()
+            ));
+        }
+        level_starts.push(next);
+        let mut nodes = Vec::with_capacity(self.nodes.len());
+        for (k, window) in level_starts.windows(2).enumerate() {
+            for index in window[0]..window[1] {
+                nodes.push(self.node(index, k, &level_starts)?);
+            }
+        }
+        for (k, level) in self.levels.iter().enumerate() {
+            let range = level_starts[k]..level_starts[k + 1];
+            let actual = worst_error(nodes.get(range).unwrap_or_default());
+            if level.worst_error.to_bits() != actual.to_bits() {
+                return bad(format!(
+                    "level {k} has worst_error {} but its largest node error is {actual}",
+                    level.worst_error
+                ));
+            }
+        }
+        // Certificates are kept only when every level has one.
+        let coverage = self
+            .levels
+            .iter()
+            .map(|l| l.coverage)
+            .collect::<Option<Vec<_>>>()
+            .unwrap_or_default();
+        Ok(SphereTree {
+            branch: self.branch,
+            nodes,
+            level_starts,
+            coverage,
+        })
+    }
+
+    /// Node `index` of level `level`, checked against its parent and children.
+    fn node(
+        &self,
+        index: usize,
+        level: usize,
+        level_starts: &[usize],
+    ) -> Result<TreeNode, SphereTreeError> {
+        let bad = |message: String| {
+            Err(SphereTreeError::InvalidTree(format!(
+                "node {index}: {message}"
+            )))
+        };
+        let Some(node) = self.nodes.get(index) else {
+            return bad("missing".into());
+        };
+        let sphere = Sphere::new(DVec3::from_array(node.center), node.radius);
+        if !sphere.is_valid() {
+            return Err(SphereTreeError::InvalidSphere { index });
+        }
+        if !node.error.is_finite() {
+            return bad(format!("error {} is not finite", node.error));
+        }
+        if node.level as usize != level {
+            return bad(format!(
+                "level is {}, but it is stored in level {level}",
+                node.level
+            ));
+        }
+        let range_of = |k: usize| match (level_starts.get(k), level_starts.get(k + 1)) {
+            (Some(&a), Some(&b)) => a..b,
+            _ => 0..0,
+        };
+        match (node.parent, level.checked_sub(1)) {
+            (None, None) => {}
+            (Some(parent), Some(above)) => {
+                let parent = parent as usize;
+                if !range_of(above).contains(&parent) {
+                    return bad(format!("parent {parent} is not in level {above}"));
+                }
+                let listed = self
+                    .nodes
+                    .get(parent)
+                    .is_some_and(|p| p.children.iter().any(|&c| c as usize == index));
+                if !listed {
+                    return bad(format!("parent {parent} does not list it as a child"));
+                }
+            }
+            (None, Some(_)) => return bad("only the root may have no parent".into()),
+            (Some(_), None) => return bad("the root cannot have a parent".into()),
+        }
+        if node.children.len() > self.branch {
+            return bad(format!(
+                "{} children, more than the branching factor {}",
+                node.children.len(),
+                self.branch
+            ));
+        }
+        let start = node.children.first().copied().unwrap_or(0);
+        let consecutive = node
+            .children
+            .iter()
+            .enumerate()
+            .all(|(k, &c)| u32::try_from(k).ok().and_then(|k| start.checked_add(k)) == Some(c));
+        if !consecutive {
+            return bad("children are not consecutive increasing indices".into());
+        }
+        let below = range_of(level + 1);
+        for &child in &node.children {
+            let child = child as usize;
+            if !below.contains(&child) {
+                return bad(format!("child {child} is not in level {}", level + 1));
+            }
+            if self.nodes.get(child).and_then(|c| c.parent) != u32::try_from(index).ok() {
+                return bad(format!("child {child} does not name it as its parent"));
+            }
+        }
+        let Ok(level_u32) = u32::try_from(level) else {
+            return bad("too many levels".into());
+        };
+        let end = start.saturating_add(u32::try_from(node.children.len()).unwrap_or(u32::MAX));
+        Ok(TreeNode {
+            sphere,
+            error: node.error,
+            level: level_u32,
+            parent: node.parent,
+            children: if node.children.is_empty() {
+                0..0
+            } else {
+                start..end
+            },
+            region_samples: node.region_samples,
+        })
+    }
+}
+
+fn worst_error(nodes: &[TreeNode]) -> f64 {
+    nodes
+        .iter()
+        .map(|n| n.error)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// `tree` as pretty-printed JSON ([`TreeJson`]).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::{tree_from_json, tree_to_json};
+/// use sphaera_spheretree::{Params, build};
+///
+/// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+/// let params = Params::default().depth(1).branch(4).samples(400)
+///     .initial_spheres(60).min_spheres_per_node(20);
+/// let tree = build(&mesh, &params)?;
+/// let text = tree_to_json(&tree);
+/// assert!(text.contains("\"format\": \"sphaera-spheretree\""));
+/// assert_eq!(tree_from_json(&text)?, tree);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Panics
+///
+/// Never.
+#[must_use]
+pub fn tree_to_json(tree: &SphereTree) -> String {
+    // Serialising plain structs of numbers, strings and vectors to a string cannot fail
+    // (no maps with non-string keys, no I/O); NaN would become `null`, which the
+    // reader then refuses.
+    serde_json::to_string_pretty(&TreeJson::from_tree(tree)).unwrap_or_default()
+}
+
+/// Reads a sphere-tree written by [`tree_to_json`], checking its structure.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::tree_from_json;
+/// use sphaera_spheretree::SphereTreeError;
+///
+/// let text = r#"{ "format": "sphaera-spheretree", "version": 1, "branch": 2,
+///   "levels": [ { "first": 0, "count": 1, "worst_error": 0.5 } ],
+///   "nodes": [ { "center": [0, 0, 0], "radius": 1, "error": 0.5, "level": 0,
+///                "parent": null, "children": [] } ] }"#;
+/// let tree = tree_from_json(text)?;
+/// assert_eq!(tree.level_count(), 1);
+///
+/// let broken = text.replace("\"children\": []", "\"children\": [1]");
+/// assert!(matches!(tree_from_json(&broken), Err(SphereTreeError::InvalidTree(_))));
+/// assert!(matches!(tree_from_json("{"), Err(SphereTreeError::Format { line: 1, .. })));
+/// # Ok::<(), SphereTreeError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::Format`] (with the line) when the text is not JSON of the
+/// [`TreeJson`] shape; otherwise as [`TreeJson::to_tree`].
+///
+/// # Panics
+///
+/// Never.
+pub fn tree_from_json(text: &str) -> Result<SphereTree, SphereTreeError> {
+    let json: TreeJson = serde_json::from_str(text).map_err(|e| SphereTreeError::Format {
+        line: e.line(),
+        message: e.to_string(),
+    })?;
+    json.to_tree()
+}
+
+/// Writes `tree` as JSON ([`tree_to_json`]) to `path`, atomically: a temporary file in
+/// the same directory renamed over `path`, so a failure never leaves half a file.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::{tree_from_json, write_tree_json};
+/// use sphaera_spheretree::{Params, build};
+///
+/// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+/// let params = Params::default().depth(1).branch(4).samples(400)
+///     .initial_spheres(60).min_spheres_per_node(20);
+/// let tree = build(&mesh, &params)?;
+/// let path = std::env::temp_dir().join(format!("doc-tree-{}.json", std::process::id()));
+/// write_tree_json(&path, &tree)?;
+/// assert_eq!(tree_from_json(&std::fs::read_to_string(&path)?)?, tree);
+/// std::fs::remove_file(&path)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SphereTreeError::Mesh`] wrapping the I/O error (naming `path`) when the file cannot
+/// be written.
+///
+/// # Panics
+///
+/// Never.
+pub fn write_tree_json(path: impl AsRef<Path>, tree: &SphereTree) -> Result<(), SphereTreeError> {
+    let text = tree_to_json(tree);
+    sphaera_mesh::io::write_atomic(path.as_ref(), |w| {
+        std::io::Write::write_all(w, text.as_bytes())
+    })?;
+    Ok(())
+}

@@ -1,0 +1,235 @@
+//! The "collision spheres" YAML list robot motion planners take (cuRobo's robot
+//! configurations, `MoveIt`-style sphere lists): per link name, a list of spheres.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use sphaera_mesh::Sphere;
+
+use crate::select::Cut;
+use crate::{SphereTree, SphereTreeError};
+
+/// One link (one rigid part of a robot, or one object) and its collision spheres.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::CollisionLink;
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let link = CollisionLink::new("gripper", vec![Sphere::new(DVec3::ZERO, 0.05)]);
+/// assert_eq!(link.name, "gripper");
+/// assert_eq!(link.spheres.len(), 1);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct CollisionLink {
+    /// The link's name (any string: it is written quoted).
+    pub name: String,
+    /// Its spheres, in the link's frame.
+    pub spheres: Vec<Sphere>,
+}
+
+impl CollisionLink {
+    /// A link of the given spheres.
+    #[must_use]
+    pub fn new(name: impl Into<String>, spheres: Vec<Sphere>) -> Self {
+        Self {
+            name: name.into(),
+            spheres,
+        }
+    }
+
+    /// A link of the spheres of `tree`'s level `level` (none beyond the deepest).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_spheretree::export::CollisionLink;
+    /// use sphaera_spheretree::{Params, build};
+    ///
+    /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+    /// let params = Params::default().depth(1).branch(4).samples(400)
+    ///     .initial_spheres(60).min_spheres_per_node(20);
+    /// let tree = build(&mesh, &params)?;
+    /// let link = CollisionLink::from_level("arm", &tree, 1);
+    /// assert_eq!(link.spheres, tree.level_spheres(1));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn from_level(name: impl Into<String>, tree: &SphereTree, level: usize) -> Self {
+        Self::new(name, tree.level_spheres(level))
+    }
+
+    /// A link of the spheres of a cut of `tree` (see
+    /// [`cut_for_tolerance`](crate::select::cut_for_tolerance)).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_spheretree::export::CollisionLink;
+    /// use sphaera_spheretree::select::cut_for_tolerance;
+    /// use sphaera_spheretree::{Params, build};
+    ///
+    /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+    /// let params = Params::default().depth(1).branch(4).samples(400)
+    ///     .initial_spheres(60).min_spheres_per_node(20);
+    /// let tree = build(&mesh, &params)?;
+    /// let cut = cut_for_tolerance(&tree, 0.1);
+    /// let link = CollisionLink::from_cut("arm", &tree, &cut);
+    /// assert_eq!(link.spheres.len(), cut.nodes.len());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn from_cut(name: impl Into<String>, tree: &SphereTree, cut: &Cut) -> Self {
+        Self::new(name, cut.spheres(tree))
+    }
+}
+
+/// `v` as a YAML float that YAML 1.1 readers (`PyYAML`) and YAML 1.2 readers both read as
+/// a float: always a decimal point, and an explicit exponent sign. Exact: Rust's
+/// shortest round-trip digits.
+fn yaml_float(v: f64) -> String {
+    let text = format!("{v:?}");
+    let Some((mantissa, exponent)) = text.split_once('e') else {
+        return text;
+    };
+    let dot = if mantissa.contains('.') { "" } else { ".0" };
+    let sign = if exponent.starts_with('-') { "" } else { "+" };
+    format!("{mantissa}{dot}e{sign}{exponent}")
+}
+
+/// The links as a YAML "collision spheres" document:
+///
+/// ```yaml
+/// collision_spheres:
+///   "link_name":
+///     - center: [0.0, 0.1, -0.25]
+///       radius: 0.05
+///   "empty_link": []
+/// ```
+///
+/// Link names are written as double-quoted strings (JSON escapes, which YAML reads), in
+/// the order given; numbers with enough digits to read back exactly, always with a
+/// decimal point (`PyYAML`'s YAML 1.1 would read `1e-7` as a string).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::{CollisionLink, collision_spheres_yaml};
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let link = CollisionLink::new("tool", vec![Sphere::new(DVec3::new(0.0, 0.5, 1.0), 0.25)]);
+/// let yaml = collision_spheres_yaml(&[link])?;
+/// assert_eq!(
+///     yaml,
+///     "collision_spheres:\n  \"tool\":\n    - center: [0.0, 0.5, 1.0]\n      radius: 0.25\n"
+/// );
+/// # Ok::<(), sphaera_spheretree::SphereTreeError>(())
+/// ```
+///
+/// # Errors
+///
+/// - [`SphereTreeError::InvalidParameter`] when two links have the same name.
+/// - [`SphereTreeError::InvalidSphere`] for a NaN or infinite centre or radius, or a
+///   negative radius; `index` counts the spheres of all links in order.
+///
+/// # Panics
+///
+/// Never.
+pub fn collision_spheres_yaml(links: &[CollisionLink]) -> Result<String, SphereTreeError> {
+    let mut names: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
+    names.sort_unstable();
+    if let Some(pair) = names.windows(2).find(|w| w[0] == w[1]) {
+        return Err(SphereTreeError::InvalidParameter(format!(
+            "two links are named {:?}",
+            pair[0]
+        )));
+    }
+    let mut index = 0;
+    for link in links {
+        for sphere in &link.spheres {
+            if !sphere.is_valid() {
+                return Err(SphereTreeError::InvalidSphere { index });
+            }
+            index += 1;
+        }
+    }
+    if links.is_empty() {
+        return Ok("collision_spheres: {}\n".to_owned());
+    }
+    let mut out = String::from("collision_spheres:\n");
+    for link in links {
+        // A JSON string is a valid YAML double-quoted scalar; encoding a `&str` cannot
+        // fail.
+        let name = serde_json::to_string(&link.name).unwrap_or_default();
+        if link.spheres.is_empty() {
+            let _ = writeln!(out, "  {name}: []");
+            continue;
+        }
+        let _ = writeln!(out, "  {name}:");
+        for s in &link.spheres {
+            let _ = writeln!(
+                out,
+                "    - center: [{}, {}, {}]\n      radius: {}",
+                yaml_float(s.center.x),
+                yaml_float(s.center.y),
+                yaml_float(s.center.z),
+                yaml_float(s.radius)
+            );
+        }
+    }
+    Ok(out)
+}
+
+/// Writes [`collision_spheres_yaml`] to `path`, atomically (a temporary file in the same
+/// directory renamed over `path`).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::{CollisionLink, write_collision_spheres_yaml};
+/// use sphaera_spheretree::{DVec3, Sphere};
+///
+/// let path = std::env::temp_dir().join(format!("doc-spheres-{}.yaml", std::process::id()));
+/// let link = CollisionLink::new("base", vec![Sphere::new(DVec3::ZERO, 0.1)]);
+/// write_collision_spheres_yaml(&path, &[link])?;
+/// assert!(std::fs::read_to_string(&path)?.starts_with("collision_spheres:"));
+/// std::fs::remove_file(&path)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`collision_spheres_yaml`]; [`SphereTreeError::Mesh`] wrapping the I/O error when
+/// the file cannot be written.
+///
+/// # Panics
+///
+/// Never.
+pub fn write_collision_spheres_yaml(
+    path: impl AsRef<Path>,
+    links: &[CollisionLink],
+) -> Result<(), SphereTreeError> {
+    let text = collision_spheres_yaml(links)?;
+    sphaera_mesh::io::write_atomic(path.as_ref(), |w| {
+        std::io::Write::write_all(w, text.as_bytes())
+    })?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::yaml_float;
+
+    #[test]
+    fn floats_always_read_as_floats() {
+        assert_eq!(yaml_float(1.0), "1.0");
+        assert_eq!(yaml_float(-0.25), "-0.25");
+        assert_eq!(yaml_float(1e-7), "1.0e-7");
+        assert_eq!(yaml_float(1.5e20), "1.5e+20");
+        assert_eq!(yaml_float(0.1), "0.1");
+        for v in [1e-7, 1.5e20, 0.1, -3.75e-12, 123_456.789] {
+            assert_eq!(yaml_float(v).parse::<f64>().ok(), Some(v));
+        }
+    }
+}
