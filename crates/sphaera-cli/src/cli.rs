@@ -97,8 +97,10 @@ pub struct SpheretreeArgs {
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
 
-    /// Write the tree, atomically: `.json` (levels, spheres, errors, parents) or `.sph`
-    /// (the classic sphere-tree format).
+    /// Write the tree, atomically: `.json` (levels, spheres, errors, parents, children,
+    /// coverage certificates), `.sph` (the classic sphere-tree format) or `.yaml` (a
+    /// motion planner's `collision_spheres` list: the smallest cut of the tree meeting
+    /// `--tolerance`, or the deepest level).
     #[arg(long, short)]
     pub output: Option<PathBuf>,
 

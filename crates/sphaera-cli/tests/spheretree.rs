@@ -43,7 +43,11 @@ fn spheretree_of_the_embedded_bunny_covers_the_surface_at_every_level() {
 #[test]
 fn spheretree_writes_json_and_sph_atomically() {
     let dir = tempfile::tempdir().expect("a temporary folder");
-    for (name, method) in [("tree.json", "merge"), ("tree.sph", "combined")] {
+    for (name, method) in [
+        ("tree.json", "merge"),
+        ("tree.sph", "combined"),
+        ("spheres.yaml", "expand"),
+    ] {
         let path = dir.path().join(name);
         let report = run(&[
             "--method",
@@ -60,11 +64,15 @@ fn spheretree_writes_json_and_sph_atomically() {
             .map(|l| l["spheres"].as_u64().expect("count"))
             .sum();
         if name.ends_with(".json") {
-            let file: serde_json::Value = serde_json::from_str(&text).expect("JSON");
-            assert_eq!(
-                file["nodes"].as_array().expect("nodes").len() as u64,
-                spheres
-            );
+            let tree = sphaera::spheretree::export::tree_from_json(&text).expect("our JSON");
+            assert_eq!(tree.nodes().len() as u64, spheres);
+            assert_eq!(tree.coverage().len(), 3);
+        } else if name.ends_with(".yaml") {
+            // The deepest level's spheres, one `center`/`radius` pair each.
+            assert!(text.starts_with("collision_spheres:"), "{text}");
+            assert!(text.contains("\"bunny\":"), "{text}");
+            let deepest = report["levels"][2]["spheres"].as_u64().expect("count");
+            assert_eq!(text.matches("center:").count() as u64, deepest);
         } else {
             let file = sphaera::spheretree::read_sph(&text, sphaera::mesh::DVec3::ZERO)
                 .expect("a valid .sph");
@@ -74,7 +82,7 @@ fn spheretree_writes_json_and_sph_atomically() {
         }
     }
     // No temporary files are left behind.
-    assert_eq!(std::fs::read_dir(dir.path()).expect("listed").count(), 2);
+    assert_eq!(std::fs::read_dir(dir.path()).expect("listed").count(), 3);
 }
 
 #[test]

@@ -9,9 +9,10 @@ use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use sphaera::medial::Surface;
 use sphaera::mesh::io::write_atomic;
+use sphaera::spheretree::export::{CollisionLink, write_collision_spheres_yaml, write_tree_json};
 use sphaera::spheretree::{
     BuildProgress, EvaluationOptions, Params, Reducer, SphereTree, build_with_progress,
-    evaluate_set, sph::SphFile, write_sph,
+    cut_for_tolerance, evaluate_set, sph::SphFile, write_sph,
 };
 
 use crate::{
@@ -128,7 +129,8 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
             .map(|l| l.level)
     });
     if let Some(path) = &args.output {
-        write_tree(path, &tree, &levels)?;
+        let name = input_name(args.mesh.as_deref());
+        write_tree(path, &tree, &name, tolerance)?;
     }
     let report = Report {
         mesh: input.source.clone(),
@@ -158,6 +160,14 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         print!("{}", report.to_text());
         Ok(())
     }
+}
+
+/// The link name of a YAML export: the mesh file's stem, or `bunny` for the embedded
+/// mesh.
+fn input_name(mesh: Option<&Path>) -> String {
+    mesh.and_then(Path::file_stem)
+        .and_then(|s| s.to_str())
+        .map_or_else(|| "bunny".to_owned(), str::to_owned)
 }
 
 /// Per level: sizes, construction error, certificate and (unless skipped) the certified
@@ -214,6 +224,7 @@ fn evaluate_levels(
 enum Format {
     Json,
     Sph,
+    Yaml,
 }
 
 fn output_format(path: &Path) -> Result<Format> {
@@ -225,59 +236,31 @@ fn output_format(path: &Path) -> Result<Format> {
     {
         Some("json") => Ok(Format::Json),
         Some("sph") => Ok(Format::Sph),
+        Some("yaml" | "yml") => Ok(Format::Yaml),
         _ => bail!(
-            "{}: unknown output format (use .json or .sph)",
+            "{}: unknown output format (use .json, .sph or .yaml)",
             path.display()
         ),
     }
 }
 
-/// One node in the JSON file.
-#[derive(Debug, Serialize)]
-struct NodeRecord {
-    centre: [f64; 3],
-    radius: f64,
-    error: f64,
-    level: u32,
-    parent: Option<u32>,
-    children: [u32; 2],
-}
-
-/// The JSON file.
-#[derive(Debug, Serialize)]
-struct TreeFile<'a> {
-    branch: usize,
-    levels: &'a [LevelReport],
-    nodes: Vec<NodeRecord>,
-}
-
-fn write_tree(path: &Path, tree: &SphereTree, levels: &[LevelReport]) -> Result<()> {
+/// Writes the tree: JSON (the library's format, read back by `tree_from_json`), `.sph`,
+/// or a YAML collision-spheres list of the smallest cut meeting the tolerance (the
+/// deepest level without one), named after the mesh.
+fn write_tree(path: &Path, tree: &SphereTree, name: &str, tolerance: Option<f64>) -> Result<()> {
     let written = match output_format(path)? {
-        Format::Json => {
-            let file = TreeFile {
-                branch: tree.branch(),
-                levels,
-                nodes: tree
-                    .nodes()
-                    .iter()
-                    .map(|n| NodeRecord {
-                        centre: n.sphere.center.to_array(),
-                        radius: n.sphere.radius,
-                        error: n.error,
-                        level: n.level,
-                        parent: n.parent,
-                        children: [n.children.start, n.children.end],
-                    })
-                    .collect(),
+        Format::Json => write_tree_json(path, tree).map_err(anyhow::Error::from),
+        Format::Sph => write_sph(&SphFile::from_tree(tree)?, sphaera::mesh::DVec3::ZERO)
+            .map_err(anyhow::Error::from)
+            .and_then(|text| {
+                write_atomic(path, |w| w.write_all(text.as_bytes())).map_err(anyhow::Error::from)
+            }),
+        Format::Yaml => {
+            let link = match tolerance {
+                Some(t) => CollisionLink::from_cut(name, tree, &cut_for_tolerance(tree, t)),
+                None => CollisionLink::from_level(name, tree, tree.level_count().saturating_sub(1)),
             };
-            write_atomic(path, |w| {
-                serde_json::to_writer_pretty(&mut *w, &file).map_err(std::io::Error::other)?;
-                w.write_all(b"\n")
-            })
-        }
-        Format::Sph => {
-            let text = write_sph(&SphFile::from_tree(tree)?, sphaera::mesh::DVec3::ZERO)?;
-            write_atomic(path, |w| w.write_all(text.as_bytes()))
+            write_collision_spheres_yaml(path, &[link]).map_err(anyhow::Error::from)
         }
     };
     written.with_context(|| format!("cannot write {}", path.display()))
