@@ -63,14 +63,14 @@ pub fn grid(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, Spher
                 .checked_pow(level as u32)
                 .unwrap_or(u64::MAX)
                 .min(samples.len() as u64);
-            level_grid(&samples, bounds.min, longest, target)
+            level_grid(samples, bounds.min, longest, target)
         })
         .collect();
     assemble(&start, params.depth, params.branch, |level, _, region| {
         let Some(grid) = grids.get(level - 1) else {
             return Ok(Vec::new());
         };
-        Ok(group_by_cell(grid, &samples, region)
+        Ok(group_by_cell(grid, samples, region)
             .into_iter()
             .map(|(cell, ids)| Child {
                 sphere: grid.cell_sphere(cell),

@@ -17,6 +17,9 @@ use crate::{SphereTree, SphereTreeError};
 /// only intersecting ones (as [`merge`](crate::reduce::merge)).
 const ALL_PAIRS_FACTOR: usize = 3;
 
+/// Nearest spheres each medial sphere may first merge with.
+const NEIGHBOURS: usize = 8;
+
 /// Builds Hubbard's sphere-tree of `mesh`, as the paper describes it.
 ///
 /// 1. A **static** medial approximation
@@ -28,8 +31,9 @@ const ALL_PAIRS_FACTOR: usize = 3;
 ///    pairs until at most `branch` remain, the pair whose merged sphere has the smallest
 ///    eq. 2 error first. The merged sphere is Hubbard's *approximate bounding sphere*:
 ///    the smallest sphere enclosing the two spheres (not their points), so it covers
-///    whatever they covered. Pairs start as intersecting spheres (Hubbard used Voronoi
-///    neighbours); once the set is at most three times `branch`, every pair.
+///    whatever they covered. Pairs start as neighbours — each sphere's 8 nearest centres,
+///    standing in for Hubbard's Voronoi neighbours; a merged sphere inherits both
+///    lists — and once the set is at most three times `branch`, every pair.
 /// 3. The region is divided between the merged spheres with
 ///    [`segment::divide`](crate::segment::divide) (balanced), and each sphere is grown
 ///    by rounding's worth if needed to contain its part.
@@ -46,8 +50,9 @@ const ALL_PAIRS_FACTOR: usize = 3;
 ///
 /// # Performance
 ///
-/// The merges cost one surface distance query each candidate pair; the level-1 node
-/// merges the whole static set (about 2,500 spheres on the low-res bunny).
+/// The merges cost one surface distance query per candidate pair; the level-1 node
+/// merges the whole static set (about 2,500 spheres on the low-res bunny), so the
+/// neighbour lists keep that to a few per merge.
 ///
 /// # Examples
 ///
@@ -162,17 +167,41 @@ impl Ord for Pair {
 }
 
 /// Merges `set` into at most `target` spheres with approximate bounding spheres.
+///
+/// Neighbours stand in for Hubbard's Voronoi neighbours: each sphere starts with its
+/// [`NEIGHBOURS`] nearest centres (symmetrised); a merged sphere inherits both lists.
 fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Sphere> {
-    let mut live: Vec<Option<(Sphere, u32)>> = set.iter().map(|&s| Some((s, 0))).collect();
-    let mut count = live.len();
-    if count <= target {
+    let n = set.len();
+    if n <= target {
         return set.to_vec();
     }
+    let mut live: Vec<Option<(Sphere, u32)>> = set.iter().map(|&s| Some((s, 0))).collect();
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for a in 0..n {
+        let mut near: Vec<(f64, u32)> = (0..n)
+            .filter(|&b| b != a)
+            .map(|b| (set[a].center.distance_squared(set[b].center), b as u32))
+            .collect();
+        let k = NEIGHBOURS.min(near.len());
+        if k > 0 && k < near.len() {
+            near.select_nth_unstable_by(k - 1, |x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        }
+        for &(_, b) in &near[..k] {
+            neighbours[a].push(b);
+            neighbours[b as usize].push(a as u32);
+        }
+    }
+    for list in &mut neighbours {
+        list.sort_unstable();
+        list.dedup();
+    }
+    let mut count = n;
     let error = |s: &Sphere| {
         let (d, inside) = centre_depth(surface, s.center);
         eq2_error(s.radius, d, inside)
     };
     let push = |live: &[Option<(Sphere, u32)>], a: usize, b: usize, heap: &mut BinaryHeap<Pair>| {
+        let (a, b) = (a.min(b), a.max(b));
         if let (Some((x, va)), Some((y, vb))) = (live[a], live[b]) {
             heap.push(Pair {
                 error: error(&enclose(&x, &y)),
@@ -192,19 +221,15 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
         }
         heap
     };
-    let meets = |live: &[Option<(Sphere, u32)>], a: usize, b: usize| match (live[a], live[b]) {
-        (Some((x, _)), Some((y, _))) => x.intersects(&y),
-        _ => false,
-    };
     let mut all_pairs = count <= ALL_PAIRS_FACTOR * target;
     let mut heap = if all_pairs {
         all_pairs_heap(&live)
     } else {
         let mut heap = BinaryHeap::new();
-        for a in 0..live.len() {
-            for b in a + 1..live.len() {
-                if meets(&live, a, b) {
-                    push(&live, a, b, &mut heap);
+        for (a, list) in neighbours.iter().enumerate() {
+            for &b in list {
+                if a < b as usize {
+                    push(&live, a, b as usize, &mut heap);
                 }
             }
         }
@@ -215,7 +240,7 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
             if all_pairs {
                 break;
             }
-            // Disjoint groups remain: every pair may merge now.
+            // Disconnected groups remain: every pair may merge now.
             all_pairs = true;
             heap = all_pairs_heap(&live);
             continue;
@@ -230,16 +255,32 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
         live[b] = None;
         live[a] = Some((enclose(&x, &y), va + 1));
         count -= 1;
+        let mut joined = std::mem::take(&mut neighbours[a]);
+        joined.extend(std::mem::take(&mut neighbours[b]));
+        joined.sort_unstable();
+        joined.dedup();
+        joined.retain(|&o| o as usize != a && live[o as usize].is_some());
+        for &o in &joined {
+            let list = &mut neighbours[o as usize];
+            if let Err(at) = list.binary_search(&(a as u32)) {
+                list.insert(at, a as u32);
+            }
+        }
         if !all_pairs && count <= ALL_PAIRS_FACTOR * target {
             all_pairs = true;
             heap = all_pairs_heap(&live);
-        } else {
+        } else if all_pairs {
             for other in 0..live.len() {
-                if other != a && (all_pairs || meets(&live, a, other)) {
-                    push(&live, a.min(other), a.max(other), &mut heap);
+                if other != a {
+                    push(&live, a, other, &mut heap);
                 }
             }
+        } else {
+            for &o in &joined {
+                push(&live, a, o as usize, &mut heap);
+            }
         }
+        neighbours[a] = joined;
     }
     live.into_iter().flatten().map(|(s, _)| s).collect()
 }

@@ -66,7 +66,7 @@ pub fn octree(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, Sph
             cell: edge / cells as f64,
             cells,
         };
-        Ok(group_by_cell(&grid, &samples, region)
+        Ok(group_by_cell(&grid, samples, region)
             .into_iter()
             .map(|(cell, ids)| Child {
                 sphere: grid.cell_sphere(cell),
