@@ -1,5 +1,6 @@
 //! Builds a sphere-tree and prints each level's size and construction error:
-//! `cargo run --release -p sphaera-spheretree --example spheretree_probe -- [MESH] [merge|expand|combined]`.
+//! `cargo run --release -p sphaera-spheretree --example spheretree_probe -- [MESH]
+//! [merge|burst|expand|combined|octree|grid|hubbard]`.
 
 #![allow(clippy::print_stdout)]
 
@@ -7,6 +8,7 @@ use std::time::Instant;
 
 use sphaera_medial::Surface;
 use sphaera_mesh::{io, shapes};
+use sphaera_spheretree::baseline::{self, BaselineParams};
 use sphaera_spheretree::{EvaluationOptions, Params, Reducer, build, evaluate_set};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -15,16 +17,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(path) => io::load(path)?,
         None => shapes::capsule(0.5, 2.0, 12)?,
     };
-    let reducer = match args.get(2).map(String::as_str) {
-        Some("merge") => Reducer::Merge,
-        Some("expand") => Reducer::Expand,
-        _ => Reducer::Combined,
-    };
+    let method = args.get(2).map_or("combined", String::as_str);
     let diagonal = mesh.bounding_box_diagonal();
     let started = Instant::now();
-    let tree = build(&mesh, &Params::default().reducer(reducer))?;
+    let tree = match method {
+        "octree" => baseline::octree(&mesh, &BaselineParams::default())?,
+        "grid" => baseline::grid(&mesh, &BaselineParams::default())?,
+        "hubbard" => baseline::hubbard(&mesh, &BaselineParams::default())?,
+        other => {
+            let reducer = match other {
+                "merge" => Reducer::Merge,
+                "burst" => Reducer::Burst,
+                "expand" => Reducer::Expand,
+                _ => Reducer::Combined,
+            };
+            build(&mesh, &Params::default().reducer(reducer))?
+        }
+    };
     println!(
-        "{reducer:?}: built in {:.2} s",
+        "{method}: built in {:.2} s",
         started.elapsed().as_secs_f64()
     );
     let surface = Surface::new(&mesh)?;

@@ -6,6 +6,7 @@
 //! merge, burst, expand-select or their combination, with coverage of the surface itself
 //! certified at every level, fit evaluation, and interruptible traversal.
 
+pub mod baseline;
 mod build;
 pub mod collide;
 pub mod cover;

@@ -10,13 +10,16 @@
 //! per-sphere error of a finished tree comes from [`crate::evaluate`].
 //!
 //! - [`merge`]: combine Voronoi-neighbour pairs, tightest result first.
+//! - [`burst`]: remove spheres one at a time, growing their neighbours over the gap.
 //! - [`expand_select`]: expand every candidate to a common standoff and greedily select a
 //!   covering subset (`MaxElim` or `MaxCover`), searching the standoff that meets the count.
 //! - [`combined`]: both, keeping the tighter set.
 
+mod burst;
 mod expand;
 mod merge;
 
+pub use burst::burst;
 pub use expand::{ExpandOutcome, Selection, expand_select};
 pub use merge::merge;
 
@@ -121,6 +124,8 @@ pub(crate) fn points_within(points: &[DVec3], sphere: &Sphere) -> Vec<u32> {
 pub enum Reducer {
     /// [`merge`].
     Merge,
+    /// [`burst`].
+    Burst,
     /// [`expand_select`] with `MaxElim`.
     Expand,
     /// Both, keeping the set with the smaller worst error ([`combined`]).
@@ -160,6 +165,7 @@ pub fn reduce(
 ) -> Result<Vec<FittedSphere>, SphereTreeError> {
     match reducer {
         Reducer::Merge => merge(input, target),
+        Reducer::Burst => burst(input, target),
         Reducer::Expand => Ok(expand_select(input, target, Selection::MaxElim)?.spheres),
         Reducer::Combined => combined(input, target),
     }

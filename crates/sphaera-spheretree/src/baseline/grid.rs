@@ -1,0 +1,113 @@
+//! The grid sphere-tree: per level, a regular grid of cubic cells.
+
+use std::collections::HashSet;
+
+use glam::DVec3;
+use sphaera_mesh::TriMesh;
+
+use super::{BaselineParams, CellGrid, Child, assemble, group_by_cell, start};
+use crate::{SphereTree, SphereTreeError};
+
+/// Bisection steps of the cell-size search.
+const SIZE_STEPS: usize = 48;
+
+/// Builds the grid sphere-tree of `mesh`.
+///
+/// **Rule.** Level `l` uses a regular grid of cubic cells anchored at the bounding box's
+/// minimum corner, whose edge is the smallest (found by bisection, to 2⁻⁴⁸ of the box)
+/// for which at most `branch^l` cells hold a surface sample (capped at the sample
+/// count). A node of level `l` is a pair (parent, cell): the parent's region samples
+/// falling in the cell, and the cell's **circumscribed sphere**, as for
+/// [`octree`](super::octree) (it covers the whole surface in the cell). Unlike the
+/// octree, consecutive grids are not nested: a cell straddling two parents' regions
+/// yields a child of each (the same sphere twice), so a level may have somewhat more
+/// nodes than occupied cells and a node more than `branch` children;
+/// [`SphereTree::branch`] reports the most children any node has (at least `branch`).
+///
+/// # Errors
+///
+/// As [`octree`](super::octree), and [`SphereTreeError::InvalidParameter`] for
+/// `branch == 0`.
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// `O(48 · samples · log samples)` per level for the size search, plus one distance
+/// query per node.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::shapes;
+/// use sphaera_spheretree::baseline::{BaselineParams, grid};
+///
+/// let mesh = shapes::capsule(0.5, 2.0, 12)?;
+/// let tree = grid(&mesh, &BaselineParams::default().depth(2).branch(4).samples(1_000))?;
+/// assert_eq!(tree.level_count(), 3);
+/// // About 4 occupied cells at level 1 (a straddling cell may count twice).
+/// assert!((1..=8).contains(&tree.level(1).len()));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn grid(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, SphereTreeError> {
+    let start = start(mesh, params)?;
+    let bounds = mesh.bounding_box();
+    let extent = bounds.extent();
+    let longest = extent.x.max(extent.y).max(extent.z).max(f64::MIN_POSITIVE);
+    let samples = &start.samples;
+    let grids: Vec<CellGrid> = (1..=params.depth)
+        .map(|level| {
+            let target = (params.branch as u64)
+                .checked_pow(level as u32)
+                .unwrap_or(u64::MAX)
+                .min(samples.len() as u64);
+            level_grid(samples, bounds.min, longest, target)
+        })
+        .collect();
+    assemble(&start, params.depth, params.branch, |level, _, region| {
+        let Some(grid) = grids.get(level - 1) else {
+            return Ok(Vec::new());
+        };
+        Ok(group_by_cell(grid, samples, region)
+            .into_iter()
+            .map(|(cell, ids)| Child {
+                sphere: grid.cell_sphere(cell),
+                region: ids,
+            })
+            .collect())
+    })
+}
+
+/// The grid of the smallest cell edge with at most `target` occupied cells.
+fn level_grid(samples: &[DVec3], origin: DVec3, longest: f64, target: u64) -> CellGrid {
+    let make = |cell: f64| CellGrid {
+        origin,
+        cell,
+        // Enough cells to reach past the box on every axis (bounded: the edge is at
+        // least 2⁻⁴⁸ of the box).
+        cells: (longest / cell).ceil() as u64 + 1,
+    };
+    let occupied = |g: &CellGrid| {
+        samples
+            .iter()
+            .map(|&p| g.cell_of(p))
+            .collect::<HashSet<[u64; 3]>>()
+            .len() as u64
+    };
+    // One cell as large as the box (plus a hair) is always feasible.
+    let (mut feasible, mut infeasible) = (longest * (1.0 + 1e-9), 0.0);
+    for _ in 0..SIZE_STEPS {
+        let mid = 0.5 * (feasible + infeasible);
+        if mid <= 0.0 {
+            break;
+        }
+        if occupied(&make(mid)) <= target {
+            feasible = mid;
+        } else {
+            infeasible = mid;
+        }
+    }
+    make(feasible)
+}
