@@ -108,15 +108,38 @@ pub struct SpheretreeArgs {
     pub print: OutputArgs,
 }
 
-/// `--method`: the reducers.
+/// `--method`: the reducers, and the classic baselines for comparison.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum MethodArg {
     /// Merge neighbouring spheres, tightest result first.
     Merge,
+    /// Burst spheres, handing their points to the spheres closest to covering them.
+    Burst,
     /// Expand the medial spheres to a common standoff and select a covering subset.
     Expand,
-    /// Both per node, keeping the tighter.
+    /// Merge and expand per node, keeping the tighter.
     Combined,
+    /// Baseline: an octree's occupied cells, each in its circumscribed sphere.
+    Octree,
+    /// Baseline: per level a regular grid of about branch^level occupied cells.
+    Grid,
+    /// Baseline: Hubbard's static medial spheres merged by enclosing spheres.
+    Hubbard,
+}
+
+impl MethodArg {
+    /// The method's name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Merge => "merge",
+            Self::Burst => "burst",
+            Self::Expand => "expand",
+            Self::Combined => "combined",
+            Self::Octree => "octree",
+            Self::Grid => "grid",
+            Self::Hubbard => "hubbard",
+        }
+    }
 }
 
 /// Arguments of `sphaera medial`.

@@ -9,10 +9,11 @@ use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use sphaera::medial::Surface;
 use sphaera::mesh::io::write_atomic;
+use sphaera::spheretree::baseline::{self, BaselineParams};
 use sphaera::spheretree::export::{CollisionLink, write_collision_spheres_yaml, write_tree_json};
 use sphaera::spheretree::{
-    BuildProgress, EvaluationOptions, Params, Reducer, SphereTree, build_with_progress,
-    cut_for_tolerance, evaluate_set, sph::SphFile, write_sph,
+    BuildProgress, CoverageCertificate, EvaluationOptions, Params, Reducer, SphereTree,
+    build_with_progress, cut_for_tolerance, evaluate_set, sph::SphFile, write_sph,
 };
 
 use crate::{
@@ -60,10 +61,9 @@ struct LevelReport {
     /// Fraction of 100,000 independent surface samples outside every sphere.
     uncovered_fraction: Option<f64>,
     largest_gap: Option<f64>,
-    /// Triangle pieces of the coverage certificate, spheres grown and the largest growth.
-    certified_pieces: usize,
-    grown_spheres: usize,
-    largest_growth: f64,
+    /// The coverage certificate: triangle pieces, spheres grown and the largest growth
+    /// (absent for the baselines, which are not certified).
+    certificate: Option<CoverageCertificate>,
     /// Evaluation time of the level.
     evaluation_seconds: f64,
 }
@@ -79,17 +79,24 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
     let mesh = &input.loaded.mesh;
     let reducer = match args.method {
-        MethodArg::Merge => Reducer::Merge,
-        MethodArg::Expand => Reducer::Expand,
-        MethodArg::Combined => Reducer::Combined,
+        MethodArg::Merge => Some(Reducer::Merge),
+        MethodArg::Burst => Some(Reducer::Burst),
+        MethodArg::Expand => Some(Reducer::Expand),
+        MethodArg::Combined => Some(Reducer::Combined),
+        MethodArg::Octree | MethodArg::Grid | MethodArg::Hubbard => None,
     };
     let params = Params::default()
-        .reducer(reducer)
+        .reducer(reducer.unwrap_or_default())
         .depth(args.depth)
         .branch(args.branch)
         .samples(args.samples)
         .initial_spheres(args.initial_spheres)
         .min_spheres_per_node(args.min_spheres_per_node)
+        .seed(args.seed);
+    let baseline_params = BaselineParams::default()
+        .depth(args.depth)
+        .branch(args.branch)
+        .samples(args.samples)
         .seed(args.seed);
     if let Some(path) = &args.output {
         output_format(path)?;
@@ -108,7 +115,12 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         ));
     };
     let started = Instant::now();
-    let tree = build_with_progress(mesh, &params, &report_progress);
+    let tree = match args.method {
+        MethodArg::Octree => baseline::octree(mesh, &baseline_params),
+        MethodArg::Grid => baseline::grid(mesh, &baseline_params),
+        MethodArg::Hubbard => baseline::hubbard(mesh, &baseline_params),
+        _ => build_with_progress(mesh, &params, &report_progress),
+    };
     bar.finish_and_clear();
     let tree = tree.with_context(|| format!("cannot build a sphere-tree of {}", input.source))?;
     let build_seconds = started.elapsed().as_secs_f64();
@@ -135,11 +147,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     let report = Report {
         mesh: input.source.clone(),
         triangles: mesh.triangle_count(),
-        method: match args.method {
-            MethodArg::Merge => "merge",
-            MethodArg::Expand => "expand",
-            MethodArg::Combined => "combined",
-        },
+        method: args.method.name(),
         depth: args.depth,
         branch: args.branch,
         samples: args.samples,
@@ -197,7 +205,6 @@ fn evaluate_levels(
             ),
             None => None,
         };
-        let certificate = tree.coverage().get(level).copied().unwrap_or_default();
         out.push(LevelReport {
             level,
             spheres: nodes.len(),
@@ -208,9 +215,7 @@ fn evaluate_levels(
             error_variance: evaluation.as_ref().map(|e| e.error_variance),
             uncovered_fraction: evaluation.as_ref().map(|e| e.coverage.uncovered_fraction),
             largest_gap: evaluation.as_ref().map(|e| e.coverage.largest_gap),
-            certified_pieces: certificate.pieces,
-            grown_spheres: certificate.grown_spheres,
-            largest_growth: certificate.largest_growth,
+            certificate: tree.coverage().get(level).copied(),
             evaluation_seconds: started.elapsed().as_secs_f64(),
         });
         bar.inc(1);
@@ -316,7 +321,8 @@ impl Report {
                 percent(l.construction_error),
                 worst,
                 uncovered,
-                thousands(l.grown_spheres),
+                l.certificate
+                    .map_or_else(|| "–".to_owned(), |c| thousands(c.grown_spheres)),
                 l.evaluation_seconds
             ));
         }

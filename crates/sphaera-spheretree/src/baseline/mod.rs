@@ -219,10 +219,13 @@ pub(crate) fn assemble(
         }
         level_starts.push(nodes.len());
     }
+    // The baselines are the classic methods as published: their coverage is measured
+    // (`evaluate::coverage`), not certified.
     Ok(SphereTree {
         branch: widest,
         nodes,
         level_starts,
+        coverage: Vec::new(),
     })
 }
 
