@@ -88,7 +88,8 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
 /// `tests/`, and the doctests (all run by `cargo test`); then the mesh and medial crates
 /// again without their default `parallel` feature, whose results must be identical (the
-/// medial tests compare a digest of their spheres with the same recorded value both ways).
+/// medial tests compare a digest of their spheres with the same recorded value both ways),
+/// and the sphere-tree's export tests with its optional `parry` feature.
 fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
     for crate_name in ["sphaera-mesh", "sphaera-medial"] {
@@ -102,6 +103,17 @@ fn test() -> Result<()> {
             "--tests",
         ])?;
     }
+    // The sphere-tree's parry3d export, behind its optional feature.
+    cargo(&[
+        "test",
+        "--locked",
+        "-p",
+        "sphaera-spheretree",
+        "--features",
+        "parry",
+        "--test",
+        "export",
+    ])?;
     Ok(())
 }
 
@@ -112,6 +124,18 @@ fn ci() -> Result<()> {
     cargo(&[
         "clippy",
         "--workspace",
+        "--all-targets",
+        "--locked",
+        "--",
+        "-D",
+        "warnings",
+    ])?;
+    cargo(&[
+        "clippy",
+        "-p",
+        "sphaera-spheretree",
+        "--features",
+        "parry",
         "--all-targets",
         "--locked",
         "--",
