@@ -4,6 +4,7 @@
 
 use sphaera_mesh::Sphere;
 
+use super::window_bits::{WindowBits, all_of, morton_positions};
 use super::{FittedSphere, ReductionInput, centre_depth};
 use crate::SphereTreeError;
 
@@ -12,7 +13,7 @@ const SEARCH_STEPS: usize = 40;
 
 /// The standoff search stops when its bracket is narrower than this fraction of the
 /// mesh's diagonal: far below any error worth telling apart, and it halves the work.
-const SEARCH_RESOLUTION: f64 = 1e-6;
+const SEARCH_RESOLUTION: f64 = 1e-4;
 
 /// The greedy ranking of the selection.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -164,6 +165,7 @@ pub fn expand_select(
         })
         .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
         .map_or((0, low), |(i, e)| (i, e.max(low)));
+    let positions = morton_positions(input.points);
     let mut best = vec![single];
     let mut best_e = high;
     let mut next_above: Option<usize> = None;
@@ -173,7 +175,7 @@ pub fn expand_select(
     let mut probe = low;
     let resolution = SEARCH_RESOLUTION * input.surface.diagonal();
     for _ in 0..SEARCH_STEPS {
-        match select(input, &expandable, probe, selection) {
+        match select(input, &expandable, &positions, probe, selection) {
             Some(chosen) if chosen.len() <= target => {
                 hi = probe;
                 best = chosen;
@@ -212,98 +214,63 @@ pub fn expand_select(
     })
 }
 
-/// A bit set over the points.
-#[derive(Clone)]
-struct Bits(Vec<u64>);
-
-impl Bits {
-    fn new(n: usize) -> Self {
-        Self(vec![0; n.div_ceil(64)])
-    }
-    fn set(&mut self, i: usize) {
-        self.0[i / 64] |= 1 << (i % 64);
-    }
-    fn count_and(&self, other: &Self) -> u32 {
-        self.0
-            .iter()
-            .zip(&other.0)
-            .map(|(a, b)| (a & b).count_ones())
-            .sum()
-    }
-    /// Whether `self ∩ mask ⊆ other`.
-    fn subset_within(&self, mask: &Self, other: &Self) -> bool {
-        self.0
-            .iter()
-            .zip(&mask.0)
-            .zip(&other.0)
-            .all(|((a, m), o)| a & m & !o == 0)
-    }
-    fn remove(&mut self, other: &Self) {
-        for (a, b) in self.0.iter_mut().zip(&other.0) {
-            *a &= !b;
-        }
-    }
-    fn is_empty(&self) -> bool {
-        self.0.iter().all(|&w| w == 0)
-    }
-}
-
 /// The greedy selection at standoff `e`: indices of the chosen candidates (`None` when
 /// some point cannot be covered), with spheres that cover nothing uniquely dropped at the
-/// end.
+/// end. `positions` numbers the points in space-filling order (the bit of each point).
 fn select(
     input: &ReductionInput<'_>,
     expandable: &[Expandable],
+    positions: &[u32],
     e: f64,
     selection: Selection,
 ) -> Option<Vec<usize>> {
     let n = input.points.len();
-    let covers: Vec<Option<Bits>> = expandable
+    let covers: Vec<Option<WindowBits>> = expandable
         .iter()
         .map(|x| {
             let reach = x.radius(e)? * (1.0 + 1e-12);
             let within = x.by_distance.partition_point(|&(d, _)| d <= reach);
-            let mut bits = Bits::new(n);
-            for &(_, i) in &x.by_distance[..within] {
-                bits.set(i as usize);
-            }
-            (within > 0).then_some(bits)
+            let members: Vec<u32> = x.by_distance[..within]
+                .iter()
+                .map(|&(_, i)| positions[i as usize])
+                .collect();
+            (within > 0).then(|| WindowBits::new(&members))
         })
         .collect();
-    let mut uncovered = Bits::new(n);
-    for i in 0..n {
-        uncovered.set(i);
-    }
+    let mut uncovered = all_of(n);
     let mut remaining: Vec<usize> = (0..covers.len()).filter(|&i| covers[i].is_some()).collect();
     let mut chosen = Vec::new();
-    while !uncovered.is_empty() {
-        remaining.retain(|&j| {
-            covers[j]
-                .as_ref()
-                .is_some_and(|c| c.count_and(&uncovered) > 0)
-        });
-        let best = remaining.iter().copied().max_by_key(|&i| {
-            let Some(ci) = covers[i].as_ref() else {
-                return (0, 0, std::cmp::Reverse(i));
-            };
-            let gain = ci.count_and(&uncovered);
+    while uncovered.iter().any(|&w| w != 0) {
+        // Each candidate's uncovered points and their count (its gain), by gain.
+        let mut open: Vec<(usize, u32, WindowBits)> = remaining
+            .iter()
+            .filter_map(|&j| {
+                let open = covers[j].as_ref()?.masked(&uncovered)?;
+                Some((j, open.count(), open))
+            })
+            .collect();
+        remaining = open.iter().map(|&(j, _, _)| j).collect();
+        open.sort_by_key(|&(j, gain, _)| (gain, j));
+        let best = open.iter().map(|&(i, gain, _)| {
             let rank = match selection {
                 Selection::MaxCover => gain,
-                Selection::MaxElim => remaining
-                    .iter()
-                    .filter(|&&j| j != i)
-                    .filter(|&&j| {
-                        covers[j]
-                            .as_ref()
-                            .is_some_and(|cj| cj.subset_within(&uncovered, ci))
+                // Candidates whose uncovered points `i` covers too; only those with no
+                // larger gain can be (the gains are sorted).
+                Selection::MaxElim => {
+                    let end = open.partition_point(|&(_, g, _)| g <= gain);
+                    covers[i].as_ref().map_or(0, |ci| {
+                        open[..end]
+                            .iter()
+                            .filter(|(j, _, oj)| *j != i && oj.is_subset_of(ci))
+                            .count() as u32
                     })
-                    .count() as u32,
+                }
             };
             (rank, gain, std::cmp::Reverse(i))
         });
-        let best = best?;
+        let (_, _, std::cmp::Reverse(best)) = best.max()?;
         if let Some(c) = covers[best].as_ref() {
-            uncovered.remove(c);
+            c.remove_from(&mut uncovered);
         }
         chosen.push(best);
         remaining.retain(|&j| j != best);
@@ -312,23 +279,18 @@ fn select(
     let mut k = chosen.len();
     while k > 0 {
         k -= 1;
-        let mut others = Bits::new(n);
+        let mut others = vec![0; n.div_ceil(64)];
         for (m, &j) in chosen.iter().enumerate() {
             if m != k
                 && let Some(c) = covers[j].as_ref()
             {
-                for (w, cw) in others.0.iter_mut().zip(&c.0) {
-                    *w |= cw;
-                }
+                c.add_to(&mut others);
             }
         }
-        let mut all = Bits::new(n);
-        for i in 0..n {
-            all.set(i);
-        }
+        let others = WindowBits::from_full(&others);
         if covers[chosen[k]]
             .as_ref()
-            .is_some_and(|c| c.subset_within(&all, &others))
+            .is_some_and(|c| c.is_subset_of(&others))
         {
             chosen.remove(k);
         }

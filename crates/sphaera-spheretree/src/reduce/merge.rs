@@ -6,8 +6,8 @@ use std::collections::BinaryHeap;
 
 use glam::DVec3;
 use sphaera_mesh::Sphere;
-use sphaera_mesh::geometry::minimum_enclosing_ball;
 
+use super::seeded_ball::{SeededBall, seeded_enclosing_ball};
 use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
 use crate::SphereTreeError;
 
@@ -23,6 +23,9 @@ struct Live {
     depth: f64,
     inside: bool,
     covers: Vec<u32>,
+    /// The support points of the minimum enclosing ball of the covered points: the seed
+    /// of the enclosing balls of its unions.
+    support: Vec<DVec3>,
     version: u32,
 }
 
@@ -115,12 +118,16 @@ pub fn merge(
         .iter()
         .map(|c| {
             let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+            let support = seeded_enclosing_ball(|| points_of(input, &c.covers), &[])
+                .map(|b| b.support)
+                .unwrap_or_default();
             Some(Live {
                 sphere: c.sphere,
                 error: eq2_error(c.sphere.radius, depth, inside),
                 depth,
                 inside,
                 covers: c.covers.clone(),
+                support,
                 version: 0,
             })
         })
@@ -193,9 +200,22 @@ pub fn merge(
 
 fn intersect(live: &[Option<Live>], a: usize, b: usize) -> bool {
     match (&live[a], &live[b]) {
-        (Some(x), Some(y)) => x.sphere.intersects(&y.sphere),
+        (Some(x), Some(y)) => share_a_point(&x.covers, &y.covers),
         _ => false,
     }
+}
+
+/// Whether two ascending lists have an element in common.
+fn share_a_point(a: &[u32], b: &[u32]) -> bool {
+    let (mut i, mut j) = (0, 0);
+    while let (Some(&x), Some(&y)) = (a.get(i), b.get(j)) {
+        match x.cmp(&y) {
+            Ordering::Equal => return true,
+            Ordering::Less => i += 1,
+            Ordering::Greater => j += 1,
+        }
+    }
+    false
 }
 
 fn push_all_pairs(
@@ -252,93 +272,89 @@ fn bound_pairs(
 /// The error of [`best_merge`] of `x` and `y` without surface queries: exact (`true`)
 /// when a grown sphere is known to win, else a lower bound (`false`).
 fn merge_bound(input: &ReductionInput<'_>, x: &Live, y: &Live) -> (f64, bool) {
-    let pts: Vec<DVec3> = union(&x.covers, &y.covers)
-        .iter()
-        .map(|&i| input.points[i as usize])
-        .collect();
-    let grown = |l: &Live| {
-        let radius = pts
-            .iter()
-            .map(|p| p.distance(l.sphere.center))
-            .fold(0.0, f64::max);
-        eq2_error(radius, l.depth, l.inside)
-    };
-    let best = grown(x).min(grown(y));
-    match minimum_enclosing_ball(&pts) {
-        Ok(ball) => {
-            let bound = ball_bound(&pts, &ball);
-            if bound < best {
-                (bound, false)
-            } else {
-                (best, true)
-            }
+    // Points covered by both appear twice: harmless for distances and enclosing balls.
+    let pts = || points_of(input, &x.covers).chain(points_of(input, &y.covers));
+    let (grown_x, grown_y) = grown_radii(pts(), x, y);
+    let best = eq2_error(grown_x, x.depth, x.inside).min(eq2_error(grown_y, y.depth, y.inside));
+    match union_ball(pts, x, y) {
+        // The centre is at most the nearest point's distance from the surface, so the
+        // error is at least `radius − nearest`, inside or not.
+        Some(ball) if ball.sphere.radius - ball.nearest < best => {
+            (ball.sphere.radius - ball.nearest, false)
         }
-        Err(_) => (best, true),
+        _ => (best, true),
     }
 }
 
-/// For the minimum enclosing ball of `pts` (surface points): its radius grown by a hair
-/// to contain every point despite rounding, and a lower bound on its eq. 2 error. The
-/// centre is at most the nearest point's distance from the surface, so the error is at
-/// least `radius − nearest`, whether the centre is inside or not.
-fn ball_bound(pts: &[DVec3], ball: &Sphere) -> f64 {
-    let (radius, nearest) = enclosing_radius(pts, ball);
-    radius - nearest
+/// The radii `x` and `y` grow to (same centres) to contain `pts`.
+fn grown_radii(pts: impl Iterator<Item = DVec3>, x: &Live, y: &Live) -> (f64, f64) {
+    let (cx, cy) = (x.sphere.center, y.sphere.center);
+    pts.fold((0.0, 0.0), |(rx, ry): (f64, f64), p| {
+        (rx.max(p.distance(cx)), ry.max(p.distance(cy)))
+    })
 }
 
-/// The largest distance from `ball`'s centre to `pts` (at least its radius) and the
-/// smallest.
-fn enclosing_radius(pts: &[DVec3], ball: &Sphere) -> (f64, f64) {
-    pts.iter()
-        .map(|p| p.distance(ball.center))
-        .fold((ball.radius, f64::INFINITY), |(far, near), d| {
-            (far.max(d), near.min(d))
-        })
+/// The points of `covers`.
+fn points_of<'a>(
+    input: &'a ReductionInput<'_>,
+    covers: &'a [u32],
+) -> impl Iterator<Item = DVec3> + 'a {
+    covers.iter().map(|&i| input.points[i as usize])
+}
+
+/// The minimum enclosing ball of the points `pts` yields (those of `x` and `y`), seeded
+/// with both spheres' supports.
+fn union_ball<I: Iterator<Item = DVec3>>(
+    pts: impl Fn() -> I,
+    x: &Live,
+    y: &Live,
+) -> Option<SeededBall> {
+    let seed: Vec<DVec3> = x.support.iter().chain(&y.support).copied().collect();
+    seeded_enclosing_ball(pts, &seed)
 }
 
 /// The tightest of the three merged spheres of `x` and `y` (version 0).
 fn best_merge(input: &ReductionInput<'_>, x: &Live, y: &Live) -> Live {
     let covers = union(&x.covers, &y.covers);
-    let pts: Vec<DVec3> = covers.iter().map(|&i| input.points[i as usize]).collect();
-    let grown = |l: &Live| {
-        let radius = pts
-            .iter()
-            .map(|p| p.distance(l.sphere.center))
-            .fold(0.0, f64::max);
-        Live {
-            sphere: Sphere::new(l.sphere.center, radius),
-            error: eq2_error(radius, l.depth, l.inside),
-            depth: l.depth,
-            inside: l.inside,
-            covers: Vec::new(),
-            version: 0,
-        }
+    let pts = || points_of(input, &covers);
+    let ball = union_ball(pts, x, y);
+    let (grown_x, grown_y) = grown_radii(pts(), x, y);
+    let grown = |l: &Live, radius: f64| Live {
+        sphere: Sphere::new(l.sphere.center, radius),
+        error: eq2_error(radius, l.depth, l.inside),
+        depth: l.depth,
+        inside: l.inside,
+        covers: Vec::new(),
+        support: Vec::new(),
+        version: 0,
     };
-    let mut best = grown(x);
-    let other = grown(y);
+    let mut best = grown(x, grown_x);
+    let other = grown(y, grown_y);
     if other.error < best.error {
         best = other;
     }
-    if let Ok(ball) = minimum_enclosing_ball(&pts) {
-        // Rounding: grow by a hair so that every point is inside.
-        let (radius, nearest) = enclosing_radius(&pts, &ball);
+    let mut support = Vec::new();
+    if let Some(ball) = ball {
         // Skip the surface queries when the lower bound cannot beat the grown spheres.
-        if radius - nearest < best.error {
-            let (depth, inside) = centre_depth(input.surface, ball.center);
-            let error = eq2_error(radius, depth, inside);
+        if ball.sphere.radius - ball.nearest < best.error {
+            let (depth, inside) = centre_depth(input.surface, ball.sphere.center);
+            let error = eq2_error(ball.sphere.radius, depth, inside);
             if error < best.error {
                 best = Live {
-                    sphere: Sphere::new(ball.center, radius),
+                    sphere: ball.sphere,
                     error,
                     depth,
                     inside,
                     covers: Vec::new(),
+                    support: Vec::new(),
                     version: 0,
                 };
             }
         }
+        support = ball.support;
     }
     best.covers = covers;
+    best.support = support;
     best
 }
 

@@ -18,6 +18,8 @@
 mod burst;
 mod expand;
 mod merge;
+mod seeded_ball;
+mod window_bits;
 
 pub use burst::burst;
 pub use expand::{ExpandOutcome, Selection, expand_select};
@@ -144,8 +146,18 @@ pub fn combined(
     input: &ReductionInput<'_>,
     target: usize,
 ) -> Result<Vec<FittedSphere>, SphereTreeError> {
-    let merged = merge(input, target)?;
-    let expanded = expand_select(input, target, Selection::MaxElim)?.spheres;
+    // Independent: run side by side with the `parallel` feature (same result).
+    #[cfg(feature = "parallel")]
+    let (merged, expanded) = rayon::join(
+        || merge(input, target),
+        || expand_select(input, target, Selection::MaxElim),
+    );
+    #[cfg(not(feature = "parallel"))]
+    let (merged, expanded) = (
+        merge(input, target),
+        expand_select(input, target, Selection::MaxElim),
+    );
+    let (merged, expanded) = (merged?, expanded?.spheres);
     if worst(&expanded) < worst(&merged) {
         Ok(expanded)
     } else {
