@@ -12,7 +12,7 @@ use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
 use crate::SphereTreeError;
 
 /// Once the set is this many times the target, every pair may merge, not only
-/// intersecting ones (the paper: "2 or 3 times the target").
+/// neighbours (the paper: "2 or 3 times the target").
 const ALL_PAIRS_FACTOR: usize = 3;
 
 /// A live sphere of the merge.
@@ -70,9 +70,16 @@ impl Ord for PairMerge {
 /// pair whose merged sphere has the smallest error. The merged sphere is the tightest of
 /// three: the first sphere grown (same centre) to cover both sets of points, the second
 /// grown likewise, and the minimum enclosing ball of the union — so a sphere stays on the
-/// medial axis unless moving it pays. Pairs start as intersecting spheres (a superset of
-/// Voronoi neighbours, whose circumspheres share three forming points); once the set is
-/// at most three times the target, every pair is considered.
+/// medial axis unless moving it pays. Pairs start as neighbours: spheres that cover a
+/// common point (Voronoi neighbours share three forming points, which both cover); once
+/// the set is at most three times the target, every pair is considered.
+///
+/// # Performance
+///
+/// A pair's queue key needs the minimum enclosing ball of the union of its points; it is
+/// solved from the two parts' support points, which usually takes one or two passes over
+/// the points instead of dozens. Surface queries wait until a pair reaches the front of
+/// the queue.
 ///
 /// # Errors
 ///
@@ -137,7 +144,7 @@ pub fn merge(
     let mut all_pairs = count <= ALL_PAIRS_FACTOR * target;
     let pairs: Vec<(usize, usize)> = (0..live.len())
         .flat_map(|a| (a + 1..live.len()).map(move |b| (a, b)))
-        .filter(|&(a, b)| all_pairs || intersect(&live, a, b))
+        .filter(|&(a, b)| all_pairs || neighbours(&live, a, b))
         .collect();
     heap.extend(bound_pairs(input, &live, &pairs));
     while count > target {
@@ -180,7 +187,9 @@ pub fn merge(
         } else {
             let pairs: Vec<(usize, usize)> = (0..live.len())
                 .filter(|&other| {
-                    other != a && live[other].is_some() && (all_pairs || intersect(&live, a, other))
+                    other != a
+                        && live[other].is_some()
+                        && (all_pairs || neighbours(&live, a, other))
                 })
                 .map(|other| (a.min(other), a.max(other)))
                 .collect();
@@ -198,7 +207,7 @@ pub fn merge(
         .collect())
 }
 
-fn intersect(live: &[Option<Live>], a: usize, b: usize) -> bool {
+fn neighbours(live: &[Option<Live>], a: usize, b: usize) -> bool {
     match (&live[a], &live[b]) {
         (Some(x), Some(y)) => share_a_point(&x.covers, &y.covers),
         _ => false,
