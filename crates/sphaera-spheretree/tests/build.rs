@@ -115,3 +115,47 @@ fn bad_input_gets_clear_errors() {
         Err(SphereTreeError::InvalidParameter(_))
     ));
 }
+
+/// A digest of a tree's nodes (the bits of every sphere and error, and the structure), to
+/// compare runs across feature sets.
+fn digest(tree: &SphereTree) -> u64 {
+    let mut hash = 0xcbf2_9ce4_8422_2325_u64;
+    let mut mix = |bits: u64| hash = (hash ^ bits).wrapping_mul(0x0100_0000_01b3);
+    for node in tree.nodes() {
+        let s = node.sphere;
+        for value in [s.center.x, s.center.y, s.center.z, s.radius, node.error] {
+            mix(value.to_bits());
+        }
+        mix(u64::from(node.parent.unwrap_or(u32::MAX)));
+        mix(u64::from(node.region_samples));
+    }
+    hash
+}
+
+/// The same tree with and without the `parallel` feature, for every reducer:
+/// `cargo xtask test` runs this test both ways against the same recorded digests. (A
+/// change to the algorithm changes them: record the new values printed on failure,
+/// after checking that both builds agree.)
+#[test]
+fn the_parallel_feature_does_not_change_the_tree() {
+    // An L-shaped block: no sine or cosine, whose last bit could differ between system
+    // libraries.
+    let mesh = shapes::l_block(2.0, 1.0, 0.5, 4).unwrap();
+    let digests: Vec<u64> = [
+        Reducer::Merge,
+        Reducer::Burst,
+        Reducer::Expand,
+        Reducer::Combined,
+    ]
+    .into_iter()
+    .map(|reducer| digest(&build(&mesh, &small(reducer)).unwrap()))
+    .collect();
+    assert_eq!(digests, EXPECTED_DIGESTS, "digests {digests:#x?}");
+}
+
+const EXPECTED_DIGESTS: [u64; 4] = [
+    0x41c6_3588_05eb_6c15,
+    0xbad5_0336_1fe3_2604,
+    0x530f_a8c4_a155_fc2d,
+    0x1ab1_8366_7088_6bec,
+];
