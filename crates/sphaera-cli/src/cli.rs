@@ -75,13 +75,24 @@ pub struct SpheretreeArgs {
     #[arg(long, default_value_t = 10_000)]
     pub samples: usize,
 
-    /// Spheres of the initial medial approximation.
+    /// Spheres of the initial medial approximation (merge, burst, expand, combined).
     #[arg(long, default_value_t = 500)]
     pub initial_spheres: usize,
 
-    /// Medial spheres each node's region is refined to before reduction.
+    /// Medial spheres each node's region is refined to before reduction (merge, burst,
+    /// expand, combined).
     #[arg(long, default_value_t = 100)]
     pub min_spheres_per_node: usize,
+
+    /// A node's medial spheres are refined until their worst error is at most this
+    /// fraction of the parent's (merge, burst, expand, combined; the paper: ½ to ¼).
+    /// Smaller is tighter at levels 2 and 3 and slower.
+    #[arg(long, default_value_t = 0.5)]
+    pub error_fraction: f64,
+
+    /// Forming points of Hubbard's static medial approximation (hubbard only).
+    #[arg(long, default_value_t = 600)]
+    pub forming_points: usize,
 
     /// Report the shallowest level whose worst error is at most this: an absolute
     /// distance (`0.002`) or a percentage of the bounding-box diagonal (`2%`).

@@ -99,6 +99,10 @@ fn spheretree_bad_input_is_a_clear_error() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("branch"));
 
+    let output = sphaera(&["spheretree", "--error-fraction", "0"]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("error_fraction"));
+
     let output = sphaera(&["spheretree", "-o", "tree.txt"]);
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("unknown output format"));

@@ -105,6 +105,14 @@ impl Params {
         self
     }
 
+    /// With a node's medial spheres refined to at most `fraction` of the parent's error
+    /// (in (0, 1]; checked by [`build`]).
+    #[must_use]
+    pub fn error_fraction(mut self, fraction: f64) -> Self {
+        self.error_fraction = fraction;
+        self
+    }
+
     /// With the given reducer.
     #[must_use]
     pub fn reducer(mut self, reducer: Reducer) -> Self {

@@ -35,6 +35,8 @@ struct Report {
     depth: usize,
     branch: usize,
     samples: usize,
+    /// The refinement goal per node (medial methods).
+    error_fraction: f64,
     diagonal: f64,
     levels: Vec<LevelReport>,
     /// The shallowest level whose worst error meets `--tolerance` (absolute), if asked.
@@ -92,11 +94,13 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         .samples(args.samples)
         .initial_spheres(args.initial_spheres)
         .min_spheres_per_node(args.min_spheres_per_node)
+        .error_fraction(args.error_fraction)
         .seed(args.seed);
     let baseline_params = BaselineParams::default()
         .depth(args.depth)
         .branch(args.branch)
         .samples(args.samples)
+        .forming_points(args.forming_points)
         .seed(args.seed);
     if let Some(path) = &args.output {
         output_format(path)?;
@@ -151,6 +155,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         depth: args.depth,
         branch: args.branch,
         samples: args.samples,
+        error_fraction: args.error_fraction,
         diagonal,
         levels,
         tolerance,
