@@ -483,4 +483,64 @@ mod tests {
         assert_eq!(tick_label(99.999_999_999_9e-6), "1e-4");
         assert_eq!(tick_label(2.5), "2.5");
     }
+
+    #[test]
+    fn styled_panels_draw_both_axes_and_the_legend() -> Result<()> {
+        let path =
+            std::env::temp_dir().join(format!("sphaera-eval-styled-{}.svg", std::process::id()));
+        let style = |marker, filled| Style {
+            color: palette(1),
+            marker,
+            filled,
+            line: true,
+        };
+        let mut a = Series::new("a");
+        a.points = vec![
+            (1.0, 20.0),
+            (2.0, 5.0),
+            (3.0, 2.0),
+            (2.0, 0.0),
+            (f64::NAN, 1.0),
+        ];
+        let mut b = Series::new("b");
+        b.points = vec![(0.01, 3.0), (10.0, 1.5), (-1.0, 2.0)];
+        let levels = [StyledSeries {
+            series: a,
+            style: style(Marker::Circle, true),
+        }];
+        let times = [StyledSeries {
+            series: b,
+            style: style(Marker::Triangle, false),
+        }];
+        let spec = |title| ChartSpec {
+            title,
+            x_label: "x units",
+            y_label: "y units",
+        };
+        styled_panels(
+            &path,
+            &[
+                StyledPanel {
+                    spec: spec("levels"),
+                    x_axis: XAxis::Integers(0.5..3.5),
+                    series: &levels,
+                },
+                StyledPanel {
+                    spec: spec("times"),
+                    x_axis: XAxis::Log,
+                    series: &times,
+                },
+            ],
+            &[LegendEntry {
+                label: "square entry".to_owned(),
+                style: style(Marker::Square, false),
+            }],
+        )?;
+        let svg = std::fs::read_to_string(&path)?;
+        std::fs::remove_file(&path)?;
+        for text in ["levels", "times", "x units", "y units", "square entry"] {
+            assert!(svg.contains(text), "{text}");
+        }
+        Ok(())
+    }
 }

@@ -13,7 +13,9 @@
 //!   `BaselineParams::default()`.
 //!
 //! Measured per tree: the **build time**, the best of [`RUNS`] runs of the build alone
-//! (mesh loading, surface preparation and evaluation excluded), and per level 1 to
+//! (mesh loading, surface preparation and evaluation excluded; wall-clock, with the
+//! `parallel` feature on every core, whereas the toolkit's figures are single-threaded
+//! CPU seconds), and per level 1 to
 //! [`DEPTH`] the **certified worst error**: `evaluate_set` on the level's spheres with
 //! `EvaluationOptions::default().with_relative_tolerance(`[`EVALUATION_TOLERANCE`]`)`
 //! (the tolerance of `sphaera spheretree`), which bounds the true worst distance from a
@@ -48,10 +50,10 @@ use sphaera::{
 };
 
 use super::min_time;
-use crate::chart::{
-    ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
-    styled_panels, write_csv,
-};
+
+// The CSV tables and the SVG charts.
+#[path = "spheretree_charts.rs"]
+mod charts;
 
 /// The experiment's name (`--only spheretree`); it writes the two charts below.
 pub const NAME: &str = "spheretree";
@@ -214,10 +216,10 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
     for line in oddities(&measured) {
         eprintln!("note: {line}");
     }
-    write_level_table(out, &measured)?;
-    write_time_table(out, &measured)?;
-    draw_levels(out, &measured, &labels)?;
-    draw_times(out, &measured)
+    charts::write_level_table(out, &measured)?;
+    charts::write_time_table(out, &measured)?;
+    charts::draw_levels(out, &measured, &labels)?;
+    charts::draw_times(out, &measured)
 }
 
 /// Every method on one mesh: build (timed), then evaluate levels 1 to [`DEPTH`].
@@ -342,295 +344,60 @@ fn oddities(measured: &[Measured]) -> Vec<String> {
     notes
 }
 
-/// One row per mesh, method and level; then the toolkit's rows.
-fn write_level_table(out: &Path, measured: &[Measured]) -> Result<()> {
-    let pct = |x: f64| format!("{:.4}", 100.0 * x);
-    let mut table = Vec::new();
-    for m in measured {
-        for l in &m.levels {
-            table.push(vec![
-                m.file.to_owned(),
-                m.method.name().to_owned(),
-                "measured".to_owned(),
-                l.level.to_string(),
-                l.spheres.to_string(),
-                pct(l.worst_lower),
-                pct(l.worst_upper),
-                pct(l.mean_error),
-                pct(l.construction_error),
-                format!("{:.4}", 100.0 * l.uncovered),
-                l.converged.to_string(),
-                format!("{:.4}", m.seconds),
-                format!("{:.3}", l.evaluation_seconds),
-            ]);
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn level(level: usize, lower: f64, upper: f64) -> Level {
+        Level {
+            level,
+            spheres: BRANCH.pow(level as u32),
+            worst_lower: lower,
+            worst_upper: upper,
+            mean_error: lower / 2.0,
+            construction_error: lower,
+            uncovered: 0.0,
+            converged: true,
+            evaluation_seconds: 0.0,
         }
     }
-    for &(name, seconds, errors) in TOOLKIT {
-        for (i, error) in errors.iter().enumerate() {
-            table.push(vec![
-                TOOLKIT_MESH.to_owned(),
-                name.to_owned(),
-                "issue".to_owned(),
-                (i + 1).to_string(),
-                String::new(),
-                String::new(),
-                format!("{error}"),
-                String::new(),
-                String::new(),
-                String::new(),
-                String::new(),
-                seconds.map(|s| format!("{s}")).unwrap_or_default(),
-                String::new(),
-            ]);
-        }
-    }
-    write_csv(
-        &out.join(format!("{LEVEL_CHART}.csv")),
-        &[
-            "file",
-            "method",
-            "source",
-            "level",
-            "spheres",
-            "worst_error_lower_pct_diag",
-            "worst_error_upper_pct_diag",
-            "mean_error_pct_diag",
-            "construction_error_pct_diag",
-            "uncovered_surface_pct",
-            "converged",
-            "build_seconds",
-            "evaluation_seconds",
-        ],
-        &table,
-    )
-}
 
-/// One row per mesh and method: build time, worst error at levels 2 and 3; then the
-/// toolkit's rows that have a time.
-fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> {
-    let pct = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
-    let mut table: Vec<Vec<String>> = measured
-        .iter()
-        .map(|m| {
-            vec![
-                m.file.to_owned(),
-                m.method.name().to_owned(),
-                "measured".to_owned(),
-                format!("{:.4}", m.seconds),
-                pct(m.upper_pct(2)),
-                pct(m.upper_pct(3)),
-            ]
-        })
-        .collect();
-    for &(name, seconds, errors) in TOOLKIT {
-        if let Some(s) = seconds {
-            table.push(vec![
-                TOOLKIT_MESH.to_owned(),
-                name.to_owned(),
-                "issue".to_owned(),
-                format!("{s}"),
-                format!("{}", errors[1]),
-                format!("{}", errors[2]),
-            ]);
-        }
-    }
-    write_csv(
-        &out.join(format!("{TIME_CHART}.csv")),
-        &[
-            "file",
-            "method",
-            "source",
-            "build_seconds",
-            "level2_worst_error_upper_pct_diag",
-            "level3_worst_error_upper_pct_diag",
-        ],
-        &table,
-    )
-}
-
-/// The style of a measured method: its colour, filled circles joined by a line.
-fn method_style(method: Method, marker: Marker, line: bool) -> Style {
-    Style {
-        color: palette(method.index()),
-        marker,
-        filled: true,
-        line,
-    }
-}
-
-/// The method a toolkit entry (`toolkit-merge`, ...) stands for.
-fn toolkit_method(name: &str) -> Method {
-    METHODS
-        .iter()
-        .copied()
-        .find(|m| name.strip_prefix("toolkit-") == Some(m.name()))
-        .unwrap_or(Method::Hubbard)
-}
-
-/// The toolkit's entry `name` drawn in the colour of the method it stands for, hollow.
-fn toolkit_style(name: &str, marker: Marker, line: bool) -> Style {
-    Style {
-        filled: false,
-        ..method_style(toolkit_method(name), marker, line)
-    }
-}
-
-/// The x of `level` for `method` in the level chart: shifted a little per method, so
-/// that methods with equal errors (combined often equals expand) stay visible.
-fn dodge(level: usize, method: Method) -> f64 {
-    level as f64 + 0.035 * (method.index() as f64 - 3.0)
-}
-
-/// One panel per mesh: certified worst error against level, one line per method; the
-/// toolkit's figures as hollow squares on the bunny.
-fn draw_levels(out: &Path, measured: &[Measured], labels: &[(&str, String)]) -> Result<()> {
-    let mut per_mesh = Vec::new();
-    for (file, _) in labels {
-        let mut series: Vec<StyledSeries> = measured
-            .iter()
-            .filter(|m| m.file == *file)
-            .map(|m| {
-                let mut s = Series::new(m.method.name());
-                s.points = m
-                    .levels
-                    .iter()
-                    .map(|l| (dodge(l.level, m.method), 100.0 * l.worst_upper))
-                    .collect();
-                StyledSeries {
-                    series: s,
-                    style: method_style(m.method, Marker::Circle, true),
-                }
-            })
-            .collect();
-        if *file == TOOLKIT_MESH {
-            for &(name, _, errors) in TOOLKIT {
-                let mut s = Series::new(name);
-                let method = toolkit_method(name);
-                s.points = (1..=errors.len())
-                    .map(|l| dodge(l, method))
-                    .zip(errors.iter().copied())
-                    .collect();
-                series.push(StyledSeries {
-                    series: s,
-                    style: toolkit_style(name, Marker::Square, true),
-                });
-            }
-        }
-        per_mesh.push(series);
-    }
-    let sizes: Vec<String> = (1..=DEPTH)
-        .map(|l| BRANCH.pow(l as u32).to_string())
-        .collect();
-    let x_label = format!("tree level (at most {} spheres)", sizes.join(", "));
-    let panels: Vec<StyledPanel<'_>> = labels
-        .iter()
-        .zip(&per_mesh)
-        .map(|((_, label), series)| StyledPanel {
-            spec: ChartSpec {
-                title: label,
-                x_label: &x_label,
-                y_label: "certified worst error, % of diagonal",
-            },
-            x_axis: XAxis::Integers(0.75..DEPTH as f64 + 0.25),
-            series,
-        })
-        .collect();
-    let mut legend: Vec<LegendEntry> = METHODS
-        .iter()
-        .map(|&m| LegendEntry {
-            label: m.name().to_owned(),
-            style: method_style(m, Marker::Circle, true),
-        })
-        .collect();
-    legend.extend(TOOLKIT.iter().map(|&(name, _, _)| LegendEntry {
-        label: format!("{} (issue, bunny)", name.replace('-', " ")),
-        style: toolkit_style(name, Marker::Square, true),
-    }));
-    styled_panels(&out.join(format!("{LEVEL_CHART}.svg")), &panels, &legend)
-}
-
-/// Marker of a mesh in the time chart.
-fn mesh_marker(file: &str) -> Marker {
-    match MESHES.iter().position(|&(f, _)| f == file) {
-        Some(1) => Marker::Square,
-        Some(2) => Marker::Triangle,
-        _ => Marker::Circle,
-    }
-}
-
-/// Levels 2 and 3: certified worst error against build time, one point per mesh and
-/// method (colour: method, marker: mesh); the toolkit's timed figures hollow.
-fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
-    let per_level: Vec<Vec<StyledSeries>> = [2, 3]
-        .iter()
-        .map(|&level| {
-            let mut series: Vec<StyledSeries> = measured
+    pub(super) fn measured(method: Method, uppers: [f64; 3]) -> Measured {
+        Measured {
+            file: TOOLKIT_MESH,
+            method,
+            seconds: 1.0,
+            levels: uppers
                 .iter()
-                .map(|m| {
-                    let mut s = Series::new(m.method.name());
-                    s.points = m
-                        .upper_pct(level)
-                        .map(|e| (m.seconds, e))
-                        .into_iter()
-                        .collect();
-                    StyledSeries {
-                        series: s,
-                        style: method_style(m.method, mesh_marker(m.file), false),
-                    }
-                })
-                .collect();
-            for &(name, seconds, errors) in TOOLKIT {
-                if let Some(s) = seconds {
-                    let mut t = Series::new(name);
-                    t.points = vec![(s, errors[level - 1])];
-                    series.push(StyledSeries {
-                        series: t,
-                        style: toolkit_style(name, mesh_marker(TOOLKIT_MESH), false),
-                    });
-                }
-            }
-            series
-        })
-        .collect();
-    let titles = ["Level 2 (≤ 64 spheres)", "Level 3 (≤ 512 spheres)"];
-    let panels: Vec<StyledPanel<'_>> = titles
-        .iter()
-        .zip(&per_level)
-        .map(|(title, series)| StyledPanel {
-            spec: ChartSpec {
-                title,
-                x_label: "build time, s (best of 2; toolkit: CPU s from the issue)",
-                y_label: "certified worst error, % of diagonal",
-            },
-            x_axis: XAxis::Log,
-            series,
-        })
-        .collect();
-    let grey = palette(7);
-    let mut legend: Vec<LegendEntry> = METHODS
-        .iter()
-        .map(|&m| LegendEntry {
-            label: m.name().to_owned(),
-            style: method_style(m, Marker::Circle, false),
-        })
-        .collect();
-    legend.extend(MESHES.iter().map(|&(file, label)| LegendEntry {
-        label: label.to_owned(),
-        style: Style {
-            color: grey,
-            marker: mesh_marker(file),
-            filled: true,
-            line: false,
-        },
-    }));
-    legend.push(LegendEntry {
-        label: "toolkit (issue), bunny".to_owned(),
-        style: Style {
-            color: grey,
-            marker: mesh_marker(TOOLKIT_MESH),
-            filled: false,
-            line: false,
-        },
-    });
-    styled_panels(&out.join(format!("{TIME_CHART}.svg")), &panels, &legend)
+                .enumerate()
+                .map(|(i, &u)| level(i + 1, u - 0.001, u))
+                .collect(),
+        }
+    }
+
+    /// A unique empty folder under the system's temporary folder.
+    pub(super) fn scratch(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("sphaera-eval-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        dir
+    }
+
+    #[test]
+    fn oddities_name_worse_levels_and_worse_combined() {
+        let fine = [
+            measured(Method::Medial(Reducer::Merge), [0.10, 0.05, 0.02]),
+            measured(Method::Medial(Reducer::Expand), [0.11, 0.04, 0.02]),
+            measured(Method::Medial(Reducer::Combined), [0.10, 0.04, 0.02]),
+            measured(Method::Hubbard, [0.14, 0.06, 0.06]),
+        ];
+        assert!(oddities(&fine).is_empty(), "{:?}", oddities(&fine));
+        let odd = [
+            measured(Method::Medial(Reducer::Merge), [0.10, 0.05, 0.06]),
+            measured(Method::Medial(Reducer::Combined), [0.10, 0.055, 0.02]),
+        ];
+        let notes = oddities(&odd);
+        assert_eq!(notes.len(), 2, "{notes:?}");
+        assert!(notes[0].contains("merge: level 3"));
+        assert!(notes[1].contains("level 2: combined"));
+    }
 }
