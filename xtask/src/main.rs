@@ -234,6 +234,22 @@ const CHARTS: &[(&str, Coverage)] = &[
         "medial_static_vs_adaptive",
         Coverage::Only(&["stanford-bunny.obj", "dragon_vrip.ply"]),
     ),
+    (
+        "spheretree_error_vs_level",
+        Coverage::Only(&[
+            "bunny_lowres.obj",
+            "dragon_vrip_res4.ply",
+            "robots/franka_panda/collision/link3.obj",
+        ]),
+    ),
+    (
+        "spheretree_error_vs_time",
+        Coverage::Only(&[
+            "bunny_lowres.obj",
+            "dragon_vrip_res4.ply",
+            "robots/franka_panda/collision/link3.obj",
+        ]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

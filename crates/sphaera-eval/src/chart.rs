@@ -182,6 +182,239 @@ pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
     write_atomically(path, svg.as_bytes())
 }
 
+/// The shape of a point marker.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Marker {
+    /// A circle.
+    Circle,
+    /// An axis-aligned square.
+    Square,
+    /// An upward triangle.
+    Triangle,
+}
+
+/// How a series of a [`StyledPanel`] (or an entry of a [`LegendEntry`] list) is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Style {
+    /// Colour of the markers and the line.
+    pub color: RGBColor,
+    /// Marker shape.
+    pub marker: Marker,
+    /// Filled markers, or hollow outlines (e.g. reference values from elsewhere).
+    pub filled: bool,
+    /// Join the points by a line, in the order given.
+    pub line: bool,
+}
+
+/// The colours of [`palette`]: distinguishable, enough for ten series.
+const PALETTE: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+/// The `i`-th colour of a ten-colour palette (repeating after ten).
+pub fn palette(i: usize) -> RGBColor {
+    PALETTE[i % PALETTE.len()]
+}
+
+/// A series with its own style.
+pub struct StyledSeries {
+    /// The points (the name is for the caller's bookkeeping: the legend is figure-wide).
+    pub series: Series,
+    /// How it is drawn.
+    pub style: Style,
+}
+
+/// The x axis of a [`StyledPanel`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum XAxis {
+    /// Linear over the range, with a tick at every integer (e.g. tree levels).
+    Integers(std::ops::Range<f64>),
+    /// Logarithmic, over the data's range.
+    Log,
+}
+
+/// One plot of [`styled_panels`]: a log y axis, a linear or log x axis.
+pub struct StyledPanel<'a> {
+    /// Caption, axes.
+    pub spec: ChartSpec<'a>,
+    /// The x axis.
+    pub x_axis: XAxis,
+    /// The series.
+    pub series: &'a [StyledSeries],
+}
+
+/// One line of the figure-wide legend of [`styled_panels`].
+pub struct LegendEntry {
+    /// The text.
+    pub label: String,
+    /// The marker (and line) drawn before it.
+    pub style: Style,
+}
+
+/// Width of the legend column of [`styled_panels`], in pixels.
+const LEGEND_WIDTH: u32 = 230;
+
+/// Draws `panels` side by side (each 600 × 520, log y axis) with one legend in a column
+/// to their right, never over the data, into `path` (SVG, written atomically).
+/// Non-positive or non-finite values are dropped (log axes).
+pub fn styled_panels(
+    path: &Path,
+    panels: &[StyledPanel<'_>],
+    legend: &[LegendEntry],
+) -> Result<()> {
+    let count = u32::try_from(panels.len().max(1)).unwrap_or(1);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (600 * count + LEGEND_WIDTH, 520))
+            .into_drawing_area();
+        root.fill(&WHITE)?;
+        let (plots, legend_area) = root.split_horizontally(600 * count);
+        let areas = plots.split_evenly((1, panels.len().max(1)));
+        for (panel, area) in panels.iter().zip(&areas) {
+            let all: Vec<(f64, f64)> = panel
+                .series
+                .iter()
+                .flat_map(|s| s.series.points.iter().copied())
+                .filter(|&(x, y)| x.is_finite() && y > 0.0 && y.is_finite())
+                .collect();
+            let (_, y_range) = log_range(&all);
+            // From a power of ten: plotters labels a log axis from the first power of ten
+            // in range, so a range starting at 1.5 would have no labels below 10.
+            let y_range = 10f64.powf(y_range.start.log10().floor())..y_range.end;
+            match &panel.x_axis {
+                XAxis::Integers(range) => {
+                    let x = plotters::coord::types::RangedCoordf64::from(range.clone());
+                    // One tick per integer of the range.
+                    let ticks = (range.end.floor() - range.start.ceil()).max(0.0) as usize + 1;
+                    draw_styled(area, panel, x, y_range.log_scale().into(), ticks)?;
+                }
+                XAxis::Log => {
+                    let positive: Vec<(f64, f64)> =
+                        all.into_iter().filter(|&(x, _)| x > 0.0).collect();
+                    let (x_range, _) = log_range(&positive);
+                    draw_styled(
+                        area,
+                        panel,
+                        LogCoord::from(x_range.log_scale()),
+                        y_range.log_scale().into(),
+                        10,
+                    )?;
+                }
+            }
+        }
+        let mut y = 40;
+        for entry in legend {
+            if entry.style.line {
+                legend_area.draw(&PathElement::new(
+                    [(6, y), (30, y)],
+                    entry.style.color.mix(0.5),
+                ))?;
+            }
+            let shape = shape_style(entry.style);
+            let at = EmptyElement::at((18, y));
+            match entry.style.marker {
+                Marker::Circle => legend_area.draw(&(at + Circle::new((0, 0), 4, shape)))?,
+                Marker::Square => {
+                    legend_area.draw(&(at + Rectangle::new([(-4, -4), (4, 4)], shape)))?;
+                }
+                Marker::Triangle => {
+                    legend_area.draw(&(at + TriangleMarker::new((0, 0), 5, shape)))?;
+                }
+            }
+            legend_area.draw(&Text::new(
+                entry.label.clone(),
+                (38, y - 7),
+                ("sans-serif", 14).into_font(),
+            ))?;
+            y += 22;
+        }
+        root.present()?;
+    }
+    write_atomically(path, svg.as_bytes())
+}
+
+/// Draws one [`StyledPanel`] on `area` with the x coordinate `x` and log y `y`.
+fn draw_styled<X>(
+    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    panel: &StyledPanel<'_>,
+    x: X,
+    y: LogCoord<f64>,
+    x_ticks: usize,
+) -> Result<()>
+where
+    X: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
+    let integers = matches!(panel.x_axis, XAxis::Integers(_));
+    let mut chart = ChartBuilder::on(area)
+        .caption(panel.spec.title, ("sans-serif", 18))
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x, y)?;
+    chart
+        .configure_mesh()
+        .x_desc(panel.spec.x_label)
+        .y_desc(panel.spec.y_label)
+        .x_labels(x_ticks)
+        // Every 1..9 multiple is already a labelled line on the log axis: lines between
+        // them only darken the upper part of each decade.
+        .light_line_style(TRANSPARENT)
+        .x_label_formatter(&|v| {
+            if integers {
+                format!("{v:.0}")
+            } else {
+                tick_label(*v)
+            }
+        })
+        .y_label_formatter(&|v| tick_label(*v))
+        .draw()?;
+    for s in panel.series {
+        let points: Vec<(f64, f64)> = s
+            .series
+            .points
+            .iter()
+            .copied()
+            .filter(|&(x, y)| x.is_finite() && y > 0.0 && y.is_finite() && (integers || x > 0.0))
+            .collect();
+        if s.style.line && points.len() > 1 {
+            chart.draw_series(LineSeries::new(
+                points.iter().copied(),
+                s.style.color.mix(0.5),
+            ))?;
+        }
+        let shape = shape_style(s.style);
+        let at = points.into_iter().map(EmptyElement::at);
+        match s.style.marker {
+            Marker::Circle => chart.draw_series(at.map(|e| e + Circle::new((0, 0), 4, shape)))?,
+            Marker::Square => {
+                chart.draw_series(at.map(|e| e + Rectangle::new([(-4, -4), (4, 4)], shape)))?
+            }
+            Marker::Triangle => {
+                chart.draw_series(at.map(|e| e + TriangleMarker::new((0, 0), 5, shape)))?
+            }
+        };
+    }
+    Ok(())
+}
+
+/// The outline or fill of a marker of `style`.
+fn shape_style(style: Style) -> ShapeStyle {
+    if style.filled {
+        style.color.filled()
+    } else {
+        style.color.stroke_width(2)
+    }
+}
+
 /// A short label for a tick on a log axis: powers of ten as `0.001`, `100`, `1e-6`.
 fn tick_label(v: f64) -> String {
     if v <= 0.0 || !v.is_finite() {
@@ -249,5 +482,65 @@ mod tests {
         assert_eq!(tick_label(1e-6), "1e-6");
         assert_eq!(tick_label(99.999_999_999_9e-6), "1e-4");
         assert_eq!(tick_label(2.5), "2.5");
+    }
+
+    #[test]
+    fn styled_panels_draw_both_axes_and_the_legend() -> Result<()> {
+        let path =
+            std::env::temp_dir().join(format!("sphaera-eval-styled-{}.svg", std::process::id()));
+        let style = |marker, filled| Style {
+            color: palette(1),
+            marker,
+            filled,
+            line: true,
+        };
+        let mut a = Series::new("a");
+        a.points = vec![
+            (1.0, 20.0),
+            (2.0, 5.0),
+            (3.0, 2.0),
+            (2.0, 0.0),
+            (f64::NAN, 1.0),
+        ];
+        let mut b = Series::new("b");
+        b.points = vec![(0.01, 3.0), (10.0, 1.5), (-1.0, 2.0)];
+        let levels = [StyledSeries {
+            series: a,
+            style: style(Marker::Circle, true),
+        }];
+        let times = [StyledSeries {
+            series: b,
+            style: style(Marker::Triangle, false),
+        }];
+        let spec = |title| ChartSpec {
+            title,
+            x_label: "x units",
+            y_label: "y units",
+        };
+        styled_panels(
+            &path,
+            &[
+                StyledPanel {
+                    spec: spec("levels"),
+                    x_axis: XAxis::Integers(0.5..3.5),
+                    series: &levels,
+                },
+                StyledPanel {
+                    spec: spec("times"),
+                    x_axis: XAxis::Log,
+                    series: &times,
+                },
+            ],
+            &[LegendEntry {
+                label: "square entry".to_owned(),
+                style: style(Marker::Square, false),
+            }],
+        )?;
+        let svg = std::fs::read_to_string(&path)?;
+        std::fs::remove_file(&path)?;
+        for text in ["levels", "times", "x units", "y units", "square entry"] {
+            assert!(svg.contains(text), "{text}");
+        }
+        Ok(())
     }
 }

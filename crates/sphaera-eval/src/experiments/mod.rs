@@ -4,6 +4,7 @@ mod hausdorff_gap;
 mod load_topology;
 mod medial_static_vs_adaptive;
 mod simplify_error;
+mod spheretree;
 mod sweep_throughput;
 
 use std::path::Path;
@@ -11,13 +12,15 @@ use std::path::Path;
 use anyhow::{Result, bail};
 
 /// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
-/// `NAME.svg` and `NAME.csv`.
+/// its charts as `CHART.svg` with the data in `CHART.csv` (`spheretree` writes two,
+/// from one set of trees).
 pub const NAMES: &[&str] = &[
     load_topology::NAME,
     simplify_error::NAME,
     sweep_throughput::NAME,
     hausdorff_gap::NAME,
     medial_static_vs_adaptive::NAME,
+    spheretree::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -28,6 +31,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         sweep_throughput::NAME => sweep_throughput::run(data, out),
         hausdorff_gap::NAME => hausdorff_gap::run(data, out),
         medial_static_vs_adaptive::NAME => medial_static_vs_adaptive::run(data, out),
+        spheretree::NAME => spheretree::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }

@@ -1,0 +1,380 @@
+//! The tables and charts of the sphere-tree experiment (see the parent module): one CSV
+//! and one SVG per chart, from the measured trees and the toolkit's figures of the issue.
+
+use std::path::Path;
+
+use anyhow::Result;
+
+use super::{
+    BRANCH, DEPTH, LEVEL_CHART, MESHES, METHODS, Measured, Method, TIME_CHART, TOOLKIT,
+    TOOLKIT_MESH,
+};
+use crate::chart::{
+    ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
+    styled_panels, write_csv,
+};
+
+/// One row per mesh, method and level; then the toolkit's rows.
+pub(super) fn write_level_table(out: &Path, measured: &[Measured]) -> Result<()> {
+    let pct = |x: f64| format!("{:.4}", 100.0 * x);
+    let mut table = Vec::new();
+    for m in measured {
+        for l in &m.levels {
+            table.push(vec![
+                m.file.to_owned(),
+                m.method.name().to_owned(),
+                "measured".to_owned(),
+                l.level.to_string(),
+                l.spheres.to_string(),
+                pct(l.worst_lower),
+                pct(l.worst_upper),
+                pct(l.mean_error),
+                pct(l.construction_error),
+                format!("{:.4}", 100.0 * l.uncovered),
+                l.converged.to_string(),
+                format!("{:.4}", m.seconds),
+                format!("{:.3}", l.evaluation_seconds),
+            ]);
+        }
+    }
+    for &(name, seconds, errors) in TOOLKIT {
+        for (i, error) in errors.iter().enumerate() {
+            table.push(vec![
+                TOOLKIT_MESH.to_owned(),
+                name.to_owned(),
+                "issue".to_owned(),
+                (i + 1).to_string(),
+                String::new(),
+                String::new(),
+                format!("{error}"),
+                String::new(),
+                String::new(),
+                String::new(),
+                String::new(),
+                seconds.map(|s| format!("{s}")).unwrap_or_default(),
+                String::new(),
+            ]);
+        }
+    }
+    write_csv(
+        &out.join(format!("{LEVEL_CHART}.csv")),
+        &[
+            "file",
+            "method",
+            "source",
+            "level",
+            "spheres",
+            "worst_error_lower_pct_diag",
+            "worst_error_upper_pct_diag",
+            "mean_error_pct_diag",
+            "construction_error_pct_diag",
+            "uncovered_surface_pct",
+            "converged",
+            "build_seconds",
+            "evaluation_seconds",
+        ],
+        &table,
+    )
+}
+
+/// One row per mesh and method: build time, worst error at levels 2 and 3; then the
+/// toolkit's rows that have a time.
+pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> {
+    let pct = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
+    let mut table: Vec<Vec<String>> = measured
+        .iter()
+        .map(|m| {
+            vec![
+                m.file.to_owned(),
+                m.method.name().to_owned(),
+                "measured".to_owned(),
+                format!("{:.4}", m.seconds),
+                pct(m.upper_pct(2)),
+                pct(m.upper_pct(3)),
+            ]
+        })
+        .collect();
+    for &(name, seconds, errors) in TOOLKIT {
+        if let Some(s) = seconds {
+            table.push(vec![
+                TOOLKIT_MESH.to_owned(),
+                name.to_owned(),
+                "issue".to_owned(),
+                format!("{s}"),
+                format!("{}", errors[1]),
+                format!("{}", errors[2]),
+            ]);
+        }
+    }
+    write_csv(
+        &out.join(format!("{TIME_CHART}.csv")),
+        &[
+            "file",
+            "method",
+            "source",
+            "build_seconds",
+            "level2_worst_error_upper_pct_diag",
+            "level3_worst_error_upper_pct_diag",
+        ],
+        &table,
+    )
+}
+
+/// The style of a measured method: its colour, filled circles joined by a line.
+fn method_style(method: Method, marker: Marker, line: bool) -> Style {
+    Style {
+        color: palette(method.index()),
+        marker,
+        filled: true,
+        line,
+    }
+}
+
+/// The method a toolkit entry (`toolkit-merge`, ...) stands for.
+fn toolkit_method(name: &str) -> Method {
+    METHODS
+        .iter()
+        .copied()
+        .find(|m| name.strip_prefix("toolkit-") == Some(m.name()))
+        .unwrap_or(Method::Hubbard)
+}
+
+/// The toolkit's entry `name` drawn in the colour of the method it stands for, hollow.
+fn toolkit_style(name: &str, marker: Marker, line: bool) -> Style {
+    Style {
+        filled: false,
+        ..method_style(toolkit_method(name), marker, line)
+    }
+}
+
+/// The x of `level` for `method` in the level chart: shifted a little per method, so
+/// that methods with equal errors (combined often equals expand) stay visible.
+fn dodge(level: usize, method: Method) -> f64 {
+    level as f64 + 0.035 * (method.index() as f64 - 3.0)
+}
+
+/// One panel per mesh: certified worst error against level, one line per method; the
+/// toolkit's figures as hollow squares on the bunny.
+pub(super) fn draw_levels(
+    out: &Path,
+    measured: &[Measured],
+    labels: &[(&str, String)],
+) -> Result<()> {
+    let mut per_mesh = Vec::new();
+    for (file, _) in labels {
+        let mut series: Vec<StyledSeries> = measured
+            .iter()
+            .filter(|m| m.file == *file)
+            .map(|m| {
+                let mut s = Series::new(m.method.name());
+                s.points = m
+                    .levels
+                    .iter()
+                    .map(|l| (dodge(l.level, m.method), 100.0 * l.worst_upper))
+                    .collect();
+                StyledSeries {
+                    series: s,
+                    style: method_style(m.method, Marker::Circle, true),
+                }
+            })
+            .collect();
+        if *file == TOOLKIT_MESH {
+            for &(name, _, errors) in TOOLKIT {
+                let mut s = Series::new(name);
+                let method = toolkit_method(name);
+                s.points = (1..=errors.len())
+                    .map(|l| dodge(l, method))
+                    .zip(errors.iter().copied())
+                    .collect();
+                series.push(StyledSeries {
+                    series: s,
+                    style: toolkit_style(name, Marker::Square, true),
+                });
+            }
+        }
+        per_mesh.push(series);
+    }
+    let sizes: Vec<String> = (1..=DEPTH)
+        .map(|l| BRANCH.pow(l as u32).to_string())
+        .collect();
+    let x_label = format!("tree level (at most {} spheres)", sizes.join(", "));
+    let panels: Vec<StyledPanel<'_>> = labels
+        .iter()
+        .zip(&per_mesh)
+        .map(|((_, label), series)| StyledPanel {
+            spec: ChartSpec {
+                title: label,
+                x_label: &x_label,
+                y_label: "certified worst error, % of diagonal",
+            },
+            x_axis: XAxis::Integers(0.75..DEPTH as f64 + 0.25),
+            series,
+        })
+        .collect();
+    let mut legend: Vec<LegendEntry> = METHODS
+        .iter()
+        .map(|&m| LegendEntry {
+            label: m.name().to_owned(),
+            style: method_style(m, Marker::Circle, true),
+        })
+        .collect();
+    legend.extend(TOOLKIT.iter().map(|&(name, _, _)| LegendEntry {
+        label: format!("{} (issue, bunny)", name.replace('-', " ")),
+        style: toolkit_style(name, Marker::Square, true),
+    }));
+    styled_panels(&out.join(format!("{LEVEL_CHART}.svg")), &panels, &legend)
+}
+
+/// Marker of a mesh in the time chart.
+fn mesh_marker(file: &str) -> Marker {
+    match MESHES.iter().position(|&(f, _)| f == file) {
+        Some(1) => Marker::Square,
+        Some(2) => Marker::Triangle,
+        _ => Marker::Circle,
+    }
+}
+
+/// Levels 2 and 3: certified worst error against build time, one point per mesh and
+/// method (colour: method, marker: mesh); the toolkit's timed figures hollow.
+pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
+    let per_level: Vec<Vec<StyledSeries>> = [2, 3]
+        .iter()
+        .map(|&level| {
+            let mut series: Vec<StyledSeries> = measured
+                .iter()
+                .map(|m| {
+                    let mut s = Series::new(m.method.name());
+                    s.points = m
+                        .upper_pct(level)
+                        .map(|e| (m.seconds, e))
+                        .into_iter()
+                        .collect();
+                    StyledSeries {
+                        series: s,
+                        style: method_style(m.method, mesh_marker(m.file), false),
+                    }
+                })
+                .collect();
+            for &(name, seconds, errors) in TOOLKIT {
+                if let Some(s) = seconds {
+                    let mut t = Series::new(name);
+                    t.points = vec![(s, errors[level - 1])];
+                    series.push(StyledSeries {
+                        series: t,
+                        style: toolkit_style(name, mesh_marker(TOOLKIT_MESH), false),
+                    });
+                }
+            }
+            series
+        })
+        .collect();
+    let titles = ["Level 2 (≤ 64 spheres)", "Level 3 (≤ 512 spheres)"];
+    let panels: Vec<StyledPanel<'_>> = titles
+        .iter()
+        .zip(&per_level)
+        .map(|(title, series)| StyledPanel {
+            spec: ChartSpec {
+                title,
+                x_label: "build time, s (best of 2; toolkit: CPU s from the issue)",
+                y_label: "certified worst error, % of diagonal",
+            },
+            x_axis: XAxis::Log,
+            series,
+        })
+        .collect();
+    let grey = palette(7);
+    let mut legend: Vec<LegendEntry> = METHODS
+        .iter()
+        .map(|&m| LegendEntry {
+            label: m.name().to_owned(),
+            style: method_style(m, Marker::Circle, false),
+        })
+        .collect();
+    legend.extend(MESHES.iter().map(|&(file, label)| LegendEntry {
+        label: label.to_owned(),
+        style: Style {
+            color: grey,
+            marker: mesh_marker(file),
+            filled: true,
+            line: false,
+        },
+    }));
+    legend.push(LegendEntry {
+        label: "toolkit (issue), bunny".to_owned(),
+        style: Style {
+            color: grey,
+            marker: mesh_marker(TOOLKIT_MESH),
+            filled: false,
+            line: false,
+        },
+    });
+    styled_panels(&out.join(format!("{TIME_CHART}.svg")), &panels, &legend)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tests::{measured, scratch};
+    use super::*;
+    use sphaera::spheretree::Reducer;
+
+    #[test]
+    fn tables_and_charts_list_the_mesh_first() -> Result<()> {
+        let dir = scratch("spheretree");
+        let rows = [
+            measured(Method::Medial(Reducer::Merge), [0.10, 0.05, 0.02]),
+            measured(Method::Octree, [0.40, 0.25, 0.13]),
+        ];
+        write_level_table(&dir, &rows)?;
+        write_time_table(&dir, &rows)?;
+        let labels = [(TOOLKIT_MESH, "bunny".to_owned())];
+        draw_levels(&dir, &rows, &labels)?;
+        draw_times(&dir, &rows)?;
+        let levels = std::fs::read_to_string(dir.join(format!("{LEVEL_CHART}.csv")))?;
+        let times = std::fs::read_to_string(dir.join(format!("{TIME_CHART}.csv")))?;
+        // 2 trees × 3 levels measured, 4 × 3 from the issue; 2 trees, 2 timed from the issue.
+        assert_eq!(levels.lines().count(), 1 + 6 + 12);
+        assert_eq!(times.lines().count(), 1 + 2 + 2);
+        for table in [&levels, &times] {
+            let columns = table.lines().next().map(|h| h.split(',').count());
+            for line in table.lines().skip(1) {
+                assert!(line.starts_with("bunny_lowres.obj,"), "{line}");
+                assert_eq!(Some(line.split(',').count()), columns, "{line}");
+            }
+        }
+        assert!(levels.contains("toolkit-merge,issue,3,,,2.13,"));
+        assert!(levels.contains("merge,measured,3,512,1.9000,2.0000,"));
+        assert!(times.contains("toolkit-expand,issue,103,3.73,2.09"));
+        let svg = std::fs::read_to_string(dir.join(format!("{LEVEL_CHART}.svg")))?;
+        assert!(svg.contains("toolkit merge (issue, bunny)"));
+        assert!(svg.contains("certified worst error, % of diagonal"));
+        std::fs::remove_dir_all(&dir)?;
+        Ok(())
+    }
+
+    #[test]
+    fn toolkit_entries_stand_for_a_method() {
+        for &(name, seconds, errors) in TOOLKIT {
+            let method = toolkit_method(name);
+            assert_eq!(format!("toolkit-{}", method.name()), name);
+            assert!(seconds.is_none_or(|s| s > 0.0));
+            // The issue's errors shrink from level 1 to 2 (level 3 of Hubbard does not).
+            assert!(errors[1] < errors[0], "{name}");
+        }
+        assert_eq!(METHODS.len(), 7);
+        for (i, &m) in METHODS.iter().enumerate() {
+            assert_eq!(m.index(), i);
+        }
+    }
+
+    #[test]
+    fn dodged_levels_stay_apart() {
+        for &m in METHODS {
+            for l in 1..=DEPTH {
+                assert!((dodge(l, m) - l as f64).abs() < 0.25);
+            }
+        }
+        let merge = Method::Medial(Reducer::Merge);
+        let expand = Method::Medial(Reducer::Expand);
+        assert!(dodge(2, merge) < dodge(2, expand));
+    }
+}
