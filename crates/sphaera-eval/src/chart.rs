@@ -35,14 +35,8 @@ pub struct ChartSpec<'a> {
     pub y_label: &'a str,
 }
 
-const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
+/// The older charts cycle through the first six colours of [`PALETTE`].
+const CLASSIC_COLORS: usize = 6;
 
 /// Draws the series as points on log–log axes, into `path` (SVG, written atomically).
 pub fn log_log_scatter(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Result<()> {
@@ -71,7 +65,7 @@ pub fn log_log_scatter(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> 
             .y_label_formatter(&|v| tick_label(*v))
             .draw()?;
         for (i, s) in series.iter().enumerate() {
-            let color = COLORS[i % COLORS.len()];
+            let color = PALETTE[i % CLASSIC_COLORS];
             let points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
             chart
                 .draw_series(
@@ -155,7 +149,7 @@ pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
                     .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], grey));
             }
             for (i, s) in panel.series.iter().enumerate() {
-                let color = COLORS[i % COLORS.len()];
+                let color = PALETTE[i % CLASSIC_COLORS];
                 let points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
                 if points.is_empty() {
                     continue;
