@@ -44,13 +44,13 @@ where
         core.push(points().next()?);
     }
     loop {
-        let ball = if core.len() <= MAX_CORE {
-            minimum_enclosing_ball_with_support(&core).ok()?
-        } else {
-            // Never in practice: solve the whole set.
+        // Never in practice: a core this large gives way to a solve of the whole set,
+        // which contains every point and so ends the loop.
+        let whole = core.len() > MAX_CORE;
+        if whole {
             core = points().collect();
-            minimum_enclosing_ball_with_support(&core).ok()?
-        };
+        }
+        let ball = minimum_enclosing_ball_with_support(&core).ok()?;
         let centre = ball.sphere.center;
         let (far, far_point, near) = points().fold(
             (0.0, centre, f64::INFINITY),
@@ -63,7 +63,7 @@ where
                 }
             },
         );
-        if far <= ball.sphere.radius * (1.0 + OUTSIDE_TOLERANCE) {
+        if whole || far <= ball.sphere.radius * (1.0 + OUTSIDE_TOLERANCE) {
             return Some(SeededBall {
                 sphere: Sphere::new(centre, ball.sphere.radius.max(far)),
                 support: ball.support.iter().map(|&i| core[i]).collect(),
