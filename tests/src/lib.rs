@@ -53,7 +53,14 @@ pub fn data_dir(test_name: &str) -> Option<PathBuf> {
     None
 }
 
-/// Every mesh file under `dir` (recursively), sorted by path, relative to `dir`.
+/// The folder of the robot descriptions (URDFs with the meshes they reference), relative
+/// to the data folder. Its meshes are assets of the robots rather than catalogued meshes:
+/// copies of `robots/franka_panda/` and the KUKA collision STLs, described by the data
+/// README apart from its table; [`mesh_files`] leaves them out.
+pub const URDF_ASSETS: &str = "robots/urdf";
+
+/// Every mesh file under `dir` (recursively), sorted by path, relative to `dir`, except
+/// the robot descriptions' assets under [`URDF_ASSETS`].
 pub fn mesh_files(dir: &Path) -> Vec<PathBuf> {
     let mut files = Vec::new();
     collect(dir, dir, &mut files);
@@ -74,6 +81,9 @@ fn collect(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) {
             )
         });
         if path.is_dir() {
+            if path.ends_with(URDF_ASSETS) {
+                continue;
+            }
             collect(root, &path, files);
         } else if is_mesh && let Ok(relative) = path.strip_prefix(root) {
             files.push(relative.to_path_buf());

@@ -294,7 +294,8 @@ fn check_chart_coverage(csv: &Path, coverage: &Coverage) -> Result<()> {
     Ok(())
 }
 
-/// Every mesh file under `data` (OBJ, PLY, STL, OFF), relative to it, with `/` separators.
+/// Every mesh file under `data` (OBJ, PLY, STL, OFF), relative to it, with `/` separators,
+/// except the robot descriptions' assets under `robots/urdf/` (as `sphaera_tests::mesh_files`).
 fn mesh_files(data: &Path) -> Result<Vec<String>> {
     let mut files = Vec::new();
     let mut folders = vec![data.to_path_buf()];
@@ -310,7 +311,9 @@ fn mesh_files(data: &Path) -> Result<Vec<String>> {
                 )
             });
             if path.is_dir() {
-                folders.push(path);
+                if !path.ends_with("robots/urdf") {
+                    folders.push(path);
+                }
             } else if is_mesh {
                 let relative = path.strip_prefix(data).unwrap_or(&path);
                 files.push(relative.to_string_lossy().replace('\\', "/"));
