@@ -12,7 +12,6 @@ mod cli;
 mod commands;
 mod input;
 mod measure;
-mod nearest;
 mod output;
 mod progress;
 

@@ -4,14 +4,12 @@
 //! surface, over every referenced vertex, every edge midpoint and [`RANDOM_SAMPLES`]
 //! area-weighted random points (fixed seed) of the first. Every sample lies on its surface
 //! and its distance to the other surface is exact (nearest triangle through
-//! [`NearestTriangle`]), so each value is one term of the supremum that defines the
+//! [`TriangleTree`]), so each value is one term of the supremum that defines the
 //! Hausdorff distance: the result is a **lower bound** of the true distance, and the
 //! simplifier's certified bound can never be below it.
 
 use rayon::prelude::*;
-use sphaera::mesh::{DVec3, TriMesh, sampling};
-
-use crate::nearest::NearestTriangle;
+use sphaera::mesh::{DVec3, TriMesh, closest::TriangleTree, sampling};
 
 /// Random points per surface, on top of its vertices and edge midpoints.
 pub const RANDOM_SAMPLES: usize = 100_000;
@@ -30,18 +28,19 @@ pub fn sampled_hausdorff(a: &TriMesh, b: &TriMesh) -> f64 {
     if a.triangle_count() == 0 || b.triangle_count() == 0 {
         return 0.0;
     }
-    let to_a = NearestTriangle::new(a);
-    let to_b = NearestTriangle::new(b);
+    let (Ok(to_a), Ok(to_b)) = (TriangleTree::new(a), TriangleTree::new(b)) else {
+        return 0.0;
+    };
     let a_to_b = directed(&samples(a, SEED), &to_b);
     let b_to_a = directed(&samples(b, SEED.wrapping_add(1)), &to_a);
     a_to_b.max(b_to_a)
 }
 
 /// The largest distance from `points` to `target` (0 for no points).
-fn directed(points: &[DVec3], target: &NearestTriangle) -> f64 {
+fn directed(points: &[DVec3], target: &TriangleTree) -> f64 {
     points
         .par_iter()
-        .map(|&p| target.distance(p))
+        .filter_map(|&p| target.distance(p).ok())
         .reduce(|| 0.0, f64::max)
 }
 

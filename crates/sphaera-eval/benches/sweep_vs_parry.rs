@@ -25,8 +25,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh as ParryTriMesh, TriMeshFlags};
 use sphaera::{
-    mesh::{DVec3, TriMesh, io, shapes},
-    sweep::{Sweeper, TriangleTree, build_hierarchy},
+    mesh::{DVec3, TriMesh, closest::TriangleTree, io, shapes},
+    sweep::{Sweeper, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
 

@@ -41,20 +41,6 @@ pub enum MedialError {
     /// The mesh is empty or invalid.
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
-    /// The closest-point engine could not be built.
-    #[error(transparent)]
-    Distance(#[from] sphaera_sweep::SweepError),
-    /// Inside and outside are meaningless for this mesh (a flat sheet, an open patch, an
-    /// inside-out mesh).
-    #[error(
-        "the mesh has no meaningful inside: only {:.0} % of probes across its surface see \
-         the winding number jump from 1 to 0 (a flat sheet or open patch?)",
-        fraction * 100.0
-    )]
-    NoInside {
-        /// Fraction of probes with a clear jump (at least one half is required).
-        fraction: f64,
-    },
     /// A surface sample has a NaN or infinite coordinate.
     #[error("surface sample {index} has a NaN or infinite coordinate")]
     NonFiniteSample {

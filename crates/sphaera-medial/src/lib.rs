@@ -35,5 +35,8 @@ pub use error::{DelaunayError, MedialError};
 pub use glam::DVec3;
 pub use medial::{
     CoverCriterion, MedialApproximation, MedialParams, MedialProgress, MedialSphere, MedialStats,
-    RegionGoal, RegionOutcome, SphereKind, Surface,
+    RegionGoal, RegionOutcome, SphereKind,
 };
+/// The mesh a medial approximation describes (defined in `sphaera-mesh`): its inside test
+/// and exact closest points.
+pub use sphaera_mesh::Surface;

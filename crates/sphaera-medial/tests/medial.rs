@@ -7,7 +7,7 @@
 use sphaera_medial::{
     CoverCriterion, MedialApproximation, MedialError, MedialParams, RegionGoal, SphereKind, Surface,
 };
-use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
+use sphaera_mesh::{DVec3, MeshError, TriMesh, io, sampling, shapes};
 use sphaera_tests::hausdorff::DistanceToMesh;
 
 fn samples(mesh: &TriMesh, n: usize) -> Vec<DVec3> {
@@ -231,7 +231,7 @@ fn bad_input_gets_clear_errors() {
     )
     .unwrap();
     let err = Surface::new(&sheet).unwrap_err();
-    assert!(matches!(err, MedialError::NoInside { .. }), "{err}");
+    assert!(matches!(err, MeshError::NoInside { .. }), "{err}");
     eprintln!("flat sheet: {err}");
 
     let cube = shapes::cube(1.0, 2).unwrap();

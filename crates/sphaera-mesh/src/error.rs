@@ -218,6 +218,33 @@ pub enum MeshError {
         median_inner_winding: f64,
     },
 
+    /// Inside and outside are meaningless for this mesh as a [`Surface`](crate::Surface)
+    /// sees it: too few probes across its surface see the winding number jump from about
+    /// 1 inside to about 0 outside (a flat sheet, an open patch, an inside-out mesh).
+    #[error(
+        "the mesh has no meaningful inside: only {:.0} % of probes across its surface see \
+         the winding number jump from 1 to 0 (a flat sheet or open patch?)",
+        fraction * 100.0
+    )]
+    NoInside {
+        /// Fraction of probes with a clear jump (at least one half is required).
+        fraction: f64,
+    },
+
+    // ----------------------------------------------------------------------------------
+    // Closest points (closest/).
+    // ----------------------------------------------------------------------------------
+    /// A query point has a NaN or infinite coordinate.
+    #[error("the query point ({x}, {y}, {z}) is not finite")]
+    NonFiniteQuery {
+        /// The x coordinate given.
+        x: f64,
+        /// The y coordinate given.
+        y: f64,
+        /// The z coordinate given.
+        z: f64,
+    },
+
     // ----------------------------------------------------------------------------------
     // Sampling and shapes (sampling/, shapes/).
     // ----------------------------------------------------------------------------------

@@ -104,14 +104,17 @@
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 mod aabb;
+pub mod bvh;
+pub mod closest;
 mod error;
 pub mod geometry;
-pub mod indexed_heap;
+pub mod heap;
 pub mod io;
 mod mesh;
 pub mod sampling;
 pub mod shapes;
 mod sphere;
+mod surface;
 #[cfg(test)]
 mod test_meshes;
 pub mod topology;
@@ -123,3 +126,4 @@ pub use glam;
 pub use glam::DVec3;
 pub use mesh::TriMesh;
 pub use sphere::Sphere;
+pub use surface::Surface;

@@ -10,9 +10,6 @@ pub enum SphereTreeError {
     /// The medial approximation failed (no inside, too few samples, ...).
     #[error(transparent)]
     Medial(#[from] sphaera_medial::MedialError),
-    /// A closest-point query failed.
-    #[error(transparent)]
-    Distance(#[from] sphaera_sweep::SweepError),
     /// A parameter is out of its domain.
     #[error("invalid parameter: {0}")]
     InvalidParameter(String),

@@ -1,7 +1,7 @@
 //! Sphere-tree construction: structure, coverage of the samples at every level, the
 //! trivial cases and clear errors.
 
-use sphaera_mesh::{DVec3, TriMesh, sampling, shapes};
+use sphaera_mesh::{DVec3, MeshError, TriMesh, sampling, shapes};
 use sphaera_spheretree::{Params, Reducer, SphereTree, SphereTreeError, build};
 
 /// Every node's children are in the next level and point back to it; no node has more
@@ -103,7 +103,7 @@ fn bad_input_gets_clear_errors() {
     let triangle = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
     assert!(matches!(
         build(&triangle, &Params::default().samples(200)),
-        Err(SphereTreeError::Medial(_))
+        Err(SphereTreeError::Mesh(MeshError::NoInside { .. }))
     ));
     let mesh = shapes::sphere(1.0, 8).unwrap();
     assert!(matches!(

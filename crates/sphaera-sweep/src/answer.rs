@@ -1,30 +1,7 @@
-//! What queries return: exact closest points and certified distance intervals.
+//! What queries return besides exact closest points ([`ClosestPoint`], defined in
+//! `sphaera-mesh`): certified distance intervals, tolerances and session counters.
 
-use glam::DVec3;
-
-/// The feature of the input mesh a closest point lies on, in input vertex indices.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Feature {
-    /// A vertex of the input mesh.
-    Vertex(u32),
-    /// The interior of the edge between two input vertices (in the triangle's corner order).
-    Edge(u32, u32),
-    /// The interior of the triangle.
-    Face,
-}
-
-/// An exact closest point on the input mesh.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ClosestPoint {
-    /// The closest point.
-    pub point: DVec3,
-    /// Its distance to the query point.
-    pub distance: f64,
-    /// The input triangle it lies on (its index in the mesh given to the simplifier).
-    pub triangle: u32,
-    /// The feature of that triangle it lies on.
-    pub feature: Feature,
-}
+use sphaera_mesh::closest::ClosestPoint;
 
 /// A certified interval for the distance from a query point to the mesh: the true distance
 /// `d` satisfies `lower ≤ d ≤ upper`.

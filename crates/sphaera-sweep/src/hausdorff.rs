@@ -5,10 +5,10 @@ mod peel;
 mod side;
 mod target;
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::cmp::Reverse;
 
 use glam::DVec3;
+use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 use sphaera_simplify::Hierarchy;
 
 use crate::error::check_non_negative;
@@ -277,7 +277,7 @@ impl<'a> Hausdorff<'a> {
                 side.attach_level(LEVEL_FRACTION * lower);
             }
         }
-        let mut queue = BinaryHeap::new();
+        let mut queue = MaxHeap::new();
         let mut nodes = Vec::new();
         for (index, side) in sides.iter().enumerate() {
             for t in 0..side.source().triangle_count() as u32 {
@@ -296,7 +296,7 @@ impl<'a> Hausdorff<'a> {
         )?;
         // Each direction's upper bound: its own lower bound, or its largest queued bound.
         let mut uppers: Vec<f64> = sides.iter().map(|s| s.lower).collect();
-        for entry in &queue {
+        for entry in queue.iter() {
             if let Some(node) = nodes.get(entry.node)
                 && let Some(u) = uppers.get_mut(usize::from(node.side))
             {
@@ -331,7 +331,7 @@ impl<'a> Hausdorff<'a> {
 /// of the lower bound (`true`) or the sample budget runs out (`false`).
 fn refine(
     sides: &mut [Side<'_>],
-    queue: &mut BinaryHeap<Queued>,
+    queue: &mut MaxHeap<Queued>,
     nodes: &mut Vec<Node>,
     allowed: f64,
     max_samples: usize,
@@ -375,7 +375,7 @@ fn refine(
 
 /// Queues the triangle of samples `corners` of side `index` with its upper bound.
 fn push(
-    queue: &mut BinaryHeap<Queued>,
+    queue: &mut MaxHeap<Queued>,
     nodes: &mut Vec<Node>,
     sides: &[Side<'_>],
     index: usize,
@@ -421,25 +421,11 @@ struct Queued {
     node: usize,
 }
 
-impl PartialEq for Queued {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
+impl Priority for Queued {
+    type Key = (TotalF64, Reverse<usize>);
 
-impl Eq for Queued {}
-
-impl PartialOrd for Queued {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Queued {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.upper
-            .total_cmp(&other.upper)
-            .then(other.node.cmp(&self.node))
+    fn priority(&self) -> Self::Key {
+        (TotalF64(self.upper), Reverse(self.node))
     }
 }
 

@@ -85,9 +85,8 @@ mod queue;
 mod session;
 mod shifted_keys;
 mod sweeper;
-mod triangle_tree;
 
-pub use answer::{ClosestPoint, DistanceBounds, Feature, SessionStats, Tolerance};
+pub use answer::{DistanceBounds, SessionStats, Tolerance};
 pub use error::SweepError;
 pub use hausdorff::{
     DirectedHausdorff, Direction, Hausdorff, HausdorffDistance, HausdorffProgress, hausdorff,
@@ -95,5 +94,8 @@ pub use hausdorff::{
 pub use motion::Shape;
 pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};
+/// The exact closest point a query returns, and the mesh feature it lies on (defined in
+/// `sphaera-mesh`, whose [`TriangleTree`](sphaera_mesh::closest::TriangleTree) answers
+/// independent exact queries without a hierarchy).
+pub use sphaera_mesh::closest::{ClosestPoint, Feature};
 pub use sweeper::{Sweeper, build_hierarchy};
-pub use triangle_tree::TriangleTree;

@@ -6,7 +6,9 @@
 //! `key = (d − ε) + G₀`; with the total motion now `G`, its interval's lower end is
 //! `key − G`. Every interval widens by the same amount, so the order is unchanged.
 
-use sphaera_mesh::indexed_heap::{HeapItem, IndexedHeap};
+use std::cmp::Reverse;
+
+use sphaera_mesh::heap::{HeapItem, IndexedHeap, Priority, TotalF64};
 
 /// A queued triangle.
 #[derive(Clone, Copy, Debug)]
@@ -19,18 +21,19 @@ pub(crate) struct Entry {
     pub stamp: u32,
 }
 
-impl HeapItem for Entry {
-    fn id(&self) -> u32 {
-        self.triangle
-    }
+impl Priority for Entry {
+    type Key = (Reverse<TotalF64>, Reverse<u32>);
 
     /// The queue order: the lowest key first, then the lowest triangle (total and
     /// deterministic).
-    fn before(&self, other: &Self) -> bool {
-        self.key
-            .total_cmp(&other.key)
-            .then(self.triangle.cmp(&other.triangle))
-            .is_lt()
+    fn priority(&self) -> Self::Key {
+        (Reverse(TotalF64(self.key)), Reverse(self.triangle))
+    }
+}
+
+impl HeapItem for Entry {
+    fn id(&self) -> u32 {
+        self.triangle
     }
 }
 

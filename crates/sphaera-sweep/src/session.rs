@@ -1,7 +1,7 @@
 //! A query session: the refined mesh and the priority queue, kept between queries.
 
 use glam::DVec3;
-use sphaera_mesh::geometry::{self, Triangle, closest_point_on_triangle};
+use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
 use sphaera_simplify::{Hierarchy, Refinement};
 
 use crate::error::{check_non_negative, check_point};
@@ -9,9 +9,7 @@ use crate::motion_pose::Pose;
 use crate::queue::{Entry, Queue};
 use crate::shifted_keys::ShiftedKeys;
 use crate::sweeper::{Contents, WarmStart};
-use crate::{
-    ClosestPoint, DistanceBounds, Feature, SessionStats, Shape, SweepError, Sweeper, Tolerance,
-};
+use crate::{ClosestPoint, DistanceBounds, SessionStats, Shape, SweepError, Sweeper, Tolerance};
 
 #[path = "motion_session.rs"]
 mod motion_session;
@@ -733,24 +731,12 @@ impl<'s> Session<'s> {
         let at = |i: usize| self.position(corners[i]);
         let triangle = Triangle::new(at(0), at(1), at(2));
         let hit = closest_point_on_triangle(p, &triangle);
-        let original = |i: usize| {
-            self.hierarchy
-                .original_vertex(corners[i])
-                .unwrap_or(corners[i])
-        };
-        let feature = match hit.feature {
-            geometry::Feature::Vertex(i) => Feature::Vertex(original(usize::from(i))),
-            geometry::Feature::Edge(e) => {
-                let e = usize::from(e);
-                Feature::Edge(original(e), original((e + 1) % 3))
-            }
-            geometry::Feature::Face => Feature::Face,
-        };
+        let original = corners.map(|v| self.hierarchy.original_vertex(v).unwrap_or(v));
         Some(ClosestPoint {
             point: hit.point,
             distance: hit.distance_squared.sqrt(),
             triangle: self.hierarchy.original_triangle(t).unwrap_or(t),
-            feature,
+            feature: hit.feature.in_mesh(original),
         })
     }
 }

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_simplify::Hierarchy;
-use sphaera_sweep::{Session, SessionOptions, Sweeper, Tolerance, TriangleTree, build_hierarchy};
+use sphaera_sweep::{Session, SessionOptions, Sweeper, Tolerance, build_hierarchy};
 
 /// Distance from `p` to every triangle of `mesh`, sorted.
 fn brute_distances(mesh: &TriMesh, p: DVec3) -> Vec<f64> {
@@ -177,44 +177,4 @@ fn a_coherent_path_refines_far_less_than_fresh_queries() {
         coherent.splits * 4 < fresh_splits,
         "coherence saves little: {coherent:?} vs {fresh_splits}"
     );
-}
-
-/// A random triangle soup, with repeated corners (degenerate triangles) on purpose.
-fn soup() -> impl Strategy<Value = TriMesh> {
-    (
-        prop::collection::vec(point(), 3..24),
-        prop::collection::vec((0..24_u32, 0..24_u32, 0..24_u32), 1..40),
-    )
-        .prop_map(|(positions, triangles)| {
-            let n = positions.len() as u32;
-            let triangles: Vec<[u32; 3]> = triangles
-                .into_iter()
-                .map(|(a, b, c)| [a % n, b % n, c % n])
-                .collect();
-            TriMesh::new(positions, triangles).expect("indices in range")
-        })
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
-
-    #[test]
-    fn triangle_tree_matches_brute_force(
-        shape in 0..5_usize,
-        soup in soup(),
-        points in prop::collection::vec(point(), 1..16),
-        bound in 0.0..2.0_f64,
-    ) {
-        let mesh = if shape < 4 { fixtures()[shape].0.clone() } else { soup };
-        let tree = TriangleTree::new(&mesh).expect("non-empty");
-        for &p in &points {
-            let expected = brute_distances(&mesh, p)[0];
-            let answer = tree.closest(p).expect("finite query");
-            prop_assert!(close(answer.distance, expected), "{} vs {expected}", answer.distance);
-            let triangle = mesh.triangle(answer.triangle as usize).expect("in range");
-            prop_assert!(point_triangle_distance_squared(answer.point, &triangle).sqrt() <= 1e-9);
-            let within = tree.closest_within(p, bound).expect("valid bound");
-            prop_assert_eq!(within.is_some(), expected <= bound);
-        }
-    }
 }

@@ -19,7 +19,7 @@
 //!    ([`MedialApproximation::refine_region`]).
 //!
 //! **Error** (the paper's eq. 2): for a centre `v` inside, `e = r − ‖q − v‖` with `q` the
-//! closest surface point (exact, from `sphaera-sweep`'s [`sphaera_sweep::TriangleTree`]): any point of the sphere outside the
+//! closest surface point (exact, from the mesh's [`sphaera_mesh::closest::TriangleTree`]): any point of the sphere outside the
 //! object is at most `e` from the surface, since the radius through it crosses the surface
 //! at least `‖q − v‖` from `v`. For a centre outside (cover spheres), `e = r + ‖q − v‖`:
 //! every point of the sphere is within `r` of `v`, which is within `‖q − v‖` of the surface.
@@ -27,15 +27,13 @@
 mod grid;
 mod params;
 mod sphere;
-mod surface;
 
 use glam::DVec3;
 
 pub use params::{CoverCriterion, MedialParams, RegionGoal};
 pub use sphere::{MedialSphere, SphereKind};
-pub use surface::Surface;
 
-use crate::{Delaunay, DelaunayError, MedialError, TetId};
+use crate::{Delaunay, DelaunayError, MedialError, Surface, TetId};
 use grid::SampleGrid;
 
 const NONE: u32 = u32::MAX;

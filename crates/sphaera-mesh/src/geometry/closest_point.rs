@@ -7,29 +7,52 @@ use glam::DVec3;
 
 use super::Triangle;
 
-/// The part of a triangle a closest point lies on.
+/// The part of a triangle a closest point lies on, in the triangle's own corner numbers.
 ///
 /// Corner `i` is `a`, `b`, `c` for `i = 0, 1, 2`; edge `i` runs from corner `i` to corner
-/// `(i + 1) % 3` (edge 0 is `ab`, edge 1 is `bc`, edge 2 is `ca`).
+/// `(i + 1) % 3` (edge 0 is `ab`, edge 1 is `bc`, edge 2 is `ca`). For a triangle of a
+/// mesh, [`TriangleFeature::in_mesh`] names the same feature by the mesh's vertex
+/// indices (the [`Feature`](crate::closest::Feature) a mesh query reports).
 ///
 /// # Examples
 ///
 /// ```
 /// use glam::DVec3;
-/// use sphaera_mesh::geometry::{Feature, Triangle, closest_point_on_triangle};
+/// use sphaera_mesh::closest::Feature;
+/// use sphaera_mesh::geometry::{Triangle, TriangleFeature, closest_point_on_triangle};
 ///
 /// let t = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
 /// let hit = closest_point_on_triangle(DVec3::new(2.0, -1.0, 0.0), &t);
-/// assert_eq!(hit.feature, Feature::Vertex(1));
+/// assert_eq!(hit.feature, TriangleFeature::Vertex(1));
+/// // The same corner of mesh triangle [7, 8, 9] is mesh vertex 8.
+/// assert_eq!(hit.feature.in_mesh([7, 8, 9]), Feature::Vertex(8));
+/// assert_eq!(TriangleFeature::Edge(2).in_mesh([7, 8, 9]), Feature::Edge(9, 7));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Feature {
+pub enum TriangleFeature {
     /// Corner `0`, `1` or `2`.
     Vertex(u8),
     /// The interior of edge `0` (`ab`), `1` (`bc`) or `2` (`ca`).
     Edge(u8),
     /// The interior of the face.
     Face,
+}
+
+impl TriangleFeature {
+    /// The same feature named by mesh vertex indices, for a triangle whose corners are
+    /// the mesh vertices `corners` (an edge keeps the triangle's corner order).
+    #[must_use]
+    pub fn in_mesh(self, corners: [u32; 3]) -> crate::closest::Feature {
+        use crate::closest::Feature;
+        match self {
+            Self::Vertex(k) => Feature::Vertex(corners[usize::from(k) % 3]),
+            Self::Edge(k) => {
+                let k = usize::from(k) % 3;
+                Feature::Edge(corners[k], corners[(k + 1) % 3])
+            }
+            Self::Face => Feature::Face,
+        }
+    }
 }
 
 /// The closest point on a triangle to a query point, from [`closest_point_on_triangle`].
@@ -43,7 +66,7 @@ pub struct TriangleClosestPoint {
     /// non-negative, summing to 1 (up to rounding).
     pub barycentric: [f64; 3],
     /// The feature the point lies on.
-    pub feature: Feature,
+    pub feature: TriangleFeature,
 }
 
 /// The part of a segment a closest point lies on.
@@ -127,24 +150,24 @@ pub fn closest_point_on_segment(p: DVec3, start: DVec3, end: DVec3) -> SegmentCl
 }
 
 /// The closest point to `p` on the (filled) triangle, with its barycentric coordinates and
-/// the [`Feature`] it lies on.
+/// the [`TriangleFeature`] it lies on.
 ///
 /// The result is the better of the three edge projections and, when `p` projects strictly
 /// inside the face, the face projection. The face candidate is a convex combination of the
 /// corners, so the returned point always lies on the triangle, and the returned distance is
 /// never above the true distance by more than rounding, also for needle, collinear and
-/// point triangles (which simply never report [`Feature::Face`]). When two features are
+/// point triangles (which simply never report [`TriangleFeature::Face`]). When two features are
 /// equally close, vertices win over edges and edges over the face.
 ///
 /// # Examples
 ///
 /// ```
 /// use glam::DVec3;
-/// use sphaera_mesh::geometry::{Feature, Triangle, closest_point_on_triangle};
+/// use sphaera_mesh::geometry::{Triangle, TriangleFeature, closest_point_on_triangle};
 ///
 /// let t = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
 /// let hit = closest_point_on_triangle(DVec3::new(0.25, 0.25, 3.0), &t);
-/// assert_eq!(hit.feature, Feature::Face);
+/// assert_eq!(hit.feature, TriangleFeature::Face);
 /// assert!((hit.point - DVec3::new(0.25, 0.25, 0.0)).length() < 1e-15);
 /// assert!((hit.distance_squared - 9.0).abs() < 1e-12);
 /// assert!((hit.barycentric[0] - 0.5).abs() < 1e-15);
@@ -272,9 +295,9 @@ fn edge_candidate(p: DVec3, corners: &[DVec3; 3], edge: usize) -> TriangleCloses
     barycentric[next] = hit.t;
     // `edge` and `next` are below 3, so the casts cannot truncate.
     let feature = match hit.feature {
-        SegmentFeature::Start => Feature::Vertex(edge as u8),
-        SegmentFeature::End => Feature::Vertex(next as u8),
-        SegmentFeature::Interior => Feature::Edge(edge as u8),
+        SegmentFeature::Start => TriangleFeature::Vertex(edge as u8),
+        SegmentFeature::End => TriangleFeature::Vertex(next as u8),
+        SegmentFeature::Interior => TriangleFeature::Edge(edge as u8),
     };
     TriangleClosestPoint {
         point: hit.point,
@@ -303,7 +326,7 @@ fn face_candidate(p: DVec3, triangle: &Triangle) -> Option<TriangleClosestPoint>
         point,
         distance_squared: p.distance_squared(point),
         barycentric,
-        feature: Feature::Face,
+        feature: TriangleFeature::Face,
     })
 }
 
@@ -376,12 +399,12 @@ mod tests {
         let q = u * t.a + v * t.b + w * t.c;
         assert!(q.distance(hit.point) <= 1e-12 * scale);
         match hit.feature {
-            Feature::Vertex(i) => assert_eq!(hit.point, t.corners()[usize::from(i)]),
-            Feature::Edge(i) => {
+            TriangleFeature::Vertex(i) => assert_eq!(hit.point, t.corners()[usize::from(i)]),
+            TriangleFeature::Edge(i) => {
                 let opposite = (usize::from(i) + 2) % 3;
                 assert!(hit.barycentric[opposite] == 0.0);
             }
-            Feature::Face => assert!(u > 0.0 && v > 0.0 && w > 0.0),
+            TriangleFeature::Face => assert!(u > 0.0 && v > 0.0 && w > 0.0),
         }
         // The fast path agrees.
         let fast = point_triangle_distance_squared(p, t).sqrt();
@@ -447,13 +470,13 @@ mod tests {
     fn features_of_the_unit_triangle() {
         let t = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
         let cases = [
-            (DVec3::new(-1.0, -1.0, 1.0), Feature::Vertex(0)),
-            (DVec3::new(2.0, -0.5, 0.0), Feature::Vertex(1)),
-            (DVec3::new(-0.5, 2.0, 0.0), Feature::Vertex(2)),
-            (DVec3::new(0.5, -1.0, 0.0), Feature::Edge(0)),
-            (DVec3::new(1.0, 1.0, 0.0), Feature::Edge(1)),
-            (DVec3::new(-1.0, 0.5, 0.0), Feature::Edge(2)),
-            (DVec3::new(0.2, 0.2, 0.0), Feature::Face),
+            (DVec3::new(-1.0, -1.0, 1.0), TriangleFeature::Vertex(0)),
+            (DVec3::new(2.0, -0.5, 0.0), TriangleFeature::Vertex(1)),
+            (DVec3::new(-0.5, 2.0, 0.0), TriangleFeature::Vertex(2)),
+            (DVec3::new(0.5, -1.0, 0.0), TriangleFeature::Edge(0)),
+            (DVec3::new(1.0, 1.0, 0.0), TriangleFeature::Edge(1)),
+            (DVec3::new(-1.0, 0.5, 0.0), TriangleFeature::Edge(2)),
+            (DVec3::new(0.2, 0.2, 0.0), TriangleFeature::Face),
         ];
         for (p, feature) in cases {
             assert_eq!(closest_point_on_triangle(p, &t).feature, feature, "{p:?}");
@@ -467,7 +490,7 @@ mod tests {
         let hit = closest_point_on_triangle(DVec3::new(1.5, 1.0, 0.0), &t);
         assert!(hit.point.distance(DVec3::new(1.5, 0.0, 0.0)) < 1e-15);
         assert!((hit.distance_squared - 1.0).abs() < 1e-15);
-        assert_ne!(hit.feature, Feature::Face);
+        assert_ne!(hit.feature, TriangleFeature::Face);
         assert!(
             (point_triangle_distance_squared(DVec3::new(1.5, 1.0, 0.0), &t) - 1.0).abs() < 1e-15
         );

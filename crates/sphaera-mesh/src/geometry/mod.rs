@@ -3,7 +3,7 @@
 //! | concept | items |
 //! |---|---|
 //! | a triangle's own geometry | [`Triangle`] |
-//! | closest point on a triangle or segment | [`closest_point_on_triangle`] (with the [`Feature`] hit), [`point_triangle_distance_squared`] (fast path), [`closest_point_on_segment`] |
+//! | closest point on a triangle or segment | [`closest_point_on_triangle`] (with the [`TriangleFeature`] hit), [`point_triangle_distance_squared`] (fast path), [`closest_point_on_segment`] |
 //! | closest points between segments | [`closest_points_between_segments`] |
 //! | balls through given points | [`ball_through_two_points`], [`circumball_of_triangle`], [`circumsphere`] |
 //! | minimum enclosing balls | [`minimum_enclosing_ball`] (points), [`minimum_enclosing_ball_of_balls`], with the support: [`minimum_enclosing_ball_with_support`], [`minimum_enclosing_ball_of_balls_with_support`] |
@@ -21,12 +21,12 @@
 //! ```
 //! use glam::DVec3;
 //! use sphaera_mesh::geometry::{
-//!     Feature, Triangle, closest_point_on_triangle, minimum_enclosing_ball,
+//!     Triangle, TriangleFeature, closest_point_on_triangle, minimum_enclosing_ball,
 //! };
 //!
 //! let triangle = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
 //! let hit = closest_point_on_triangle(DVec3::new(2.0, 2.0, 0.0), &triangle);
-//! assert_eq!(hit.feature, Feature::Edge(1)); // edge 1 runs from b to c
+//! assert_eq!(hit.feature, TriangleFeature::Edge(1)); // edge 1 runs from b to c
 //! assert!((hit.point - DVec3::new(0.5, 0.5, 0.0)).length() < 1e-15);
 //!
 //! let ball = minimum_enclosing_ball(&triangle.corners())?;
@@ -46,8 +46,8 @@ mod triangle;
 
 pub use circumsphere::{ball_through_two_points, circumball_of_triangle, circumsphere};
 pub use closest_point::{
-    Feature, SegmentClosestPoint, SegmentFeature, TriangleClosestPoint, closest_point_on_segment,
-    closest_point_on_triangle, point_triangle_distance_squared,
+    SegmentClosestPoint, SegmentFeature, TriangleClosestPoint, TriangleFeature,
+    closest_point_on_segment, closest_point_on_triangle, point_triangle_distance_squared,
 };
 pub use enclosing_ball::{
     EnclosingBall, minimum_enclosing_ball, minimum_enclosing_ball_with_support,

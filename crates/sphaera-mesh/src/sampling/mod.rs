@@ -54,7 +54,6 @@
 //! relative minimum distance of 0.69.
 
 mod grid;
-mod heap;
 mod poisson;
 mod random;
 #[cfg(test)]

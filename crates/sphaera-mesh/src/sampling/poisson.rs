@@ -3,7 +3,29 @@
 use glam::DVec3;
 
 use super::grid::{Grid, map_indices, min_distance};
-use super::heap::IndexedMaxHeap;
+use crate::heap::{HeapItem, IndexedHeap, Priority, TotalF64};
+
+/// A candidate of sample elimination in its heap: the heaviest (most crowded) first,
+/// ties by the higher sample index (any fixed order keeps it deterministic).
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    weight: f64,
+    sample: u32,
+}
+
+impl Priority for Candidate {
+    type Key = (TotalF64, u32);
+
+    fn priority(&self) -> Self::Key {
+        (TotalF64(self.weight), self.sample)
+    }
+}
+
+impl HeapItem for Candidate {
+    fn id(&self) -> u32 {
+        self.sample
+    }
+}
 use super::{SurfaceSample, check_count, random};
 use crate::{MeshError, TriMesh};
 
@@ -248,20 +270,29 @@ fn eliminate(candidates: &[SurfaceSample], n: usize, d_max: f64) -> Vec<usize> {
                 .sum()
         })
         .collect();
-    let mut heap = IndexedMaxHeap::new(&weights);
+    let mut heap = IndexedHeap::from_items(
+        m,
+        weights.iter().enumerate().map(|(s, &weight)| Candidate {
+            weight,
+            sample: s as u32,
+        }),
+    );
     let mut alive = vec![true; m];
     for _ in n..m {
         // The heap holds every live candidate, and more than `n ≥ 1` are alive here, so
         // it is not empty (invariant); stopping early would only return extra points.
-        let Some(s) = heap.pop(&weights) else {
+        let Some(Candidate { sample: s, .. }) = heap.pop() else {
             break;
         };
+        let s = s as usize;
         alive[s] = false;
         for &t in near(s) {
-            let t = t as usize;
-            if alive[t] {
-                weights[t] -= weight(points[s], points[t]);
-                heap.decreased(&weights, t);
+            if alive[t as usize] {
+                weights[t as usize] -= weight(points[s], points[t as usize]);
+                heap.set(Candidate {
+                    weight: weights[t as usize],
+                    sample: t,
+                });
             }
         }
     }

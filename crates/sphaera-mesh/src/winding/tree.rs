@@ -4,7 +4,8 @@
 
 use glam::{DMat3, DVec3};
 
-use crate::TriMesh;
+use crate::bvh::BoxTree;
+use crate::{Aabb, TriMesh};
 
 /// Most triangles in a leaf.
 pub(crate) const LEAF_SIZE: usize = 8;
@@ -59,8 +60,10 @@ struct Item {
 }
 
 impl Tree {
-    /// Builds the tree. `mesh` must have at least one triangle and fewer than `u32::MAX`
-    /// (the caller checks both).
+    /// Builds the tree: the workspace's [`BoxTree`] over the triangles (median splits of
+    /// the centroids, at most [`LEAF_SIZE`] per leaf), with each node's expansion computed
+    /// over its triangles as the node is made. `mesh` must have at least one triangle and
+    /// fewer than `u32::MAX` (the caller checks both).
     pub(crate) fn build(mesh: &TriMesh) -> Self {
         let items: Vec<Item> = mesh
             .triangle_iter()
@@ -82,48 +85,26 @@ impl Tree {
                 }
             })
             .collect();
-        let mut order: Vec<u32> = (0..items.len())
-            .map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-            .collect();
+        let bounds: Vec<Aabb> = items.iter().map(|i| Aabb::from_points(i.corners)).collect();
+        let centroids: Vec<DVec3> = items.iter().map(|i| i.centroid).collect();
         let mut nodes = Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1);
-        build_node(&items, &mut order, 0, &mut nodes);
-        let corners = order.iter().map(|&i| items[i as usize].corners).collect();
+        let boxes = BoxTree::build_visiting(&bounds, &centroids, LEAF_SIZE, |order| {
+            nodes.push(expansion_of(&items, order));
+        });
+        for (node, shape) in nodes.iter_mut().zip(boxes.nodes()) {
+            // Lossless: the caller checked that the triangle count fits a u32.
+            (node.first, node.count) = match shape.right() {
+                Some(right) => (right as u32, 0),
+                None => (shape.items().start as u32, shape.items().len() as u32),
+            };
+        }
+        let corners = boxes
+            .order()
+            .iter()
+            .map(|&i| items[i as usize].corners)
+            .collect();
         Self { nodes, corners }
     }
-}
-
-/// Builds the subtree over `order` (whose first element sits at `offset` in the final
-/// triangle order), appends its nodes depth-first, and returns nothing: the subtree's root
-/// is the first node appended.
-///
-/// Indexing here cannot fail, by invariant: `order` holds indices into `items`, and
-/// `node_index` was pushed just before. The recursion depth is `log2(n / LEAF_SIZE) + 1`
-/// (the median split halves every range).
-fn build_node(items: &[Item], order: &mut [u32], offset: usize, nodes: &mut Vec<Node>) {
-    let node_index = nodes.len();
-    nodes.push(expansion_of(items, order));
-    if order.len() <= LEAF_SIZE {
-        let node = &mut nodes[node_index];
-        node.first = u32::try_from(offset).unwrap_or(u32::MAX);
-        node.count = u32::try_from(order.len()).unwrap_or(u32::MAX);
-        return;
-    }
-    // Median split of the centroids along the longest axis of their bounding box; ties are
-    // broken by triangle index, so the build is deterministic.
-    let bounds = crate::Aabb::from_points(order.iter().map(|&i| items[i as usize].centroid));
-    let axis = bounds.longest_axis();
-    let mid = order.len() / 2;
-    order.select_nth_unstable_by(mid, |&a, &b| {
-        let (ca, cb) = (items[a as usize].centroid, items[b as usize].centroid);
-        ca[axis].total_cmp(&cb[axis]).then(a.cmp(&b))
-    });
-    let (left, right) = order.split_at_mut(mid);
-    build_node(items, left, offset, nodes);
-    let right_index = nodes.len();
-    build_node(items, right, offset + mid, nodes);
-    let node = &mut nodes[node_index];
-    node.first = u32::try_from(right_index).unwrap_or(u32::MAX);
-    node.count = 0;
 }
 
 /// The expansion (centre, radius, moments) of the triangles in `order`.

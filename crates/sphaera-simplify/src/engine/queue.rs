@@ -7,7 +7,9 @@
 //! per vertex keeps the heap small (a few hundred kilobytes for a 70k-triangle mesh)
 //! instead of growing with every re-evaluation.
 
-use sphaera_mesh::indexed_heap::{HeapItem, IndexedHeap};
+use std::cmp::Reverse;
+
+use sphaera_mesh::heap::{HeapItem, IndexedHeap, Priority, TotalF64};
 use sphaera_mesh::topology::HalfEdgeId;
 
 /// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated.
@@ -18,19 +20,23 @@ pub(super) struct Candidate {
     pub halfedge: u32,
 }
 
-impl HeapItem for Candidate {
-    fn id(&self) -> u32 {
-        self.vertex
-    }
+impl Priority for Candidate {
+    type Key = (Reverse<TotalF64>, Reverse<u32>, Reverse<u32>);
 
     /// The queue order: the lowest cost first, then the lowest vertex (total and
     /// deterministic; the half-edge never decides, as vertices are unique).
-    fn before(&self, other: &Self) -> bool {
-        self.cost
-            .total_cmp(&other.cost)
-            .then(self.vertex.cmp(&other.vertex))
-            .then(self.halfedge.cmp(&other.halfedge))
-            .is_lt()
+    fn priority(&self) -> Self::Key {
+        (
+            Reverse(TotalF64(self.cost)),
+            Reverse(self.vertex),
+            Reverse(self.halfedge),
+        )
+    }
+}
+
+impl HeapItem for Candidate {
+    fn id(&self) -> u32 {
+        self.vertex
     }
 }
 

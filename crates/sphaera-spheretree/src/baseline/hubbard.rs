@@ -1,11 +1,11 @@
 //! Hubbard's medial-axis sphere-tree (the paper's reference method): a static medial
 //! approximation, reduced per node by merging pairs into approximate bounding spheres.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::cmp::Reverse;
 
 use glam::DVec3;
 use sphaera_medial::{CoverCriterion, MedialApproximation, Surface};
+use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 use sphaera_mesh::{Sphere, TriMesh};
 
 use super::{BaselineParams, Child, assemble, start};
@@ -145,24 +145,15 @@ struct Pair {
     version_b: u32,
 }
 
-impl PartialEq for Pair {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Pair {}
-impl PartialOrd for Pair {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Pair {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .error
-            .total_cmp(&self.error)
-            .then(other.a.cmp(&self.a))
-            .then(other.b.cmp(&self.b))
+impl Priority for Pair {
+    type Key = (Reverse<TotalF64>, Reverse<u32>, Reverse<u32>);
+
+    fn priority(&self) -> Self::Key {
+        (
+            Reverse(TotalF64(self.error)),
+            Reverse(self.a),
+            Reverse(self.b),
+        )
     }
 }
 
@@ -200,7 +191,7 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
         let (d, inside) = centre_depth(surface, s.center);
         eq2_error(s.radius, d, inside)
     };
-    let push = |live: &[Option<(Sphere, u32)>], a: usize, b: usize, heap: &mut BinaryHeap<Pair>| {
+    let push = |live: &[Option<(Sphere, u32)>], a: usize, b: usize, heap: &mut MaxHeap<Pair>| {
         let (a, b) = (a.min(b), a.max(b));
         if let (Some((x, va)), Some((y, vb))) = (live[a], live[b]) {
             heap.push(Pair {
@@ -213,7 +204,7 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
         }
     };
     let all_pairs_heap = |live: &[Option<(Sphere, u32)>]| {
-        let mut heap = BinaryHeap::new();
+        let mut heap = MaxHeap::new();
         for a in 0..live.len() {
             for b in a + 1..live.len() {
                 push(live, a, b, &mut heap);
@@ -225,7 +216,7 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
     let mut heap = if all_pairs {
         all_pairs_heap(&live)
     } else {
-        let mut heap = BinaryHeap::new();
+        let mut heap = MaxHeap::new();
         for (a, list) in neighbours.iter().enumerate() {
             for &b in list {
                 if a < b as usize {

@@ -1,10 +1,10 @@
 //! The certified error of one sphere: branch and bound over its surface.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::cmp::Reverse;
 
 use glam::DVec3;
 use sphaera_medial::Surface;
+use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::EvaluationOptions;
 use super::patch::{Patch, Probe, icosahedron, upper_bound};
@@ -60,26 +60,12 @@ struct Queued {
     patch: Patch,
 }
 
-impl PartialEq for Queued {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
+impl Priority for Queued {
+    type Key = (TotalF64, Reverse<usize>);
 
-impl Eq for Queued {}
-
-impl PartialOrd for Queued {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Queued {
-    fn cmp(&self, other: &Self) -> Ordering {
-        // Largest bound first; among equal bounds the oldest patch first.
-        self.upper
-            .total_cmp(&other.upper)
-            .then_with(|| other.order.cmp(&self.order))
+    /// Largest bound first; among equal bounds the oldest patch first.
+    fn priority(&self) -> Self::Key {
+        (TotalF64(self.upper), Reverse(self.order))
     }
 }
 
@@ -191,7 +177,7 @@ pub(crate) fn fit(
         witness: None,
         patches: 0,
     };
-    let mut queue = BinaryHeap::new();
+    let mut queue = MaxHeap::new();
     // The largest upper bound of the patches dropped because they can no longer matter.
     let mut dropped = 0.0_f64;
     let mut order = 0_usize;

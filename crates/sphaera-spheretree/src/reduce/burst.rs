@@ -1,10 +1,10 @@
 //! Burst (section 5.2): repeatedly remove ("burst") a sphere and hand the points only it
 //! covered to the remaining spheres closest to covering them, which grow to take them.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::cmp::Reverse;
 
 use sphaera_mesh::Sphere;
+use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
 use crate::SphereTreeError;
@@ -43,25 +43,17 @@ struct Entry {
     version: u32,
 }
 
-impl PartialEq for Entry {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Entry {
-    /// Reversed: the "smallest" burst is the heap's greatest.
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.beneficial
-            .cmp(&other.beneficial)
-            .then(other.key.total_cmp(&self.key))
-            .then(other.index.cmp(&self.index))
-            .then(other.version.cmp(&self.version))
+impl Priority for Entry {
+    type Key = (bool, Reverse<TotalF64>, Reverse<u32>, Reverse<u32>);
+
+    /// Beneficial bursts first, then the smallest key, then the smallest index.
+    fn priority(&self) -> Self::Key {
+        (
+            self.beneficial,
+            Reverse(TotalF64(self.key)),
+            Reverse(self.index),
+            Reverse(self.version),
+        )
     }
 }
 
@@ -74,7 +66,7 @@ struct State<'a> {
     /// Per point, the spheres that ever were responsible for it (dead ones are skipped).
     listers: Vec<Vec<u32>>,
     evaluations: Vec<Evaluation>,
-    heap: BinaryHeap<Entry>,
+    heap: MaxHeap<Entry>,
 }
 
 /// Reduces the candidates to at most `target` spheres by bursting.
@@ -227,7 +219,7 @@ impl<'a> State<'a> {
             count,
             listers,
             evaluations: vec![Evaluation::default(); n],
-            heap: BinaryHeap::new(),
+            heap: MaxHeap::new(),
         }
     }
 
@@ -378,7 +370,7 @@ mod tests {
 
     #[test]
     fn beneficial_bursts_pop_first_then_smallest_key() {
-        let mut heap = std::collections::BinaryHeap::new();
+        let mut heap = sphaera_mesh::heap::MaxHeap::new();
         let e = |beneficial, key, index| Entry {
             beneficial,
             key,

@@ -1,11 +1,11 @@
 //! Merge (section 5.1): repeatedly replace the pair of neighbouring spheres whose union is
 //! covered most tightly by one sphere.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
+use std::cmp::{Ordering, Reverse};
 
 use glam::DVec3;
 use sphaera_mesh::Sphere;
+use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::seeded_ball::{SeededBall, seeded_enclosing_ball};
 use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
@@ -42,27 +42,17 @@ struct PairMerge {
     version_b: u32,
 }
 
-impl PartialEq for PairMerge {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for PairMerge {}
-impl PartialOrd for PairMerge {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for PairMerge {
-    /// Reversed, so that `BinaryHeap` pops the smallest key (ties: exact first, then
-    /// smallest ids).
-    fn cmp(&self, other: &Self) -> Ordering {
-        other
-            .key
-            .total_cmp(&self.key)
-            .then(self.exact.cmp(&other.exact))
-            .then(other.a.cmp(&self.a))
-            .then(other.b.cmp(&self.b))
+impl Priority for PairMerge {
+    type Key = (Reverse<TotalF64>, bool, Reverse<u32>, Reverse<u32>);
+
+    /// The smallest key first (ties: exact first, then the smallest ids).
+    fn priority(&self) -> Self::Key {
+        (
+            Reverse(TotalF64(self.key)),
+            self.exact,
+            Reverse(self.a),
+            Reverse(self.b),
+        )
     }
 }
 
@@ -140,7 +130,7 @@ pub fn merge(
         })
         .collect();
     let mut count = live.len();
-    let mut heap = BinaryHeap::new();
+    let mut heap = MaxHeap::new();
     let mut all_pairs = count <= ALL_PAIRS_FACTOR * target;
     let pairs: Vec<(usize, usize)> = (0..live.len())
         .flat_map(|a| (a + 1..live.len()).map(move |b| (a, b)))
@@ -230,7 +220,7 @@ fn share_a_point(a: &[u32], b: &[u32]) -> bool {
 fn push_all_pairs(
     input: &ReductionInput<'_>,
     live: &[Option<Live>],
-    heap: &mut BinaryHeap<PairMerge>,
+    heap: &mut MaxHeap<PairMerge>,
 ) {
     heap.clear();
     let pairs: Vec<(usize, usize)> = (0..live.len())

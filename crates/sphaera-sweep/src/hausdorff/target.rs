@@ -220,8 +220,10 @@ impl Target {
         let corners = self.triangles.get(t as usize)?;
         let hit = closest_point_on_triangle(x, &self.triangle(t)?);
         let feature_vertex = match hit.feature {
-            geometry::Feature::Vertex(i) | geometry::Feature::Edge(i) => corners[usize::from(i)],
-            geometry::Feature::Face => u32::MAX,
+            geometry::TriangleFeature::Vertex(i) | geometry::TriangleFeature::Edge(i) => {
+                corners[usize::from(i)]
+            }
+            geometry::TriangleFeature::Face => u32::MAX,
         };
         Some(Found {
             point: hit.point,

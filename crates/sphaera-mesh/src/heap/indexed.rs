@@ -1,49 +1,31 @@
-//! An indexed binary min-heap: at most one item per id, replaced or removed in place.
-//!
-//! Priority processes re-evaluate items constantly (the simplifier's collapse candidates,
-//! Meshsweeper's triangle intervals). A lazy-deletion heap grows with every re-evaluation;
-//! this one keeps one slot per id and moves the item to its new place, so it stays as
-//! large as the set of current items and `remove` is `O(log n)`.
-//!
-//! # Examples
-//!
-//! ```
-//! use sphaera_mesh::indexed_heap::{HeapItem, IndexedHeap};
-//!
-//! #[derive(Clone, Copy, Debug, PartialEq)]
-//! struct Job { cost: f64, id: u32 }
-//!
-//! impl HeapItem for Job {
-//!     fn id(&self) -> u32 { self.id }
-//!     fn before(&self, other: &Self) -> bool {
-//!         self.cost.total_cmp(&other.cost).then(self.id.cmp(&other.id)).is_lt()
-//!     }
-//! }
-//!
-//! let mut heap = IndexedHeap::new(10);
-//! heap.set(Job { cost: 3.0, id: 1 });
-//! heap.set(Job { cost: 1.0, id: 7 });
-//! heap.set(Job { cost: 0.5, id: 1 }); // replaces id 1's item
-//! assert_eq!(heap.len(), 2);
-//! assert_eq!(heap.pop(), Some(Job { cost: 0.5, id: 1 }));
-//! assert_eq!(heap.remove(7), Some(Job { cost: 1.0, id: 7 }));
-//! assert!(heap.is_empty());
-//! ```
+//! An indexed binary heap: at most one item per id, replaced or removed in place.
+
+use super::Priority;
 
 /// No heap slot.
 const ABSENT: u32 = u32::MAX;
 
-/// An item of an [`IndexedHeap`]: its id (below the heap's id bound) and its order.
-pub trait HeapItem: Copy {
+/// An item of an [`IndexedHeap`]: its id (below the heap's id bound) and its
+/// [`Priority`]. Items of different ids must never have equal priorities (break ties by
+/// id), so the pop order is deterministic.
+pub trait HeapItem: Priority + Copy {
     /// The id the item is filed under (one item per id).
     fn id(&self) -> u32;
-    /// Whether `self` comes strictly before `other`. Must be a strict total order on the
-    /// items of different ids (e.g. break ties by id) for a deterministic pop order.
-    fn before(&self, other: &Self) -> bool;
 }
 
-/// A binary min-heap holding at most one item per id in `0..ids` (see the
-/// [module docs](self)).
+/// Whether `a` pops before `b`.
+fn before<E: Priority>(a: &E, b: &E) -> bool {
+    a.priority() > b.priority()
+}
+
+/// A binary heap holding at most one item per id in `0..ids`, the highest
+/// [`Priority`] first (see the [module docs](super)).
+///
+/// Priority processes re-evaluate items constantly (the simplifier's collapse candidates,
+/// Meshsweeper's triangle intervals, sample elimination's weights). A lazy-deletion heap
+/// grows with every re-evaluation; this one keeps one slot per id and moves the item to
+/// its new place, so it stays as large as the set of current items and `remove` is
+/// `O(log n)`.
 #[derive(Clone, Debug)]
 pub struct IndexedHeap<E> {
     heap: Vec<E>,
@@ -193,7 +175,7 @@ impl<E: HeapItem> IndexedHeap<E> {
         let item = self.heap[i];
         while i > 0 {
             let parent = (i - 1) / 2;
-            if !item.before(&self.heap[parent]) {
+            if !before(&item, &self.heap[parent]) {
                 break;
             }
             self.heap[i] = self.heap[parent];
@@ -215,12 +197,12 @@ impl<E: HeapItem> IndexedHeap<E> {
                 break;
             }
             let right = left + 1;
-            let child = if right < n && self.heap[right].before(&self.heap[left]) {
+            let child = if right < n && before(&self.heap[right], &self.heap[left]) {
                 right
             } else {
                 left
             };
-            if !self.heap[child].before(&item) {
+            if !before(&self.heap[child], &item) {
                 break;
             }
             self.heap[i] = self.heap[child];
@@ -234,6 +216,9 @@ impl<E: HeapItem> IndexedHeap<E> {
 
 #[cfg(test)]
 mod tests {
+    use std::cmp::Reverse;
+
+    use super::super::TotalF64;
     use super::*;
 
     #[derive(Clone, Copy, Debug, PartialEq)]
@@ -242,15 +227,16 @@ mod tests {
         id: u32,
     }
 
+    impl Priority for Item {
+        type Key = (Reverse<TotalF64>, Reverse<u32>);
+        fn priority(&self) -> Self::Key {
+            (Reverse(TotalF64(self.key)), Reverse(self.id))
+        }
+    }
+
     impl HeapItem for Item {
         fn id(&self) -> u32 {
             self.id
-        }
-        fn before(&self, other: &Self) -> bool {
-            self.key
-                .total_cmp(&other.key)
-                .then(self.id.cmp(&other.id))
-                .is_lt()
         }
     }
 

@@ -1,0 +1,346 @@
+//! The one bounding-volume hierarchy of the workspace: a binary tree of axis-aligned boxes
+//! over items (triangles, spheres, …), built by median splits.
+//!
+//! Every tree that Sphaera searches is this tree with different leaves: the exact
+//! closest-point [`TriangleTree`](crate::closest::TriangleTree), the far-field expansions
+//! of the generalized [winding number](crate::winding), and the union of spheres that
+//! `sphaera-spheretree` measures coverage against. The build is the same everywhere so
+//! that the trees are the same for the same items, on every run and with or without the
+//! `parallel` feature.
+//!
+//! # Layout
+//!
+//! Nodes are stored depth first: an inner node's left child is the next node and its
+//! right child is at [`BoxNode::right`]. The items are permuted into
+//! [`BoxTree::order`] so that every node's items are one contiguous range of it
+//! ([`BoxNode::items`]), the inner nodes' ranges included.
+//!
+//! # Examples
+//!
+//! ```
+//! use sphaera_mesh::{Aabb, DVec3, bvh::BoxTree};
+//!
+//! // Ten points on a line, as degenerate boxes, two per leaf.
+//! let points: Vec<DVec3> = (0..10).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
+//! let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p, p)).collect();
+//! let tree = BoxTree::build(&boxes, &points, 2);
+//! let root = tree.nodes()[0];
+//! assert_eq!(root.items(), 0..10);
+//! assert_eq!(root.bounds, Aabb::new(DVec3::ZERO, DVec3::new(9.0, 0.0, 0.0)));
+//! // Every leaf holds at most two items, and the leaves partition the items.
+//! let leaves: usize = tree.nodes().iter().filter(|n| n.is_leaf()).map(|n| n.items().len()).sum();
+//! assert_eq!(leaves, 10);
+//! # let _ = tree.order();
+//! ```
+
+use std::ops::{ControlFlow, Range};
+
+use glam::DVec3;
+
+use crate::Aabb;
+
+/// One node of a [`BoxTree`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoxNode {
+    /// The box of the node's items.
+    pub bounds: Aabb,
+    /// First position of the node's items in [`BoxTree::order`].
+    start: u32,
+    /// One past the last position.
+    end: u32,
+    /// The right child's index for an inner node (the left child is the next node);
+    /// 0 for a leaf (the root is never a right child).
+    right: u32,
+}
+
+impl BoxNode {
+    /// The positions of the node's items in [`BoxTree::order`] (also the positions in any
+    /// per-item array the caller laid out in that order).
+    #[must_use]
+    pub fn items(&self) -> Range<usize> {
+        self.start as usize..self.end as usize
+    }
+
+    /// Whether the node is a leaf.
+    #[must_use]
+    pub fn is_leaf(&self) -> bool {
+        self.right == 0
+    }
+
+    /// The right child's index for an inner node (its left child is the node right after
+    /// it); `None` for a leaf.
+    #[must_use]
+    pub fn right(&self) -> Option<usize> {
+        (!self.is_leaf()).then_some(self.right as usize)
+    }
+}
+
+/// A binary tree of axis-aligned boxes over items (see the [module docs](self)).
+#[derive(Clone, Debug, Default)]
+pub struct BoxTree {
+    nodes: Vec<BoxNode>,
+    order: Vec<u32>,
+}
+
+/// What a nearest-first search ([`BoxTree::search_nearest_first`]) asks of its caller.
+pub trait NearestFirst {
+    /// Whether a node whose box is at squared distance `distance_squared` from the query
+    /// may hold an item better than the best so far (`false` prunes it).
+    fn may_improve(&self, distance_squared: f64) -> bool;
+
+    /// Visits the leaf items at `positions` of [`BoxTree::order`]; `Break` ends the search.
+    fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()>;
+}
+
+impl BoxTree {
+    /// Builds the tree over items with boxes `bounds` and split points `centroids` (one
+    /// per item), at most `leaf_size` items per leaf.
+    ///
+    /// A node of more than `leaf_size` items is split at the median of its items'
+    /// centroids along the longest axis of the centroids' box, ties broken by item index,
+    /// so the same items always give the same tree.
+    ///
+    /// # Panics
+    ///
+    /// If `bounds` and `centroids` differ in length, or there are more than `u32::MAX`
+    /// items (callers check their item counts first).
+    ///
+    /// # Performance
+    ///
+    /// `O(n log n)` for `n` items; 64 bytes per node (about `2n / leaf_size` nodes) and
+    /// 4 bytes per item.
+    #[must_use]
+    pub fn build(bounds: &[Aabb], centroids: &[DVec3], leaf_size: usize) -> Self {
+        Self::build_visiting(bounds, centroids, leaf_size, |_| {})
+    }
+
+    /// [`BoxTree::build`], calling `on_node` with each node's items as the node is made
+    /// (depth first, so in the order of [`BoxTree::nodes`]), before it is split: a caller
+    /// that sums over a node's items gets the same sums, in the same order, whatever
+    /// happens to the node's descendants.
+    ///
+    /// # Panics
+    ///
+    /// As [`BoxTree::build`].
+    #[must_use]
+    pub fn build_visiting(
+        bounds: &[Aabb],
+        centroids: &[DVec3],
+        leaf_size: usize,
+        mut on_node: impl FnMut(&[u32]),
+    ) -> Self {
+        assert_eq!(bounds.len(), centroids.len(), "one centroid per item");
+        let count = u32::try_from(bounds.len()).expect("fewer than u32::MAX items");
+        let mut builder = Builder {
+            bounds,
+            centroids,
+            leaf_size: leaf_size.max(1),
+            nodes: Vec::with_capacity(2 * bounds.len() / leaf_size.max(1) + 1),
+            on_node: &mut on_node,
+        };
+        let mut order: Vec<u32> = (0..count).collect();
+        if !order.is_empty() {
+            builder.node(&mut order, 0);
+        }
+        Self {
+            nodes: builder.nodes,
+            order,
+        }
+    }
+
+    /// The nodes, depth first (the root first; empty for no items).
+    #[must_use]
+    pub fn nodes(&self) -> &[BoxNode] {
+        &self.nodes
+    }
+
+    /// The item indices in tree order: every node's items are a contiguous range of it.
+    #[must_use]
+    pub fn order(&self) -> &[u32] {
+        &self.order
+    }
+
+    /// Visits the leaves nearest first from `p`: the nearer child of each node is
+    /// searched first, and a node is skipped when `search.may_improve` says its box is too
+    /// far (asked when the node is reached, so a bound that tightened meanwhile prunes it).
+    pub fn search_nearest_first(&self, p: DVec3, search: &mut impl NearestFirst) {
+        let mut stack: Vec<usize> = Vec::with_capacity(64);
+        if !self.nodes.is_empty() {
+            stack.push(0);
+        }
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n];
+            if !search.may_improve(node.bounds.distance_squared_to_point(p)) {
+                continue;
+            }
+            match node.right() {
+                None => {
+                    if search.visit_leaf(node.items()).is_break() {
+                        return;
+                    }
+                }
+                Some(right) => {
+                    let left = n + 1;
+                    let to_left = self.nodes[left].bounds.distance_squared_to_point(p);
+                    let to_right = self.nodes[right].bounds.distance_squared_to_point(p);
+                    // The nearer child on top of the stack.
+                    if to_left <= to_right {
+                        stack.extend([right, left]);
+                    } else {
+                        stack.extend([left, right]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The state of a build.
+struct Builder<'a> {
+    bounds: &'a [Aabb],
+    centroids: &'a [DVec3],
+    leaf_size: usize,
+    nodes: Vec<BoxNode>,
+    on_node: &'a mut dyn FnMut(&[u32]),
+}
+
+impl Builder<'_> {
+    /// Appends the subtree over `order` (whose first item sits at `offset` of the final
+    /// order) depth first.
+    ///
+    /// The recursion depth is `log2(n / leaf_size) + 1`: the median split halves every
+    /// range.
+    fn node(&mut self, order: &mut [u32], offset: usize) {
+        let index = self.nodes.len();
+        (self.on_node)(order);
+        let bounds = order
+            .iter()
+            .fold(Aabb::EMPTY, |b, &i| b.union(self.bounds[i as usize]));
+        // Lossless: the build checked that the item count fits a u32.
+        let start = offset as u32;
+        self.nodes.push(BoxNode {
+            bounds,
+            start,
+            end: start + order.len() as u32,
+            right: 0,
+        });
+        if order.len() <= self.leaf_size {
+            return;
+        }
+        let centroids = self.centroids;
+        let axis = Aabb::from_points(order.iter().map(|&i| centroids[i as usize])).longest_axis();
+        let middle = order.len() / 2;
+        order.select_nth_unstable_by(middle, |&a, &b| {
+            centroids[a as usize][axis]
+                .total_cmp(&centroids[b as usize][axis])
+                .then(a.cmp(&b))
+        });
+        let (left, right) = order.split_at_mut(middle);
+        self.node(left, offset);
+        let right_index = self.nodes.len() as u32;
+        self.node(right, offset + middle);
+        self.nodes[index].right = right_index;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn points(n: u32) -> Vec<DVec3> {
+        (0..n)
+            .map(|i| {
+                let t = f64::from(i);
+                DVec3::new((t * 0.37).sin(), (t * 0.71).cos(), (t * 0.13).sin()) * 3.0
+            })
+            .collect()
+    }
+
+    #[test]
+    fn nodes_partition_their_items_and_boxes_contain_them() {
+        let centroids = points(333);
+        let boxes: Vec<Aabb> = centroids
+            .iter()
+            .map(|&c| Aabb::new(c - 0.1, c + 0.2))
+            .collect();
+        let tree = BoxTree::build(&boxes, &centroids, 4);
+        let mut sorted = tree.order().to_vec();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..333).collect::<Vec<_>>());
+        for (index, node) in tree.nodes().iter().enumerate() {
+            for &item in &tree.order()[node.items()] {
+                let b = boxes[item as usize];
+                assert_eq!(node.bounds.union(b), node.bounds);
+            }
+            match node.right() {
+                None => assert!(node.items().len() <= 4 && !node.items().is_empty()),
+                Some(right) => {
+                    let (l, r) = (tree.nodes()[index + 1], tree.nodes()[right]);
+                    assert_eq!(l.items().start, node.items().start);
+                    assert_eq!(l.items().end, r.items().start);
+                    assert_eq!(r.items().end, node.items().end);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_same_items_give_the_same_tree() {
+        let centroids = points(200);
+        let boxes: Vec<Aabb> = centroids.iter().map(|&c| Aabb::new(c, c)).collect();
+        let (a, b) = (
+            BoxTree::build(&boxes, &centroids, 3),
+            BoxTree::build(&boxes, &centroids, 3),
+        );
+        assert_eq!(a.order(), b.order());
+        assert_eq!(a.nodes(), b.nodes());
+        assert!(BoxTree::build(&[], &[], 4).nodes().is_empty());
+    }
+
+    /// The nearest centroid by a nearest-first search.
+    struct Nearest<'a> {
+        p: DVec3,
+        centroids: &'a [DVec3],
+        order: &'a [u32],
+        best: f64,
+        visited: usize,
+    }
+
+    impl NearestFirst for Nearest<'_> {
+        fn may_improve(&self, distance_squared: f64) -> bool {
+            distance_squared < self.best
+        }
+
+        fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
+            for &i in &self.order[positions] {
+                self.visited += 1;
+                self.best = self
+                    .best
+                    .min(self.p.distance_squared(self.centroids[i as usize]));
+            }
+            ControlFlow::Continue(())
+        }
+    }
+
+    #[test]
+    fn nearest_first_search_finds_the_nearest_and_prunes() {
+        let centroids = points(1000);
+        let boxes: Vec<Aabb> = centroids.iter().map(|&c| Aabb::new(c, c)).collect();
+        let tree = BoxTree::build(&boxes, &centroids, 4);
+        let p = DVec3::new(0.5, -1.0, 0.25);
+        let mut search = Nearest {
+            p,
+            centroids: &centroids,
+            order: tree.order(),
+            best: f64::INFINITY,
+            visited: 0,
+        };
+        tree.search_nearest_first(p, &mut search);
+        let brute = centroids
+            .iter()
+            .map(|&c| p.distance_squared(c))
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!(search.best.to_bits(), brute.to_bits());
+        assert!(search.visited < 1000 / 4, "visited {}", search.visited);
+    }
+}

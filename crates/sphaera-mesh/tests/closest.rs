@@ -1,0 +1,86 @@
+//! The closest-point tree against brute force (every triangle), on procedural shapes and
+//! random triangle soups with degenerate triangles.
+
+use proptest::prelude::*;
+use sphaera_mesh::closest::{Feature, TriangleTree};
+use sphaera_mesh::geometry::point_triangle_distance_squared;
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+
+/// The distance from `p` to the nearest triangle of `mesh`.
+fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
+    mesh.triangle_iter()
+        .map(|t| point_triangle_distance_squared(p, &t))
+        .fold(f64::INFINITY, f64::min)
+        .sqrt()
+}
+
+/// Relative-or-absolute closeness for exact answers.
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1e-3)
+}
+
+fn shapes() -> Vec<TriMesh> {
+    vec![
+        shapes::sphere(1.0, 12).expect("sphere"),
+        shapes::torus(1.0, 0.3, 16).expect("torus"),
+        shapes::cube(1.0, 5).expect("cube"),
+        shapes::s_tube(0.2, 1.0, 12).expect("tube"),
+    ]
+}
+
+fn point() -> impl Strategy<Value = DVec3> {
+    (-3.0..3.0_f64, -3.0..3.0_f64, -3.0..3.0_f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+}
+
+/// A random triangle soup, with repeated corners (degenerate triangles) on purpose.
+fn soup() -> impl Strategy<Value = TriMesh> {
+    (
+        prop::collection::vec(point(), 3..24),
+        prop::collection::vec((0..24_u32, 0..24_u32, 0..24_u32), 1..40),
+    )
+        .prop_map(|(positions, triangles)| {
+            let n = positions.len() as u32;
+            let triangles: Vec<[u32; 3]> = triangles
+                .into_iter()
+                .map(|(a, b, c)| [a % n, b % n, c % n])
+                .collect();
+            TriMesh::new(positions, triangles).expect("indices in range")
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn triangle_tree_matches_brute_force(
+        shape in 0..5_usize,
+        soup in soup(),
+        points in prop::collection::vec(point(), 1..16),
+        bound in 0.0..2.0_f64,
+    ) {
+        let mesh = if shape < 4 { shapes().swap_remove(shape) } else { soup };
+        let tree = TriangleTree::new(&mesh).expect("non-empty");
+        for &p in &points {
+            let expected = brute_distance(&mesh, p);
+            let answer = tree.closest(p).expect("finite query");
+            prop_assert!(close(answer.distance, expected), "{} vs {expected}", answer.distance);
+            let [a, b, c] = mesh.triangles()[answer.triangle as usize];
+            let triangle = mesh.triangle(answer.triangle as usize).expect("in range");
+            prop_assert!(point_triangle_distance_squared(answer.point, &triangle).sqrt() <= 1e-9);
+            // The feature names vertices of the answer's triangle, and a vertex answer is
+            // that vertex.
+            match answer.feature {
+                Feature::Vertex(v) => {
+                    prop_assert!([a, b, c].contains(&v));
+                    prop_assert_eq!(answer.point, mesh.positions()[v as usize]);
+                }
+                Feature::Edge(u, v) => {
+                    prop_assert!([[a, b], [b, c], [c, a]].contains(&[u, v]));
+                }
+                Feature::Face => {}
+            }
+            let within = tree.closest_within(p, bound).expect("valid bound");
+            prop_assert_eq!(within.is_some(), expected <= bound);
+        }
+    }
+}
