@@ -1,4 +1,17 @@
-//! The experiments, one module each.
+//! The experiments, one module each: [`NAMES`] lists them in the order `cargo xtask
+//! charts` runs them, [`run`] runs one. The docs at the top of each source file say what
+//! the experiment measures, how, and which files it writes.
+//!
+//! - `load_topology_time`: `load_topology.rs`;
+//! - `simplify_error_vs_time`: `simplify_error.rs` (the calls of [`crate::methods`]);
+//! - `sweep_throughput`: `sweep_throughput.rs` (the points of [`crate::query_sets`], and
+//!   [`crate::brute`]);
+//! - `hausdorff_gap_vs_time`: `hausdorff_gap.rs` (the naive estimate of [`crate::brute`]);
+//! - `medial_static_vs_adaptive`: `medial_static_vs_adaptive.rs`;
+//! - `spheretree`: `spheretree/mod.rs`, its tables and charts in `spheretree/charts.rs`.
+
+// Experiments report each measurement on the terminal as they go.
+#![allow(clippy::print_stderr)]
 
 mod hausdorff_gap;
 mod load_topology;
@@ -37,7 +50,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
 }
 
 /// The shortest of `runs` timings of `f`, in seconds, with the last result.
-pub fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Result<(f64, T)> {
+pub(crate) fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Result<(f64, T)> {
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..runs.max(1) {

@@ -51,8 +51,6 @@ use sphaera::{
 
 use super::min_time;
 
-// The CSV tables and the SVG charts.
-#[path = "spheretree_charts.rs"]
 mod charts;
 
 /// The experiment's name (`--only spheretree`); it writes the two charts below.
