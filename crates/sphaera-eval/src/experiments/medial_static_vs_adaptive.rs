@@ -33,10 +33,10 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::{
     medial::{CoverCriterion, MedialApproximation, MedialParams, MedialSphere, Surface},
-    mesh::{DVec3, TriMesh, io, sampling},
+    mesh::{DVec3, TriMesh, sampling},
 };
 
-use super::min_time;
+use super::{load_or_skip, min_time};
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 
 /// The experiment's name: its files are `medial_static_vs_adaptive.{svg,csv}`.
@@ -150,12 +150,9 @@ struct Row {
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
     for &(file, label) in MESHES {
-        let path = data.join(file);
-        if !path.is_file() {
-            eprintln!("{file}: not in {}, skipped", data.display());
+        let Some(mesh) = load_or_skip(data, file)? else {
             continue;
-        }
-        let mesh = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        };
         measure_mesh(file, label, &mesh, &mut rows)?;
     }
     write_table(out, &rows)?;

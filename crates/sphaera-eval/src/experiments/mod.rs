@@ -22,7 +22,8 @@ mod sweep_throughput;
 
 use std::path::Path;
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
+use sphaera::mesh::{TriMesh, io};
 
 /// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
 /// its charts as `CHART.svg` with the data in `CHART.csv` (`spheretree` writes two,
@@ -63,4 +64,20 @@ pub(crate) fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Resu
         Some(value) => Ok((best, value)),
         None => bail!("no run"),
     }
+}
+
+/// Loads the mesh at `path`; the error names the file.
+pub(crate) fn load_mesh(path: &Path) -> Result<TriMesh> {
+    io::load(path).with_context(|| format!("cannot load {}", path.display()))
+}
+
+/// Loads `file` of the folder `data`, or says on the terminal that it is not there and
+/// returns `None`: an experiment skips the meshes it cannot find.
+pub(crate) fn load_or_skip(data: &Path, file: &str) -> Result<Option<TriMesh>> {
+    let path = data.join(file);
+    if !path.is_file() {
+        eprintln!("{file}: not in {}, skipped", data.display());
+        return Ok(None);
+    }
+    load_mesh(&path).map(Some)
 }
