@@ -19,7 +19,9 @@ pub const PATH_STEPS_PER_LOOP: usize = 2_000;
 /// The names of the query sets, in the order [`query_sets`] returns them.
 pub const SET_NAMES: [&str; 3] = ["uniform", "near", "path"];
 
-/// A small deterministic generator (uniform in `[0, 1)`).
+/// A small deterministic generator (Knuth's 64-bit linear congruential generator, the
+/// top 53 bits as a value uniform in `[0, 1)`), seeded by its state. Also the generator of
+/// the `polyline_vs_parry` bench's helix and query sets.
 pub struct Lcg(pub u64);
 
 impl Lcg {
@@ -31,6 +33,11 @@ impl Lcg {
             .wrapping_add(1_442_695_040_888_963_407);
         // The top 53 bits, exactly representable.
         (self.0 >> 11) as f64 / (1_u64 << 53) as f64
+    }
+
+    /// A point uniform in the unit cube `[0, 1)³`: the next three values as x, y, z.
+    pub fn unit_cube(&mut self) -> DVec3 {
+        DVec3::new(self.uniform(), self.uniform(), self.uniform())
     }
 }
 
@@ -47,7 +54,7 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
     let mut rng = Lcg(7);
     let uniform = (0..n)
         .map(|_| {
-            let u = DVec3::new(rng.uniform(), rng.uniform(), rng.uniform());
+            let u = rng.unit_cube();
             center + 1.5 * half * (2.0 * u - DVec3::ONE)
         })
         .collect();
@@ -55,7 +62,7 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
     let near = samples
         .iter()
         .map(|s| {
-            let d = DVec3::new(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0 - DVec3::ONE;
+            let d = rng.unit_cube() * 2.0 - DVec3::ONE;
             s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.uniform())
         })
         .collect();

@@ -490,8 +490,10 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use sphaera::medial::SphereKind;
+
+    use super::*;
+    use crate::query_sets::Lcg;
 
     fn sphere(centre: DVec3, radius: f64) -> MedialSphere {
         MedialSphere {
@@ -504,17 +506,10 @@ mod tests {
         }
     }
 
-    /// Deterministic pseudo-random values in `[0, 1)` (a 64-bit LCG).
+    /// Deterministic pseudo-random values in `[0, 1)`.
     fn values(seed: u64, n: usize) -> Vec<f64> {
-        let mut state = seed;
-        (0..n)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (state >> 11) as f64 / (1_u64 << 53) as f64
-            })
-            .collect()
+        let mut rng = Lcg(seed);
+        (0..n).map(|_| rng.uniform()).collect()
     }
 
     fn brute(spheres: &[MedialSphere], points: &[DVec3]) -> Coverage {
