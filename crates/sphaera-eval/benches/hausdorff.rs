@@ -8,7 +8,7 @@
 //!   loop (their build, which is parallel, is benched beside as `hierarchies`); the
 //!   computation itself runs on one thread.
 //! - `naive_1_in_N`: every `N`-th referenced vertex of each mesh against every triangle of
-//!   the other, by brute force on one thread (`src/brute.rs`, shared with the
+//!   the other, by brute force on one thread (`sphaera_eval::brute`, shared with the
 //!   `hausdorff_gap_vs_time` experiment). The bench prints the factor that extrapolates its
 //!   time to every vertex (the ratio of point–triangle distances evaluated); the full
 //!   naive run certifies nothing anyway (its value is only a lower bound).
@@ -23,16 +23,10 @@ use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphaera::{
-    mesh::io,
+    mesh::{TriMesh, io},
     sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff},
 };
-
-// Shared with the experiments, which also use the helpers the bench does not need.
-#[allow(dead_code)]
-#[path = "../src/brute.rs"]
-mod brute;
-
-use brute::naive_hausdorff;
+use sphaera_eval::brute::{naive_hausdorff, referenced_vertices};
 
 /// The pair measured, in `shared/data`.
 const PAIR: (&str, &str) = ("stanford-bunny.obj", "stanford-bunny-qem15.obj");
@@ -112,9 +106,9 @@ fn hausdorff_bench(c: &mut Criterion) {
 
 /// Point–triangle distances of the full naive run (every referenced vertex of each mesh
 /// against every triangle of the other), counted without evaluating them.
-fn naive_count(a: &sphaera::mesh::TriMesh, b: &sphaera::mesh::TriMesh) -> usize {
-    brute::referenced_vertices(a).len() * b.triangle_count()
-        + brute::referenced_vertices(b).len() * a.triangle_count()
+fn naive_count(a: &TriMesh, b: &TriMesh) -> usize {
+    referenced_vertices(a).len() * b.triangle_count()
+        + referenced_vertices(b).len() * a.triangle_count()
 }
 
 criterion_group!(benches, hausdorff_bench);

@@ -2,7 +2,8 @@
 //! parry3d-f64's `Polyline` point projection (its BVH), in the same run.
 //!
 //! The polyline (seeded): a noisy helix of 100 000 points, 20 turns of radius 1 and pitch
-//! 0.25, each point moved by up to 1 % of the radius. Query sets (seeded):
+//! 0.25, each point moved by up to 1 % of the radius. Query sets (seeded; the generator
+//! of both is `sphaera_eval::query_sets::Lcg`):
 //! - `uniform`: points uniform in the bounding box scaled 1.5× about its centre;
 //! - `path`: a smooth path of small steps (about 2 · 10⁻³ each) winding around the helix
 //!   at radius 1.3, the coherent case.
@@ -17,29 +18,13 @@ use std::{hint::black_box, time::Duration};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use parry3d_f64::{query::PointQuery, shape::Polyline as ParryPolyline};
 use sphaera::{mesh::DVec3, sweep::Polyline};
+use sphaera_eval::query_sets::Lcg;
 
 /// Points of the polyline.
 const POINTS: usize = 100_000;
 
 /// Queries per measured block.
 const QUERIES: usize = 2_000;
-
-/// A small deterministic generator (uniform in `[0, 1)`).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1_u64 << 53) as f64
-    }
-
-    fn unit_cube(&mut self) -> DVec3 {
-        DVec3::new(self.next(), self.next(), self.next())
-    }
-}
 
 /// The noisy helix of the module docs.
 fn helix() -> Vec<DVec3> {

@@ -2,11 +2,11 @@
 //!
 //! The 69k-triangle bunny and the 871k-triangle dragon of `shared/data`, simplified to
 //! 50 %, 10 % and 2 % of their triangles (the same `ceil(ratio × triangles)` target for
-//! both libraries). The calls and options are those of `src/methods.rs`, shared with the
-//! `simplify_error_vs_time` experiment (which measures the error of the same outputs):
-//! Sphaera with its defaults (boundary locked), meshopt's `simplify` with a target index
-//! count, an unlimited target error and `LockBorder`; meshopt's `f32` input is prepared
-//! once, outside the timing.
+//! both libraries). The calls and options are those of `sphaera_eval::methods`, shared
+//! with the `simplify_error_vs_time` experiment (which measures the error of the same
+//! outputs): Sphaera with its defaults (boundary locked), meshopt's `simplify` with a
+//! target index count, an unlimited target error and `LockBorder`; meshopt's `f32` input
+//! is prepared once, outside the timing.
 //!
 //! Run with `cargo bench -p sphaera-eval --bench simplify_vs_meshopt` (append
 //! `-- bunny` for the bunny only: each dragon case takes minutes while Sphaera is slow).
@@ -19,13 +19,7 @@ use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphaera::{mesh::io, simplify::Simplifier};
-
-// Shared with the experiment, which also uses the helpers the bench does not need.
-#[allow(dead_code)]
-#[path = "../src/methods.rs"]
-mod methods;
-
-use methods::{MeshoptInput, PLACEMENTS, sphaera_simplify, target_triangles};
+use sphaera_eval::methods::{MeshoptInput, PLACEMENTS, sphaera_simplify, target_triangles};
 
 /// The meshes: bench name, file in `shared/data`, measurement time per group.
 const MESHES: &[(&str, &str, Duration)] = &[

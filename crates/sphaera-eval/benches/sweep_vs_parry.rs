@@ -1,7 +1,7 @@
 //! Closest-point queries: Sphaera's Meshsweeper sessions and its static `TriangleTree`
 //! against parry3d-f64's `TriMesh` point projection (its BVH), in the same run.
 //!
-//! Query sets (seeded; `src/query_sets.rs`, shared with the `sweep_throughput`
+//! Query sets (seeded; `sphaera_eval::query_sets`, shared with the `sweep_throughput`
 //! experiment), on the 69k-triangle bunny and the 871k-triangle dragon:
 //! - `uniform`: points uniform in the bounding box scaled 1.5×;
 //! - `near`: points within 1 % of the diagonal of the surface (a surface sample moved
@@ -28,14 +28,8 @@ use sphaera::{
     mesh::{DVec3, TriMesh, closest::TriangleTree, io, shapes},
     sweep::{Sweeper, build_hierarchy},
 };
+use sphaera_eval::query_sets::query_sets;
 use sphaera_tests::hausdorff::DistanceToMesh;
-
-// Shared with the `sweep_throughput` experiment, which measures the same query sets.
-#[allow(dead_code)]
-#[path = "../src/query_sets.rs"]
-mod query_sets;
-
-use query_sets::query_sets;
 
 /// Queries per measured block.
 const QUERIES: usize = 2_000;

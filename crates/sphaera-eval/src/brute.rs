@@ -1,7 +1,6 @@
 //! Brute force: the distance from a point to a mesh as the minimum over every triangle,
 //! single thread, no acceleration structure. Shared by the `sweep_throughput` and
-//! `hausdorff_gap_vs_time` experiments and the `hausdorff` bench (which includes this file
-//! with `#[path]`).
+//! `hausdorff_gap_vs_time` experiments and the `hausdorff` bench.
 //!
 //! The distance to each triangle is [`point_triangle_distance_squared`] (exact, with its
 //! own fallback for degenerate triangles), so the minimum is the exact distance to the
@@ -96,24 +95,24 @@ pub fn referenced_vertices(mesh: &TriMesh) -> Vec<DVec3> {
 
 #[cfg(test)]
 mod tests {
-    // No `use` here: the benches include this file with `#[path]`, where the tests are
-    // compiled out and an import would be unused.
+    use sphaera::mesh::shapes;
+
+    use super::*;
 
     #[test]
     fn brute_force_matches_a_cube() {
-        let cube = sphaera::mesh::shapes::cube(2.0, 2).unwrap();
-        let brute = super::BruteForce::new(&cube);
-        assert!((brute.distance(super::DVec3::new(3.0, 0.0, 0.0)) - 2.0).abs() < 1e-12);
-        assert!((brute.distance(super::DVec3::ZERO) - 1.0).abs() < 1e-12);
+        let cube = shapes::cube(2.0, 2).unwrap();
+        let brute = BruteForce::new(&cube);
+        assert!((brute.distance(DVec3::new(3.0, 0.0, 0.0)) - 2.0).abs() < 1e-12);
+        assert!((brute.distance(DVec3::ZERO) - 1.0).abs() < 1e-12);
     }
 
     #[test]
     fn naive_hausdorff_of_nested_cubes() {
-        let small = sphaera::mesh::shapes::cube(2.0, 2).unwrap();
+        let small = shapes::cube(2.0, 2).unwrap();
         let (positions, triangles) = small.clone().into_parts();
-        let big =
-            super::TriMesh::new(positions.iter().map(|&p| 1.5 * p).collect(), triangles).unwrap();
-        let naive = super::naive_hausdorff(&small, &big, 1);
+        let big = TriMesh::new(positions.iter().map(|&p| 1.5 * p).collect(), triangles).unwrap();
+        let naive = naive_hausdorff(&small, &big, 1);
         // The big cube's corners are √3 × 0.5 from the small one's.
         assert!((naive.value - 0.5 * 3f64.sqrt()).abs() < 1e-12);
         assert_eq!(naive.samples, 2 * small.vertex_count());

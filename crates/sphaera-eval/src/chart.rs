@@ -40,51 +40,15 @@ const CLASSIC_COLORS: usize = 6;
 
 /// Draws the series as points on log–log axes, into `path` (SVG, written atomically).
 pub fn log_log_scatter(path: &Path, spec: &ChartSpec<'_>, series: &[Series]) -> Result<()> {
-    let positive = |&(x, y): &(f64, f64)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite();
-    let all: Vec<(f64, f64)> = series
-        .iter()
-        .flat_map(|s| s.points.iter().copied())
-        .filter(positive)
-        .collect();
-    let (x_range, y_range) = log_range(&all);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (800, 520)).into_drawing_area();
-        root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(spec.title, ("sans-serif", 20))
-            .margin(16)
-            .x_label_area_size(44)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
-        chart
-            .configure_mesh()
-            .x_desc(spec.x_label)
-            .y_desc(spec.y_label)
-            .x_label_formatter(&|v| tick_label(*v))
-            .y_label_formatter(&|v| tick_label(*v))
-            .draw()?;
+    let (x_range, y_range) = log_range(&positive_points(series));
+    write_svg(path, (800, 520), |root| {
+        let mut chart = log_log_chart(root, spec, 20, x_range, y_range)?;
         for (i, s) in series.iter().enumerate() {
-            let color = PALETTE[i % CLASSIC_COLORS];
-            let points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
-            chart
-                .draw_series(
-                    points
-                        .into_iter()
-                        .map(|p| Circle::new(p, 3, color.filled())),
-                )?
-                .label(s.name.as_str())
-                .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
+            let points = s.points.iter().copied().filter(is_positive).collect();
+            draw_points(&mut chart, &s.name, points, PALETTE[i % CLASSIC_COLORS])?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()?;
-        root.present()?;
-    }
-    write_atomically(path, svg.as_bytes())
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)
+    })
 }
 
 /// One plot of a multi-panel chart: log–log axes, each series as points joined by a line.
@@ -102,40 +66,18 @@ pub struct Panel<'a> {
 /// Draws `panels` side by side (each 640 × 520) into `path` (SVG, written atomically).
 /// A series with the same index has the same colour in every panel.
 pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
-    let positive = |&(x, y): &(f64, f64)| x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite();
     let width = 640 * u32::try_from(panels.len().max(1)).unwrap_or(1);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (width, 520)).into_drawing_area();
-        root.fill(&WHITE)?;
+    write_svg(path, (width, 520), |root| {
         let areas = root.split_evenly((1, panels.len().max(1)));
         for (panel, area) in panels.iter().zip(&areas) {
-            let all: Vec<(f64, f64)> = panel
-                .series
-                .iter()
-                .flat_map(|s| s.points.iter().copied())
-                .filter(positive)
-                .collect();
-            let (mut x_range, mut y_range) = log_range(&all);
+            let (mut x_range, mut y_range) = log_range(&positive_points(panel.series));
             if panel.diagonal {
                 // One range for both axes, so that y = x is the square's diagonal.
                 let lo = x_range.start.min(y_range.start);
                 let hi = x_range.end.max(y_range.end);
                 (x_range, y_range) = (lo..hi, lo..hi);
             }
-            let mut chart = ChartBuilder::on(area)
-                .caption(panel.spec.title, ("sans-serif", 18))
-                .margin(16)
-                .x_label_area_size(44)
-                .y_label_area_size(64)
-                .build_cartesian_2d(x_range.clone().log_scale(), y_range.log_scale())?;
-            chart
-                .configure_mesh()
-                .x_desc(panel.spec.x_label)
-                .y_desc(panel.spec.y_label)
-                .x_label_formatter(&|v| tick_label(*v))
-                .y_label_formatter(&|v| tick_label(*v))
-                .draw()?;
+            let mut chart = log_log_chart(area, &panel.spec, 18, x_range.clone(), y_range)?;
             if panel.diagonal {
                 let grey = RGBColor(128, 128, 128);
                 chart
@@ -150,30 +92,113 @@ pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
             }
             for (i, s) in panel.series.iter().enumerate() {
                 let color = PALETTE[i % CLASSIC_COLORS];
-                let points: Vec<(f64, f64)> = s.points.iter().copied().filter(positive).collect();
+                let points: Vec<(f64, f64)> =
+                    s.points.iter().copied().filter(is_positive).collect();
                 if points.is_empty() {
                     continue;
                 }
                 chart.draw_series(LineSeries::new(points.iter().copied(), color.mix(0.5)))?;
-                chart
-                    .draw_series(
-                        points
-                            .into_iter()
-                            .map(|p| Circle::new(p, 3, color.filled())),
-                    )?
-                    .label(s.name.as_str())
-                    .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
+                draw_points(&mut chart, &s.name, points, color)?;
             }
-            chart
-                .configure_series_labels()
-                .position(panel.legend.clone())
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .draw()?;
+            draw_legend(&mut chart, panel.legend.clone())?;
         }
+        Ok(())
+    })
+}
+
+/// The drawing area of a whole SVG figure.
+type SvgArea<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;
+
+/// A chart with log–log axes on an SVG figure.
+type LogLogChart<'a, 'b> =
+    ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// Draws a figure of `size` pixels on a white background with `draw`, and writes it to
+/// `path` (SVG, written atomically).
+fn write_svg(
+    path: &Path,
+    size: (u32, u32),
+    draw: impl FnOnce(&SvgArea<'_>) -> Result<()>,
+) -> Result<()> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE)?;
+        draw(&root)?;
         root.present()?;
     }
     write_atomically(path, svg.as_bytes())
+}
+
+/// A finite point in the positive quadrant: drawable on log–log axes.
+fn is_positive(&(x, y): &(f64, f64)) -> bool {
+    x > 0.0 && y > 0.0 && x.is_finite() && y.is_finite()
+}
+
+/// Every drawable point of `series` (see [`is_positive`]).
+fn positive_points(series: &[Series]) -> Vec<(f64, f64)> {
+    series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(is_positive)
+        .collect()
+}
+
+/// A log–log chart over `x_range` × `y_range` on `area`: the title of `spec` (at
+/// `title_size` points) above, its axis labels, ticks labelled by [`tick_label`].
+fn log_log_chart<'a, 'b>(
+    area: &'a SvgArea<'b>,
+    spec: &ChartSpec<'_>,
+    title_size: u32,
+    x_range: std::ops::Range<f64>,
+    y_range: std::ops::Range<f64>,
+) -> Result<LogLogChart<'a, 'b>> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(spec.title, ("sans-serif", title_size))
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
+    chart
+        .configure_mesh()
+        .x_desc(spec.x_label)
+        .y_desc(spec.y_label)
+        .x_label_formatter(&|v| tick_label(*v))
+        .y_label_formatter(&|v| tick_label(*v))
+        .draw()?;
+    Ok(chart)
+}
+
+/// Draws `points` as filled circles of `color`, with a legend entry `name`.
+fn draw_points(
+    chart: &mut LogLogChart<'_, '_>,
+    name: &str,
+    points: Vec<(f64, f64)>,
+    color: RGBColor,
+) -> Result<()> {
+    chart
+        .draw_series(
+            points
+                .into_iter()
+                .map(|p| Circle::new(p, 3, color.filled())),
+        )?
+        .label(name)
+        .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
+    Ok(())
+}
+
+/// Draws the legend of the labelled series of `chart` at `position`, on a light box.
+fn draw_legend<'a, 'b: 'a>(
+    chart: &mut LogLogChart<'a, 'b>,
+    position: SeriesLabelPosition,
+) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()?;
+    Ok(())
 }
 
 /// The shape of a point marker.
@@ -266,11 +291,7 @@ pub fn styled_panels(
     legend: &[LegendEntry],
 ) -> Result<()> {
     let count = u32::try_from(panels.len().max(1)).unwrap_or(1);
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (600 * count + LEGEND_WIDTH, 520))
-            .into_drawing_area();
-        root.fill(&WHITE)?;
+    write_svg(path, (600 * count + LEGEND_WIDTH, 520), |root| {
         let (plots, legend_area) = root.split_horizontally(600 * count);
         let areas = plots.split_evenly((1, panels.len().max(1)));
         for (panel, area) in panels.iter().zip(&areas) {
@@ -331,14 +352,13 @@ pub fn styled_panels(
             ))?;
             y += 22;
         }
-        root.present()?;
-    }
-    write_atomically(path, svg.as_bytes())
+        Ok(())
+    })
 }
 
 /// Draws one [`StyledPanel`] on `area` with the x coordinate `x` and log y `y`.
 fn draw_styled<X>(
-    area: &DrawingArea<SVGBackend<'_>, plotters::coord::Shift>,
+    area: &SvgArea<'_>,
     panel: &StyledPanel<'_>,
     x: X,
     y: LogCoord<f64>,

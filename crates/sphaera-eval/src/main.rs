@@ -1,28 +1,19 @@
-//! `sphaera-eval`: Sphaera's speed-versus-accuracy experiments.
-//!
-//! Each experiment measures one capability over the real meshes in `../shared/data` and
-//! writes a chart (`docs/charts/NAME.svg`) with the data behind it (`NAME.csv`). Run all of
-//! them with `cargo xtask charts`, or directly:
+//! The `sphaera-eval` binary: runs the experiments of the `sphaera_eval` library and
+//! writes their charts.
 //!
 //! ```text
 //! cargo run --release -p sphaera-eval -- --out docs/charts [--only NAME]
 //! ```
 //!
-//! Timings are the minimum of several runs, on whatever machine runs them; the figures in
-//! `docs/benchmarks.md` say which machine that was.
+//! `cargo xtask charts` runs it with `--out docs/charts`; `--help` lists the experiments.
 
 // An experiment runner reports on the terminal.
 #![allow(clippy::print_stdout, clippy::print_stderr)]
 
-mod brute;
-mod chart;
-mod experiments;
-mod methods;
-mod query_sets;
-
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
+use sphaera_eval::experiments;
 
 fn main() -> Result<()> {
     let mut out = PathBuf::from("docs/charts");

@@ -1,6 +1,5 @@
 //! The simplification methods compared by the `simplify_error_vs_time` experiment and the
-//! `simplify_vs_meshopt` bench (which includes this file with `#[path]`), so both measure
-//! exactly the same calls.
+//! `simplify_vs_meshopt` bench, so both measure exactly the same calls.
 //!
 //! - **Sphaera**: [`Simplifier`] with each placement of [`PLACEMENTS`], boundary locked (the
 //!   default), stopped by a triangle count only.

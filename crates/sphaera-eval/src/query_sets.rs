@@ -1,6 +1,5 @@
 //! The closest-point query sets, shared by the `sweep_throughput` experiment and the
-//! `sweep_vs_parry` bench (which includes this file with `#[path]`), so both measure the
-//! same points.
+//! `sweep_vs_parry` bench, so both measure the same points.
 //!
 //! Three sets, each of `n` points and seeded (the same mesh and `n` give the same points):
 //! - `uniform`: points uniform in the bounding box scaled 1.5× about its centre;
@@ -20,18 +19,25 @@ pub const PATH_STEPS_PER_LOOP: usize = 2_000;
 /// The names of the query sets, in the order [`query_sets`] returns them.
 pub const SET_NAMES: [&str; 3] = ["uniform", "near", "path"];
 
-/// A small deterministic generator (uniform in `[0, 1)`).
+/// A small deterministic generator (Knuth's 64-bit linear congruential generator, the
+/// top 53 bits as a value uniform in `[0, 1)`), seeded by its state. Also the generator of
+/// the `polyline_vs_parry` bench's helix and query sets.
 pub struct Lcg(pub u64);
 
 impl Lcg {
     /// The next value, uniform in `[0, 1)`.
-    pub fn next(&mut self) -> f64 {
+    pub fn uniform(&mut self) -> f64 {
         self.0 = self
             .0
             .wrapping_mul(6_364_136_223_846_793_005)
             .wrapping_add(1_442_695_040_888_963_407);
         // The top 53 bits, exactly representable.
         (self.0 >> 11) as f64 / (1_u64 << 53) as f64
+    }
+
+    /// A point uniform in the unit cube `[0, 1)³`: the next three values as x, y, z.
+    pub fn unit_cube(&mut self) -> DVec3 {
+        DVec3::new(self.uniform(), self.uniform(), self.uniform())
     }
 }
 
@@ -48,7 +54,7 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
     let mut rng = Lcg(7);
     let uniform = (0..n)
         .map(|_| {
-            let u = DVec3::new(rng.next(), rng.next(), rng.next());
+            let u = rng.unit_cube();
             center + 1.5 * half * (2.0 * u - DVec3::ONE)
         })
         .collect();
@@ -56,8 +62,8 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
     let near = samples
         .iter()
         .map(|s| {
-            let d = DVec3::new(rng.next(), rng.next(), rng.next()) * 2.0 - DVec3::ONE;
-            s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.next())
+            let d = rng.unit_cube() * 2.0 - DVec3::ONE;
+            s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.uniform())
         })
         .collect();
     let path = (0..n)
@@ -75,16 +81,17 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
 
 #[cfg(test)]
 mod tests {
-    // No `use` here: the `sweep_vs_parry` bench includes this file with `#[path]`, where
-    // the tests are compiled out and an import would be unused.
+    use sphaera::mesh::shapes;
+
+    use super::*;
 
     #[test]
     fn query_sets_are_where_they_say() {
-        let sphere = sphaera::mesh::shapes::sphere(1.0, 16).unwrap();
+        let sphere = shapes::sphere(1.0, 16).unwrap();
         let diagonal = sphere.bounding_box_diagonal();
-        let sets = super::query_sets(&sphere, 100).unwrap();
+        let sets = query_sets(&sphere, 100).unwrap();
         let names: Vec<&str> = sets.iter().map(|(name, _)| *name).collect();
-        assert_eq!(names, super::SET_NAMES);
+        assert_eq!(names, SET_NAMES);
         for (name, points) in &sets {
             assert_eq!(points.len(), 100, "{name}");
         }
@@ -100,9 +107,9 @@ mod tests {
         // Path: small steps, independent of `n`.
         let step = sets[2].1.windows(2).map(|w| w[0].distance(w[1]));
         assert!(step.fold(0.0, f64::max) < 0.01 * diagonal);
-        let fewer = super::query_sets(&sphere, 10).unwrap();
+        let fewer = query_sets(&sphere, 10).unwrap();
         assert_eq!(fewer[2].1[..], sets[2].1[..10]);
         // Deterministic.
-        assert_eq!(super::query_sets(&sphere, 100).unwrap(), sets);
+        assert_eq!(query_sets(&sphere, 100).unwrap(), sets);
     }
 }

@@ -23,12 +23,12 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    mesh::{TriMesh, io},
+    mesh::TriMesh,
     simplify::Simplifier,
     sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff},
 };
 
-use super::min_time;
+use super::{load_mesh, load_or_skip, min_time};
 use crate::brute::naive_hausdorff;
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 
@@ -72,19 +72,11 @@ struct Row {
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
     for &(file, label, other) in PAIRS {
-        let path = data.join(file);
-        if !path.is_file() {
-            eprintln!("{file}: not in {}, skipped", data.display());
+        let Some(a) = load_or_skip(data, file)? else {
             continue;
-        }
-        let a = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        };
         let (b, other) = match other {
-            Some(name) => {
-                let path = data.join(name);
-                let b =
-                    io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
-                (b, name.to_owned())
-            }
+            Some(name) => (load_mesh(&data.join(name))?, name.to_owned()),
             None => {
                 let simplified = Simplifier::new(&a)
                     .target_ratio(0.15)

@@ -2,13 +2,10 @@
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
-use sphaera::mesh::{
-    io,
-    topology::{self, HalfEdgeMesh},
-};
+use anyhow::Result;
+use sphaera::mesh::topology::{self, HalfEdgeMesh};
 
-use super::min_time;
+use super::{load_mesh, min_time};
 use crate::chart::{ChartSpec, Series, log_log_scatter, write_csv};
 
 /// The experiment's name: its files are `load_topology_time.{svg,csv}`.
@@ -25,9 +22,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut total = Series::new("read + report");
     for file in sphaera_tests::mesh_files(data) {
         let path = data.join(&file);
-        let (load_s, mesh) = min_time(RUNS, || {
-            io::load(&path).with_context(|| format!("cannot load {}", path.display()))
-        })?;
+        let (load_s, mesh) = min_time(RUNS, || load_mesh(&path))?;
         let (analyze_s, _) = min_time(RUNS, || Ok(topology::analyze(&mesh)))?;
         let (half_edge_s, _) = min_time(RUNS, || Ok(HalfEdgeMesh::from_trimesh(&mesh)))?;
         let triangles = mesh.triangle_count() as f64;

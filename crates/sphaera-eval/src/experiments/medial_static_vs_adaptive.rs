@@ -33,10 +33,10 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::{
     medial::{CoverCriterion, MedialApproximation, MedialParams, MedialSphere, Surface},
-    mesh::{DVec3, TriMesh, io, sampling},
+    mesh::{DVec3, TriMesh, sampling},
 };
 
-use super::min_time;
+use super::{load_or_skip, min_time};
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 
 /// The experiment's name: its files are `medial_static_vs_adaptive.{svg,csv}`.
@@ -150,12 +150,9 @@ struct Row {
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
     for &(file, label) in MESHES {
-        let path = data.join(file);
-        if !path.is_file() {
-            eprintln!("{file}: not in {}, skipped", data.display());
+        let Some(mesh) = load_or_skip(data, file)? else {
             continue;
-        }
-        let mesh = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        };
         measure_mesh(file, label, &mesh, &mut rows)?;
     }
     write_table(out, &rows)?;
@@ -493,8 +490,10 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use sphaera::medial::SphereKind;
+
+    use super::*;
+    use crate::query_sets::Lcg;
 
     fn sphere(centre: DVec3, radius: f64) -> MedialSphere {
         MedialSphere {
@@ -507,17 +506,10 @@ mod tests {
         }
     }
 
-    /// Deterministic pseudo-random values in `[0, 1)` (a 64-bit LCG).
+    /// Deterministic pseudo-random values in `[0, 1)`.
     fn values(seed: u64, n: usize) -> Vec<f64> {
-        let mut state = seed;
-        (0..n)
-            .map(|_| {
-                state = state
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                (state >> 11) as f64 / (1_u64 << 53) as f64
-            })
-            .collect()
+        let mut rng = Lcg(seed);
+        (0..n).map(|_| rng.uniform()).collect()
     }
 
     fn brute(spheres: &[MedialSphere], points: &[DVec3]) -> Coverage {

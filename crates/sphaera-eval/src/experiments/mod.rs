@@ -1,4 +1,17 @@
-//! The experiments, one module each.
+//! The experiments, one module each: [`NAMES`] lists them in the order `cargo xtask
+//! charts` runs them, [`run`] runs one. The docs at the top of each source file say what
+//! the experiment measures, how, and which files it writes.
+//!
+//! - `load_topology_time`: `load_topology.rs`;
+//! - `simplify_error_vs_time`: `simplify_error.rs` (the calls of [`crate::methods`]);
+//! - `sweep_throughput`: `sweep_throughput.rs` (the points of [`crate::query_sets`], and
+//!   [`crate::brute`]);
+//! - `hausdorff_gap_vs_time`: `hausdorff_gap.rs` (the naive estimate of [`crate::brute`]);
+//! - `medial_static_vs_adaptive`: `medial_static_vs_adaptive.rs`;
+//! - `spheretree`: `spheretree/mod.rs`, its tables and charts in `spheretree/charts.rs`.
+
+// Experiments report each measurement on the terminal as they go.
+#![allow(clippy::print_stderr)]
 
 mod hausdorff_gap;
 mod load_topology;
@@ -9,7 +22,8 @@ mod sweep_throughput;
 
 use std::path::Path;
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
+use sphaera::mesh::{TriMesh, io};
 
 /// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
 /// its charts as `CHART.svg` with the data in `CHART.csv` (`spheretree` writes two,
@@ -37,7 +51,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
 }
 
 /// The shortest of `runs` timings of `f`, in seconds, with the last result.
-pub fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Result<(f64, T)> {
+pub(crate) fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Result<(f64, T)> {
     let mut best = f64::INFINITY;
     let mut last = None;
     for _ in 0..runs.max(1) {
@@ -50,4 +64,20 @@ pub fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Result<(f64
         Some(value) => Ok((best, value)),
         None => bail!("no run"),
     }
+}
+
+/// Loads the mesh at `path`; the error names the file.
+pub(crate) fn load_mesh(path: &Path) -> Result<TriMesh> {
+    io::load(path).with_context(|| format!("cannot load {}", path.display()))
+}
+
+/// Loads `file` of the folder `data`, or says on the terminal that it is not there and
+/// returns `None`: an experiment skips the meshes it cannot find.
+pub(crate) fn load_or_skip(data: &Path, file: &str) -> Result<Option<TriMesh>> {
+    let path = data.join(file);
+    if !path.is_file() {
+        eprintln!("{file}: not in {}, skipped", data.display());
+        return Ok(None);
+    }
+    load_mesh(&path).map(Some)
 }

@@ -15,11 +15,11 @@
 
 use std::path::Path;
 
-use anyhow::{Context, Result};
-use sphaera::mesh::{TriMesh, io};
+use anyhow::Result;
+use sphaera::mesh::TriMesh;
 use sphaera_tests::sampled_hausdorff;
 
-use super::min_time;
+use super::{load_or_skip, min_time};
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 use crate::methods::{
     MeshoptInput, PLACEMENTS, meshopt_surface, sphaera_simplify, target_triangles,
@@ -62,12 +62,9 @@ struct Row {
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
     for &(file, label, runs, ratios) in MESHES {
-        let path = data.join(file);
-        if !path.is_file() {
-            eprintln!("{file}: not in {}, skipped", data.display());
+        let Some(mesh) = load_or_skip(data, file)? else {
             continue;
-        }
-        let mesh = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        };
         measure_mesh(file, label, (runs, ratios), &mesh, &mut rows)?;
     }
     write_table(out, &rows)?;

@@ -25,12 +25,12 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    mesh::{DVec3, TriMesh, io},
+    mesh::{DVec3, TriMesh},
     sweep::{Sweeper, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
 
-use super::min_time;
+use super::{load_or_skip, min_time};
 use crate::brute::BruteForce;
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 use crate::query_sets::{SET_NAMES, query_sets};
@@ -78,12 +78,9 @@ impl Row {
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
     for &(file, queries, runs) in MESHES {
-        let path = data.join(file);
-        if !path.is_file() {
-            eprintln!("{file}: not in {}, skipped", data.display());
+        let Some(mesh) = load_or_skip(data, file)? else {
             continue;
-        }
-        let mesh = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        };
         measure_mesh(file, &mesh, (queries, runs), &mut rows)?;
     }
     write_table(out, &rows)?;

@@ -120,7 +120,7 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
     )
 }
 
-/// The style of a measured method: its colour, filled circles joined by a line.
+/// The style of a measured method: its colour, filled `marker`s, joined by a line if `line`.
 fn method_style(method: Method, marker: Marker, line: bool) -> Style {
     Style {
         color: palette(method.index()),
@@ -128,6 +128,18 @@ fn method_style(method: Method, marker: Marker, line: bool) -> Style {
         filled: true,
         line,
     }
+}
+
+/// One legend line per method of [`METHODS`]: its name and [`method_style`] (circles,
+/// joined by a line if `line`).
+fn method_legend(line: bool) -> Vec<LegendEntry> {
+    METHODS
+        .iter()
+        .map(|&m| LegendEntry {
+            label: m.name().to_owned(),
+            style: method_style(m, Marker::Circle, line),
+        })
+        .collect()
 }
 
 /// The method a toolkit entry (`toolkit-merge`, ...) stands for.
@@ -211,13 +223,7 @@ pub(super) fn draw_levels(
             series,
         })
         .collect();
-    let mut legend: Vec<LegendEntry> = METHODS
-        .iter()
-        .map(|&m| LegendEntry {
-            label: m.name().to_owned(),
-            style: method_style(m, Marker::Circle, true),
-        })
-        .collect();
+    let mut legend = method_legend(true);
     legend.extend(TOOLKIT.iter().map(|&(name, _, _)| LegendEntry {
         label: format!("{} (issue, bunny)", name.replace('-', " ")),
         style: toolkit_style(name, Marker::Square, true),
@@ -283,13 +289,7 @@ pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
         })
         .collect();
     let grey = palette(7);
-    let mut legend: Vec<LegendEntry> = METHODS
-        .iter()
-        .map(|&m| LegendEntry {
-            label: m.name().to_owned(),
-            style: method_style(m, Marker::Circle, false),
-        })
-        .collect();
+    let mut legend = method_legend(false);
     legend.extend(MESHES.iter().map(|&(file, label)| LegendEntry {
         label: label.to_owned(),
         style: Style {

@@ -41,7 +41,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::{
     medial::Surface,
-    mesh::{TriMesh, io},
+    mesh::TriMesh,
     spheretree::{
         EvaluationOptions, Params, Reducer, SphereTree,
         baseline::{self, BaselineParams},
@@ -49,10 +49,8 @@ use sphaera::{
     },
 };
 
-use super::min_time;
+use super::{load_or_skip, min_time};
 
-// The CSV tables and the SVG charts.
-#[path = "spheretree_charts.rs"]
 mod charts;
 
 /// The experiment's name (`--only spheretree`); it writes the two charts below.
@@ -198,12 +196,9 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut measured = Vec::new();
     let mut labels = Vec::new();
     for &(file, label) in MESHES {
-        let path = data.join(file);
-        if !path.is_file() {
-            eprintln!("{file}: not in {}, skipped", data.display());
+        let Some(mesh) = load_or_skip(data, file)? else {
             continue;
-        }
-        let mesh = io::load(&path).with_context(|| format!("cannot load {}", path.display()))?;
+        };
         labels.push((
             file,
             format!(
