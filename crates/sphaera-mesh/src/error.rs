@@ -183,6 +183,11 @@ pub enum MeshError {
         radius: f64,
     },
 
+    /// An affine map given to place a mesh or spheres is not a similarity (or not rigid,
+    /// where a rigid motion is needed).
+    #[error("invalid transform: {0}")]
+    InvalidTransform(crate::geometry::TransformDefect),
+
     // ----------------------------------------------------------------------------------
     // Inside/outside (winding/).
     // ----------------------------------------------------------------------------------

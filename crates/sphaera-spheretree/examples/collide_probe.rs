@@ -8,7 +8,7 @@
 use std::time::{Duration, Instant};
 
 use sphaera_mesh::io;
-use sphaera_spheretree::collide::{Budget, CostModel, Placement, collide, overlaps};
+use sphaera_spheretree::collide::{Budget, CostModel, Similarity, collide, overlaps};
 use sphaera_spheretree::{DVec3, Params, build};
 
 /// Median seconds per call of `f` over `rounds` rounds of `reps` calls.
@@ -46,8 +46,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .collect::<Vec<_>>(),
         started.elapsed().as_secs_f64()
     );
-    let here = Placement::IDENTITY;
-    let there = Placement::from_translation(DVec3::X * (shift * diagonal))?;
+    let here = Similarity::IDENTITY;
+    let there = Similarity::from_translation(DVec3::X * (shift * diagonal))?;
     let full = collide(&tree, &here, &tree, &there, &Budget::Unlimited)?;
     let model = CostModel::default();
     let seconds = time_per_call(15, 200, || {

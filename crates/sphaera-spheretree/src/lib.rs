@@ -45,7 +45,7 @@ pub mod sph;
 mod tree;
 
 pub use build::{BuildProgress, Params, build, build_with_progress};
-pub use collide::{Budget, Collision, Contact, CostModel, Placement, collide, overlaps};
+pub use collide::{Budget, Collision, Contact, CostModel, Similarity, collide, overlaps};
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};

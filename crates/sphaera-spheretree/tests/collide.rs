@@ -11,7 +11,7 @@ use glam::{DAffine3, DQuat};
 use proptest::prelude::*;
 use sphaera_mesh::{DVec3, Sphere, shapes};
 use sphaera_spheretree::collide::{
-    Budget, Collision, CostModel, Placement, TraversalStats, collide, overlaps,
+    Budget, Collision, CostModel, Similarity, TraversalStats, collide, overlaps,
 };
 use sphaera_spheretree::export::{JSON_FORMAT, JSON_VERSION, LevelJson, NodeJson, TreeJson};
 use sphaera_spheretree::{Params, SphereTree, SphereTreeError, build};
@@ -144,9 +144,9 @@ fn stand_ins(tree: &SphereTree, level: usize) -> Vec<usize> {
 /// ancestors at every level above overlap too.
 fn brute_force(
     a: &SphereTree,
-    pa: &Placement,
+    pa: &Similarity,
     b: &SphereTree,
-    pb: &Placement,
+    pb: &Similarity,
     level: usize,
 ) -> Vec<(usize, usize)> {
     let mut pairs = Vec::new();
@@ -176,7 +176,7 @@ fn deepest(tree: &SphereTree) -> usize {
 
 /// Every contact is consistent: its spheres are the placed nodes, it overlaps, its
 /// bound is the sum of the placed errors.
-fn check_contacts(c: &Collision, a: &SphereTree, pa: &Placement, b: &SphereTree, pb: &Placement) {
+fn check_contacts(c: &Collision, a: &SphereTree, pa: &Similarity, b: &SphereTree, pb: &Similarity) {
     for contact in &c.contacts {
         assert_eq!(contact.sphere_a, pa.sphere(&a.nodes()[contact.a].sphere));
         assert_eq!(contact.sphere_b, pb.sphere(&b.nodes()[contact.b].sphere));
@@ -187,14 +187,14 @@ fn check_contacts(c: &Collision, a: &SphereTree, pa: &Placement, b: &SphereTree,
     }
 }
 
-fn placement(axis: [f64; 3], angle: f64, t: [f64; 3], scale: f64) -> Placement {
+fn placement(axis: [f64; 3], angle: f64, t: [f64; 3], scale: f64) -> Similarity {
     let axis = DVec3::from_array(axis);
     let rotation = if axis.length() > 1e-3 {
         DQuat::from_axis_angle(axis.normalize(), angle)
     } else {
         DQuat::IDENTITY
     };
-    Placement::new(DAffine3::from_scale_rotation_translation(
+    Similarity::new(DAffine3::from_scale_rotation_translation(
         DVec3::splat(scale),
         rotation,
         DVec3::from_array(t),
@@ -215,7 +215,7 @@ proptest! {
     ) {
         let (capsule, cube) = built();
         let (a, b) = if swap { (cube, capsule) } else { (capsule, cube) };
-        let pa = Placement::IDENTITY;
+        let pa = Similarity::IDENTITY;
         let pb = placement(axis, angle, [t[0] * 2.0, t[1] * 2.0, t[2] * 2.0], 1.0);
         let c = collide(a, &pa, b, &pb, &Budget::Unlimited).unwrap();
         prop_assert!(c.completed);
@@ -249,7 +249,7 @@ proptest! {
     ) {
         let a = synthetic(seed_a, 3, 3);
         let b = synthetic(seed_b, 3, 3);
-        let pa = Placement::IDENTITY;
+        let pa = Similarity::IDENTITY;
         let pb = placement([1.0, 0.0, 0.0], 0.7, [t[0] * 0.5, t[1] * 0.5, t[2] * 0.5], 1.0);
         let full = collide(&a, &pa, &b, &pb, &Budget::Unlimited).unwrap();
         let full_cost = full.stats.cost(&CostModel::default());
@@ -271,8 +271,8 @@ proptest! {
 #[test]
 fn every_level_of_a_budgeted_traversal_is_the_truncated_answer() {
     let (capsule, _) = built();
-    let pa = Placement::IDENTITY;
-    let pb = Placement::from_translation(DVec3::new(0.8, 0.1, 0.0)).unwrap();
+    let pa = Similarity::IDENTITY;
+    let pb = Similarity::from_translation(DVec3::new(0.8, 0.1, 0.0)).unwrap();
     let full = collide(capsule, &pa, capsule, &pb, &Budget::Unlimited).unwrap();
     assert!(full.completed);
     assert_eq!(full.level, 2);
@@ -298,8 +298,8 @@ fn every_level_of_a_budgeted_traversal_is_the_truncated_answer() {
 #[test]
 fn zero_time_stops_at_the_roots_and_ample_time_completes() {
     let (capsule, cube) = built();
-    let pa = Placement::IDENTITY;
-    let pb = Placement::from_translation(DVec3::new(0.5, 0.0, 0.0)).unwrap();
+    let pa = Similarity::IDENTITY;
+    let pb = Similarity::from_translation(DVec3::new(0.5, 0.0, 0.0)).unwrap();
     let none = collide(capsule, &pa, cube, &pb, &Budget::Time(Duration::ZERO)).unwrap();
     assert_eq!(
         (none.level, none.completed, none.contacts.len()),
@@ -320,10 +320,10 @@ fn zero_time_stops_at_the_roots_and_ample_time_completes() {
 #[test]
 fn separated_trees_have_no_contact_and_complete_at_the_roots() {
     let (capsule, cube) = built();
-    let far = Placement::from_translation(DVec3::new(10.0, 0.0, 0.0)).unwrap();
+    let far = Similarity::from_translation(DVec3::new(10.0, 0.0, 0.0)).unwrap();
     let c = collide(
         capsule,
-        &Placement::IDENTITY,
+        &Similarity::IDENTITY,
         cube,
         &far,
         &Budget::Unlimited,
@@ -339,13 +339,13 @@ fn separated_trees_have_no_contact_and_complete_at_the_roots() {
         }
     );
     assert_eq!(c.max_error_bound(), None);
-    assert!(!overlaps(capsule, &Placement::IDENTITY, cube, &far));
+    assert!(!overlaps(capsule, &Similarity::IDENTITY, cube, &far));
 }
 
 #[test]
 fn the_result_is_deterministic_and_sorted() {
     let (capsule, cube) = built();
-    let pa = Placement::IDENTITY;
+    let pa = Similarity::IDENTITY;
     let pb = placement([0.2, 1.0, 0.0], 0.9, [0.3, 0.2, 0.1], 1.0);
     let first = collide(capsule, &pa, cube, &pb, &Budget::Unlimited).unwrap();
     let second = collide(capsule, &pa, cube, &pb, &Budget::Unlimited).unwrap();
@@ -360,9 +360,9 @@ fn the_root_pair_is_always_tested() {
     let (capsule, _) = built();
     let c = collide(
         capsule,
-        &Placement::IDENTITY,
+        &Similarity::IDENTITY,
         capsule,
-        &Placement::IDENTITY,
+        &Similarity::IDENTITY,
         &Budget::cost(0.0),
     )
     .unwrap();
@@ -375,7 +375,7 @@ fn the_root_pair_is_always_tested() {
 #[test]
 fn invalid_budgets_and_placements_are_errors() {
     let (capsule, _) = built();
-    let p = Placement::IDENTITY;
+    let p = Similarity::IDENTITY;
     for budget in [
         Budget::cost(f64::NAN),
         Budget::cost(-1.0),
@@ -394,14 +394,14 @@ fn invalid_budgets_and_placements_are_errors() {
     }
     let shear =
         DAffine3::from_cols_array(&[1.0, 0.0, 0.0, 0.5, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
-    assert!(Placement::new(shear).is_err());
-    assert!(Placement::from_translation(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
+    assert!(Similarity::new(shear).is_err());
+    assert!(Similarity::from_translation(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
     assert!(
-        Placement::from_rotation_translation(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), DVec3::ZERO)
+        Similarity::from_rotation_translation(DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), DVec3::ZERO)
             .is_err()
     );
     // A mirror maps spheres to spheres.
-    let mirror = Placement::new(DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0))).unwrap();
+    let mirror = Similarity::new(DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0))).unwrap();
     assert_eq!(
         mirror.sphere(&Sphere::new(DVec3::X, 1.0)),
         Sphere::new(-DVec3::X, 1.0)

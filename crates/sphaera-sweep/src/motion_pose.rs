@@ -1,20 +1,18 @@
-//! Rigid poses of the mesh (Meshsweeper section 5.2): validation of a `DAffine3` as a
-//! rotation and a translation, and the bound on how far a pose change moves the mesh.
+//! Rigid poses of the mesh (Meshsweeper section 5.2): a `DAffine3` validated as a rigid
+//! motion by `sphaera-mesh`'s [`Similarity::rigid`], kept as a unit quaternion and a
+//! translation, and the bound on how far a pose change moves the mesh.
 
-use glam::{DAffine3, DMat3, DQuat, DVec3};
+use glam::{DAffine3, DQuat, DVec3};
+use sphaera_mesh::MeshError;
+use sphaera_mesh::geometry::{Similarity, TransformDefect};
 
 use crate::SweepError;
-
-/// How far the linear part of a pose may be from a rotation (largest entry of `|MᵀM − I|`
-/// and `|det M − 1|`): rounding of a composed rotation stays far below this, a scale or a
-/// shear of one part in a billion does not.
-pub(crate) const RIGID_TOLERANCE: f64 = 1e-9;
 
 /// A rigid pose, mesh coordinates to world coordinates: `x ↦ rotation · x + translation`.
 ///
 /// The rotation is the unit quaternion nearest the validated matrix, so the pose the
 /// session uses is exactly rigid (up to rounding) even when the given matrix is slightly
-/// off (by at most [`RIGID_TOLERANCE`]).
+/// off (by at most [`sphaera_mesh::geometry::SIMILARITY_TOLERANCE`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Pose {
     rotation: DQuat,
@@ -30,21 +28,15 @@ impl Pose {
 
     /// Validates `pose` as a rotation followed by a translation.
     pub(crate) fn new(pose: DAffine3) -> Result<Self, SweepError> {
-        let m = pose.matrix3;
-        if !(m.is_finite() && pose.translation.is_finite()) {
-            return Err(SweepError::NonFinitePose);
-        }
-        let gram = m.transpose() * m - DMat3::IDENTITY;
-        let deviation = gram
-            .to_cols_array()
-            .iter()
-            .fold((m.determinant() - 1.0).abs(), |d, &x| d.max(x.abs()));
-        if deviation.is_nan() || deviation > RIGID_TOLERANCE {
-            return Err(SweepError::NotRigid { deviation });
-        }
+        let rigid = Similarity::rigid(pose).map_err(|error| match error {
+            MeshError::InvalidTransform(TransformDefect::NotRigid { deviation }) => {
+                SweepError::NotRigid { deviation }
+            }
+            _ => SweepError::NonFinitePose,
+        })?;
         Ok(Self {
-            rotation: DQuat::from_mat3(&m).normalize(),
-            translation: pose.translation,
+            rotation: rigid.rotation(),
+            translation: rigid.translation(),
         })
     }
 

@@ -8,6 +8,7 @@
 //! | balls through given points | [`ball_through_two_points`], [`circumball_of_triangle`], [`circumsphere`] |
 //! | minimum enclosing balls | [`minimum_enclosing_ball`] (points), [`minimum_enclosing_ball_of_balls`], with the support: [`minimum_enclosing_ball_with_support`], [`minimum_enclosing_ball_of_balls_with_support`] |
 //! | ray casting | [`ray_triangle_intersection`] |
+//! | placing a mesh or spheres in a scene | [`Similarity`] (rotation or mirror, uniform scale, translation; [`Similarity::rigid`] for rigid motions) |
 //!
 //! Everything works in `f64` and is robust for degenerate input: zero-area, needle and
 //! point triangles, zero-length segments, duplicate, collinear, coplanar and cospherical
@@ -42,6 +43,7 @@ mod enclosing_ball_core;
 mod enclosing_ball_of_balls;
 mod ray;
 mod segment_segment;
+mod similarity;
 mod triangle;
 
 pub use circumsphere::{ball_through_two_points, circumball_of_triangle, circumsphere};
@@ -57,4 +59,5 @@ pub use enclosing_ball_of_balls::{
 };
 pub use ray::{RayTriangleHit, ray_triangle_intersection};
 pub use segment_segment::{SegmentPairClosestPoints, closest_points_between_segments};
+pub use similarity::{SIMILARITY_TOLERANCE, Similarity, TransformDefect};
 pub use triangle::Triangle;

@@ -14,14 +14,13 @@
 //! [`overlaps`] answers "do they touch at the deepest level" with a depth-first search that
 //! stops at the first overlapping pair of leaves.
 //!
-//! Both take a [`Placement`] per tree: a rotation and translation, with an optional uniform
+//! Both take a [`Similarity`] per tree: a rotation and translation, with an optional uniform
 //! scale (a mirror is allowed; shear and non-uniform scale are refused, since they do not
 //! map spheres to spheres).
 //!
 //! [`TreeNode::error`]: crate::TreeNode::error
 
 mod budget;
-mod placement;
 
 use std::ops::Range;
 use std::time::{Duration, Instant};
@@ -29,7 +28,8 @@ use std::time::{Duration, Instant};
 use sphaera_mesh::Sphere;
 
 pub use budget::{Budget, CostModel};
-pub use placement::Placement;
+/// Where a tree is in the scene (defined in `sphaera-mesh`).
+pub use sphaera_mesh::geometry::Similarity;
 
 use crate::SphereTree;
 use crate::SphereTreeError;
@@ -103,12 +103,12 @@ impl Collision {
 /// One tree in the scene: its placed spheres, filled level by level.
 struct Side<'t> {
     tree: &'t SphereTree,
-    placement: &'t Placement,
+    placement: &'t Similarity,
     placed: Vec<Sphere>,
 }
 
 impl<'t> Side<'t> {
-    fn new(tree: &'t SphereTree, placement: &'t Placement) -> Self {
+    fn new(tree: &'t SphereTree, placement: &'t Similarity) -> Self {
         Self {
             tree,
             placement,
@@ -167,15 +167,15 @@ fn touch(a: &Sphere, b: &Sphere) -> bool {
 /// # Examples
 ///
 /// ```
-/// use sphaera_spheretree::collide::{Budget, Placement, collide};
+/// use sphaera_spheretree::collide::{Budget, Similarity, collide};
 /// use sphaera_spheretree::{DVec3, Params, build};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
 /// let params = Params::default().depth(1).branch(4).samples(400)
 ///     .initial_spheres(60).min_spheres_per_node(20);
 /// let tree = build(&mesh, &params)?;
-/// let here = Placement::IDENTITY;
-/// let near = Placement::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
+/// let here = Similarity::IDENTITY;
+/// let near = Similarity::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
 ///
 /// let exact = collide(&tree, &here, &tree, &near, &Budget::Unlimited)?;
 /// assert!(exact.completed && exact.level == 1 && !exact.contacts.is_empty());
@@ -206,9 +206,9 @@ fn touch(a: &Sphere, b: &Sphere) -> bool {
 /// (13,000 tests, 3,089 contacts), single thread (the `collide_probe` example).
 pub fn collide(
     a: &SphereTree,
-    placement_a: &Placement,
+    placement_a: &Similarity,
     b: &SphereTree,
-    placement_b: &Placement,
+    placement_b: &Similarity,
     budget: &Budget,
 ) -> Result<Collision, SphereTreeError> {
     budget.validate()?;
@@ -398,16 +398,16 @@ fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
 /// # Examples
 ///
 /// ```
-/// use sphaera_spheretree::collide::{Placement, overlaps};
+/// use sphaera_spheretree::collide::{Similarity, overlaps};
 /// use sphaera_spheretree::{DVec3, Params, build};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
 /// let params = Params::default().depth(1).branch(4).samples(400)
 ///     .initial_spheres(60).min_spheres_per_node(20);
 /// let tree = build(&mesh, &params)?;
-/// let here = Placement::IDENTITY;
-/// assert!(overlaps(&tree, &here, &tree, &Placement::from_translation(DVec3::X)?));
-/// assert!(!overlaps(&tree, &here, &tree, &Placement::from_translation(DVec3::X * 5.0)?));
+/// let here = Similarity::IDENTITY;
+/// assert!(overlaps(&tree, &here, &tree, &Similarity::from_translation(DVec3::X)?));
+/// assert!(!overlaps(&tree, &here, &tree, &Similarity::from_translation(DVec3::X * 5.0)?));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
@@ -422,11 +422,11 @@ fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
 #[must_use]
 pub fn overlaps(
     a: &SphereTree,
-    placement_a: &Placement,
+    placement_a: &Similarity,
     b: &SphereTree,
-    placement_b: &Placement,
+    placement_b: &Similarity,
 ) -> bool {
-    let place = |tree: &SphereTree, placement: &Placement, i: usize| {
+    let place = |tree: &SphereTree, placement: &Similarity, i: usize| {
         tree.nodes
             .get(i)
             .map_or_else(Sphere::default, |n| placement.sphere(&n.sphere))
