@@ -416,5 +416,4 @@ fn required(demand: f64, weight: f64) -> Option<f64> {
 }
 
 #[cfg(test)]
-#[path = "edge_radius_tests.rs"]
 mod tests;

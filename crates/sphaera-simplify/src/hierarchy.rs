@@ -560,5 +560,4 @@ impl MemoryUse {
 }
 
 #[cfg(test)]
-#[path = "hierarchy_tests.rs"]
 mod tests;

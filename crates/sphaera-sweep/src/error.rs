@@ -12,7 +12,7 @@
 /// let error = SweepError::NonFiniteQuery { x: f64::NAN, y: 0.0, z: 1.0 };
 /// assert_eq!(error.to_string(), "the query point (NaN, 0, 1) is not finite");
 /// ```
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SweepError {
     /// The query point has a NaN or infinite coordinate.
@@ -75,13 +75,11 @@ pub enum SweepError {
         /// What the value must be.
         requirement: &'static str,
     },
-    /// The hierarchy cannot be deformed (built with optimal placement, or another error
-    /// of `sphaera-simplify`).
-    #[error("cannot deform the hierarchy: {reason}")]
-    Deformation {
-        /// The hierarchy's error, as text.
-        reason: String,
-    },
+    /// The hierarchy cannot be deformed: it was built with optimal placement, or
+    /// `sphaera-simplify` refused the deformation for another reason (the source error
+    /// says which).
+    #[error("cannot deform the hierarchy: {0}")]
+    Deformation(#[source] sphaera_simplify::SimplifyError),
     /// The points given for a [`Polyline`](crate::polyline::Polyline) do not make one.
     #[error("invalid polyline: {0}")]
     InvalidPolyline(PolylineDefect),
@@ -154,9 +152,7 @@ impl From<sphaera_simplify::SimplifyError> for SweepError {
                 value,
                 requirement,
             },
-            other => Self::Deformation {
-                reason: other.to_string(),
-            },
+            other => Self::Deformation(other),
         }
     }
 }

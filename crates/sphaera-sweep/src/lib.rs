@@ -61,8 +61,8 @@
 //!
 //! [`Session::move_mesh`] moves the mesh rigidly (queries stay in world coordinates);
 //! [`Session::deform`] and [`Session::move_vertices`] deform it with the paper's two
-//! methods, key-frames ([`Shape::keyframe`], [`Shape::between`]) and radii inflated from
-//! displacement bounds ([`Shape::inflated`]). Every interval is widened by how far the
+//! methods, key-frames ([`DeformedShape::keyframe`], [`DeformedShape::between`]) and radii inflated from
+//! displacement bounds ([`DeformedShape::inflated`]). Every interval is widened by how far the
 //! tolerance volumes can have moved, so coherence survives motion.
 //!
 //! # Hausdorff distance
@@ -76,22 +76,22 @@
 //! 3) over a Douglas–Peucker hierarchy of capsules; its module docs have a runnable example.
 
 mod answer;
+mod deformed_shape;
 mod error;
 mod hausdorff;
-mod motion;
-mod motion_pose;
 pub mod polyline;
+mod pose;
 mod queue;
 mod session;
 mod shifted_keys;
 mod sweeper;
 
 pub use answer::{DistanceBounds, SessionStats, Tolerance};
+pub use deformed_shape::DeformedShape;
 pub use error::SweepError;
 pub use hausdorff::{
     DirectedHausdorff, Direction, Hausdorff, HausdorffDistance, HausdorffProgress, hausdorff,
 };
-pub use motion::Shape;
 pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};
 /// The exact closest point a query returns, and the mesh feature it lies on (defined in

@@ -83,7 +83,10 @@ impl<P: PolylinePoint> Polyline<P> {
     /// assert_eq!(line.segment_count(), 3); // one of zero length
     ///
     /// let error = Polyline::open(vec![DVec3::ZERO]).unwrap_err();
-    /// assert_eq!(error, SweepError::InvalidPolyline(PolylineDefect::TooFewPoints { count: 1 }));
+    /// assert!(matches!(
+    ///     error,
+    ///     SweepError::InvalidPolyline(PolylineDefect::TooFewPoints { count: 1 })
+    /// ));
     /// # Ok::<(), SweepError>(())
     /// ```
     pub fn open(points: Vec<P>) -> Result<Self, SweepError> {

@@ -5,14 +5,15 @@ use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
 use sphaera_simplify::{Hierarchy, Refinement};
 
 use crate::error::{check_non_negative, check_point};
-use crate::motion_pose::Pose;
+use crate::pose::Pose;
 use crate::queue::{Entry, Queue};
 use crate::shifted_keys::ShiftedKeys;
 use crate::sweeper::{Contents, WarmStart};
-use crate::{ClosestPoint, DistanceBounds, SessionStats, Shape, SweepError, Sweeper, Tolerance};
+use crate::{
+    ClosestPoint, DeformedShape, DistanceBounds, SessionStats, SweepError, Sweeper, Tolerance,
+};
 
-#[path = "motion_session.rs"]
-mod motion_session;
+mod motion;
 
 /// When a [`Session`] goes back to the base mesh before a query.
 ///
@@ -78,7 +79,7 @@ struct SafeBall {
 /// queries and answers are in world coordinates, the hierarchy stays in mesh coordinates,
 /// and a pose change widens the intervals like a query move (by the smaller of the local
 /// query point's displacement and a bound on the mesh's). [`Session::deform`] switches to
-/// a deformed [`Shape`] (key-frames, or inflated radii with [`Session::move_vertices`]):
+/// a deformed [`DeformedShape`] (key-frames, or inflated radii with [`Session::move_vertices`]):
 /// the refined mesh is kept and every interval widened by the largest vertex displacement
 /// plus the largest radius increase. Input triangles are always evaluated at their true
 /// positions, so `closest` stays exact and every interval stays certified.
@@ -147,7 +148,7 @@ pub struct Session<'s> {
     /// The mesh's pose: mesh coordinates to world coordinates.
     pose: Pose,
     /// The deformed geometry, or `None` for the hierarchy's own.
-    shape: Option<Shape>,
+    shape: Option<DeformedShape>,
     /// The bounding box of the current vertex positions (mesh coordinates).
     bounds: (DVec3, DVec3),
 }
@@ -326,7 +327,7 @@ impl<'s> Session<'s> {
         4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
             + 4 * self.refinement.undone_count()
             + self.queue.bytes()
-            + self.shape.as_ref().map_or(0, Shape::bytes)
+            + self.shape.as_ref().map_or(0, DeformedShape::bytes)
             + 4 * (self.undone.capacity() + self.touched.capacity() + self.touched_at.capacity())
     }
 

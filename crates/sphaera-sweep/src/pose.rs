@@ -108,7 +108,7 @@ mod tests {
         ));
         let mut nan = DAffine3::IDENTITY;
         nan.translation.y = f64::NAN;
-        assert_eq!(Pose::new(nan), Err(SweepError::NonFinitePose));
+        assert!(matches!(Pose::new(nan), Err(SweepError::NonFinitePose)));
     }
 
     #[test]

@@ -4,10 +4,10 @@
 use glam::{DAffine3, DVec3};
 
 use super::{Session, bounding_box};
-use crate::motion::{check_tables, max_displacement};
-use crate::motion_pose::Pose;
+use crate::deformed_shape::{check_tables, max_displacement};
+use crate::pose::Pose;
 use crate::shifted_keys::MOTION_ROUNDING;
-use crate::{Shape, SweepError};
+use crate::{DeformedShape, SweepError};
 
 impl Session<'_> {
     /// Moves the mesh rigidly: from now on it stands at `pose` (mesh coordinates to world
@@ -107,7 +107,7 @@ impl Session<'_> {
     }
 
     /// Deforms the mesh: from now on its vertices are at `shape`'s positions, with
-    /// `shape`'s radii (paper section 5.3; see [`Shape`] for the key-frame and inflation
+    /// `shape`'s radii (paper section 5.3; see [`DeformedShape`] for the key-frame and inflation
     /// methods and why each bound holds). The pose still applies on top.
     ///
     /// The refined mesh is kept. Every cached interval is stale, and is widened, without
@@ -138,7 +138,7 @@ impl Session<'_> {
     ///
     /// ```
     /// use sphaera_mesh::{DVec3, shapes};
-    /// use sphaera_sweep::{Shape, Sweeper, build_hierarchy};
+    /// use sphaera_sweep::{DeformedShape, Sweeper, build_hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 12)?;
     /// let hierarchy = build_hierarchy(&sphere)?;
@@ -149,11 +149,11 @@ impl Session<'_> {
     ///
     /// // A key-frame: the sphere grown to radius 2.
     /// let grown: Vec<DVec3> = sphere.positions().iter().map(|q| *q * 2.0).collect();
-    /// session.deform(Shape::keyframe(&hierarchy.replay(&grown)?))?;
+    /// session.deform(DeformedShape::keyframe(&hierarchy.replay(&grown)?))?;
     /// assert!((session.closest(p)?.distance - 1.0).abs() < 1e-12);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn deform(&mut self, shape: Shape) -> Result<(), SweepError> {
+    pub fn deform(&mut self, shape: DeformedShape) -> Result<(), SweepError> {
         check_tables(self.hierarchy, &shape)?;
         let moved = match &self.shape {
             Some(old) => max_displacement(old.positions(), shape.positions()),
@@ -175,14 +175,14 @@ impl Session<'_> {
         Ok(())
     }
 
-    /// Moves the vertices of the current [`Shape`] to `positions` (one per input vertex)
-    /// within the displacement bounds its radii were inflated for ([`Shape::inflated`]):
+    /// Moves the vertices of the current [`DeformedShape`] to `positions` (one per input vertex)
+    /// within the displacement bounds its radii were inflated for ([`DeformedShape::inflated`]):
     /// the paper's second method, one inflation for several steps. Stale intervals are
     /// widened by the largest vertex displacement, as in [`Session::deform`].
     ///
     /// # Errors
     ///
-    /// As [`Shape::set_positions`] (a wrong length, a non-finite position, a vertex beyond
+    /// As [`DeformedShape::set_positions`] (a wrong length, a non-finite position, a vertex beyond
     /// its bound — for a session that was never deformed, or deformed to a key-frame, the
     /// bound is 0). The session is then unchanged.
     ///
@@ -198,13 +198,13 @@ impl Session<'_> {
     ///
     /// ```
     /// use sphaera_mesh::{DVec3, shapes};
-    /// use sphaera_sweep::{Shape, Sweeper, build_hierarchy};
+    /// use sphaera_sweep::{DeformedShape, Sweeper, build_hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 12)?;
     /// let hierarchy = build_hierarchy(&sphere)?;
     /// let sweeper = Sweeper::new(&hierarchy)?;
     /// let mut session = sweeper.session();
-    /// session.deform(Shape::inflated(&hierarchy, &vec![0.15; sphere.vertex_count()])?)?;
+    /// session.deform(DeformedShape::inflated(&hierarchy, &vec![0.15; sphere.vertex_count()])?)?;
     /// for step in 1..=10 {
     ///     let s = 1.0 + 0.01 * f64::from(step);
     ///     let positions: Vec<DVec3> = sphere.positions().iter().map(|q| *q * s).collect();
@@ -218,7 +218,7 @@ impl Session<'_> {
         let had_shape = self.shape.is_some();
         let mut shape = match self.shape.take() {
             Some(shape) => shape,
-            None => Shape::keyframe(self.hierarchy),
+            None => DeformedShape::keyframe(self.hierarchy),
         };
         let checked = match shape.checked_positions(positions) {
             Ok(checked) => checked,
@@ -239,7 +239,7 @@ impl Session<'_> {
 
     /// The current deformed shape (`None` until [`Session::deform`] or
     /// [`Session::move_vertices`]).
-    pub fn shape(&self) -> Option<&Shape> {
+    pub fn shape(&self) -> Option<&DeformedShape> {
         self.shape.as_ref()
     }
 

@@ -15,11 +15,11 @@ use crate::SweepError;
 /// positions now, which the session evaluates the input triangles on (so answers stay
 /// exact). Three ways to make one, the paper's two methods and their common case:
 ///
-/// - [`Shape::keyframe`]: a key-frame from [`Hierarchy::replay`] (exact radii, allowance
+/// - [`DeformedShape::keyframe`]: a key-frame from [`Hierarchy::replay`] (exact radii, allowance
 ///   0);
-/// - [`Shape::between`]: positions interpolated linearly between two key-frames;
-/// - [`Shape::inflated`]: radii inflated ([`Hierarchy::inflate`]) for displacement bounds,
-///   then [`Shape::set_positions`] for each step of the motion within them.
+/// - [`DeformedShape::between`]: positions interpolated linearly between two key-frames;
+/// - [`DeformedShape::inflated`]: radii inflated ([`Hierarchy::inflate`]) for displacement bounds,
+///   then [`DeformedShape::set_positions`] for each step of the motion within them.
 ///
 /// # Key-frames: why the radii are not interpolated linearly
 ///
@@ -33,7 +33,7 @@ use crate::SweepError;
 /// its cells (the crossings of projected spokes) and projection plane depend on the
 /// positions: the two key-frames' radii satisfy the conditions of *different* maps, and
 /// neither map's condition is known to hold at the other frame. So linear interpolation is
-/// not proven for these radii, and is not used. Instead, [`Shape::between`] takes the
+/// not proven for these radii, and is not used. Instead, [`DeformedShape::between`] takes the
 /// radii of the nearer key-frame inflated by how far the interpolated positions are from
 /// it ([`Hierarchy::inflate`], which is proven for any motion within the bounds): valid,
 /// equal to the key-frame's at `t = 0` and `t = 1`, and never inflated by more than twice
@@ -43,7 +43,7 @@ use crate::SweepError;
 ///
 /// ```
 /// use sphaera_mesh::{DVec3, shapes};
-/// use sphaera_sweep::{Shape, Sweeper, build_hierarchy};
+/// use sphaera_sweep::{DeformedShape, Sweeper, build_hierarchy};
 ///
 /// let sphere = shapes::sphere(1.0, 12)?;
 /// let hierarchy = build_hierarchy(&sphere)?;
@@ -54,14 +54,14 @@ use crate::SweepError;
 /// let end = hierarchy.replay(&stretched)?;
 ///
 /// let mut session = sweeper.session();
-/// session.deform(Shape::between(&hierarchy, &end, 0.5)?)?;
+/// session.deform(DeformedShape::between(&hierarchy, &end, 0.5)?)?;
 /// let answer = session.closest(DVec3::new(0.0, 0.0, 3.0))?;
 /// // Half-way, the top vertex is at z = 1.1.
 /// assert!((answer.distance - 1.9).abs() < 1e-12);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Shape {
+pub struct DeformedShape {
     /// Radii valid for every position within `allowance` of `reference`.
     radii: Hierarchy,
     /// Per input vertex: the positions the radii were computed or inflated for.
@@ -72,7 +72,7 @@ pub struct Shape {
     positions: Vec<DVec3>,
 }
 
-impl Shape {
+impl DeformedShape {
     /// A key-frame: the positions and exact radii of `frame` (a hierarchy from
     /// [`Hierarchy::replay`], or the sweeper's own, to go back to rest).
     ///
@@ -80,11 +80,11 @@ impl Shape {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_sweep::{Shape, build_hierarchy};
+    /// use sphaera_sweep::{DeformedShape, build_hierarchy};
     ///
     /// let cube = shapes::cube(2.0, 2)?;
     /// let hierarchy = build_hierarchy(&cube)?;
-    /// let rest = Shape::keyframe(&hierarchy);
+    /// let rest = DeformedShape::keyframe(&hierarchy);
     /// assert_eq!(rest.positions(), hierarchy.positions());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -125,15 +125,15 @@ impl Shape {
     ///
     /// ```
     /// use sphaera_mesh::{DVec3, shapes};
-    /// use sphaera_sweep::{Shape, build_hierarchy};
+    /// use sphaera_sweep::{DeformedShape, build_hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 8)?;
     /// let a = build_hierarchy(&sphere)?;
     /// let moved: Vec<DVec3> = sphere.positions().iter().map(|p| *p * 1.5).collect();
     /// let b = a.replay(&moved)?;
-    /// let quarter = Shape::between(&a, &b, 0.25)?;
+    /// let quarter = DeformedShape::between(&a, &b, 0.25)?;
     /// assert!((quarter.positions()[0] - sphere.positions()[0] * 1.125).length() < 1e-12);
-    /// assert!(Shape::between(&a, &b, 1.5).is_err());
+    /// assert!(DeformedShape::between(&a, &b, 1.5).is_err());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn between(a: &Hierarchy, b: &Hierarchy, t: f64) -> Result<Self, SweepError> {
@@ -172,7 +172,7 @@ impl Shape {
     /// Radii inflated ([`Hierarchy::inflate`]) so they stay valid while each input vertex
     /// `i` moves at most `displacement[i]` from its position in `reference` (the paper's
     /// second method: exaggerate the bounds, inflate once, and move the vertices for
-    /// several steps with [`Shape::set_positions`] or
+    /// several steps with [`DeformedShape::set_positions`] or
     /// [`Session::move_vertices`](crate::Session::move_vertices)). The positions start at
     /// the reference's.
     ///
@@ -190,11 +190,11 @@ impl Shape {
     ///
     /// ```
     /// use sphaera_mesh::{DVec3, shapes};
-    /// use sphaera_sweep::{Shape, build_hierarchy};
+    /// use sphaera_sweep::{DeformedShape, build_hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 8)?;
     /// let hierarchy = build_hierarchy(&sphere)?;
-    /// let mut shape = Shape::inflated(&hierarchy, &vec![0.1; sphere.vertex_count()])?;
+    /// let mut shape = DeformedShape::inflated(&hierarchy, &vec![0.1; sphere.vertex_count()])?;
     /// let nudged: Vec<DVec3> = sphere.positions().iter().map(|p| *p * 1.05).collect();
     /// shape.set_positions(&nudged)?; // every vertex moves by 0.05 ≤ 0.1
     /// let far: Vec<DVec3> = sphere.positions().iter().map(|p| *p * 1.2).collect();
@@ -226,7 +226,7 @@ impl Shape {
     ///
     /// # Examples
     ///
-    /// See [`Shape::inflated`].
+    /// See [`DeformedShape::inflated`].
     pub fn set_positions(&mut self, positions: &[DVec3]) -> Result<(), SweepError> {
         self.positions = self.checked_positions(positions)?;
         Ok(())
@@ -296,7 +296,7 @@ impl Shape {
 }
 
 /// Checks that `shape`'s radii share `hierarchy`'s tables.
-pub(crate) fn check_tables(hierarchy: &Hierarchy, shape: &Shape) -> Result<(), SweepError> {
+pub(crate) fn check_tables(hierarchy: &Hierarchy, shape: &DeformedShape) -> Result<(), SweepError> {
     if hierarchy.shares_tables(&shape.radii) {
         Ok(())
     } else {

@@ -3,7 +3,6 @@
 use sphaera_mesh::{DVec3, TriMesh};
 use sphaera_simplify::{Hierarchy, Simplifier, SimplifyError};
 
-#[path = "warm_start.rs"]
 mod warm_start;
 
 use warm_start::WARM_START_DIVISOR;
