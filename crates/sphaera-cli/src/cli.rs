@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum, builder::PossibleValue};
 use sphaera::simplify::Placement;
+use sphaera::spheretree::Method;
 
 /// Hierarchical sphere-based approximation of triangle meshes.
 ///
@@ -139,16 +140,16 @@ pub enum MethodArg {
 }
 
 impl MethodArg {
-    /// The method's name on the command line.
-    pub fn name(self) -> &'static str {
+    /// The library's method.
+    pub fn method(self) -> Method {
         match self {
-            Self::Merge => "merge",
-            Self::Burst => "burst",
-            Self::Expand => "expand",
-            Self::Combined => "combined",
-            Self::Octree => "octree",
-            Self::Grid => "grid",
-            Self::Hubbard => "hubbard",
+            Self::Merge => Method::Merge,
+            Self::Burst => Method::Burst,
+            Self::Expand => Method::Expand,
+            Self::Combined => Method::Combined,
+            Self::Octree => Method::Octree,
+            Self::Grid => Method::Grid,
+            Self::Hubbard => Method::Hubbard,
         }
     }
 }

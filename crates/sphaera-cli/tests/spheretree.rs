@@ -74,7 +74,7 @@ fn spheretree_writes_json_and_sph_atomically() {
             let deepest = report["levels"][2]["spheres"].as_u64().expect("count");
             assert_eq!(text.matches("center:").count() as u64, deepest);
         } else {
-            let file = sphaera::spheretree::read_sph(&text, sphaera::mesh::DVec3::ZERO)
+            let file = sphaera::spheretree::export::read_sph(&text, sphaera::mesh::DVec3::ZERO)
                 .expect("a valid .sph");
             assert_eq!((file.levels, file.branch), (3, 8));
             let used = file.nodes.iter().filter(|n| n.is_some()).count() as u64;

@@ -5,7 +5,8 @@
 //! since criterion reports only times.
 //!
 //! Run with `cargo bench -p sphaera-spheretree --bench spheretree` (about four minutes on
-//! the 2-core reference machine); needs `../shared/data` (skipped with a message without
+//! the 2-core reference machine; the surface is prepared inside the timed build, as a user
+//! does); needs `../shared/data` (skipped with a message without
 //! it).
 
 #![allow(clippy::print_stderr)]
@@ -13,11 +14,9 @@
 use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphaera_medial::Surface;
-use sphaera_mesh::{TriMesh, io};
-use sphaera_spheretree::baseline::{self, BaselineParams};
+use sphaera_mesh::{Surface, TriMesh, io};
 use sphaera_spheretree::{
-    EvaluationOptions, Params, Reducer, SphereTree, SphereTreeError, build, evaluate_set,
+    EvaluationOptions, Method, SphereTree, SphereTreeError, SphereTreeOptions, build, evaluate_set,
 };
 
 /// Prints each level's certified worst error (upper bound) and uncovered surface.
@@ -27,8 +26,8 @@ fn report(name: &str, mesh: &TriMesh, tree: &SphereTree) {
     let diagonal = mesh.bounding_box_diagonal();
     let levels: Vec<String> = (1..tree.level_count())
         .map(|level| {
-            let e = evaluate_set(&surface, mesh, &tree.level_spheres(level), &options)
-                .expect("evaluates");
+            let e =
+                evaluate_set(&surface, &tree.level_spheres(level), &options).expect("evaluates");
             format!(
                 "L{level} {} spheres {:.2} % ({:.3} % bare)",
                 e.sphere_count,
@@ -40,30 +39,11 @@ fn report(name: &str, mesh: &TriMesh, tree: &SphereTree) {
     eprintln!("{name}: {}", levels.join(", "));
 }
 
-type Builder = Box<dyn Fn(&TriMesh) -> Result<SphereTree, SphereTreeError>>;
-
-fn methods() -> Vec<(&'static str, Builder)> {
-    let medial = |reducer: Reducer| -> Builder {
-        Box::new(move |mesh| build(mesh, &Params::default().reducer(reducer)))
-    };
-    vec![
-        ("merge", medial(Reducer::Merge)),
-        ("burst", medial(Reducer::Burst)),
-        ("expand", medial(Reducer::Expand)),
-        ("combined", medial(Reducer::Combined)),
-        (
-            "octree",
-            Box::new(move |mesh| baseline::octree(mesh, &BaselineParams::default())),
-        ),
-        (
-            "grid",
-            Box::new(move |mesh| baseline::grid(mesh, &BaselineParams::default())),
-        ),
-        (
-            "hubbard",
-            Box::new(move |mesh| baseline::hubbard(mesh, &BaselineParams::default())),
-        ),
-    ]
+/// What a user runs for `method`: prepare the surface, then build (the surface's
+/// preparation is timed with the build, as before the single entry point).
+fn build_tree(mesh: &TriMesh, method: Method) -> Result<SphereTree, SphereTreeError> {
+    let surface = Surface::new(mesh)?;
+    build(&surface, &SphereTreeOptions::default().with_method(method))
 }
 
 fn bench_mesh(c: &mut Criterion, group_name: &str, file: &str) {
@@ -80,11 +60,12 @@ fn bench_mesh(c: &mut Criterion, group_name: &str, file: &str) {
     group.sample_size(10);
     group.warm_up_time(Duration::from_secs(1));
     group.measurement_time(Duration::from_secs(8));
-    for (name, builder) in methods() {
-        let tree = builder(&mesh).expect("builds");
+    for method in Method::ALL {
+        let name = method.name();
+        let tree = build_tree(&mesh, method).expect("builds");
         report(&format!("{group_name}/{name}"), &mesh, &tree);
         group.bench_function(name, |b| {
-            b.iter(|| builder(black_box(&mesh)).expect("builds"));
+            b.iter(|| build_tree(black_box(&mesh), method).expect("builds"));
         });
     }
     group.finish();

@@ -7,9 +7,9 @@
 
 use std::time::{Duration, Instant};
 
-use sphaera_mesh::io;
+use sphaera_mesh::{Surface, io};
 use sphaera_spheretree::collide::{Budget, CostModel, Similarity, collide, overlaps};
-use sphaera_spheretree::{DVec3, Params, build};
+use sphaera_spheretree::{DVec3, SphereTreeOptions, build};
 
 /// Median seconds per call of `f` over `rounds` rounds of `reps` calls.
 fn time_per_call(rounds: usize, reps: usize, mut f: impl FnMut()) -> f64 {
@@ -36,7 +36,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mesh = io::load(&path)?;
     let diagonal = mesh.bounding_box_diagonal();
     let started = Instant::now();
-    let tree = build(&mesh, &Params::default().depth(3))?;
+    let tree = build(
+        &Surface::new(&mesh)?,
+        &SphereTreeOptions::default().with_depth(3),
+    )?;
     println!(
         "{}: depth-3 tree, {} nodes per level {:?}, built in {:.2} s",
         path.display(),

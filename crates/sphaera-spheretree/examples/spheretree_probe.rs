@@ -6,10 +6,8 @@
 
 use std::time::Instant;
 
-use sphaera_medial::Surface;
-use sphaera_mesh::{io, shapes};
-use sphaera_spheretree::baseline::{self, BaselineParams};
-use sphaera_spheretree::{EvaluationOptions, Params, Reducer, build, evaluate_set};
+use sphaera_mesh::{Surface, io, shapes};
+use sphaera_spheretree::{EvaluationOptions, Method, SphereTreeOptions, build, evaluate_set};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -17,33 +15,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(path) => io::load(path)?,
         None => shapes::capsule(0.5, 2.0, 12)?,
     };
-    let method = args.get(2).map_or("combined", String::as_str);
+    let method = args
+        .get(2)
+        .map_or(Some(Method::Combined), |name| Method::from_name(name))
+        .ok_or("unknown method")?;
     let diagonal = mesh.bounding_box_diagonal();
     let started = Instant::now();
-    let tree = match method {
-        "octree" => baseline::octree(&mesh, &BaselineParams::default())?,
-        "grid" => baseline::grid(&mesh, &BaselineParams::default())?,
-        "hubbard" => baseline::hubbard(&mesh, &BaselineParams::default())?,
-        other => {
-            let reducer = match other {
-                "merge" => Reducer::Merge,
-                "burst" => Reducer::Burst,
-                "expand" => Reducer::Expand,
-                _ => Reducer::Combined,
-            };
-            build(&mesh, &Params::default().reducer(reducer))?
-        }
-    };
+    let surface = Surface::new(&mesh)?;
+    let tree = build(&surface, &SphereTreeOptions::default().with_method(method))?;
     println!(
-        "{method}: built in {:.2} s",
+        "{}: built in {:.2} s",
+        method.name(),
         started.elapsed().as_secs_f64()
     );
-    let surface = Surface::new(&mesh)?;
     let options = EvaluationOptions::default().with_relative_tolerance(1e-3);
     for level in 0..tree.level_count() {
         let nodes = tree.level(level);
         let worst = nodes.iter().map(|n| n.error).fold(0.0, f64::max);
-        let evaluation = evaluate_set(&surface, &mesh, &tree.level_spheres(level), &options)?;
+        let evaluation = evaluate_set(&surface, &tree.level_spheres(level), &options)?;
         println!(
             "level {level}: {} spheres, worst eq. 2 error {:.2} %, certified worst error {:.2}–{:.2} %, \
              uncovered surface {:.3} % (largest gap {:.3} %)",

@@ -3,9 +3,11 @@
 use glam::DVec3;
 use sphaera_medial::{MedialApproximation, MedialParams, RegionGoal, Surface};
 use sphaera_mesh::geometry::minimum_enclosing_ball;
-use sphaera_mesh::{TriMesh, sampling};
+use sphaera_mesh::sampling;
 
 use crate::SphereTreeError;
+use crate::baseline;
+use crate::options::{BuildProgress, SphereTreeOptions};
 use crate::reduce::{
     Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
 };
@@ -15,170 +17,39 @@ use crate::tree::{SphereTree, TreeNode};
 /// Improvement steps allowed per node, per requested medial sphere.
 const REFINE_STEPS_PER_SPHERE: usize = 4;
 
-/// Parameters of [`build`], with the paper's defaults.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-#[non_exhaustive]
-pub struct Params {
-    /// Children per node at most (default 8).
-    pub branch: usize,
-    /// Levels below the root (default 3).
-    pub depth: usize,
-    /// Surface samples standing for the surface (default 10,000; the paper used
-    /// 5,000–10,000).
-    pub samples: usize,
-    /// Spheres of the initial medial approximation (default 500; the paper: 500–1,000).
-    pub initial_spheres: usize,
-    /// Medial spheres a node's region is refined to before reduction (default 100; the
-    /// paper: 100–200).
-    pub min_spheres_per_node: usize,
-    /// The region's medial spheres must have at most this fraction of the parent's
-    /// error (default ½; the paper: ½ to ¼).
-    pub error_fraction: f64,
-    /// The reducer (default [`Reducer::Combined`]).
-    pub reducer: Reducer,
-    /// Balance the division of a region between children by moving the dividing planes
-    /// (default on).
-    pub balance_regions: bool,
-    /// Seed of the surface sampling.
-    pub seed: u64,
-    /// Certify that every level covers the whole surface, not only the samples, growing
-    /// spheres where needed ([`crate::cover`]; default on).
-    pub certify_coverage: bool,
-    /// The certification's resolution, as a fraction of the mesh's bounding-box
-    /// diagonal (default 10⁻³): triangle pieces are split down to this size before a
-    /// sphere is grown to contain one, so a sphere grows by about this much at most
-    /// where two spheres barely overlap, and by the gap's size where a gap was.
-    pub coverage_resolution: f64,
-}
-
-impl Default for Params {
-    fn default() -> Self {
-        Self {
-            branch: 8,
-            depth: 3,
-            samples: 10_000,
-            initial_spheres: 500,
-            min_spheres_per_node: 100,
-            error_fraction: 0.5,
-            reducer: Reducer::Combined,
-            balance_regions: true,
-            seed: 1,
-            certify_coverage: true,
-            coverage_resolution: 1e-3,
-        }
-    }
-}
-
-impl Params {
-    /// With `branch` children per node at most.
-    #[must_use]
-    pub fn branch(mut self, branch: usize) -> Self {
-        self.branch = branch;
-        self
-    }
-
-    /// With `depth` levels below the root.
-    #[must_use]
-    pub fn depth(mut self, depth: usize) -> Self {
-        self.depth = depth;
-        self
-    }
-
-    /// With `samples` surface samples.
-    #[must_use]
-    pub fn samples(mut self, samples: usize) -> Self {
-        self.samples = samples;
-        self
-    }
-
-    /// With `n` spheres in the initial medial approximation.
-    #[must_use]
-    pub fn initial_spheres(mut self, n: usize) -> Self {
-        self.initial_spheres = n;
-        self
-    }
-
-    /// With at least `n` medial spheres per node's region before reduction.
-    #[must_use]
-    pub fn min_spheres_per_node(mut self, n: usize) -> Self {
-        self.min_spheres_per_node = n;
-        self
-    }
-
-    /// With a node's medial spheres refined to at most `fraction` of the parent's error
-    /// (in (0, 1]; checked by [`build`]).
-    #[must_use]
-    pub fn error_fraction(mut self, fraction: f64) -> Self {
-        self.error_fraction = fraction;
-        self
-    }
-
-    /// With the given reducer.
-    #[must_use]
-    pub fn reducer(mut self, reducer: Reducer) -> Self {
-        self.reducer = reducer;
-        self
-    }
-
-    /// With surface-coverage certification on or off.
-    #[must_use]
-    pub fn certify_coverage(mut self, on: bool) -> Self {
-        self.certify_coverage = on;
-        self
-    }
-
-    /// With the given sampling seed.
-    #[must_use]
-    pub fn seed(mut self, seed: u64) -> Self {
-        self.seed = seed;
-        self
-    }
-
-    fn validate(&self) -> Result<(), SphereTreeError> {
-        let bad = |what: String| Err(SphereTreeError::InvalidParameter(what));
-        if self.branch == 0 {
-            return bad("branch must be at least 1".into());
-        }
-        if self.samples < 4 {
-            return bad(format!("samples {} must be at least 4", self.samples));
-        }
-        if !(self.coverage_resolution > 0.0 && self.coverage_resolution.is_finite()) {
-            return bad(format!(
-                "coverage_resolution {} must be positive and finite",
-                self.coverage_resolution
-            ));
-        }
-        if !(self.error_fraction > 0.0 && self.error_fraction <= 1.0) {
-            return bad(format!(
-                "error_fraction {} must be in (0, 1]",
-                self.error_fraction
-            ));
-        }
-        Ok(())
-    }
-}
-
-/// Progress of [`build_with_progress`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BuildProgress {
-    /// The level being built (1 for the root's children).
-    pub level: usize,
-    /// Nodes of that level's parents done.
-    pub done: usize,
-    /// Parents of that level.
-    pub total: usize,
-}
-
-/// Builds the sphere-tree of `mesh`.
+/// Builds the sphere-tree of `surface` with `options.method`.
+///
+/// The surface is prepared once by the caller ([`Surface::new`]) and can be used again
+/// to evaluate the tree ([`evaluate_set`](crate::evaluate_set)) or to build with other
+/// options.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::{Surface, shapes};
+/// use sphaera_spheretree::{Method, SphereTreeOptions, build};
+///
+/// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
+/// let options = SphereTreeOptions::default().with_depth(2).with_samples(1_000);
+/// let octree = build(&surface, &options.clone().with_method(Method::Octree))?;
+/// assert_eq!(octree.level_count(), 3);
+/// assert!(octree.level(2).len() > octree.level(1).len());
+/// // The baselines' coverage is measured, not certified; the medial methods certify it.
+/// assert!(octree.coverage().is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 ///
 /// # Errors
 ///
-/// [`SphereTreeError::InvalidParameter`] for bad parameters,
-/// [`SphereTreeError::Mesh`] for an empty mesh or one with no area (a single degenerate
-/// triangle), [`SphereTreeError::Medial`] for a mesh without a meaningful inside (a
-/// single triangle, a flat sheet).
-pub fn build(mesh: &TriMesh, params: &Params) -> Result<SphereTree, SphereTreeError> {
-    build_with_progress(mesh, params, &|_| {})
+/// [`SphereTreeError::InvalidParameter`] for options the method cannot use,
+/// [`SphereTreeError::Mesh`] for a mesh without area to sample (a single degenerate
+/// triangle), [`SphereTreeError::Medial`] when the medial approximation cannot start
+/// (too few distinct samples).
+pub fn build(
+    surface: &Surface,
+    options: &SphereTreeOptions,
+) -> Result<SphereTree, SphereTreeError> {
+    build_with_progress(surface, options, &|_| {})
 }
 
 /// [`build`], reporting progress per parent node.
@@ -187,19 +58,33 @@ pub fn build(mesh: &TriMesh, params: &Params) -> Result<SphereTree, SphereTreeEr
 ///
 /// As [`build`].
 pub fn build_with_progress(
-    mesh: &TriMesh,
-    params: &Params,
-    progress: &dyn Fn(&BuildProgress),
+    surface: &Surface,
+    options: &SphereTreeOptions,
+    progress: &(dyn Fn(&BuildProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
-    params.validate()?;
-    let surface = Surface::new(mesh)?;
-    let samples: Vec<DVec3> = sampling::poisson_disk(mesh, params.samples, params.seed)?
+    options.validate()?;
+    match options.method.reducer() {
+        Some(reducer) => medial_tree(surface, options, reducer, progress),
+        None => baseline::build(surface, options, progress),
+    }
+}
+
+/// The adaptive medial construction (Algorithm 1 of the paper) with `reducer`.
+fn medial_tree(
+    surface: &Surface,
+    options: &SphereTreeOptions,
+    reducer: Reducer,
+    progress: &(dyn Fn(&BuildProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
+    let mesh = surface.mesh();
+
+    let samples: Vec<DVec3> = sampling::poisson_disk(mesh, options.samples, options.seed)?
         .samples
         .iter()
         .map(|s| s.position)
         .collect();
     let root_ball = minimum_enclosing_ball(mesh.positions())?;
-    let (depth, inside) = centre_depth(&surface, root_ball.center);
+    let (depth, inside) = centre_depth(surface, root_ball.center);
     let mut nodes = vec![TreeNode {
         sphere: root_ball,
         error: eq2_error(root_ball.radius, depth, inside),
@@ -210,22 +95,21 @@ pub fn build_with_progress(
     }];
     let mut regions: Vec<Vec<u32>> = vec![(0..samples.len() as u32).collect()];
     let mut level_starts = vec![0, 1];
-    if params.depth == 0 {
+    if options.depth == 0 {
         return Ok(finish(
-            mesh,
-            &surface,
-            params,
+            surface,
+            options,
             SphereTree {
-                branch: params.branch,
+                branch: options.branch,
                 nodes,
                 level_starts,
                 coverage: Vec::new(),
             },
         ));
     }
-    let medial_params = MedialParams::default().spheres(params.initial_spheres);
-    let mut medial = MedialApproximation::build(&surface, &samples, &medial_params)?;
-    for level in 1..=params.depth {
+    let medial_params = MedialParams::default().spheres(options.initial_spheres);
+    let mut medial = MedialApproximation::build(surface, &samples, &medial_params)?;
+    for level in 1..=options.depth {
         let parents = level_starts[level - 1]..level_starts[level];
         let total = parents.len();
         // Refine each parent's region in turn (the medial set is shared), then reduce.
@@ -239,8 +123,8 @@ pub fn build_with_progress(
             }
             // Far more medial spheres than the region has samples cannot help (each is
             // fixed by four samples) and would spend the refinement cap for nothing.
-            let wanted = params.min_spheres_per_node.min(2 * region.len());
-            let mut goal = RegionGoal::new(wanted, params.error_fraction * nodes[parent].error);
+            let wanted = options.min_spheres_per_node.min(2 * region.len());
+            let mut goal = RegionGoal::new(wanted, options.error_fraction * nodes[parent].error);
             // The error goal may be out of reach (a part the samples already resolve
             // fully): cap the work per node.
             goal.max_iterations = REFINE_STEPS_PER_SPHERE * wanted.max(1);
@@ -248,14 +132,15 @@ pub fn build_with_progress(
             problems.push(Some(candidates(region, &outcome.spheres)));
         }
         let reduced = reduce_all(
-            &surface,
+            surface,
             &samples,
             &regions,
             parents.clone(),
             &problems,
-            params,
+            reducer,
+            options.branch,
         )?;
-        let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, params);
+        let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, options);
         for ((parent, fitted), groups) in parents.clone().zip(reduced).zip(divisions) {
             let first = nodes.len() as u32;
             let region = regions[parent].clone();
@@ -279,11 +164,10 @@ pub fn build_with_progress(
         level_starts.push(nodes.len());
     }
     Ok(finish(
-        mesh,
-        &surface,
-        params,
+        surface,
+        options,
         SphereTree {
-            branch: params.branch,
+            branch: options.branch,
             nodes,
             level_starts,
             coverage: Vec::new(),
@@ -292,10 +176,10 @@ pub fn build_with_progress(
 }
 
 /// Certifies the tree's coverage of the surface when asked to.
-fn finish(mesh: &TriMesh, surface: &Surface, params: &Params, mut tree: SphereTree) -> SphereTree {
-    if params.certify_coverage {
-        let resolution = params.coverage_resolution * mesh.bounding_box_diagonal();
-        crate::cover::certify_tree(mesh, surface, &mut tree, resolution);
+fn finish(surface: &Surface, options: &SphereTreeOptions, mut tree: SphereTree) -> SphereTree {
+    if options.certify_coverage {
+        let resolution = options.coverage_resolution * surface.mesh().bounding_box_diagonal();
+        crate::cover::certify_tree(surface, &mut tree, resolution);
     }
     tree
 }
@@ -323,7 +207,7 @@ fn divide_all(
     regions: &[Vec<u32>],
     parents: std::ops::Range<usize>,
     reduced: &[Vec<FittedSphere>],
-    params: &Params,
+    options: &SphereTreeOptions,
 ) -> Vec<Vec<Vec<u32>>> {
     let one = |(parent, fitted): (usize, &Vec<FittedSphere>)| {
         let points: Vec<DVec3> = regions[parent]
@@ -331,7 +215,7 @@ fn divide_all(
             .map(|&i| samples[i as usize])
             .collect();
         let spheres: Vec<_> = fitted.iter().map(|f| f.sphere).collect();
-        divide(&points, &spheres, params.balance_regions)
+        divide(&points, &spheres, options.balance_regions)
     };
     #[cfg(feature = "parallel")]
     {
@@ -356,7 +240,8 @@ fn reduce_all(
     regions: &[Vec<u32>],
     parents: std::ops::Range<usize>,
     problems: &[Option<Vec<Candidate>>],
-    params: &Params,
+    reducer: Reducer,
+    branch: usize,
 ) -> Result<Vec<Vec<FittedSphere>>, SphereTreeError> {
     let one = |(parent, problem): (usize, &Option<Vec<Candidate>>)| {
         let Some(candidates) = problem else {
@@ -371,7 +256,7 @@ fn reduce_all(
             points: &points,
             candidates,
         };
-        reduce(params.reducer, &input, params.branch)
+        reduce(reducer, &input, branch)
     };
     #[cfg(feature = "parallel")]
     {

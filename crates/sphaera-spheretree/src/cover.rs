@@ -36,7 +36,6 @@ type Piece = [DVec3; 3];
 /// raising each grown node's error to its new eq. 2 value, and records the certificates
 /// in the tree.
 pub(crate) fn certify_tree(
-    mesh: &TriMesh,
     surface: &sphaera_medial::Surface,
     tree: &mut crate::SphereTree,
     resolution: f64,
@@ -51,7 +50,7 @@ pub(crate) fn certify_tree(
         };
         let nodes = &mut tree.nodes[start..end];
         let mut spheres: Vec<Sphere> = nodes.iter().map(|n| n.sphere).collect();
-        let (certificate, growth) = certify_coverage(mesh, &mut spheres, resolution);
+        let (certificate, growth) = certify_coverage(surface.mesh(), &mut spheres, resolution);
         for ((node, sphere), g) in nodes.iter_mut().zip(spheres).zip(growth) {
             if g > 0.0 {
                 let (depth, inside) = crate::reduce::centre_depth(surface, sphere.center);

@@ -1,31 +1,90 @@
-//! Errors of sphere-tree construction, evaluation and file formats.
+//! Errors of sphere-tree construction, evaluation, traversal and file formats.
 
-/// Why a sphere-tree could not be built, evaluated, read or written.
+use crate::export::SphDefect;
+
+/// Why a sphere-tree could not be built, evaluated, traversed, read or written.
+///
+/// Messages are lowercase without a final period, so they compose into larger messages.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::SphereTreeError;
+///
+/// let error = SphereTreeError::InvalidParameter {
+///     name: "error_fraction",
+///     value: 2.0,
+///     requirement: "in (0, 1]",
+/// };
+/// assert_eq!(error.to_string(), "invalid `error_fraction` (2): must be in (0, 1]");
+/// ```
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SphereTreeError {
-    /// The mesh is empty or invalid.
+    /// The mesh is empty or invalid, has no meaningful inside, or a transform is not a
+    /// similarity.
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
-    /// The medial approximation failed (no inside, too few samples, ...).
+    /// The medial approximation failed (too few distinct samples, …).
     #[error(transparent)]
     Medial(#[from] sphaera_medial::MedialError),
-    /// A parameter is out of its domain.
-    #[error("invalid parameter: {0}")]
-    InvalidParameter(String),
+    /// A numeric parameter is out of its domain (NaN, negative, zero, out of range).
+    #[error("invalid `{name}` ({value}): must be {requirement}")]
+    InvalidParameter {
+        /// The parameter's name as it appears in the API, e.g. `"error_fraction"`.
+        name: &'static str,
+        /// The value supplied.
+        value: f64,
+        /// What the value must be, e.g. `"in (0, 1]"`.
+        requirement: &'static str,
+    },
     /// A sphere has a NaN or infinite centre or radius, or a negative radius.
     #[error("sphere {index} is not a valid sphere (NaN, infinite or negative radius)")]
     InvalidSphere {
         /// Index of the sphere in the input.
         index: usize,
     },
-    /// A sphere-tree file could not be parsed.
-    #[error("line {line}: {message}")]
-    Format {
+    /// A reducer's candidate lists a point that does not exist.
+    #[error("candidate {candidate} covers point {point}, but there are only {points} points")]
+    CoverOutOfRange {
+        /// Index of the candidate.
+        candidate: usize,
+        /// The point index it lists.
+        point: u32,
+        /// The number of points.
+        points: usize,
+    },
+    /// A point given to a reducer is covered by no candidate.
+    #[error("point {point} is covered by no candidate")]
+    UncoveredPoint {
+        /// Index of the point.
+        point: usize,
+    },
+    /// Two links of a collision-sphere list have the same name.
+    #[error("two links are named {name:?}")]
+    DuplicateLink {
+        /// The name.
+        name: String,
+    },
+    /// A `.sph` text could not be read: what is wrong, and on which line.
+    #[error("line {line}: {defect}")]
+    SphSyntax {
         /// 1-based line number.
         line: usize,
         /// What is wrong there.
-        message: String,
+        defect: SphDefect,
+    },
+    /// A `.sph` tree cannot be written (or laid out from a [`SphereTree`](crate::SphereTree)).
+    #[error("cannot write the .sph tree: {0}")]
+    SphLayout(SphDefect),
+    /// A JSON sphere-tree could not be parsed.
+    #[error("line {line}: {source}")]
+    Json {
+        /// 1-based line number of the problem.
+        line: usize,
+        /// The JSON parser's error.
+        #[source]
+        source: serde_json::Error,
     },
     /// An evaluation was asked for a set without spheres (its error and coverage would be
     /// meaningless).

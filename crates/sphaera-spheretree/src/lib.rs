@@ -8,19 +8,26 @@
 //!
 //! # Example
 //!
+//! One entry point, [`build`], takes the prepared [`Surface`] (its inside test and exact
+//! closest points, built once) and the [`SphereTreeOptions`], whose [`Method`] picks a
+//! medial reducer or a classic baseline. The same surface then evaluates the tree.
+//!
 //! ```
 //! use sphaera_mesh::shapes;
-//! use sphaera_spheretree::{Params, Reducer, build, level_for_tolerance};
+//! use sphaera_spheretree::{
+//!     EvaluationOptions, Method, SphereTreeOptions, Surface, build, evaluate_set,
+//!     level_for_tolerance,
+//! };
 //!
-//! let capsule = shapes::capsule(0.5, 2.0, 12)?;
-//! let params = Params::default()
-//!     .reducer(Reducer::Expand)
-//!     .depth(2)
-//!     .branch(4)
-//!     .samples(1_500)
-//!     .initial_spheres(100)
-//!     .min_spheres_per_node(30);
-//! let tree = build(&capsule, &params)?;
+//! let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
+//! let options = SphereTreeOptions::default()
+//!     .with_method(Method::Expand)
+//!     .with_depth(2)
+//!     .with_branch(4)
+//!     .with_samples(1_500)
+//!     .with_initial_spheres(100)
+//!     .with_min_spheres_per_node(30);
+//! let tree = build(&surface, &options)?;
 //! assert_eq!(tree.level_count(), 3);
 //! // Every level covers the whole surface, certified piece by piece.
 //! assert_eq!(tree.coverage().len(), 3);
@@ -28,30 +35,36 @@
 //! let worst = |l: usize| tree.level(l).iter().map(|n| n.error).fold(0.0, f64::max);
 //! assert!(worst(2) < worst(0));
 //! assert_eq!(level_for_tolerance(&tree, worst(1)), Some(1));
+//! // The certified worst error of a level, from the same surface.
+//! let fit = evaluate_set(&surface, &tree.level_spheres(2), &EvaluationOptions::default())?;
+//! assert!(fit.worst_lower <= fit.worst_upper);
+//! assert_eq!(fit.coverage.uncovered, 0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-pub mod baseline;
+mod baseline;
 mod build;
 pub mod collide;
 pub mod cover;
 mod error;
 pub mod evaluate;
 pub mod export;
+mod options;
 pub mod reduce;
 pub mod segment;
 pub mod select;
-pub mod sph;
 mod tree;
 
-pub use build::{BuildProgress, Params, build, build_with_progress};
+pub use build::{build, build_with_progress};
 pub use collide::{Budget, Collision, Contact, CostModel, Similarity, collide, overlaps};
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
+pub use options::{
+    BuildProgress, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTreeOptions,
+};
 pub use reduce::Reducer;
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
-pub use sph::{SphFile, read_sph, write_sph};
-pub use sphaera_mesh::Sphere;
+pub use sphaera_mesh::{Sphere, Surface};
 pub use tree::{SphereTree, TreeNode};

@@ -74,7 +74,7 @@ impl SphereTree {
 
     /// Per level, how its coverage of the whole surface was certified
     /// ([`crate::cover::certify_coverage`]): empty when the tree was built without
-    /// certification ([`crate::Params::certify_coverage`] off).
+    /// certification ([`crate::SphereTreeOptions::certify_coverage`] off).
     #[must_use]
     pub fn coverage(&self) -> &[CoverageCertificate] {
         &self.coverage

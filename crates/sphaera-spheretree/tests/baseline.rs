@@ -1,20 +1,26 @@
 //! The baseline sphere-trees (octree, grid, Hubbard): structure, coverage of the samples
 //! at every level, clear errors, and the octree's loose fit against the medial build.
 
-use sphaera_medial::Surface;
-use sphaera_mesh::{DVec3, TriMesh, sampling, shapes};
-use sphaera_spheretree::baseline::{BaselineParams, MAX_DEPTH, grid, hubbard, octree};
+use sphaera_mesh::{DVec3, Surface, TriMesh, sampling, shapes};
 use sphaera_spheretree::{
-    EvaluationOptions, Params, Reducer, SphereTree, SphereTreeError, build, evaluate_set,
+    EvaluationOptions, MAX_BASELINE_DEPTH, Method, SphereTree, SphereTreeError, SphereTreeOptions,
+    build, evaluate_set,
 };
 
-type Method = fn(&TriMesh, &BaselineParams) -> Result<SphereTree, SphereTreeError>;
+const METHODS: [Method; 3] = [Method::Octree, Method::Grid, Method::Hubbard];
 
-const METHODS: [(&str, Method); 3] = [("octree", octree), ("grid", grid), ("hubbard", hubbard)];
+/// The tree of `mesh` by `method`.
+fn run(
+    method: Method,
+    mesh: &TriMesh,
+    options: &SphereTreeOptions,
+) -> Result<SphereTree, SphereTreeError> {
+    build(&Surface::new(mesh)?, &options.clone().with_method(method))
+}
 
 /// Levels, parent and children links, consecutive children in the next level, regions
 /// partitioned between children, and every sample inside a sphere of every level.
-fn check(name: &str, mesh: &TriMesh, tree: &SphereTree, params: &BaselineParams) {
+fn check(name: &str, mesh: &TriMesh, tree: &SphereTree, params: &SphereTreeOptions) {
     assert_eq!(tree.level_count(), params.depth + 1, "{name}");
     assert_eq!(tree.level(0).len(), 1, "{name}");
     assert_eq!(
@@ -58,12 +64,12 @@ fn check(name: &str, mesh: &TriMesh, tree: &SphereTree, params: &BaselineParams)
     }
 }
 
-fn small() -> BaselineParams {
-    BaselineParams::default()
-        .depth(3)
-        .branch(4)
-        .samples(1_500)
-        .forming_points(120)
+fn small() -> SphereTreeOptions {
+    SphereTreeOptions::default()
+        .with_depth(3)
+        .with_branch(4)
+        .with_samples(1_500)
+        .with_forming_points(120)
 }
 
 #[test]
@@ -73,19 +79,19 @@ fn every_baseline_builds_a_consistent_tree_on_a_capsule_and_a_cube() {
         ("cube", shapes::cube(1.0, 4).unwrap()),
     ];
     for (mesh_name, mesh) in &meshes {
-        for (method, run) in METHODS {
-            let name = format!("{method} on the {mesh_name}");
+        for method in METHODS {
+            let name = format!("{} on the {mesh_name}", method.name());
             let params = small();
-            let tree = run(mesh, &params).unwrap();
+            let tree = run(method, mesh, &params).unwrap();
             check(&name, mesh, &tree, &params);
-            if method == "octree" {
+            if method == Method::Octree {
                 assert_eq!(tree.branch(), 8, "{name}");
             }
-            if method == "hubbard" {
+            if method == Method::Hubbard {
                 assert_eq!(tree.branch(), 4, "{name}");
             }
             // Deterministic.
-            assert_eq!(run(mesh, &params).unwrap(), tree, "{name}");
+            assert_eq!(run(method, mesh, &params).unwrap(), tree, "{name}");
         }
     }
 }
@@ -93,8 +99,11 @@ fn every_baseline_builds_a_consistent_tree_on_a_capsule_and_a_cube() {
 #[test]
 fn grid_levels_have_about_branch_to_the_level_cells() {
     let mesh = shapes::sphere(1.0, 12).unwrap();
-    let params = BaselineParams::default().depth(2).branch(8).samples(2_000);
-    let tree = grid(&mesh, &params).unwrap();
+    let params = SphereTreeOptions::default()
+        .with_depth(2)
+        .with_branch(8)
+        .with_samples(2_000);
+    let tree = run(Method::Grid, &mesh, &params).unwrap();
     // At most 8 occupied cells at level 1, 64 at level 2; a cell straddling parents
     // counts once per parent.
     assert!(
@@ -122,22 +131,26 @@ fn grid_levels_have_about_branch_to_the_level_cells() {
 #[test]
 fn depth_zero_and_bad_input() {
     let mesh = shapes::sphere(1.0, 8).unwrap();
-    for (name, run) in METHODS {
-        let root = run(&mesh, &small().depth(0)).unwrap();
+    for method in METHODS {
+        let name = method.name();
+        let root = run(method, &mesh, &small().with_depth(0)).unwrap();
         assert_eq!(root.level_count(), 1, "{name}");
         for bad in [
-            small().depth(MAX_DEPTH + 1),
-            small().branch(0),
-            small().samples(2),
-            small().forming_points(3),
+            small().with_depth(MAX_BASELINE_DEPTH + 1),
+            small().with_branch(0),
+            small().with_samples(2),
+            small().with_forming_points(3),
         ] {
             assert!(
-                matches!(run(&mesh, &bad), Err(SphereTreeError::InvalidParameter(_))),
+                matches!(
+                    run(method, &mesh, &bad),
+                    Err(SphereTreeError::InvalidParameter { .. })
+                ),
                 "{name}: {bad:?}"
             );
         }
         let empty = TriMesh::new(Vec::new(), Vec::new()).unwrap();
-        assert!(run(&empty, &small()).is_err(), "{name}: empty mesh");
+        assert!(run(method, &empty, &small()).is_err(), "{name}: empty mesh");
     }
     // A NaN vertex never makes a mesh.
     assert!(TriMesh::new(vec![DVec3::NAN, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).is_err());
@@ -149,32 +162,33 @@ fn bunny_baselines_are_consistent_and_the_octree_is_looser_than_the_medial_build
         return;
     };
     let mesh = sphaera_mesh::io::load(dir.join("bunny_lowres.obj")).unwrap();
-    let params = BaselineParams::default().samples(3_000).forming_points(300);
+    let params = SphereTreeOptions::default()
+        .with_samples(3_000)
+        .with_forming_points(300);
     let trees: Vec<SphereTree> = METHODS
         .iter()
-        .map(|(name, run)| {
-            let tree = run(&mesh, &params).unwrap();
-            check(name, &mesh, &tree, &params);
+        .map(|&method| {
+            let tree = run(method, &mesh, &params).unwrap();
+            check(method.name(), &mesh, &tree, &params);
             tree
         })
         .collect();
+    let surface = Surface::new(&mesh).unwrap();
     let medial = build(
-        &mesh,
-        &Params::default()
-            .samples(3_000)
-            .initial_spheres(200)
-            .min_spheres_per_node(40)
-            .reducer(Reducer::Merge),
+        &surface,
+        &SphereTreeOptions::default()
+            .with_samples(3_000)
+            .with_initial_spheres(200)
+            .with_min_spheres_per_node(40)
+            .with_method(Method::Merge),
     )
     .unwrap();
-    let surface = Surface::new(&mesh).unwrap();
     let options = EvaluationOptions::default()
         .with_relative_tolerance(1e-2)
         .with_coverage_samples(2_000);
     for level in 2..=3 {
-        let evaluate = |t: &SphereTree| {
-            evaluate_set(&surface, &mesh, &t.level_spheres(level), &options).unwrap()
-        };
+        let evaluate =
+            |t: &SphereTree| evaluate_set(&surface, &t.level_spheres(level), &options).unwrap();
         let octree_fit = evaluate(&trees[0]);
         let medial_fit = evaluate(&medial);
         assert!(

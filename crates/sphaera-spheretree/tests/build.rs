@@ -2,7 +2,7 @@
 //! trivial cases and clear errors.
 
 use sphaera_mesh::{DVec3, MeshError, TriMesh, sampling, shapes};
-use sphaera_spheretree::{Params, Reducer, SphereTree, SphereTreeError, build};
+use sphaera_spheretree::{Method, SphereTree, SphereTreeError, SphereTreeOptions, Surface, build};
 
 /// Every node's children are in the next level and point back to it; no node has more
 /// than `branch` children; every level's spheres are valid.
@@ -18,21 +18,25 @@ fn check_structure(tree: &SphereTree) {
 }
 
 /// Small settings, so that the tests stay fast.
-fn light() -> Params {
-    Params::default()
-        .initial_spheres(100)
-        .min_spheres_per_node(30)
+fn light() -> SphereTreeOptions {
+    SphereTreeOptions::default()
+        .with_initial_spheres(100)
+        .with_min_spheres_per_node(30)
 }
 
-fn small(reducer: Reducer) -> Params {
-    light().samples(1_500).depth(2).branch(4).reducer(reducer)
+fn small(method: Method) -> SphereTreeOptions {
+    light()
+        .with_samples(1_500)
+        .with_depth(2)
+        .with_branch(4)
+        .with_method(method)
 }
 
 #[test]
 fn every_reducer_builds_a_consistent_tree_on_a_capsule() {
     let mesh = shapes::capsule(0.5, 2.0, 12).unwrap();
-    for reducer in [Reducer::Merge, Reducer::Expand, Reducer::Combined] {
-        let tree = build(&mesh, &small(reducer)).unwrap();
+    for method in [Method::Merge, Method::Expand, Method::Combined] {
+        let tree = build(&Surface::new(&mesh).unwrap(), &small(method)).unwrap();
         check_structure(&tree);
         assert_eq!(tree.level_count(), 3);
         assert_eq!(tree.level(0).len(), 1);
@@ -44,10 +48,10 @@ fn every_reducer_builds_a_consistent_tree_on_a_capsule() {
                 .all(|&p| root.contains_point(p, 1e-9))
         );
         for level in 1..3 {
-            assert!(!tree.level(level).is_empty(), "{reducer:?} level {level}");
+            assert!(!tree.level(level).is_empty(), "{method:?} level {level}");
             // Regions partition the samples.
             let total: u32 = tree.level(level).iter().map(|n| n.region_samples).sum();
-            assert_eq!(total, 1_500, "{reducer:?} level {level}");
+            assert_eq!(total, 1_500, "{method:?} level {level}");
         }
         // Every surface sample (the same ones: same count and seed) lies in a sphere of
         // every level.
@@ -57,39 +61,43 @@ fn every_reducer_builds_a_consistent_tree_on_a_capsule() {
             for s in &samples {
                 assert!(
                     spheres.iter().any(|b| b.contains_point(s.position, 1e-9)),
-                    "{reducer:?}: a sample is outside every sphere of level {level}"
+                    "{method:?}: a sample is outside every sphere of level {level}"
                 );
             }
         }
         // Errors shrink level by level.
         let worst = |l: usize| tree.level(l).iter().map(|n| n.error).fold(0.0, f64::max);
-        assert!(worst(2) < worst(1) && worst(1) < worst(0), "{reducer:?}");
+        assert!(worst(2) < worst(1) && worst(1) < worst(0), "{method:?}");
     }
 }
 
 #[test]
 fn combined_is_never_worse_than_merge_or_expand_on_a_node() {
     let mesh = shapes::torus(1.0, 0.35, 16).unwrap();
-    let params = |r| light().samples(1_500).depth(1).reducer(r);
+    let params = |r| light().with_samples(1_500).with_depth(1).with_method(r);
     let worst = |t: &SphereTree| t.level(1).iter().map(|n| n.error).fold(0.0, f64::max);
-    let merge = build(&mesh, &params(Reducer::Merge)).unwrap();
-    let expand = build(&mesh, &params(Reducer::Expand)).unwrap();
-    let combined = build(&mesh, &params(Reducer::Combined)).unwrap();
+    let merge = build(&Surface::new(&mesh).unwrap(), &params(Method::Merge)).unwrap();
+    let expand = build(&Surface::new(&mesh).unwrap(), &params(Method::Expand)).unwrap();
+    let combined = build(&Surface::new(&mesh).unwrap(), &params(Method::Combined)).unwrap();
     assert!(worst(&combined) <= worst(&merge).min(worst(&expand)) + 1e-12);
 }
 
 #[test]
 fn depth_zero_and_branch_one_are_valid() {
     let mesh = shapes::sphere(1.0, 12).unwrap();
-    let root_only = build(&mesh, &light().samples(500).depth(0)).unwrap();
+    let root_only = build(
+        &Surface::new(&mesh).unwrap(),
+        &light().with_samples(500).with_depth(0),
+    )
+    .unwrap();
     assert_eq!(root_only.level_count(), 1);
     let chain = build(
-        &mesh,
+        &Surface::new(&mesh).unwrap(),
         &light()
-            .samples(400)
-            .depth(2)
-            .branch(1)
-            .min_spheres_per_node(10),
+            .with_samples(400)
+            .with_depth(2)
+            .with_branch(1)
+            .with_min_spheres_per_node(10),
     )
     .unwrap();
     check_structure(&chain);
@@ -102,17 +110,23 @@ fn depth_zero_and_branch_one_are_valid() {
 fn bad_input_gets_clear_errors() {
     let triangle = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
     assert!(matches!(
-        build(&triangle, &Params::default().samples(200)),
-        Err(SphereTreeError::Mesh(MeshError::NoInside { .. }))
+        Surface::new(&triangle),
+        Err(MeshError::NoInside { .. })
     ));
     let mesh = shapes::sphere(1.0, 8).unwrap();
     assert!(matches!(
-        build(&mesh, &Params::default().branch(0)),
-        Err(SphereTreeError::InvalidParameter(_))
+        build(
+            &Surface::new(&mesh).unwrap(),
+            &SphereTreeOptions::default().with_branch(0)
+        ),
+        Err(SphereTreeError::InvalidParameter { .. })
     ));
     assert!(matches!(
-        build(&mesh, &Params::default().samples(2)),
-        Err(SphereTreeError::InvalidParameter(_))
+        build(
+            &Surface::new(&mesh).unwrap(),
+            &SphereTreeOptions::default().with_samples(2)
+        ),
+        Err(SphereTreeError::InvalidParameter { .. })
     ));
 }
 
@@ -132,7 +146,7 @@ fn digest(tree: &SphereTree) -> u64 {
     hash
 }
 
-/// The same tree with and without the `parallel` feature, for every reducer:
+/// The same tree with and without the `parallel` feature, for every method:
 /// `cargo xtask test` runs this test both ways against the same recorded digests. (A
 /// change to the algorithm changes them: record the new values printed on failure,
 /// after checking that both builds agree.)
@@ -142,13 +156,13 @@ fn the_parallel_feature_does_not_change_the_tree() {
     // libraries.
     let mesh = shapes::l_block(2.0, 1.0, 0.5, 4).unwrap();
     let digests: Vec<u64> = [
-        Reducer::Merge,
-        Reducer::Burst,
-        Reducer::Expand,
-        Reducer::Combined,
+        Method::Merge,
+        Method::Burst,
+        Method::Expand,
+        Method::Combined,
     ]
     .into_iter()
-    .map(|reducer| digest(&build(&mesh, &small(reducer)).unwrap()))
+    .map(|method| digest(&build(&Surface::new(&mesh).unwrap(), &small(method)).unwrap()))
     .collect();
     assert_eq!(digests, EXPECTED_DIGESTS, "digests {digests:#x?}");
 }

@@ -14,20 +14,28 @@ use sphaera_spheretree::collide::{
     Budget, Collision, CostModel, Similarity, TraversalStats, collide, overlaps,
 };
 use sphaera_spheretree::export::{JSON_FORMAT, JSON_VERSION, LevelJson, NodeJson, TreeJson};
-use sphaera_spheretree::{Params, SphereTree, SphereTreeError, build};
+use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, Surface, build};
 
 /// Two small built trees: a capsule and a cube, depth 2, branch 4.
 fn built() -> &'static (SphereTree, SphereTree) {
     static TREES: OnceLock<(SphereTree, SphereTree)> = OnceLock::new();
     TREES.get_or_init(|| {
-        let params = Params::default()
-            .depth(2)
-            .branch(4)
-            .samples(1_200)
-            .initial_spheres(120)
-            .min_spheres_per_node(30);
-        let capsule = build(&shapes::capsule(0.5, 2.0, 10).unwrap(), &params).unwrap();
-        let cube = build(&shapes::cube(1.5, 2).unwrap(), &params).unwrap();
+        let params = SphereTreeOptions::default()
+            .with_depth(2)
+            .with_branch(4)
+            .with_samples(1_200)
+            .with_initial_spheres(120)
+            .with_min_spheres_per_node(30);
+        let capsule = build(
+            &Surface::new(&shapes::capsule(0.5, 2.0, 10).unwrap()).unwrap(),
+            &params,
+        )
+        .unwrap();
+        let cube = build(
+            &Surface::new(&shapes::cube(1.5, 2).unwrap()).unwrap(),
+            &params,
+        )
+        .unwrap();
         (capsule, cube)
     })
 }
@@ -389,7 +397,7 @@ fn invalid_budgets_and_placements_are_errors() {
     ] {
         assert!(matches!(
             collide(capsule, &p, capsule, &p, &budget),
-            Err(SphereTreeError::InvalidParameter(_))
+            Err(SphereTreeError::InvalidParameter { .. })
         ));
     }
     let shear =

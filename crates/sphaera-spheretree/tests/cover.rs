@@ -6,19 +6,19 @@ use proptest::prelude::*;
 use sphaera_mesh::{DVec3, Sphere, TriMesh, io, shapes};
 use sphaera_spheretree::cover::certify_coverage;
 use sphaera_spheretree::evaluate::coverage;
-use sphaera_spheretree::{EvaluationOptions, Params, Reducer, build};
+use sphaera_spheretree::{EvaluationOptions, Method, SphereTreeOptions, Surface, build};
 
-fn light() -> Params {
-    Params::default()
-        .initial_spheres(120)
-        .min_spheres_per_node(30)
-        .samples(2_000)
-        .depth(2)
+fn light() -> SphereTreeOptions {
+    SphereTreeOptions::default()
+        .with_initial_spheres(120)
+        .with_min_spheres_per_node(30)
+        .with_samples(2_000)
+        .with_depth(2)
 }
 
 /// Every level of `mesh`'s tree leaves no sample of 50,000 random ones uncovered.
-fn check_every_level_covers(name: &str, mesh: &TriMesh, params: &Params) {
-    let tree = build(mesh, params).unwrap();
+fn check_every_level_covers(name: &str, mesh: &TriMesh, params: &SphereTreeOptions) {
+    let tree = build(&Surface::new(mesh).unwrap(), params).unwrap();
     assert_eq!(tree.coverage().len(), tree.level_count(), "{name}");
     let options = EvaluationOptions::default()
         .with_coverage_samples(50_000)
@@ -41,8 +41,8 @@ fn every_level_covers_the_surface_of_simple_shapes() {
         ("torus", shapes::torus(1.0, 0.3, 16).unwrap()),
     ];
     for (name, mesh) in &shapes {
-        for reducer in [Reducer::Merge, Reducer::Expand] {
-            check_every_level_covers(name, mesh, &light().reducer(reducer));
+        for method in [Method::Merge, Method::Expand] {
+            check_every_level_covers(name, mesh, &light().with_method(method));
         }
     }
 }
@@ -53,13 +53,17 @@ fn every_level_covers_the_low_res_bunny() {
         return;
     };
     let mesh = io::load(dir.join("bunny_lowres.obj")).unwrap();
-    check_every_level_covers("bunny_lowres", &mesh, &light().reducer(Reducer::Expand));
+    check_every_level_covers("bunny_lowres", &mesh, &light().with_method(Method::Expand));
 }
 
 #[test]
 fn without_certification_there_is_no_certificate() {
     let mesh = shapes::capsule(0.5, 2.0, 8).unwrap();
-    let tree = build(&mesh, &light().depth(1).certify_coverage(false)).unwrap();
+    let tree = build(
+        &Surface::new(&mesh).unwrap(),
+        &light().with_depth(1).with_certify_coverage(false),
+    )
+    .unwrap();
     assert!(tree.coverage().is_empty());
 }
 

@@ -228,8 +228,8 @@ fn results_are_deterministic() {
         })
         .collect();
     let options = EvaluationOptions::default().with_coverage_samples(3_000);
-    let a = evaluate_set(&s.surface, &s.mesh, &spheres, &options).unwrap();
-    let b = evaluate_set(&s.surface, &s.mesh, &spheres, &options).unwrap();
+    let a = evaluate_set(&s.surface, &spheres, &options).unwrap();
+    let b = evaluate_set(&s.surface, &spheres, &options).unwrap();
     assert_eq!(a.fits, b.fits);
     assert_eq!(a.coverage, b.coverage);
     let one_by_one: Vec<_> = spheres
@@ -248,7 +248,7 @@ fn set_statistics_follow_the_fits() {
         Sphere::new(DVec3::new(1.0, 0.0, 0.0), 0.2),
     ];
     let options = EvaluationOptions::default().with_coverage_samples(2_000);
-    let set = evaluate_set(&s.surface, &s.mesh, &spheres, &options).unwrap();
+    let set = evaluate_set(&s.surface, &spheres, &options).unwrap();
     assert_eq!(set.sphere_count, 3);
     assert_eq!(set.worst_index, 1);
     let uppers: Vec<f64> = set.fits.iter().map(|f| f.upper).collect();
@@ -319,7 +319,7 @@ fn invalid_input_is_reported() {
             Err(SphereTreeError::InvalidSphere { index: 2 })
         ));
         assert!(matches!(
-            evaluate_set(&s.surface, &s.mesh, &[bad, good], &options),
+            evaluate_set(&s.surface, &[bad, good], &options),
             Err(SphereTreeError::InvalidSphere { index: 0 })
         ));
         assert!(matches!(
@@ -328,7 +328,7 @@ fn invalid_input_is_reported() {
         ));
     }
     assert!(matches!(
-        evaluate_set(&s.surface, &s.mesh, &[], &options),
+        evaluate_set(&s.surface, &[], &options),
         Err(SphereTreeError::EmptySphereSet)
     ));
     assert!(matches!(
@@ -343,8 +343,8 @@ fn invalid_input_is_reported() {
         options.with_coverage_samples(0),
     ] {
         assert!(matches!(
-            evaluate_set(&s.surface, &s.mesh, &[good], &bad),
-            Err(SphereTreeError::InvalidParameter(_))
+            evaluate_set(&s.surface, &[good], &bad),
+            Err(SphereTreeError::InvalidParameter { .. })
         ));
     }
     assert!(matches!(
@@ -393,7 +393,7 @@ fn bunny_fixed_sampling_under_estimates_the_certified_error() {
         let spheres = poking_spheres(&mesh, 24, 11, depth, poke);
         let options = EvaluationOptions::default().with_coverage_samples(20_000);
         let start = Instant::now();
-        let set = evaluate_set(&surface, &mesh, &spheres, &options).unwrap();
+        let set = evaluate_set(&surface, &spheres, &options).unwrap();
         let elapsed = start.elapsed();
         assert!(set.converged);
         let fixed = fibonacci(48);

@@ -11,18 +11,22 @@ use sphaera_spheretree::export::{
     write_collision_spheres_yaml, write_tree_json,
 };
 use sphaera_spheretree::select::cut_for_tolerance;
-use sphaera_spheretree::{Params, SphereTree, SphereTreeError, build};
+use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, Surface, build};
 
 fn tree() -> &'static SphereTree {
     static TREE: OnceLock<SphereTree> = OnceLock::new();
     TREE.get_or_init(|| {
-        let params = Params::default()
-            .depth(2)
-            .branch(4)
-            .samples(1_200)
-            .initial_spheres(120)
-            .min_spheres_per_node(30);
-        build(&shapes::capsule(0.5, 2.0, 10).unwrap(), &params).unwrap()
+        let params = SphereTreeOptions::default()
+            .with_depth(2)
+            .with_branch(4)
+            .with_samples(1_200)
+            .with_initial_spheres(120)
+            .with_min_spheres_per_node(30);
+        build(
+            &Surface::new(&shapes::capsule(0.5, 2.0, 10).unwrap()).unwrap(),
+            &params,
+        )
+        .unwrap()
     })
 }
 
@@ -85,31 +89,31 @@ fn malformed_json_is_a_format_error_with_its_line() {
     let cut = &text[..text.len() / 2];
     let lines = cut.lines().count();
     match tree_from_json(cut) {
-        Err(SphereTreeError::Format { line, .. }) => assert_eq!(line, lines),
+        Err(SphereTreeError::Json { line, .. }) => assert_eq!(line, lines),
         other => panic!("{other:?}"),
     }
     assert!(matches!(
         tree_from_json(""),
-        Err(SphereTreeError::Format { .. })
+        Err(SphereTreeError::Json { .. })
     ));
     assert!(matches!(
         tree_from_json("[]"),
-        Err(SphereTreeError::Format { .. })
+        Err(SphereTreeError::Json { .. })
     ));
     // A missing field, a wrong type, a NaN written as null.
     assert!(matches!(
         read_edited(|v| {
             v.as_object_mut().unwrap().remove("branch");
         }),
-        Err(SphereTreeError::Format { .. })
+        Err(SphereTreeError::Json { .. })
     ));
     assert!(matches!(
         read_edited(|v| v["nodes"][1]["radius"] = Value::Null),
-        Err(SphereTreeError::Format { .. })
+        Err(SphereTreeError::Json { .. })
     ));
     assert!(matches!(
         read_edited(|v| v["nodes"][0]["center"] = serde_json::json!([0, 0])),
-        Err(SphereTreeError::Format { .. })
+        Err(SphereTreeError::Json { .. })
     ));
 }
 
@@ -284,7 +288,7 @@ fn yaml_refuses_duplicate_names_and_invalid_spheres() {
     ];
     assert!(matches!(
         collision_spheres_yaml(&twice),
-        Err(SphereTreeError::InvalidParameter(_))
+        Err(SphereTreeError::DuplicateLink { name }) if name == "a"
     ));
     let bad = [
         CollisionLink::new("a", vec![s]),

@@ -3,18 +3,18 @@
 //! a valid tree whose every level covers the surface (the certificate) and every sample.
 
 use sphaera_mesh::{TriMesh, io, sampling, shapes};
-use sphaera_spheretree::{Params, Reducer, SphereTree, build};
+use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions, Surface, build};
 
-fn light() -> Params {
-    Params::default()
-        .initial_spheres(100)
-        .min_spheres_per_node(30)
-        .samples(1_500)
-        .depth(2)
+fn light() -> SphereTreeOptions {
+    SphereTreeOptions::default()
+        .with_initial_spheres(100)
+        .with_min_spheres_per_node(30)
+        .with_samples(1_500)
+        .with_depth(2)
 }
 
 /// Structure, certificates and sample coverage of every level.
-fn check(name: &str, mesh: &TriMesh, params: &Params, tree: &SphereTree) {
+fn check(name: &str, mesh: &TriMesh, params: &SphereTreeOptions, tree: &SphereTree) {
     assert_eq!(tree.level_count(), params.depth + 1, "{name}");
     assert_eq!(tree.coverage().len(), tree.level_count(), "{name}");
     let samples = sampling::poisson_disk(mesh, params.samples, params.seed)
@@ -41,9 +41,9 @@ fn thin_tubes_build_with_every_reducer() {
         ("thin torus", shapes::torus(1.0, 0.04, 32).unwrap()),
     ];
     for (name, mesh) in &tubes {
-        for reducer in [Reducer::Merge, Reducer::Expand, Reducer::Combined] {
-            let params = light().reducer(reducer);
-            let tree = build(mesh, &params).unwrap();
+        for method in [Method::Merge, Method::Expand, Method::Combined] {
+            let params = light().with_method(method);
+            let tree = build(&Surface::new(mesh).unwrap(), &params).unwrap();
             check(name, mesh, &params, &tree);
         }
     }
@@ -52,8 +52,8 @@ fn thin_tubes_build_with_every_reducer() {
 #[test]
 fn a_cube_gets_a_tight_first_level() {
     let mesh = shapes::cube(2.0, 4).unwrap();
-    let params = light().depth(1).reducer(Reducer::Combined);
-    let tree = build(&mesh, &params).unwrap();
+    let params = light().with_depth(1).with_method(Method::Combined);
+    let tree = build(&Surface::new(&mesh).unwrap(), &params).unwrap();
     check("cube", &mesh, &params, &tree);
     // Eight children of a cube of side 2 reach out less than the root does.
     let root = tree.level(0)[0].error;
@@ -66,12 +66,12 @@ fn more_spheres_than_samples_is_valid() {
     // Branch 8, depth 3 from 40 samples: nodes run out of samples, and regions with
     // fewer samples than children keep only the children they need.
     let mesh = shapes::sphere(1.0, 12).unwrap();
-    let params = Params::default()
-        .samples(40)
-        .initial_spheres(30)
-        .min_spheres_per_node(200)
-        .depth(3);
-    let tree = build(&mesh, &params).unwrap();
+    let params = SphereTreeOptions::default()
+        .with_samples(40)
+        .with_initial_spheres(30)
+        .with_min_spheres_per_node(200)
+        .with_depth(3);
+    let tree = build(&Surface::new(&mesh).unwrap(), &params).unwrap();
     check("sphere, 40 samples", &mesh, &params, &tree);
 }
 
@@ -91,7 +91,8 @@ fn real_meshes_build() {
     for file in files {
         let mesh = io::load(dir.join(file)).unwrap();
         let params = light();
-        let tree = build(&mesh, &params).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let surface = Surface::new(&mesh).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let tree = build(&surface, &params).unwrap_or_else(|e| panic!("{file}: {e}"));
         check(file, &mesh, &params, &tree);
     }
 }
@@ -102,7 +103,7 @@ fn the_open_stanford_bunny_builds() {
         return;
     };
     let mesh = io::load(dir.join("stanford-bunny.obj")).unwrap();
-    let params = light().depth(1).reducer(Reducer::Expand);
-    let tree = build(&mesh, &params).unwrap();
+    let params = light().with_depth(1).with_method(Method::Expand);
+    let tree = build(&Surface::new(&mesh).unwrap(), &params).unwrap();
     check("stanford-bunny", &mesh, &params, &tree);
 }

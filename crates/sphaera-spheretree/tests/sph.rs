@@ -1,13 +1,13 @@
 //! The `.sph` reader and writer: conventions, malformed files, round trips.
 
 use proptest::prelude::*;
-use sphaera_spheretree::sph::{SphFile, read_sph, write_sph};
+use sphaera_spheretree::export::{SphDefect, SphFile, read_sph, write_sph};
 use sphaera_spheretree::{DVec3, Sphere, SphereTreeError};
 
-/// The line and message of a format error (panics on any other outcome).
+/// The line and message of a syntax error (panics on any other outcome).
 fn format_error(text: &str) -> (usize, String) {
     match read_sph(text, DVec3::ZERO) {
-        Err(SphereTreeError::Format { line, message }) => (line, message),
+        Err(SphereTreeError::SphSyntax { line, defect }) => (line, defect.to_string()),
         other => panic!("expected a format error, got {other:?}"),
     }
 }
@@ -152,7 +152,10 @@ fn offset_overflow_is_an_error() {
     let text = "1 1\n1e308 0 0 1 1\n";
     assert!(matches!(
         read_sph(text, DVec3::new(1e308, 0.0, 0.0)),
-        Err(SphereTreeError::Format { line: 2, .. })
+        Err(SphereTreeError::SphSyntax {
+            line: 2,
+            defect: SphDefect::CentreNotFinite
+        })
     ));
 }
 
@@ -166,11 +169,15 @@ fn writer_rejects_what_the_format_cannot_hold() {
     };
     assert!(matches!(
         write_sph(&tree(2, 2, vec![good; 2]), DVec3::ZERO),
-        Err(SphereTreeError::InvalidParameter(_))
+        Err(SphereTreeError::SphLayout(SphDefect::NodeCount {
+            nodes: Some(3),
+            found: 2,
+            ..
+        }))
     ));
     assert!(matches!(
         write_sph(&tree(0, 2, vec![]), DVec3::ZERO),
-        Err(SphereTreeError::InvalidParameter(_))
+        Err(SphereTreeError::SphLayout(SphDefect::NoLevel))
     ));
     let zero = Some((Sphere::new(DVec3::ZERO, 0.0), 1.0));
     assert!(matches!(
@@ -185,7 +192,10 @@ fn writer_rejects_what_the_format_cannot_hold() {
     let bad_importance = Some((Sphere::new(DVec3::ZERO, 1.0), f64::INFINITY));
     assert!(matches!(
         write_sph(&tree(1, 1, vec![bad_importance]), DVec3::ZERO),
-        Err(SphereTreeError::InvalidParameter(_))
+        Err(SphereTreeError::SphLayout(SphDefect::NonFiniteImportance {
+            node: 0,
+            ..
+        }))
     ));
 }
 

@@ -7,17 +7,18 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
-use sphaera::medial::Surface;
+use sphaera::mesh::Surface;
 use sphaera::mesh::io::write_atomic;
-use sphaera::spheretree::baseline::{self, BaselineParams};
-use sphaera::spheretree::export::{CollisionLink, write_collision_spheres_yaml, write_tree_json};
+use sphaera::spheretree::export::{
+    CollisionLink, SphFile, write_collision_spheres_yaml, write_sph, write_tree_json,
+};
 use sphaera::spheretree::{
-    BuildProgress, CoverageCertificate, EvaluationOptions, Params, Reducer, SphereTree,
-    build_with_progress, cut_for_tolerance, evaluate_set, sph::SphFile, write_sph,
+    BuildProgress, CoverageCertificate, EvaluationOptions, SphereTree, SphereTreeOptions,
+    build_with_progress, cut_for_tolerance, evaluate_set,
 };
 
 use crate::{
-    cli::{MaxErrorArg, MethodArg, SpheretreeArgs},
+    cli::{MaxErrorArg, SpheretreeArgs},
     input::read_mesh,
     output::{print_json, thousands},
     progress,
@@ -80,33 +81,21 @@ struct Seconds {
 pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
     let mesh = &input.loaded.mesh;
-    let reducer = match args.method {
-        MethodArg::Merge => Some(Reducer::Merge),
-        MethodArg::Burst => Some(Reducer::Burst),
-        MethodArg::Expand => Some(Reducer::Expand),
-        MethodArg::Combined => Some(Reducer::Combined),
-        MethodArg::Octree | MethodArg::Grid | MethodArg::Hubbard => None,
-    };
-    let params = Params::default()
-        .reducer(reducer.unwrap_or_default())
-        .depth(args.depth)
-        .branch(args.branch)
-        .samples(args.samples)
-        .initial_spheres(args.initial_spheres)
-        .min_spheres_per_node(args.min_spheres_per_node)
-        .error_fraction(args.error_fraction)
-        .seed(args.seed);
-    let baseline_params = BaselineParams::default()
-        .depth(args.depth)
-        .branch(args.branch)
-        .samples(args.samples)
-        .forming_points(args.forming_points)
-        .seed(args.seed);
+    let options = SphereTreeOptions::default()
+        .with_method(args.method.method())
+        .with_depth(args.depth)
+        .with_branch(args.branch)
+        .with_samples(args.samples)
+        .with_initial_spheres(args.initial_spheres)
+        .with_min_spheres_per_node(args.min_spheres_per_node)
+        .with_error_fraction(args.error_fraction)
+        .with_forming_points(args.forming_points)
+        .with_seed(args.seed);
     if let Some(path) = &args.output {
         output_format(path)?;
     }
 
-    let bar = progress::bar(quiet, "sampling, initial medial approximation", 1);
+    let bar = progress::bar(quiet, "sampling, initial spheres", 1);
     let report_progress = |p: &BuildProgress| {
         bar.set_length(p.total.max(1) as u64);
         bar.set_position(p.done as u64);
@@ -119,19 +108,20 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         ));
     };
     let started = Instant::now();
-    let tree = match args.method {
-        MethodArg::Octree => baseline::octree(mesh, &baseline_params),
-        MethodArg::Grid => baseline::grid(mesh, &baseline_params),
-        MethodArg::Hubbard => baseline::hubbard(mesh, &baseline_params),
-        _ => build_with_progress(mesh, &params, &report_progress),
-    };
+    let built = Surface::new(mesh)
+        .map_err(anyhow::Error::from)
+        .and_then(|surface| {
+            let tree = build_with_progress(&surface, &options, &report_progress)?;
+            Ok((surface, tree))
+        });
     bar.finish_and_clear();
-    let tree = tree.with_context(|| format!("cannot build a sphere-tree of {}", input.source))?;
+    let (surface, tree) =
+        built.with_context(|| format!("cannot build a sphere-tree of {}", input.source))?;
     let build_seconds = started.elapsed().as_secs_f64();
 
     let diagonal = mesh.bounding_box_diagonal();
     let started = Instant::now();
-    let levels = evaluate_levels(mesh, &tree, args.no_evaluation, quiet)?;
+    let levels = evaluate_levels(&surface, &tree, args.no_evaluation, quiet)?;
     let evaluate_seconds = started.elapsed().as_secs_f64();
 
     let tolerance = args.tolerance.map(|t| match t {
@@ -151,7 +141,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     let report = Report {
         mesh: input.source.clone(),
         triangles: mesh.triangle_count(),
-        method: args.method.name(),
+        method: args.method.method().name(),
         depth: args.depth,
         branch: args.branch,
         samples: args.samples,
@@ -184,18 +174,13 @@ fn input_name(mesh: Option<&Path>) -> String {
 }
 
 /// Per level: sizes, construction error, certificate and (unless skipped) the certified
-/// evaluation.
+/// evaluation on the surface the tree was built on.
 fn evaluate_levels(
-    mesh: &sphaera::mesh::TriMesh,
+    surface: &Surface,
     tree: &SphereTree,
     skip: bool,
     quiet: bool,
 ) -> Result<Vec<LevelReport>> {
-    let surface = if skip {
-        None
-    } else {
-        Some(Surface::new(mesh).context("cannot prepare the evaluation")?)
-    };
     let options = EvaluationOptions::default().with_relative_tolerance(EVALUATION_TOLERANCE);
     let bar = progress::bar(quiet, "evaluating", tree.level_count() as u64);
     let mut out = Vec::with_capacity(tree.level_count());
@@ -203,12 +188,13 @@ fn evaluate_levels(
         bar.set_message(format!("evaluating level {level}"));
         let nodes = tree.level(level);
         let started = Instant::now();
-        let evaluation = match &surface {
-            Some(surface) => Some(
-                evaluate_set(surface, mesh, &tree.level_spheres(level), &options)
+        let evaluation = if skip {
+            None
+        } else {
+            Some(
+                evaluate_set(surface, &tree.level_spheres(level), &options)
                     .with_context(|| format!("cannot evaluate level {level}"))?,
-            ),
-            None => None,
+            )
         };
         out.push(LevelReport {
             level,

@@ -3,9 +3,9 @@
 use std::collections::HashSet;
 
 use glam::DVec3;
-use sphaera_mesh::TriMesh;
 
-use super::{BaselineParams, CellGrid, Child, assemble, group_by_cell, start};
+use super::{CellGrid, Child, Start, assemble, group_by_cell};
+use crate::options::{BuildProgress, SphereTreeOptions};
 use crate::{SphereTree, SphereTreeError};
 
 /// Bisection steps of the cell-size search.
@@ -23,37 +23,12 @@ const SIZE_STEPS: usize = 48;
 /// yields a child of each (the same sphere twice), so a level may have somewhat more
 /// nodes than occupied cells and a node more than `branch` children;
 /// [`SphereTree::branch`] reports the most children any node has (at least `branch`).
-///
-/// # Errors
-///
-/// As [`octree`](super::octree), and [`SphereTreeError::InvalidParameter`] for
-/// `branch == 0`.
-///
-/// # Panics
-///
-/// Never.
-///
-/// # Performance
-///
-/// `O(48 · samples · log samples)` per level for the size search, plus one distance
-/// query per node.
-///
-/// # Examples
-///
-/// ```
-/// use sphaera_mesh::shapes;
-/// use sphaera_spheretree::baseline::{BaselineParams, grid};
-///
-/// let mesh = shapes::capsule(0.5, 2.0, 12)?;
-/// let tree = grid(&mesh, &BaselineParams::default().depth(2).branch(4).samples(1_000))?;
-/// assert_eq!(tree.level_count(), 3);
-/// // About 4 occupied cells at level 1 (a straddling cell may count twice).
-/// assert!((1..=8).contains(&tree.level(1).len()));
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn grid(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, SphereTreeError> {
-    let start = start(mesh, params)?;
-    let bounds = mesh.bounding_box();
+pub(crate) fn grid(
+    start: &Start<'_>,
+    params: &SphereTreeOptions,
+    progress: &(dyn Fn(&BuildProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
+    let bounds = start.surface.mesh().bounding_box();
     let extent = bounds.extent();
     let longest = extent.x.max(extent.y).max(extent.z).max(f64::MIN_POSITIVE);
     let samples = &start.samples;
@@ -66,18 +41,24 @@ pub fn grid(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, Spher
             level_grid(samples, bounds.min, longest, target)
         })
         .collect();
-    assemble(&start, params.depth, params.branch, |level, _, region| {
-        let Some(grid) = grids.get(level - 1) else {
-            return Ok(Vec::new());
-        };
-        Ok(group_by_cell(grid, samples, region)
-            .into_iter()
-            .map(|(cell, ids)| Child {
-                sphere: grid.cell_sphere(cell),
-                region: ids,
-            })
-            .collect())
-    })
+    assemble(
+        start,
+        params.depth,
+        params.branch,
+        progress,
+        |level, _, region| {
+            let Some(grid) = grids.get(level - 1) else {
+                return Ok(Vec::new());
+            };
+            Ok(group_by_cell(grid, samples, region)
+                .into_iter()
+                .map(|(cell, ids)| Child {
+                    sphere: grid.cell_sphere(cell),
+                    region: ids,
+                })
+                .collect())
+        },
+    )
 }
 
 /// The grid of the smallest cell edge with at most `target` occupied cells.

@@ -5,10 +5,11 @@ use std::cmp::Reverse;
 
 use glam::DVec3;
 use sphaera_medial::{CoverCriterion, MedialApproximation, Surface};
+use sphaera_mesh::Sphere;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
-use sphaera_mesh::{Sphere, TriMesh};
 
-use super::{BaselineParams, Child, assemble, start};
+use super::{Child, Start, assemble};
+use crate::options::{BuildProgress, SphereTreeOptions};
 use crate::reduce::{centre_depth, eq2_error};
 use crate::segment::divide;
 use crate::{SphereTree, SphereTreeError};
@@ -24,7 +25,7 @@ const NEIGHBOURS: usize = 8;
 ///
 /// 1. A **static** medial approximation
 ///    ([`MedialApproximation::build_static`]): the Voronoi diagram of
-///    [`BaselineParams::forming_points`] samples, its internal spheres, never refined.
+///    [`SphereTreeOptions::forming_points`] samples, its internal spheres, never refined.
 ///    Unlike Hubbard, coverage of the samples is completed (with the smallest-error cover
 ///    spheres), because every level of a [`SphereTree`] must cover its parent's region.
 /// 2. Per node, the medial spheres covering a sample of its region are **merged** in
@@ -37,40 +38,13 @@ const NEIGHBOURS: usize = 8;
 /// 3. The region is divided between the merged spheres with
 ///    [`segment::divide`](crate::segment::divide) (balanced), and each sphere is grown
 ///    by rounding's worth if needed to contain its part.
-///
-/// # Errors
-///
-/// As [`octree`](super::octree); [`SphereTreeError::InvalidParameter`] for
-/// `branch == 0` or fewer than 4 forming points; [`SphereTreeError::Medial`] when the
-/// mesh has no meaningful inside (a single triangle).
-///
-/// # Panics
-///
-/// Never.
-///
-/// # Performance
-///
-/// The merges cost one surface distance query per candidate pair; the level-1 node
-/// merges the whole static set (about 2,500 spheres on the low-res bunny), so the
-/// neighbour lists keep that to a few per merge.
-///
-/// # Examples
-///
-/// ```
-/// use sphaera_mesh::shapes;
-/// use sphaera_spheretree::baseline::{BaselineParams, hubbard};
-///
-/// let mesh = shapes::capsule(0.5, 2.0, 12)?;
-/// let params = BaselineParams::default().depth(2).branch(4).samples(800).forming_points(100);
-/// let tree = hubbard(&mesh, &params)?;
-/// assert!(tree.nodes().iter().all(|n| n.children.len() <= 4));
-/// assert!(!tree.level(2).is_empty());
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn hubbard(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, SphereTreeError> {
-    let start = start(mesh, params)?;
+pub(crate) fn hubbard(
+    start: &Start<'_>,
+    params: &SphereTreeOptions,
+    progress: &(dyn Fn(&BuildProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
     let medial = MedialApproximation::build_static(
-        &start.surface,
+        start.surface,
         &start.samples,
         params.forming_points.min(start.samples.len()),
         Some(CoverCriterion::SmallestError),
@@ -90,33 +64,39 @@ pub fn hubbard(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, Sp
         }
     }
     let samples = &start.samples;
-    let surface = &start.surface;
-    assemble(&start, params.depth, params.branch, |_, _, region| {
-        let mut members: Vec<u32> = region
-            .iter()
-            .flat_map(|&s| covering[s as usize].iter().copied())
-            .collect();
-        members.sort_unstable();
-        members.dedup();
-        let set: Vec<Sphere> = members.iter().map(|&i| spheres[i as usize]).collect();
-        let merged = merge_bounding(surface, &set, params.branch);
-        let points: Vec<DVec3> = region.iter().map(|&s| samples[s as usize]).collect();
-        let groups = divide(&points, &merged, true);
-        Ok(merged
-            .iter()
-            .zip(groups)
-            .map(|(sphere, group)| {
-                let radius = group
-                    .iter()
-                    .map(|&g| points[g as usize].distance(sphere.center))
-                    .fold(sphere.radius, f64::max);
-                Child {
-                    sphere: Sphere::new(sphere.center, radius),
-                    region: group.iter().map(|&g| region[g as usize]).collect(),
-                }
-            })
-            .collect())
-    })
+    let surface = start.surface;
+    assemble(
+        start,
+        params.depth,
+        params.branch,
+        progress,
+        |_, _, region| {
+            let mut members: Vec<u32> = region
+                .iter()
+                .flat_map(|&s| covering[s as usize].iter().copied())
+                .collect();
+            members.sort_unstable();
+            members.dedup();
+            let set: Vec<Sphere> = members.iter().map(|&i| spheres[i as usize]).collect();
+            let merged = merge_bounding(surface, &set, params.branch);
+            let points: Vec<DVec3> = region.iter().map(|&s| samples[s as usize]).collect();
+            let groups = divide(&points, &merged, true);
+            Ok(merged
+                .iter()
+                .zip(groups)
+                .map(|(sphere, group)| {
+                    let radius = group
+                        .iter()
+                        .map(|&g| points[g as usize].distance(sphere.center))
+                        .fold(sphere.radius, f64::max);
+                    Child {
+                        sphere: Sphere::new(sphere.center, radius),
+                        region: group.iter().map(|&g| region[g as usize]).collect(),
+                    }
+                })
+                .collect())
+        },
+    )
 }
 
 /// The smallest sphere enclosing spheres `a` and `b`.

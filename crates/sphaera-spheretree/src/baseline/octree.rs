@@ -2,9 +2,9 @@
 //! O'Sullivan and Dingliana; section 2 of the paper).
 
 use glam::DVec3;
-use sphaera_mesh::TriMesh;
 
-use super::{BaselineParams, CellGrid, Child, assemble, group_by_cell, start};
+use super::{CellGrid, Child, Start, assemble, group_by_cell};
+use crate::options::{BuildProgress, SphereTreeOptions};
 use crate::{SphereTree, SphereTreeError};
 
 /// Builds the octree sphere-tree of `mesh`: the bounding cube of the mesh is subdivided
@@ -21,45 +21,19 @@ use crate::{SphereTree, SphereTreeError};
 /// cell is larger than about three sample spacings.
 ///
 /// Each node has at most 8 children ([`SphereTree::branch`] is 8 whatever
-/// [`BaselineParams::branch`] says). Only `depth`, `samples` and `seed` are used.
-///
-/// # Errors
-///
-/// [`SphereTreeError::InvalidParameter`] for a depth above
-/// [`MAX_DEPTH`](super::MAX_DEPTH) or a sample count outside 4..=[`MAX_SAMPLES`](super::MAX_SAMPLES);
-/// [`SphereTreeError::Mesh`] for an empty mesh or one without area;
-/// [`SphereTreeError::Medial`] when the surface cannot be set up.
-///
-/// # Panics
-///
-/// Never.
-///
-/// # Performance
-///
-/// `O(samples · depth · log samples)` plus one distance query per node (for its error).
-///
-/// # Examples
-///
-/// ```
-/// use sphaera_mesh::shapes;
-/// use sphaera_spheretree::baseline::{BaselineParams, octree};
-///
-/// let mesh = shapes::sphere(1.0, 12)?;
-/// let tree = octree(&mesh, &BaselineParams::default().depth(1).samples(500))?;
-/// // The unit sphere touches all 8 octants of its bounding cube.
-/// assert_eq!(tree.level(1).len(), 8);
-/// assert_eq!(tree.branch(), 8);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn octree(mesh: &TriMesh, params: &BaselineParams) -> Result<SphereTree, SphereTreeError> {
-    let start = start(mesh, params)?;
-    let bounds = mesh.bounding_box();
+/// `branch` says). Only `depth`, `samples` and `seed` are used.
+pub(crate) fn octree(
+    start: &Start<'_>,
+    params: &SphereTreeOptions,
+    progress: &(dyn Fn(&BuildProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
+    let bounds = start.surface.mesh().bounding_box();
     let extent = bounds.extent();
     // A hair larger than the box, so that no sample sits on the far faces.
     let edge = extent.x.max(extent.y).max(extent.z).max(f64::MIN_POSITIVE) * (1.0 + 1e-9);
     let origin = bounds.center() - DVec3::splat(0.5 * edge);
     let samples = &start.samples;
-    assemble(&start, params.depth, 8, |level, _, region| {
+    assemble(start, params.depth, 8, progress, |level, _, region| {
         let cells = 1u64 << level;
         let grid = CellGrid {
             origin,

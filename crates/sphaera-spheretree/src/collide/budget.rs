@@ -94,13 +94,18 @@ impl Budget {
 
     pub(super) fn validate(&self) -> Result<(), SphereTreeError> {
         if let Self::Cost { limit, model } = self {
-            let bad = |v: f64| v.is_nan() || v < 0.0;
-            if bad(*limit) || bad(model.update_cost) || bad(model.test_cost) {
-                return Err(SphereTreeError::InvalidParameter(format!(
-                    "a cost budget needs a limit and costs that are not NaN or negative \
-                     (limit {limit}, update cost {}, test cost {})",
-                    model.update_cost, model.test_cost
-                )));
+            for (name, value) in [
+                ("limit", *limit),
+                ("update_cost", model.update_cost),
+                ("test_cost", model.test_cost),
+            ] {
+                if value.is_nan() || value < 0.0 {
+                    return Err(SphereTreeError::InvalidParameter {
+                        name,
+                        value,
+                        requirement: "not NaN or negative",
+                    });
+                }
             }
         }
         Ok(())

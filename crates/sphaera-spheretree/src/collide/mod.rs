@@ -168,12 +168,12 @@ fn touch(a: &Sphere, b: &Sphere) -> bool {
 ///
 /// ```
 /// use sphaera_spheretree::collide::{Budget, Similarity, collide};
-/// use sphaera_spheretree::{DVec3, Params, build};
+/// use sphaera_spheretree::{DVec3, SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = Params::default().depth(1).branch(4).samples(400)
-///     .initial_spheres(60).min_spheres_per_node(20);
-/// let tree = build(&mesh, &params)?;
+/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &params)?;
 /// let here = Similarity::IDENTITY;
 /// let near = Similarity::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
 ///
@@ -399,12 +399,12 @@ fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
 ///
 /// ```
 /// use sphaera_spheretree::collide::{Similarity, overlaps};
-/// use sphaera_spheretree::{DVec3, Params, build};
+/// use sphaera_spheretree::{DVec3, SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = Params::default().depth(1).branch(4).samples(400)
-///     .initial_spheres(60).min_spheres_per_node(20);
-/// let tree = build(&mesh, &params)?;
+/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &params)?;
 /// let here = Similarity::IDENTITY;
 /// assert!(overlaps(&tree, &here, &tree, &Similarity::from_translation(DVec3::X)?));
 /// assert!(!overlaps(&tree, &here, &tree, &Similarity::from_translation(DVec3::X * 5.0)?));

@@ -21,7 +21,7 @@
 //!     Sphere::new(DVec3::new(0.0, 0.0, -0.6), 0.75),
 //!     Sphere::new(DVec3::new(0.0, 0.0, 0.6), 0.75),
 //! ];
-//! let set = evaluate_set(&surface, &mesh, &spheres, &EvaluationOptions::default())?;
+//! let set = evaluate_set(&surface, &spheres, &EvaluationOptions::default())?;
 //! assert!(set.converged && set.worst_upper - set.worst_lower <= set.tolerance);
 //! // Each sphere pokes out of the tube by 0.75 − 0.5 = 0.25 (a little more from the
 //! // polygonal mesh).

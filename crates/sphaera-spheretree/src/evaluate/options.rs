@@ -144,26 +144,33 @@ impl EvaluationOptions {
         if let Some(t) = self.tolerance
             && !(t.is_finite() && t > 0.0)
         {
-            return Err(SphereTreeError::InvalidParameter(format!(
-                "the evaluation tolerance must be finite and positive, got {t}"
-            )));
+            return Err(SphereTreeError::InvalidParameter {
+                name: "tolerance",
+                value: t,
+                requirement: "finite and positive",
+            });
         }
         let rel = self.relative_tolerance;
         if !(rel.is_finite() && rel > 0.0) {
-            return Err(SphereTreeError::InvalidParameter(format!(
-                "the relative evaluation tolerance must be finite and positive, got {rel}"
-            )));
+            return Err(SphereTreeError::InvalidParameter {
+                name: "relative_tolerance",
+                value: rel,
+                requirement: "finite and positive",
+            });
         }
         if self.max_patches < INITIAL_PATCHES {
-            return Err(SphereTreeError::InvalidParameter(format!(
-                "the patch budget must be at least {INITIAL_PATCHES}, got {}",
-                self.max_patches
-            )));
+            return Err(SphereTreeError::InvalidParameter {
+                name: "max_patches",
+                value: self.max_patches as f64,
+                requirement: "at least 20 (the icosahedron's faces)",
+            });
         }
         if self.coverage_samples == 0 {
-            return Err(SphereTreeError::InvalidParameter(
-                "the coverage measure needs at least one sample".to_owned(),
-            ));
+            return Err(SphereTreeError::InvalidParameter {
+                name: "coverage_samples",
+                value: 0.0,
+                requirement: "at least 1",
+            });
         }
         Ok(())
     }
@@ -175,9 +182,11 @@ impl EvaluationOptions {
         if t.is_finite() && t > 0.0 {
             Ok(t)
         } else {
-            Err(SphereTreeError::InvalidParameter(format!(
-                "the evaluation tolerance must be finite and positive, got {t} (is the mesh degenerate?)"
-            )))
+            Err(SphereTreeError::InvalidParameter {
+                name: "tolerance",
+                value: t,
+                requirement: "finite and positive (is the mesh degenerate?)",
+            })
         }
     }
 }

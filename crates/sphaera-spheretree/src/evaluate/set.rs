@@ -3,7 +3,6 @@
 use std::time::{Duration, Instant};
 
 use sphaera_medial::Surface;
-use sphaera_mesh::TriMesh;
 
 use super::EvaluationOptions;
 use super::coverage::{Coverage, coverage};
@@ -27,7 +26,7 @@ use crate::{Sphere, SphereTreeError};
 /// // centres are farthest from the cube, √3 − 1 away.
 /// let ball = [Sphere::new(DVec3::ZERO, 3.0_f64.sqrt())];
 /// let options = EvaluationOptions::default().with_coverage_samples(2_000);
-/// let set = evaluate_set(&surface, &mesh, &ball, &options)?;
+/// let set = evaluate_set(&surface, &ball, &options)?;
 /// assert_eq!(set.sphere_count, 1);
 /// assert_eq!(set.coverage.uncovered, 0);
 /// let exact = 3.0_f64.sqrt() - 1.0;
@@ -62,7 +61,7 @@ pub struct SetEvaluation {
     pub elapsed: Duration,
 }
 
-/// Evaluates `spheres` against the object of `surface` (built from `mesh`): per-sphere
+/// Evaluates `spheres` against the object of `surface`: per-sphere
 /// certified errors ([`sphere_errors`](super::sphere_errors)), their worst, mean and
 /// variance, and the surface coverage ([`coverage`](super::coverage)).
 ///
@@ -78,7 +77,7 @@ pub struct SetEvaluation {
 /// let surface = Surface::new(&mesh)?;
 /// let spheres = [Sphere::new(DVec3::new(0.0, 0.0, 0.9), 0.3), Sphere::new(DVec3::ZERO, 0.2)];
 /// let options = EvaluationOptions::default().with_coverage_samples(5_000);
-/// let set = evaluate_set(&surface, &mesh, &spheres, &options)?;
+/// let set = evaluate_set(&surface, &spheres, &options)?;
 /// assert_eq!(set.worst_index, 0);
 /// assert!(set.worst_lower > 0.15 && set.worst_upper < 0.21);
 /// assert!(set.coverage.uncovered_fraction > 0.9);
@@ -102,7 +101,6 @@ pub struct SetEvaluation {
 /// documentation](super)); the coverage costs `O(n log S)` for `n` samples.
 pub fn evaluate_set(
     surface: &Surface,
-    mesh: &TriMesh,
     spheres: &[Sphere],
     options: &EvaluationOptions,
 ) -> Result<SetEvaluation, SphereTreeError> {
@@ -113,7 +111,7 @@ pub fn evaluate_set(
     }
     check_spheres(spheres)?;
     let fits = sphere_errors(surface, spheres, options)?;
-    let coverage = coverage(mesh, spheres, options)?;
+    let coverage = coverage(surface.mesh(), spheres, options)?;
     let n = fits.len() as f64;
     let mut worst_index = 0;
     for (i, f) in fits.iter().enumerate() {

@@ -42,12 +42,12 @@ pub const JSON_VERSION: u32 = 1;
 ///
 /// ```
 /// use sphaera_spheretree::export::TreeJson;
-/// use sphaera_spheretree::{Params, build};
+/// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = Params::default().depth(1).branch(4).samples(400)
-///     .initial_spheres(60).min_spheres_per_node(20);
-/// let tree = build(&mesh, &params)?;
+/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &params)?;
 /// let json = TreeJson::from_tree(&tree);
 /// assert_eq!(json.levels.len(), 2);
 /// assert_eq!(json.nodes[0].parent, None);
@@ -351,12 +351,12 @@ fn worst_error(nodes: &[TreeNode]) -> f64 {
 ///
 /// ```
 /// use sphaera_spheretree::export::{tree_from_json, tree_to_json};
-/// use sphaera_spheretree::{Params, build};
+/// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = Params::default().depth(1).branch(4).samples(400)
-///     .initial_spheres(60).min_spheres_per_node(20);
-/// let tree = build(&mesh, &params)?;
+/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &params)?;
 /// let text = tree_to_json(&tree);
 /// assert!(text.contains("\"format\": \"sphaera-spheretree\""));
 /// assert_eq!(tree_from_json(&text)?, tree);
@@ -391,7 +391,7 @@ pub fn tree_to_json(tree: &SphereTree) -> String {
 ///
 /// let broken = text.replace("\"children\": []", "\"children\": [1]");
 /// assert!(matches!(tree_from_json(&broken), Err(SphereTreeError::InvalidTree(_))));
-/// assert!(matches!(tree_from_json("{"), Err(SphereTreeError::Format { line: 1, .. })));
+/// assert!(matches!(tree_from_json("{"), Err(SphereTreeError::Json { line: 1, .. })));
 /// # Ok::<(), SphereTreeError>(())
 /// ```
 ///
@@ -404,9 +404,9 @@ pub fn tree_to_json(tree: &SphereTree) -> String {
 ///
 /// Never.
 pub fn tree_from_json(text: &str) -> Result<SphereTree, SphereTreeError> {
-    let json: TreeJson = serde_json::from_str(text).map_err(|e| SphereTreeError::Format {
-        line: e.line(),
-        message: e.to_string(),
+    let json: TreeJson = serde_json::from_str(text).map_err(|source| SphereTreeError::Json {
+        line: source.line(),
+        source,
     })?;
     json.to_tree()
 }
@@ -418,12 +418,12 @@ pub fn tree_from_json(text: &str) -> Result<SphereTree, SphereTreeError> {
 ///
 /// ```
 /// use sphaera_spheretree::export::{tree_from_json, write_tree_json};
-/// use sphaera_spheretree::{Params, build};
+/// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = Params::default().depth(1).branch(4).samples(400)
-///     .initial_spheres(60).min_spheres_per_node(20);
-/// let tree = build(&mesh, &params)?;
+/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &params)?;
 /// let path = std::env::temp_dir().join(format!("doc-tree-{}.json", std::process::id()));
 /// write_tree_json(&path, &tree)?;
 /// assert_eq!(tree_from_json(&std::fs::read_to_string(&path)?)?, tree);

@@ -1,7 +1,7 @@
 //! Exports of a sphere-tree: JSON (the whole tree, read back with validation), the
 //! YAML "collision spheres" list robot motion planners take, and (with the `parry`
-//! feature) a `parry3d-f64` compound of balls. The classic `.sph` format is in
-//! [`sph`](crate::sph).
+//! feature) a `parry3d-f64` compound of balls; and the classic `.sph` text format of
+//! the original toolkit ([`SphFile`], [`read_sph`], [`write_sph`]).
 //!
 //! Files are written atomically: to a temporary file in the same directory, renamed over
 //! the target.
@@ -9,6 +9,7 @@
 mod json;
 #[cfg(feature = "parry")]
 mod parry;
+mod sph;
 mod yaml;
 
 pub use json::{
@@ -17,4 +18,5 @@ pub use json::{
 };
 #[cfg(feature = "parry")]
 pub use parry::to_parry_compound;
+pub use sph::{SphDefect, SphFile, read_sph, write_sph};
 pub use yaml::{CollisionLink, collision_spheres_yaml, write_collision_spheres_yaml};

@@ -45,12 +45,12 @@ impl CollisionLink {
     ///
     /// ```
     /// use sphaera_spheretree::export::CollisionLink;
-    /// use sphaera_spheretree::{Params, build};
+    /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
     ///
     /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = Params::default().depth(1).branch(4).samples(400)
-    ///     .initial_spheres(60).min_spheres_per_node(20);
-    /// let tree = build(&mesh, &params)?;
+    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+    ///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+    /// let tree = build(&Surface::new(&mesh)?, &params)?;
     /// let link = CollisionLink::from_level("arm", &tree, 1);
     /// assert_eq!(link.spheres, tree.level_spheres(1));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -68,12 +68,12 @@ impl CollisionLink {
     /// ```
     /// use sphaera_spheretree::export::CollisionLink;
     /// use sphaera_spheretree::select::cut_for_tolerance;
-    /// use sphaera_spheretree::{Params, build};
+    /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
     ///
     /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = Params::default().depth(1).branch(4).samples(400)
-    ///     .initial_spheres(60).min_spheres_per_node(20);
-    /// let tree = build(&mesh, &params)?;
+    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+    ///     .with_initial_spheres(60).with_min_spheres_per_node(20);
+    /// let tree = build(&Surface::new(&mesh)?, &params)?;
     /// let cut = cut_for_tolerance(&tree, 0.1);
     /// let link = CollisionLink::from_cut("arm", &tree, &cut);
     /// assert_eq!(link.spheres.len(), cut.nodes.len());
@@ -129,7 +129,7 @@ fn yaml_float(v: f64) -> String {
 ///
 /// # Errors
 ///
-/// - [`SphereTreeError::InvalidParameter`] when two links have the same name.
+/// - [`SphereTreeError::DuplicateLink`] when two links have the same name.
 /// - [`SphereTreeError::InvalidSphere`] for a NaN or infinite centre or radius, or a
 ///   negative radius; `index` counts the spheres of all links in order.
 ///
@@ -140,10 +140,9 @@ pub fn collision_spheres_yaml(links: &[CollisionLink]) -> Result<String, SphereT
     let mut names: Vec<&str> = links.iter().map(|l| l.name.as_str()).collect();
     names.sort_unstable();
     if let Some(pair) = names.windows(2).find(|w| w[0] == w[1]) {
-        return Err(SphereTreeError::InvalidParameter(format!(
-            "two links are named {:?}",
-            pair[0]
-        )));
+        return Err(SphereTreeError::DuplicateLink {
+            name: pair[0].to_owned(),
+        });
     }
     let mut index = 0;
     for link in links {

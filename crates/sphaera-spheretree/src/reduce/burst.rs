@@ -146,9 +146,11 @@ pub fn burst(
     target: usize,
 ) -> Result<Vec<FittedSphere>, SphereTreeError> {
     if target == 0 {
-        return Err(SphereTreeError::InvalidParameter(
-            "the target sphere count must be at least 1".into(),
-        ));
+        return Err(SphereTreeError::InvalidParameter {
+            name: "target",
+            value: 0.0,
+            requirement: "at least 1",
+        });
     }
     input.validate()?;
     let mut state = State::new(input);

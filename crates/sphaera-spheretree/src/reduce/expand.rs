@@ -114,9 +114,11 @@ pub fn expand_select(
     selection: Selection,
 ) -> Result<ExpandOutcome, SphereTreeError> {
     if target == 0 {
-        return Err(SphereTreeError::InvalidParameter(
-            "the target sphere count must be at least 1".into(),
-        ));
+        return Err(SphereTreeError::InvalidParameter {
+            name: "target",
+            value: 0.0,
+            requirement: "at least 1",
+        });
     }
     input.validate()?;
     let expandable: Vec<Expandable> = input

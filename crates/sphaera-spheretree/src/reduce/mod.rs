@@ -75,18 +75,17 @@ impl ReductionInput<'_> {
                 match covered.get_mut(p as usize) {
                     Some(slot) => *slot = true,
                     None => {
-                        return Err(SphereTreeError::InvalidParameter(format!(
-                            "candidate {index} covers point {p}, but there are only {}",
-                            self.points.len()
-                        )));
+                        return Err(SphereTreeError::CoverOutOfRange {
+                            candidate: index,
+                            point: p,
+                            points: self.points.len(),
+                        });
                     }
                 }
             }
         }
         if let Some(p) = covered.iter().position(|&c| !c) {
-            return Err(SphereTreeError::InvalidParameter(format!(
-                "point {p} is covered by no candidate"
-            )));
+            return Err(SphereTreeError::UncoveredPoint { point: p });
         }
         Ok(())
     }

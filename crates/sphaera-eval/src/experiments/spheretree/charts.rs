@@ -7,7 +7,7 @@ use anyhow::Result;
 
 use super::{
     BRANCH, DEPTH, LEVEL_CHART, MESHES, METHODS, Measured, Method, TIME_CHART, TOOLKIT,
-    TOOLKIT_MESH,
+    TOOLKIT_MESH, method_index,
 };
 use crate::chart::{
     ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
@@ -123,7 +123,7 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
 /// The style of a measured method: its colour, filled `marker`s, joined by a line if `line`.
 fn method_style(method: Method, marker: Marker, line: bool) -> Style {
     Style {
-        color: palette(method.index()),
+        color: palette(method_index(method)),
         marker,
         filled: true,
         line,
@@ -162,7 +162,7 @@ fn toolkit_style(name: &str, marker: Marker, line: bool) -> Style {
 /// The x of `level` for `method` in the level chart: shifted a little per method, so
 /// that methods with equal errors (combined often equals expand) stay visible.
 fn dodge(level: usize, method: Method) -> f64 {
-    level as f64 + 0.035 * (method.index() as f64 - 3.0)
+    level as f64 + 0.035 * (method_index(method) as f64 - 3.0)
 }
 
 /// One panel per mesh: certified worst error against level, one line per method; the
@@ -315,13 +315,12 @@ pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
 mod tests {
     use super::super::tests::{measured, scratch};
     use super::*;
-    use sphaera::spheretree::Reducer;
 
     #[test]
     fn tables_and_charts_list_the_mesh_first() -> Result<()> {
         let dir = scratch("spheretree");
         let rows = [
-            measured(Method::Medial(Reducer::Merge), [0.10, 0.05, 0.02]),
+            measured(Method::Merge, [0.10, 0.05, 0.02]),
             measured(Method::Octree, [0.40, 0.25, 0.13]),
         ];
         write_level_table(&dir, &rows)?;
@@ -362,7 +361,7 @@ mod tests {
         }
         assert_eq!(METHODS.len(), 7);
         for (i, &m) in METHODS.iter().enumerate() {
-            assert_eq!(m.index(), i);
+            assert_eq!(method_index(m), i);
         }
     }
 
@@ -373,8 +372,8 @@ mod tests {
                 assert!((dodge(l, m) - l as f64).abs() < 0.25);
             }
         }
-        let merge = Method::Medial(Reducer::Merge);
-        let expand = Method::Medial(Reducer::Expand);
+        let merge = Method::Merge;
+        let expand = Method::Expand;
         assert!(dodge(2, merge) < dodge(2, expand));
     }
 }

@@ -6,14 +6,15 @@
 //! [`DEPTH`] and branching factor [`BRANCH`] with seed [`SEED`], everything else at its
 //! default:
 //!
-//! - **merge, burst, expand, combined**: `sphaera::spheretree::build` with
-//!   `Params::default().reducer(..)` (the paper's settings: 10,000 surface samples, an
-//!   initial medial approximation of 500 spheres refined to at least 100 per node);
-//! - **octree, grid, hubbard**: `baseline::{octree, grid, hubbard}` with
-//!   `BaselineParams::default()`.
+//! `sphaera::spheretree::build` with `SphereTreeOptions::default().with_method(..)`:
 //!
-//! Measured per tree: the **build time**, the best of [`RUNS`] runs of the build alone
-//! (mesh loading, surface preparation and evaluation excluded; wall-clock, with the
+//! - **merge, burst, expand, combined**: the paper's settings (10,000 surface samples, an
+//!   initial medial approximation of 500 spheres refined to at least 100 per node);
+//! - **octree, grid, hubbard**: the baselines, at the same depth, branch and seed.
+//!
+//! Measured per tree: the **build time**, the best of [`RUNS`] runs of the surface's
+//! preparation and the build, as a user runs them (mesh loading and evaluation excluded;
+//! wall-clock, with the
 //! `parallel` feature on every core, whereas the toolkit's figures are single-threaded
 //! CPU seconds), and per level 1 to
 //! [`DEPTH`] the **certified worst error**: `evaluate_set` on the level's spheres with
@@ -40,13 +41,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    medial::Surface,
-    mesh::TriMesh,
-    spheretree::{
-        EvaluationOptions, Params, Reducer, SphereTree,
-        baseline::{self, BaselineParams},
-        build, evaluate_set,
-    },
+    mesh::{Surface, TriMesh},
+    spheretree::{EvaluationOptions, Method, SphereTree, SphereTreeOptions, build, evaluate_set},
 };
 
 use super::{load_or_skip, min_time};
@@ -100,65 +96,25 @@ pub const TOOLKIT: &[(&str, Option<f64>, [f64; 3])] = &[
 /// The mesh the toolkit's figures are for.
 const TOOLKIT_MESH: &str = "bunny_lowres.obj";
 
-/// The methods, in the order of the charts' colours.
-const METHODS: &[Method] = &[
-    Method::Medial(Reducer::Merge),
-    Method::Medial(Reducer::Burst),
-    Method::Medial(Reducer::Expand),
-    Method::Medial(Reducer::Combined),
-    Method::Octree,
-    Method::Grid,
-    Method::Hubbard,
-];
+/// The methods, in the order of the charts' colours: every method of the library.
+const METHODS: &[Method] = &Method::ALL;
 
-/// How a tree is built.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Method {
-    Medial(Reducer),
-    Octree,
-    Grid,
-    Hubbard,
+/// The position of `method` in [`METHODS`], for its colour.
+fn method_index(method: Method) -> usize {
+    METHODS.iter().position(|&m| m == method).unwrap_or(0)
 }
 
-impl Method {
-    /// Name in the CSV and the legend.
-    fn name(self) -> &'static str {
-        match self {
-            Self::Medial(Reducer::Merge) => "merge",
-            Self::Medial(Reducer::Burst) => "burst",
-            Self::Medial(Reducer::Expand) => "expand",
-            Self::Medial(Reducer::Combined) => "combined",
-            Self::Octree => "octree",
-            Self::Grid => "grid",
-            Self::Hubbard => "hubbard",
-        }
-    }
-
-    /// The position in [`METHODS`], for the colour.
-    fn index(self) -> usize {
-        METHODS.iter().position(|&m| m == self).unwrap_or(0)
-    }
-
-    fn build(self, mesh: &TriMesh) -> Result<SphereTree> {
-        let baseline = BaselineParams::default()
-            .depth(DEPTH)
-            .branch(BRANCH)
-            .seed(SEED);
-        let tree = match self {
-            Self::Medial(reducer) => build(
-                mesh,
-                &Params::default()
-                    .reducer(reducer)
-                    .depth(DEPTH)
-                    .branch(BRANCH)
-                    .seed(SEED),
-            ),
-            Self::Octree => baseline::octree(mesh, &baseline),
-            Self::Grid => baseline::grid(mesh, &baseline),
-            Self::Hubbard => baseline::hubbard(mesh, &baseline),
-        };
-        tree.with_context(|| format!("{} tree failed", self.name()))
-    }
+/// The tree of `mesh` by `method`, as a user builds it: the surface prepared, then built.
+fn build_tree(method: Method, mesh: &TriMesh) -> Result<SphereTree> {
+    let options = SphereTreeOptions::default()
+        .with_method(method)
+        .with_depth(DEPTH)
+        .with_branch(BRANCH)
+        .with_seed(SEED);
+    Surface::new(mesh)
+        .map_err(anyhow::Error::from)
+        .and_then(|surface| Ok(build(&surface, &options)?))
+        .with_context(|| format!("{} tree failed", method.name()))
 }
 
 /// One evaluated level of a tree; errors relative to the diagonal.
@@ -228,7 +184,7 @@ fn measure_mesh(
     let diagonal = surface.diagonal();
     let options = EvaluationOptions::default().with_relative_tolerance(EVALUATION_TOLERANCE);
     for &method in METHODS {
-        let (seconds, tree) = min_time(RUNS, || method.build(mesh))?;
+        let (seconds, tree) = min_time(RUNS, || build_tree(method, mesh))?;
         let mut levels = Vec::new();
         for level in 1..tree.level_count().min(DEPTH + 1) {
             let nodes = tree.level(level);
@@ -236,7 +192,7 @@ fn measure_mesh(
                 eprintln!("{label}: {} has no level {level}", method.name());
                 continue;
             }
-            let evaluation = evaluate_set(&surface, mesh, &tree.level_spheres(level), &options)
+            let evaluation = evaluate_set(&surface, &tree.level_spheres(level), &options)
                 .with_context(|| format!("cannot evaluate {} level {level}", method.name()))?;
             levels.push(Level {
                 level,
@@ -310,12 +266,8 @@ fn oddities(measured: &[Measured]) -> Vec<String> {
             }
         }
         let rivals: &[Method] = match m.method {
-            Method::Medial(Reducer::Combined) => &[
-                Method::Medial(Reducer::Merge),
-                Method::Medial(Reducer::Expand),
-                Method::Hubbard,
-            ],
-            Method::Medial(_) => &[Method::Hubbard],
+            Method::Combined => &[Method::Merge, Method::Expand, Method::Hubbard],
+            medial if medial.is_medial() => &[Method::Hubbard],
             _ => &[],
         };
         for &rival in rivals {
@@ -380,15 +332,15 @@ mod tests {
     #[test]
     fn oddities_name_worse_levels_and_worse_combined() {
         let fine = [
-            measured(Method::Medial(Reducer::Merge), [0.10, 0.05, 0.02]),
-            measured(Method::Medial(Reducer::Expand), [0.11, 0.04, 0.02]),
-            measured(Method::Medial(Reducer::Combined), [0.10, 0.04, 0.02]),
+            measured(Method::Merge, [0.10, 0.05, 0.02]),
+            measured(Method::Expand, [0.11, 0.04, 0.02]),
+            measured(Method::Combined, [0.10, 0.04, 0.02]),
             measured(Method::Hubbard, [0.14, 0.06, 0.06]),
         ];
         assert!(oddities(&fine).is_empty(), "{:?}", oddities(&fine));
         let odd = [
-            measured(Method::Medial(Reducer::Merge), [0.10, 0.05, 0.06]),
-            measured(Method::Medial(Reducer::Combined), [0.10, 0.055, 0.02]),
+            measured(Method::Merge, [0.10, 0.05, 0.06]),
+            measured(Method::Combined, [0.10, 0.055, 0.02]),
         ];
         let notes = oddities(&odd);
         assert_eq!(notes.len(), 2, "{notes:?}");

@@ -31,7 +31,8 @@
 //! last five fields (an auxiliary sphere and its error decrease, written by some of its
 //! optimisers) are ignored. Trailing lines beyond the complete tree are accepted only when
 //! they are unused slots (the toolkit allocates `1 + B` nodes even for a single level).
-//! Anything else is a [`SphereTreeError::Format`] naming the line.
+//! Anything else is a [`SphereTreeError::SphSyntax`] naming the line and the
+//! [`SphDefect`].
 
 use std::fmt::Write as _;
 use std::ops::Range;
@@ -47,13 +48,124 @@ const MAX_SLOTS: usize = 1 << 24;
 /// Importance written for an unused slot, as the original toolkit does.
 const UNUSED_IMPORTANCE: f64 = 1.0;
 
+/// What is wrong with a `.sph` text ([`SphereTreeError::SphSyntax`], with its line) or
+/// with a tree to be written in the format ([`SphereTreeError::SphLayout`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SphDefect {
+    /// The text holds no header.
+    #[error("empty file: expected a header \"levels branch\"")]
+    EmptyFile,
+    /// The header is not two fields.
+    #[error("expected a header of two integers \"levels branch\", found {fields} fields")]
+    HeaderFields {
+        /// The number of fields found.
+        fields: usize,
+    },
+    /// A header field is not a non-negative integer.
+    #[error("the {name} is not a non-negative integer: {text:?}")]
+    HeaderNotInteger {
+        /// `"number of levels"` or `"branching factor"`.
+        name: &'static str,
+        /// The field as written.
+        text: String,
+    },
+    /// The tree has no level.
+    #[error("a tree has at least one level (the root)")]
+    NoLevel,
+    /// The branching factor is 0.
+    #[error("the branching factor must be at least 1")]
+    NoBranch,
+    /// The complete tree of the header is larger than the text could hold (reading) or
+    /// than memory can address (writing).
+    #[error(
+        "a complete tree of {levels} levels and branching factor {branch} has more nodes than {limit}"
+    )]
+    TooLarge {
+        /// Levels, the root included.
+        levels: usize,
+        /// Branching factor.
+        branch: usize,
+        /// What the node count exceeds: `"the file has characters"`, `"fit in memory"`.
+        limit: &'static str,
+    },
+    /// A node field is not a number.
+    #[error("field {field} is not a number: {text:?}")]
+    NotANumber {
+        /// 1-based field number.
+        field: usize,
+        /// The field as written.
+        text: String,
+    },
+    /// A node field is NaN or infinite.
+    #[error("field {field} is not finite: {text:?}")]
+    NotFinite {
+        /// 1-based field number.
+        field: usize,
+        /// The field as written.
+        text: String,
+    },
+    /// A node line has the wrong number of fields.
+    #[error("expected 4, 5 or 10 fields (x y z r [importance [auxiliary sphere]]), found {fields}")]
+    NodeFields {
+        /// The number of fields found.
+        fields: usize,
+    },
+    /// A centre overflows once the offset is added.
+    #[error("the centre is not finite once the offset is added")]
+    CentreNotFinite,
+    /// A used sphere follows the complete tree.
+    #[error("a used sphere beyond the {nodes} nodes of the complete tree")]
+    BeyondTree {
+        /// The complete tree's node count.
+        nodes: usize,
+    },
+    /// The text ends before the complete tree does.
+    #[error(
+        "the file ends after {found} of the {nodes} nodes of a complete tree of {levels} levels and branching factor {branch}"
+    )]
+    Truncated {
+        /// Node lines found.
+        found: usize,
+        /// The complete tree's node count.
+        nodes: usize,
+        /// Levels, the root included.
+        levels: usize,
+        /// Branching factor.
+        branch: usize,
+    },
+    /// A tree to be written does not have the complete tree's node count.
+    #[error(
+        "a complete tree of {levels} levels and branching factor {branch} has {} nodes, got {found}",
+        nodes.map_or_else(|| "too many".to_owned(), |n| n.to_string())
+    )]
+    NodeCount {
+        /// Levels, the root included.
+        levels: usize,
+        /// Branching factor.
+        branch: usize,
+        /// The complete tree's node count (`None` when it overflows).
+        nodes: Option<usize>,
+        /// The node count given.
+        found: usize,
+    },
+    /// A node to be written has a NaN or infinite importance.
+    #[error("node {node} has a non-finite importance {importance}")]
+    NonFiniteImportance {
+        /// The node's slot.
+        node: usize,
+        /// The importance given.
+        importance: f64,
+    },
+}
+
 /// A sphere-tree in `.sph` layout: a complete `branch`-ary tree of `levels` levels as a
 /// flat array of optional nodes (a sphere and its importance).
 ///
 /// # Examples
 ///
 /// ```
-/// use sphaera_spheretree::sph::SphFile;
+/// use sphaera_spheretree::export::SphFile;
 /// use sphaera_spheretree::{DVec3, Sphere};
 ///
 /// let root = Sphere::new(DVec3::ZERO, 2.0);
@@ -86,19 +198,19 @@ impl SphFile {
     ///
     /// # Errors
     ///
-    /// [`SphereTreeError::InvalidParameter`] when the complete tree of the tree's depth
-    /// and branching factor has more slots than memory can address.
+    /// [`SphereTreeError::SphLayout`] ([`SphDefect::TooLarge`]) when the complete tree of
+    /// the tree's depth and branching factor has more slots than memory can address.
     ///
     /// # Examples
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_spheretree::{Params, build, sph::SphFile};
+    /// use sphaera_spheretree::{SphereTreeOptions, Surface, build, export::SphFile};
     ///
     /// let mesh = shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = Params::default().depth(1).branch(4).samples(800).initial_spheres(60)
-    ///     .min_spheres_per_node(20);
-    /// let tree = build(&mesh, &params)?;
+    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(800).with_initial_spheres(60)
+    ///     .with_min_spheres_per_node(20);
+    /// let tree = build(&Surface::new(&mesh)?, &params)?;
     /// let file = SphFile::from_tree(&tree)?;
     /// assert_eq!((file.levels, file.branch, file.nodes.len()), (2, 4, 5));
     /// assert_eq!(file.level(1).len(), tree.level(1).len());
@@ -109,11 +221,11 @@ impl SphFile {
         let branch = tree.branch().max(1);
         let count = Self::node_count(levels, branch)
             .filter(|&n| n <= MAX_SLOTS)
-            .ok_or_else(|| {
-                SphereTreeError::InvalidParameter(format!(
-                    "a complete .sph tree of {levels} levels and branching factor {branch} has too many slots"
-                ))
-            })?;
+            .ok_or(SphereTreeError::SphLayout(SphDefect::TooLarge {
+                levels,
+                branch,
+                limit: "fit in memory",
+            }))?;
         let mut nodes = vec![None; count];
         // Flat slot of every tree node, the root first (parents precede children).
         let mut slot = vec![0_usize; tree.nodes().len()];
@@ -189,7 +301,7 @@ impl SphFile {
 /// # Examples
 ///
 /// ```
-/// use sphaera_spheretree::sph::read_sph;
+/// use sphaera_spheretree::export::read_sph;
 /// use sphaera_spheretree::{DVec3, Sphere};
 ///
 /// let text = "2 2\n0 0 0 2 1\n-1 0 0 1 1\n0 0 0 -1 1\n";
@@ -205,7 +317,7 @@ impl SphFile {
 ///
 /// # Errors
 ///
-/// [`SphereTreeError::Format`] with the 1-based line number: a header that is not two
+/// [`SphereTreeError::SphSyntax`] with the 1-based line number and the [`SphDefect`]: a header that is not two
 /// integers, zero levels or branching factor, a tree too large for memory, a node line
 /// without 4, 5 or 10 numeric fields, a NaN or infinite field, fewer node lines than the
 /// complete tree has, or used spheres beyond it.
@@ -224,22 +336,19 @@ pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
         .map(|(i, l)| (i + 1, l.trim()))
         .filter(|(_, l)| !l.is_empty());
     let Some((header_line, header)) = lines.next() else {
-        return Err(format_error(
-            1,
-            "empty file: expected a header \"levels branch\"",
-        ));
+        return Err(syntax(1, SphDefect::EmptyFile));
     };
     let (levels, branch) = parse_header(header_line, header)?;
     let expected = SphFile::node_count(levels, branch)
         .filter(|&n| n <= text.len())
-        .ok_or_else(|| {
-            format_error(
-                header_line,
-                format!(
-                    "a complete tree of {levels} levels and branching factor {branch} has more nodes than the file has characters"
-                ),
-            )
-        })?;
+        .ok_or(syntax(
+            header_line,
+            SphDefect::TooLarge {
+                levels,
+                branch,
+                limit: "the file has characters",
+            },
+        ))?;
     let mut nodes = Vec::with_capacity(expected);
     let mut last_line = header_line;
     for (number, line) in lines {
@@ -248,19 +357,18 @@ pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
         if nodes.len() < expected {
             nodes.push(node);
         } else if node.is_some() {
-            return Err(format_error(
-                number,
-                format!("a used sphere beyond the {expected} nodes of the complete tree"),
-            ));
+            return Err(syntax(number, SphDefect::BeyondTree { nodes: expected }));
         }
     }
     if nodes.len() < expected {
-        return Err(format_error(
+        return Err(syntax(
             last_line + 1,
-            format!(
-                "the file ends after {} of the {expected} nodes of a complete tree of {levels} levels and branching factor {branch}",
-                nodes.len()
-            ),
+            SphDefect::Truncated {
+                found: nodes.len(),
+                nodes: expected,
+                levels,
+                branch,
+            },
         ));
     }
     Ok(SphFile {
@@ -277,7 +385,7 @@ pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
 /// # Examples
 ///
 /// ```
-/// use sphaera_spheretree::sph::{SphFile, read_sph, write_sph};
+/// use sphaera_spheretree::export::{SphFile, read_sph, write_sph};
 /// use sphaera_spheretree::{DVec3, Sphere};
 ///
 /// let tree = SphFile {
@@ -297,8 +405,8 @@ pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
 ///
 /// # Errors
 ///
-/// [`SphereTreeError::InvalidParameter`] for zero levels or branching factor, a node
-/// count other than [`SphFile::node_count`], or a NaN or infinite importance;
+/// [`SphereTreeError::SphLayout`] for zero levels or branching factor, a node count other
+/// than [`SphFile::node_count`], or a NaN or infinite importance;
 /// [`SphereTreeError::InvalidSphere`] (with the node index) for a sphere with a
 /// non-finite centre or radius, or a radius that is not positive (the format reads it as
 /// an unused slot).
@@ -307,21 +415,20 @@ pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
 ///
 /// Never.
 pub fn write_sph(file: &SphFile, offset: DVec3) -> Result<String, SphereTreeError> {
-    if file.levels == 0 || file.branch == 0 {
-        return Err(SphereTreeError::InvalidParameter(format!(
-            "a .sph tree needs at least one level and a branching factor of at least 1, got {} levels and branching factor {}",
-            file.levels, file.branch
-        )));
+    if file.levels == 0 {
+        return Err(SphereTreeError::SphLayout(SphDefect::NoLevel));
+    }
+    if file.branch == 0 {
+        return Err(SphereTreeError::SphLayout(SphDefect::NoBranch));
     }
     let expected = SphFile::node_count(file.levels, file.branch);
     if expected != Some(file.nodes.len()) {
-        return Err(SphereTreeError::InvalidParameter(format!(
-            "a complete tree of {} levels and branching factor {} has {} nodes, got {}",
-            file.levels,
-            file.branch,
-            expected.map_or_else(|| "too many".to_owned(), |n| n.to_string()),
-            file.nodes.len()
-        )));
+        return Err(SphereTreeError::SphLayout(SphDefect::NodeCount {
+            levels: file.levels,
+            branch: file.branch,
+            nodes: expected,
+            found: file.nodes.len(),
+        }));
     }
     let mut text = String::with_capacity(32 * file.nodes.len() + 16);
     // Writing to a `String` cannot fail.
@@ -334,9 +441,10 @@ pub fn write_sph(file: &SphFile, offset: DVec3) -> Result<String, SphereTreeErro
                     return Err(SphereTreeError::InvalidSphere { index });
                 }
                 if !importance.is_finite() {
-                    return Err(SphereTreeError::InvalidParameter(format!(
-                        "node {index} has a non-finite importance {importance}"
-                    )));
+                    return Err(SphereTreeError::SphLayout(SphDefect::NonFiniteImportance {
+                        node: index,
+                        importance: *importance,
+                    }));
                 }
                 let _ = writeln!(
                     text,
@@ -356,35 +464,31 @@ pub fn write_sph(file: &SphFile, offset: DVec3) -> Result<String, SphereTreeErro
 fn parse_header(number: usize, line: &str) -> Result<(usize, usize), SphereTreeError> {
     let fields: Vec<&str> = line.split_whitespace().collect();
     let [levels, branch] = fields.as_slice() else {
-        return Err(format_error(
+        return Err(syntax(
             number,
-            format!(
-                "expected a header of two integers \"levels branch\", found {} fields",
-                fields.len()
-            ),
+            SphDefect::HeaderFields {
+                fields: fields.len(),
+            },
         ));
     };
-    let integer = |name: &str, field: &str| {
+    let integer = |name: &'static str, field: &str| {
         field.parse::<usize>().map_err(|_| {
-            format_error(
+            syntax(
                 number,
-                format!("the {name} is not a non-negative integer: {field:?}"),
+                SphDefect::HeaderNotInteger {
+                    name,
+                    text: field.to_owned(),
+                },
             )
         })
     };
     let levels = integer("number of levels", levels)?;
     let branch = integer("branching factor", branch)?;
     if levels == 0 {
-        return Err(format_error(
-            number,
-            "a tree has at least one level (the root)",
-        ));
+        return Err(syntax(number, SphDefect::NoLevel));
     }
     if branch == 0 {
-        return Err(format_error(
-            number,
-            "the branching factor must be at least 1",
-        ));
+        return Err(syntax(number, SphDefect::NoBranch));
     }
     Ok((levels, branch))
 }
@@ -399,15 +503,21 @@ fn parse_node(
     let mut count = 0;
     for (i, field) in line.split_whitespace().enumerate() {
         let value: f64 = field.parse().map_err(|_| {
-            format_error(
+            syntax(
                 number,
-                format!("field {} is not a number: {field:?}", i + 1),
+                SphDefect::NotANumber {
+                    field: i + 1,
+                    text: field.to_owned(),
+                },
             )
         })?;
         if !value.is_finite() {
-            return Err(format_error(
+            return Err(syntax(
                 number,
-                format!("field {} is not finite: {field:?}", i + 1),
+                SphDefect::NotFinite {
+                    field: i + 1,
+                    text: field.to_owned(),
+                },
             ));
         }
         if let Some(slot) = values.get_mut(i) {
@@ -416,12 +526,7 @@ fn parse_node(
         count = i + 1;
     }
     if !matches!(count, 4 | 5 | 10) {
-        return Err(format_error(
-            number,
-            format!(
-                "expected 4, 5 or 10 fields (x y z r [importance [auxiliary sphere]]), found {count}"
-            ),
-        ));
+        return Err(syntax(number, SphDefect::NodeFields { fields: count }));
     }
     let [x, y, z, radius, importance, ..] = values;
     if radius <= 0.0 {
@@ -430,18 +535,12 @@ fn parse_node(
     let importance = if count == 4 { 1.0 } else { importance };
     let center = DVec3::new(x, y, z) + offset;
     if !center.is_finite() {
-        return Err(format_error(
-            number,
-            "the centre is not finite once the offset is added",
-        ));
+        return Err(syntax(number, SphDefect::CentreNotFinite));
     }
     Ok(Some((Sphere::new(center, radius), importance)))
 }
 
-/// A [`SphereTreeError::Format`] at `line`.
-fn format_error(line: usize, message: impl Into<String>) -> SphereTreeError {
-    SphereTreeError::Format {
-        line,
-        message: message.into(),
-    }
+/// A [`SphereTreeError::SphSyntax`] at `line`.
+fn syntax(line: usize, defect: SphDefect) -> SphereTreeError {
+    SphereTreeError::SphSyntax { line, defect }
 }

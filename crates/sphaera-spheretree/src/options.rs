@@ -1,0 +1,398 @@
+//! How a sphere-tree is built: the [`Method`] and the [`SphereTreeOptions`] of
+//! [`build`](crate::build).
+
+use crate::SphereTreeError;
+use crate::reduce::Reducer;
+
+/// The deepest tree a baseline method builds: an octree cell at depth 20 is a millionth of
+/// the bounding cube's edge, far below any sample spacing, and deeper trees only repeat
+/// one-sample leaves.
+pub const MAX_BASELINE_DEPTH: usize = 20;
+
+/// The most surface samples a baseline method accepts (each costs about 100 bytes per
+/// level).
+pub const MAX_BASELINE_SAMPLES: usize = 10_000_000;
+
+/// How a sphere-tree is built: the paper's adaptive medial construction with one of its
+/// reducers, or one of the classic methods it compares against.
+///
+/// Every method gives a [`SphereTree`](crate::SphereTree) of the same structure: the
+/// root is the minimum enclosing ball of the mesh's vertices, the surface is represented
+/// by the same Poisson-disk samples, every node's region (its samples) is partitioned
+/// between its children, and every sample of a node's region lies inside one of its
+/// children. Node errors are the paper's eq. 2 ([`TreeNode::error`](crate::TreeNode::error))
+/// for every method; the certified error of a level comes from
+/// [`evaluate_set`](crate::evaluate_set).
+///
+/// The medial methods ([`Method::is_medial`]) refine the adaptive medial approximation
+/// in each node's region (section 4 of the paper, `sphaera-medial`) and reduce its
+/// spheres to at most `branch` children; their coverage of the whole surface is
+/// certified at every level ([`SphereTreeOptions::certify_coverage`]). The baselines are
+/// the classic methods as published: their coverage is measured, not certified.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::Method;
+///
+/// assert_eq!(Method::default(), Method::Combined);
+/// assert_eq!(Method::from_name("expand"), Some(Method::Expand));
+/// assert!(Method::Expand.is_medial() && !Method::Octree.is_medial());
+/// assert_eq!(Method::ALL.len(), 7);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Medial spheres reduced by pair merges, the tightest result first
+    /// ([`reduce::merge`](crate::reduce::merge)).
+    Merge,
+    /// Medial spheres reduced by bursting one at a time
+    /// ([`reduce::burst`](crate::reduce::burst)).
+    Burst,
+    /// Medial spheres reduced by expand-select with `MaxElim`
+    /// ([`reduce::expand_select`](crate::reduce::expand_select)).
+    Expand,
+    /// Both merge and expand-select per node, keeping the tighter set
+    /// ([`reduce::combined`](crate::reduce::combined)); the paper's best method.
+    #[default]
+    Combined,
+    /// The octree (Palmer and Grimsdale, Hubbard, O'Sullivan and Dingliana; section 2 of
+    /// the paper): the bounding cube subdivided recursively into 8; every cube holding
+    /// surface samples is a node whose sphere is the cube's circumscribed sphere (it
+    /// contains the whole cube, so every part of the surface inside it, and makes the
+    /// figures comparable with the classic toolkit's). At most 8 children per node
+    /// whatever `branch` says; only `depth`, `samples` and `seed` are used.
+    Octree,
+    /// A regular grid per level: level `l` uses the cubic cells (anchored at the bounding
+    /// box's minimum corner) of the smallest edge, found by bisection, for which at most
+    /// `branch^l` cells hold a sample; a node is a (parent, cell) pair with the cell's
+    /// circumscribed sphere. Consecutive grids are not nested, so a cell straddling two
+    /// parents yields a child of each, and [`SphereTree::branch`](crate::SphereTree::branch)
+    /// reports the most children any node got.
+    Grid,
+    /// Hubbard's medial-axis method, the paper's reference: a static medial
+    /// approximation of [`SphereTreeOptions::forming_points`] forming points (never
+    /// refined; its coverage of the samples completed), whose spheres covering a node's
+    /// region are merged in pairs into approximate bounding spheres (the smallest sphere
+    /// enclosing both spheres) until at most `branch` remain; pairs start as each
+    /// sphere's 8 nearest centres, standing in for Hubbard's Voronoi neighbours.
+    Hubbard,
+}
+
+impl Method {
+    /// Every method, the medial ones first.
+    pub const ALL: [Self; 7] = [
+        Self::Merge,
+        Self::Burst,
+        Self::Expand,
+        Self::Combined,
+        Self::Octree,
+        Self::Grid,
+        Self::Hubbard,
+    ];
+
+    /// The method's name, as the CLI and the reports spell it (`"merge"`, `"expand"`,
+    /// `"octree"`, …).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Merge => "merge",
+            Self::Burst => "burst",
+            Self::Expand => "expand",
+            Self::Combined => "combined",
+            Self::Octree => "octree",
+            Self::Grid => "grid",
+            Self::Hubbard => "hubbard",
+        }
+    }
+
+    /// The method named `name` (as [`Method::name`] spells it).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Whether the method refines the adaptive medial approximation (and so certifies
+    /// its coverage of the surface), rather than being a baseline.
+    #[must_use]
+    pub fn is_medial(self) -> bool {
+        self.reducer().is_some()
+    }
+
+    /// The reducer of a medial method.
+    #[must_use]
+    pub fn reducer(self) -> Option<Reducer> {
+        match self {
+            Self::Merge => Some(Reducer::Merge),
+            Self::Burst => Some(Reducer::Burst),
+            Self::Expand => Some(Reducer::Expand),
+            Self::Combined => Some(Reducer::Combined),
+            Self::Octree | Self::Grid | Self::Hubbard => None,
+        }
+    }
+}
+
+/// Options of [`build`](crate::build), with the paper's defaults.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::{Method, SphereTreeOptions};
+///
+/// let options = SphereTreeOptions::default()
+///     .with_method(Method::Expand)
+///     .with_depth(2)
+///     .with_branch(4);
+/// assert_eq!((options.depth, options.branch, options.samples), (2, 4, 10_000));
+/// ```
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[non_exhaustive]
+pub struct SphereTreeOptions {
+    /// How the tree is built (default [`Method::Combined`]).
+    pub method: Method,
+    /// Children per node at most (default 8). For [`Method::Grid`], the growth of the
+    /// occupied cell count per level; [`Method::Octree`] always splits a cell in 8.
+    pub branch: usize,
+    /// Levels below the root (default 3; at most [`MAX_BASELINE_DEPTH`] for the
+    /// baselines).
+    pub depth: usize,
+    /// Surface samples standing for the surface (default 10,000; the paper used
+    /// 5,000–10,000; at most [`MAX_BASELINE_SAMPLES`] for the baselines).
+    pub samples: usize,
+    /// Seed of the surface sampling (default 1).
+    pub seed: u64,
+    /// Medial methods: spheres of the initial medial approximation (default 500; the
+    /// paper: 500–1,000).
+    pub initial_spheres: usize,
+    /// Medial methods: medial spheres a node's region is refined to before reduction
+    /// (default 100; the paper: 100–200).
+    pub min_spheres_per_node: usize,
+    /// Medial methods: the region's medial spheres must have at most this fraction of the
+    /// parent's error (default ½; the paper: ½ to ¼).
+    pub error_fraction: f64,
+    /// Medial methods: balance the division of a region between children by moving the
+    /// dividing planes (default on).
+    pub balance_regions: bool,
+    /// Medial methods: certify that every level covers the whole surface, not only the
+    /// samples, growing spheres where needed ([`crate::cover`]; default on).
+    pub certify_coverage: bool,
+    /// Medial methods: the certification's resolution, as a fraction of the mesh's
+    /// bounding-box diagonal (default 10⁻³): triangle pieces are split down to this size
+    /// before a sphere is grown to contain one, so a sphere grows by about this much at
+    /// most where two spheres barely overlap, and by the gap's size where a gap was.
+    pub coverage_resolution: f64,
+    /// [`Method::Hubbard`]: forming points of the static Voronoi diagram (default 600,
+    /// which gives about 2,500 medial spheres on the low-res bunny, the size the paper
+    /// used for Hubbard's method there).
+    pub forming_points: usize,
+}
+
+impl Default for SphereTreeOptions {
+    fn default() -> Self {
+        Self {
+            method: Method::Combined,
+            branch: 8,
+            depth: 3,
+            samples: 10_000,
+            seed: 1,
+            initial_spheres: 500,
+            min_spheres_per_node: 100,
+            error_fraction: 0.5,
+            balance_regions: true,
+            certify_coverage: true,
+            coverage_resolution: 1e-3,
+            forming_points: 600,
+        }
+    }
+}
+
+impl SphereTreeOptions {
+    /// With the given construction method.
+    #[must_use]
+    pub fn with_method(mut self, method: Method) -> Self {
+        self.method = method;
+        self
+    }
+
+    /// With `branch` children per node at most.
+    #[must_use]
+    pub fn with_branch(mut self, branch: usize) -> Self {
+        self.branch = branch;
+        self
+    }
+
+    /// With `depth` levels below the root.
+    #[must_use]
+    pub fn with_depth(mut self, depth: usize) -> Self {
+        self.depth = depth;
+        self
+    }
+
+    /// With `samples` surface samples.
+    #[must_use]
+    pub fn with_samples(mut self, samples: usize) -> Self {
+        self.samples = samples;
+        self
+    }
+
+    /// With the given sampling seed.
+    #[must_use]
+    pub fn with_seed(mut self, seed: u64) -> Self {
+        self.seed = seed;
+        self
+    }
+
+    /// With `n` spheres in the initial medial approximation.
+    #[must_use]
+    pub fn with_initial_spheres(mut self, n: usize) -> Self {
+        self.initial_spheres = n;
+        self
+    }
+
+    /// With at least `n` medial spheres per node's region before reduction.
+    #[must_use]
+    pub fn with_min_spheres_per_node(mut self, n: usize) -> Self {
+        self.min_spheres_per_node = n;
+        self
+    }
+
+    /// With a node's medial spheres refined to at most `fraction` of the parent's error
+    /// (in (0, 1]; checked by [`build`](crate::build)).
+    #[must_use]
+    pub fn with_error_fraction(mut self, fraction: f64) -> Self {
+        self.error_fraction = fraction;
+        self
+    }
+
+    /// With region balancing on or off.
+    #[must_use]
+    pub fn with_balance_regions(mut self, on: bool) -> Self {
+        self.balance_regions = on;
+        self
+    }
+
+    /// With surface-coverage certification on or off.
+    #[must_use]
+    pub fn with_certify_coverage(mut self, on: bool) -> Self {
+        self.certify_coverage = on;
+        self
+    }
+
+    /// With the given certification resolution (a fraction of the diagonal).
+    #[must_use]
+    pub fn with_coverage_resolution(mut self, fraction: f64) -> Self {
+        self.coverage_resolution = fraction;
+        self
+    }
+
+    /// With `n` forming points for [`Method::Hubbard`]'s static diagram.
+    #[must_use]
+    pub fn with_forming_points(mut self, n: usize) -> Self {
+        self.forming_points = n;
+        self
+    }
+
+    /// Checks the options the method uses.
+    pub(crate) fn validate(&self) -> Result<(), SphereTreeError> {
+        let bad = |name: &'static str, value: f64, requirement: &'static str| {
+            Err(SphereTreeError::InvalidParameter {
+                name,
+                value,
+                requirement,
+            })
+        };
+        if self.method.is_medial() {
+            if self.branch == 0 {
+                return bad("branch", 0.0, "at least 1");
+            }
+            if self.samples < 4 {
+                return bad("samples", self.samples as f64, "at least 4");
+            }
+            if !(self.coverage_resolution > 0.0 && self.coverage_resolution.is_finite()) {
+                return bad(
+                    "coverage_resolution",
+                    self.coverage_resolution,
+                    "positive and finite",
+                );
+            }
+            if !(self.error_fraction > 0.0 && self.error_fraction <= 1.0) {
+                return bad("error_fraction", self.error_fraction, "in (0, 1]");
+            }
+            return Ok(());
+        }
+        if self.depth > MAX_BASELINE_DEPTH {
+            return bad(
+                "depth",
+                self.depth as f64,
+                "at most 20 for the baseline methods",
+            );
+        }
+        if self.branch == 0 {
+            return bad("branch", 0.0, "at least 1");
+        }
+        if !(4..=MAX_BASELINE_SAMPLES).contains(&self.samples) {
+            return bad(
+                "samples",
+                self.samples as f64,
+                "between 4 and 10,000,000 for the baseline methods",
+            );
+        }
+        if self.forming_points < 4 {
+            return bad("forming_points", self.forming_points as f64, "at least 4");
+        }
+        Ok(())
+    }
+}
+
+/// Progress of [`build_with_progress`](crate::build_with_progress).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BuildProgress {
+    /// The level being built (1 for the root's children).
+    pub level: usize,
+    /// Nodes of that level's parents done.
+    pub done: usize,
+    /// Parents of that level.
+    pub total: usize,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip() {
+        for method in Method::ALL {
+            assert_eq!(Method::from_name(method.name()), Some(method));
+        }
+        assert_eq!(Method::from_name("nope"), None);
+        assert_eq!(
+            Method::ALL.iter().filter(|m| m.is_medial()).count(),
+            4,
+            "four reducers"
+        );
+    }
+
+    #[test]
+    fn each_method_checks_what_it_uses() {
+        let medial = SphereTreeOptions::default().with_error_fraction(2.0);
+        assert!(matches!(
+            medial.validate(),
+            Err(SphereTreeError::InvalidParameter {
+                name: "error_fraction",
+                ..
+            })
+        ));
+        // A baseline ignores the medial options, and bounds its depth.
+        assert!(
+            medial
+                .clone()
+                .with_method(Method::Octree)
+                .validate()
+                .is_ok()
+        );
+        assert!(matches!(
+            medial.with_method(Method::Grid).with_depth(21).validate(),
+            Err(SphereTreeError::InvalidParameter { name: "depth", .. })
+        ));
+    }
+}
