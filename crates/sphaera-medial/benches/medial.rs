@@ -13,7 +13,7 @@
 use std::{hint::black_box, path::Path, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphaera_medial::{DVec3, MedialApproximation, MedialParams, Surface};
+use sphaera_medial::{DVec3, MedialApproximation, MedialOptions, Surface};
 use sphaera_mesh::{TriMesh, io, sampling};
 
 fn samples(mesh: &TriMesh, n: usize) -> Vec<DVec3> {
@@ -36,7 +36,7 @@ fn bench_build(
 ) {
     let surface = Surface::new(mesh).expect("the mesh has an inside");
     let points = samples(mesh, sample_count);
-    let params = MedialParams::default().spheres(spheres);
+    let params = MedialOptions::default().with_target_spheres(spheres);
     let medial = MedialApproximation::build(&surface, &points, &params).expect("builds");
     eprintln!(
         "{group_name}/{case}: {} spheres, worst error {:.2} % of the diagonal, {} uncovered samples",

@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use sphaera_medial::{MedialApproximation, MedialParams, Surface};
+use sphaera_medial::{MedialApproximation, MedialOptions, Surface};
 use sphaera_mesh::{io, sampling, shapes};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -23,8 +23,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .collect();
     for n in [target / 4, target / 2, target] {
         let start = Instant::now();
-        let medial =
-            MedialApproximation::build(&surface, &samples, &MedialParams::default().spheres(n))?;
+        let medial = MedialApproximation::build(
+            &surface,
+            &samples,
+            &MedialOptions::default().with_target_spheres(n),
+        )?;
         println!(
             "target {n}: {} spheres, worst error {:.4} ({:.3} % diag), uncovered {}, {:?}, {:.3} s",
             medial.sphere_count(),
@@ -35,8 +38,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             start.elapsed().as_secs_f64()
         );
     }
-    let medial =
-        MedialApproximation::build(&surface, &samples, &MedialParams::default().spheres(target))?;
+    let medial = MedialApproximation::build(
+        &surface,
+        &samples,
+        &MedialOptions::default().with_target_spheres(target),
+    )?;
     let mut spheres = medial.spheres();
     spheres.sort_by(|a, b| b.error.total_cmp(&a.error));
     for s in spheres.iter().take(5) {

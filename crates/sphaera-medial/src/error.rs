@@ -31,7 +31,78 @@ pub enum DelaunayError {
     /// [`Delaunay::validate`](crate::Delaunay::validate) found a broken invariant (a bug:
     /// please report it with the input).
     #[error("invalid tetrahedralization: {0}")]
-    Invalid(String),
+    Invalid(Violation),
+}
+
+/// The first broken invariant [`Delaunay::validate`](crate::Delaunay::validate) found, in
+/// [`DelaunayError::Invalid`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Violation {
+    /// A tetrahedron has a repeated vertex or more than one infinite vertex.
+    #[error("tetrahedron {tetrahedron} has vertices {vertices:?}")]
+    BadVertices {
+        /// The tetrahedron.
+        tetrahedron: u32,
+        /// Its vertices.
+        vertices: [u32; 4],
+    },
+    /// A finite tetrahedron is flat or negatively oriented.
+    #[error("tetrahedron {tetrahedron} {vertices:?} is not positive")]
+    NotPositive {
+        /// The tetrahedron.
+        tetrahedron: u32,
+        /// Its vertices.
+        vertices: [u32; 4],
+    },
+    /// A tetrahedron lacks a live neighbour across a face.
+    #[error("tetrahedron {tetrahedron} has no live neighbour {face}")]
+    MissingNeighbour {
+        /// The tetrahedron.
+        tetrahedron: u32,
+        /// The face (opposite vertex `face`).
+        face: usize,
+    },
+    /// Two tetrahedra do not list each other exactly once.
+    #[error("neighbours {tetrahedron} and {neighbour} are not symmetric")]
+    AsymmetricNeighbours {
+        /// The tetrahedron.
+        tetrahedron: u32,
+        /// Its neighbour.
+        neighbour: u32,
+    },
+    /// Neighbours do not share the face between them.
+    #[error("tetrahedra {tetrahedron} and {neighbour} do not share a face")]
+    NoSharedFace {
+        /// The tetrahedron.
+        tetrahedron: u32,
+        /// Its neighbour.
+        neighbour: u32,
+    },
+    /// A face is not locally Delaunay: the neighbour's apex conflicts.
+    #[error("face between {tetrahedron} and {neighbour} is not locally Delaunay (vertex {apex})")]
+    NotLocallyDelaunay {
+        /// The tetrahedron.
+        tetrahedron: u32,
+        /// Its neighbour.
+        neighbour: u32,
+        /// The neighbour's vertex opposite the shared face.
+        apex: u32,
+    },
+    /// A vertex's duplicate flag and its incident tetrahedron disagree.
+    #[error("vertex {vertex}: duplicate flag and incidence disagree")]
+    DuplicateIncidence {
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A vertex's incident tetrahedron does not contain it.
+    #[error("vertex {vertex} points at tetrahedron {tetrahedron} without it")]
+    WrongIncidence {
+        /// The vertex.
+        vertex: usize,
+        /// The tetrahedron it points at.
+        tetrahedron: u32,
+    },
 }
 
 /// Why a medial approximation could not be built or refined.
@@ -50,9 +121,22 @@ pub enum MedialError {
     /// Too few distinct surface samples for a tetrahedralization.
     #[error("the medial approximation needs at least 4 distinct, non-coplanar samples: {0}")]
     TooFewSamples(DelaunayError),
-    /// A parameter is out of range.
-    #[error("invalid parameter: {0}")]
-    InvalidParameter(String),
+    /// A numeric parameter is out of its domain (NaN, negative, too small).
+    #[error("invalid `{name}` ({value}): must be {requirement}")]
+    InvalidParameter {
+        /// The parameter's name as it appears in the API, e.g. `"max_error"`.
+        name: &'static str,
+        /// The value supplied.
+        value: f64,
+        /// What the value must be, e.g. `"a non-negative number"`.
+        requirement: &'static str,
+    },
+    /// More samples than 32-bit sample ids can name.
+    #[error("{count} samples: more than 32-bit ids can name")]
+    TooManySamples {
+        /// The number of samples given.
+        count: usize,
+    },
     /// A region refers to a sample that does not exist.
     #[error("region sample {index} is out of range ({count} samples)")]
     RegionOutOfRange {

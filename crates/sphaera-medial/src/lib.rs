@@ -31,11 +31,11 @@ pub mod medial;
 pub mod point_sets;
 
 pub use delaunay::{Delaunay, INFINITE, Insertion, TetId, VoronoiCell};
-pub use error::{DelaunayError, MedialError};
+pub use error::{DelaunayError, MedialError, Violation};
 pub use glam::DVec3;
 pub use medial::{
-    CoverCriterion, MedialApproximation, MedialParams, MedialProgress, MedialSphere, MedialStats,
-    RegionGoal, RegionOutcome, SphereKind,
+    CoverCriterion, MedialApproximation, MedialOptions, MedialProgress, MedialSphere, MedialStats,
+    RegionOptions, RegionOutcome, SphereKind,
 };
 /// The mesh a medial approximation describes (defined in `sphaera-mesh`): its inside test
 /// and exact closest points.

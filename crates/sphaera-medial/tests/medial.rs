@@ -5,7 +5,8 @@
 #![allow(clippy::print_stderr)]
 
 use sphaera_medial::{
-    CoverCriterion, MedialApproximation, MedialError, MedialParams, RegionGoal, SphereKind, Surface,
+    CoverCriterion, MedialApproximation, MedialError, MedialOptions, RegionOptions, SphereKind,
+    Surface,
 };
 use sphaera_mesh::{DVec3, MeshError, TriMesh, io, sampling, shapes};
 use sphaera_tests::hausdorff::DistanceToMesh;
@@ -56,7 +57,7 @@ fn check(mesh: &TriMesh, medial: &MedialApproximation<'_>, name: &str) {
 fn build<'s>(
     surface: &'s Surface,
     points: &[DVec3],
-    params: &MedialParams,
+    params: &MedialOptions,
 ) -> MedialApproximation<'s> {
     MedialApproximation::build(surface, points, params).unwrap()
 }
@@ -71,13 +72,21 @@ fn shapes_with_cospherical_and_coplanar_samples_are_covered() {
     ] {
         let surface = Surface::new(&mesh).unwrap();
         let points = samples(&mesh, 1_500);
-        let medial = build(&surface, &points, &MedialParams::default().spheres(150));
+        let medial = build(
+            &surface,
+            &points,
+            &MedialOptions::default().with_target_spheres(150),
+        );
         assert!(medial.sphere_count() >= 150, "{name}");
         check(&mesh, &medial, name);
         // The vertices of the cube (exactly on a grid) as samples: all cospherical.
         if name == "cube" {
             let corners: Vec<DVec3> = mesh.positions().to_vec();
-            let medial = build(&surface, &corners, &MedialParams::default().spheres(30));
+            let medial = build(
+                &surface,
+                &corners,
+                &MedialOptions::default().with_target_spheres(30),
+            );
             check(&mesh, &medial, "cube vertices");
         }
     }
@@ -88,8 +97,12 @@ fn the_error_target_is_reached_and_errors_shrink() {
     let mesh = shapes::capsule(0.5, 2.0, 16).unwrap();
     let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 3_000);
-    let coarse = build(&surface, &points, &MedialParams::default());
-    let fine = build(&surface, &points, &MedialParams::default().max_error(0.02));
+    let coarse = build(&surface, &points, &MedialOptions::default());
+    let fine = build(
+        &surface,
+        &points,
+        &MedialOptions::default().with_max_error(0.02),
+    );
     assert!(fine.worst_error() <= 0.02);
     assert!(fine.worst_error() < coarse.worst_error());
     check(&mesh, &fine, "capsule");
@@ -100,7 +113,9 @@ fn the_error_target_is_reached_and_errors_shrink() {
         let medial = build(
             &surface,
             &points,
-            &MedialParams::default().spheres(100).cover(criterion),
+            &MedialOptions::default()
+                .with_target_spheres(100)
+                .with_cover(criterion),
         );
         check(&mesh, &medial, "capsule, criterion");
     }
@@ -111,7 +126,7 @@ fn the_same_input_gives_the_same_spheres() {
     let mesh = shapes::torus(1.0, 0.4, 16).unwrap();
     let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 2_000);
-    let params = MedialParams::default().spheres(200);
+    let params = MedialOptions::default().with_target_spheres(200);
     let a = build(&surface, &points, &params).spheres();
     let b = build(&surface, &points, &params).spheres();
     assert_eq!(a, b);
@@ -139,7 +154,11 @@ fn the_parallel_feature_does_not_change_the_spheres() {
     let mesh = shapes::l_block(2.0, 1.0, 0.5, 4).unwrap();
     let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 2_000);
-    let medial = build(&surface, &points, &MedialParams::default().spheres(300));
+    let medial = build(
+        &surface,
+        &points,
+        &MedialOptions::default().with_target_spheres(300),
+    );
     let spheres = medial.spheres();
     assert_eq!(
         digest(&spheres),
@@ -157,14 +176,23 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     let mesh = shapes::capsule(0.5, 2.0, 16).unwrap();
     let surface = Surface::new(&mesh).unwrap();
     let points = samples(&mesh, 2_000);
-    let mut medial = build(&surface, &points, &MedialParams::default().spheres(40));
+    let mut medial = build(
+        &surface,
+        &points,
+        &MedialOptions::default().with_target_spheres(40),
+    );
     // The samples of the top half.
     let region: Vec<u32> = (0..points.len() as u32)
         .filter(|&i| points[i as usize].z > 0.5)
         .collect();
     let before = medial.worst_error();
     let outcome = medial
-        .refine_region(&region, RegionGoal::new(50, before / 4.0))
+        .refine_region(
+            &region,
+            RegionOptions::default()
+                .with_min_spheres(50)
+                .with_max_error(before / 4.0),
+        )
         .unwrap();
     assert!(outcome.reached, "{outcome:?}");
     assert!(outcome.spheres.len() >= 50);
@@ -178,18 +206,33 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     assert_eq!(outcome.spheres, expected);
     // A second call with a goal already met changes nothing.
     let again = medial
-        .refine_region(&region, RegionGoal::new(10, before))
+        .refine_region(
+            &region,
+            RegionOptions::default()
+                .with_min_spheres(10)
+                .with_max_error(before),
+        )
         .unwrap();
     assert_eq!(again.improvements, 0);
     assert_eq!(again.spheres, expected);
     check(&mesh, &medial, "capsule after region refinement");
     assert!(matches!(
-        medial.refine_region(&[u32::MAX], RegionGoal::new(1, 1.0)),
+        medial.refine_region(
+            &[u32::MAX],
+            RegionOptions::default()
+                .with_min_spheres(1)
+                .with_max_error(1.0)
+        ),
         Err(MedialError::RegionOutOfRange { .. })
     ));
     assert!(matches!(
-        medial.refine_region(&region, RegionGoal::new(1, f64::NAN)),
-        Err(MedialError::InvalidParameter(_))
+        medial.refine_region(
+            &region,
+            RegionOptions::default()
+                .with_min_spheres(1)
+                .with_max_error(f64::NAN)
+        ),
+        Err(MedialError::InvalidParameter { .. })
     ));
 }
 
@@ -217,7 +260,11 @@ fn thin_parts_touching_components_and_duplicate_samples() {
         let mut points = samples(&mesh, 1_500);
         // Every sample twice.
         points.extend(points.clone());
-        let medial = build(&surface, &points, &MedialParams::default().spheres(120));
+        let medial = build(
+            &surface,
+            &points,
+            &MedialOptions::default().with_target_spheres(120),
+        );
         check(&mesh, &medial, name);
     }
 }
@@ -236,7 +283,7 @@ fn bad_input_gets_clear_errors() {
 
     let cube = shapes::cube(1.0, 2).unwrap();
     let surface = Surface::new(&cube).unwrap();
-    let params = MedialParams::default();
+    let params = MedialOptions::default();
     // Fewer than 4 samples, and flat samples.
     let three = [DVec3::ZERO, DVec3::X, DVec3::Y];
     assert!(matches!(
@@ -260,16 +307,20 @@ fn bad_input_gets_clear_errors() {
     // Bad parameters.
     let points = samples(&cube, 200);
     assert!(matches!(
-        MedialApproximation::build(&surface, &points, &MedialParams::default().max_error(-1.0)),
-        Err(MedialError::InvalidParameter(_))
+        MedialApproximation::build(
+            &surface,
+            &points,
+            &MedialOptions::default().with_max_error(-1.0)
+        ),
+        Err(MedialError::InvalidParameter { .. })
     ));
     assert!(matches!(
         MedialApproximation::build(
             &surface,
             &points,
-            &MedialParams::default().initial_points(2)
+            &MedialOptions::default().with_initial_points(2)
         ),
-        Err(MedialError::InvalidParameter(_))
+        Err(MedialError::InvalidParameter { .. })
     ));
 }
 
@@ -320,7 +371,11 @@ fn real_meshes_open_and_non_manifold_are_covered() {
             Err(e) => panic!("{name}: {e}"),
         };
         let points = samples(&mesh, 3_000);
-        let medial = build(&surface, &points, &MedialParams::default().spheres(300));
+        let medial = build(
+            &surface,
+            &points,
+            &MedialOptions::default().with_target_spheres(300),
+        );
         eprintln!(
             "{name}: {} spheres, worst error {:.3} % of the diagonal, {:?}",
             medial.sphere_count(),

@@ -1,7 +1,7 @@
 //! Sphere-tree construction (Algorithm 1 of the paper).
 
 use glam::DVec3;
-use sphaera_medial::{MedialApproximation, MedialParams, RegionGoal, Surface};
+use sphaera_medial::{MedialApproximation, MedialOptions, RegionOptions, Surface};
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::sampling;
 
@@ -107,7 +107,7 @@ fn medial_tree(
             },
         ));
     }
-    let medial_params = MedialParams::default().spheres(options.initial_spheres);
+    let medial_params = MedialOptions::default().with_target_spheres(options.initial_spheres);
     let mut medial = MedialApproximation::build(surface, &samples, &medial_params)?;
     for level in 1..=options.depth {
         let parents = level_starts[level - 1]..level_starts[level];
@@ -124,10 +124,12 @@ fn medial_tree(
             // Far more medial spheres than the region has samples cannot help (each is
             // fixed by four samples) and would spend the refinement cap for nothing.
             let wanted = options.min_spheres_per_node.min(2 * region.len());
-            let mut goal = RegionGoal::new(wanted, options.error_fraction * nodes[parent].error);
             // The error goal may be out of reach (a part the samples already resolve
             // fully): cap the work per node.
-            goal.max_iterations = REFINE_STEPS_PER_SPHERE * wanted.max(1);
+            let goal = RegionOptions::default()
+                .with_min_spheres(wanted)
+                .with_max_error(options.error_fraction * nodes[parent].error)
+                .with_max_iterations(REFINE_STEPS_PER_SPHERE * wanted.max(1));
             let outcome = medial.refine_region(region, goal)?;
             problems.push(Some(candidates(region, &outcome.spheres)));
         }

@@ -2,7 +2,7 @@
 //! on random clouds (proptest) and on real medial candidates.
 
 use proptest::prelude::*;
-use sphaera_medial::{MedialApproximation, MedialParams, Surface};
+use sphaera_medial::{MedialApproximation, MedialOptions, Surface};
 use sphaera_mesh::{DVec3, Sphere, TriMesh, sampling, shapes};
 use sphaera_spheretree::reduce::{Candidate, FittedSphere, ReductionInput, burst, merge, worst};
 
@@ -116,9 +116,12 @@ fn burst_reduces_a_capsule_medial_set() {
         .iter()
         .map(|s| s.position)
         .collect();
-    let medial =
-        MedialApproximation::build(&surface, &points, &MedialParams::default().spheres(150))
-            .unwrap();
+    let medial = MedialApproximation::build(
+        &surface,
+        &points,
+        &MedialOptions::default().with_target_spheres(150),
+    )
+    .unwrap();
     let candidates: Vec<Candidate> = medial
         .spheres()
         .iter()

@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use sphaera::{
     medial::{
-        CoverCriterion, MedialApproximation, MedialParams, MedialProgress, SphereKind, Surface,
+        CoverCriterion, MedialApproximation, MedialOptions, MedialProgress, SphereKind, Surface,
     },
     mesh::{DVec3, io::write_atomic, sampling},
 };
@@ -105,7 +105,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
         CoverArg::SmallestError => CoverCriterion::SmallestError,
         CoverArg::LargestCoverage => CoverCriterion::LargestCoverage,
     };
-    let mut params = MedialParams::default().cover(cover);
+    let mut params = MedialOptions::default().with_cover(cover);
     let target = match (args.spheres, args.max_error) {
         _ if args.static_points.is_some() => format!(
             "{} forming points, no improvement",
@@ -116,12 +116,12 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
                 MaxErrorArg::Absolute(e) => e,
                 MaxErrorArg::RelativeToDiagonal(f) => f * diagonal,
             };
-            params = params.max_error(e);
+            params = params.with_max_error(e);
             format!("max-error {e:.6e}")
         }
         (spheres, None) => {
             let n = spheres.unwrap_or(DEFAULT_SPHERES);
-            params = params.spheres(n);
+            params = params.with_target_spheres(n);
             format!("spheres {n}")
         }
     };

@@ -4,7 +4,7 @@
 //! For each mesh of [`MESHES`], [`SAMPLES`] Poisson-disk surface samples (seed
 //! [`SAMPLE_SEED`]) are the candidate forming points, shared by every method:
 //!
-//! - **adaptive**: `MedialApproximation::build` with `MedialParams::default().spheres(n)`
+//! - **adaptive**: `MedialApproximation::build` with `MedialOptions::default().with_target_spheres(n)`
 //!   for each `n` of [`ADAPTIVE_TARGETS`] (coverage of the samples completed, then the
 //!   worst sphere replaced until `n` spheres);
 //! - **static** (Hubbard): `MedialApproximation::build_static` with `f` forming points for
@@ -32,7 +32,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    medial::{CoverCriterion, MedialApproximation, MedialParams, MedialSphere, Surface},
+    medial::{CoverCriterion, MedialApproximation, MedialOptions, MedialSphere, Surface},
     mesh::{DVec3, TriMesh, sampling},
 };
 
@@ -115,7 +115,7 @@ impl Method {
             Self::Adaptive => MedialApproximation::build(
                 surface,
                 samples,
-                &MedialParams::default().spheres(parameter),
+                &MedialOptions::default().with_target_spheres(parameter),
             ),
             Self::Static => MedialApproximation::build_static(surface, samples, parameter, None),
             Self::StaticCovered => MedialApproximation::build_static(

@@ -3,7 +3,7 @@
 
 use super::predicates::orient;
 use super::{DEAD, Delaunay, INFINITE, NONE, TetId};
-use crate::DelaunayError;
+use crate::{DelaunayError, Violation};
 
 impl Delaunay {
     /// Checks every invariant: each live tetrahedron has four distinct vertices (at most
@@ -22,7 +22,7 @@ impl Delaunay {
     ///
     /// `O(n)` predicates: a few times the cost of building.
     pub fn validate(&self) -> Result<(), DelaunayError> {
-        let fail = |what: String| Err(DelaunayError::Invalid(what));
+        let fail = |violation: Violation| Err(DelaunayError::Invalid(violation));
         for (t, &vertices) in self.tets.iter().enumerate() {
             if vertices[0] == DEAD {
                 continue;
@@ -32,25 +32,37 @@ impl Delaunay {
             let mut sorted = vertices;
             sorted.sort_unstable();
             if infinite > 1 || sorted.windows(2).any(|w| w[0] == w[1]) {
-                return fail(format!("tetrahedron {t} has vertices {vertices:?}"));
+                return fail(Violation::BadVertices {
+                    tetrahedron: t,
+                    vertices,
+                });
             }
             if infinite == 0 {
                 let [a, b, c, d] = self.corners(vertices);
                 if orient(a, b, c, d) <= 0.0 {
-                    return fail(format!("tetrahedron {t} {vertices:?} is not positive"));
+                    return fail(Violation::NotPositive {
+                        tetrahedron: t,
+                        vertices,
+                    });
                 }
             }
             for i in 0..4 {
                 let n = self.adjacent[t as usize][i];
                 if n == NONE || !self.is_live(n) {
-                    return fail(format!("tetrahedron {t} has no live neighbour {i}"));
+                    return fail(Violation::MissingNeighbour {
+                        tetrahedron: t,
+                        face: i,
+                    });
                 }
                 let backs = self.adjacent[n as usize]
                     .iter()
                     .filter(|&&x| x == t)
                     .count();
                 if backs != 1 {
-                    return fail(format!("neighbours {t} and {n} are not symmetric"));
+                    return fail(Violation::AsymmetricNeighbours {
+                        tetrahedron: t,
+                        neighbour: n,
+                    });
                 }
                 let Some(back) = self.adjacent[n as usize].iter().position(|&x| x == t) else {
                     continue;
@@ -64,23 +76,31 @@ impl Delaunay {
                 ours.sort_unstable();
                 theirs.sort_unstable();
                 if ours != theirs {
-                    return fail(format!("tetrahedra {t} and {n} do not share a face"));
+                    return fail(Violation::NoSharedFace {
+                        tetrahedron: t,
+                        neighbour: n,
+                    });
                 }
                 let apex = theirs_all[back];
                 if apex != INFINITE && self.conflicts(t, self.points[apex as usize]) {
-                    return fail(format!(
-                        "face between {t} and {n} is not locally Delaunay (vertex {apex})"
-                    ));
+                    return fail(Violation::NotLocallyDelaunay {
+                        tetrahedron: t,
+                        neighbour: n,
+                        apex,
+                    });
                 }
             }
         }
         for (v, &t) in self.vertex_tet.iter().enumerate() {
             let duplicate = self.duplicate_of[v] != NONE;
             if duplicate != (t == NONE) {
-                return fail(format!("vertex {v}: duplicate flag and incidence disagree"));
+                return fail(Violation::DuplicateIncidence { vertex: v });
             }
             if !duplicate && (!self.is_live(t) || !self.tets[t as usize].contains(&(v as u32))) {
-                return fail(format!("vertex {v} points at tetrahedron {t} without it"));
+                return fail(Violation::WrongIncidence {
+                    vertex: v,
+                    tetrahedron: t,
+                });
             }
         }
         Ok(())

@@ -30,7 +30,7 @@ mod sphere;
 
 use glam::DVec3;
 
-pub use params::{CoverCriterion, MedialParams, RegionGoal};
+pub use params::{CoverCriterion, MedialOptions, RegionOptions};
 pub use sphere::{MedialSphere, SphereKind};
 
 use crate::{Delaunay, DelaunayError, MedialError, Surface, TetId};
@@ -108,7 +108,7 @@ pub struct RegionOutcome {
 ///
 /// ```
 /// use sphaera_mesh::{sampling, shapes};
-/// use sphaera_medial::{MedialApproximation, MedialParams, Surface};
+/// use sphaera_medial::{MedialApproximation, MedialOptions, Surface};
 ///
 /// let mesh = shapes::capsule(0.5, 2.0, 12)?;
 /// let surface = Surface::new(&mesh)?;
@@ -118,7 +118,7 @@ pub struct RegionOutcome {
 ///     .map(|s| s.position)
 ///     .collect();
 /// // Improve until no sphere reaches more than 0.05 beyond the surface.
-/// let params = MedialParams::default().max_error(0.05);
+/// let params = MedialOptions::default().with_max_error(0.05);
 /// let medial = MedialApproximation::build(&surface, &samples, &params)?;
 /// assert!(medial.worst_error() <= 0.05);
 /// // Every sample is covered by some sphere.
@@ -152,8 +152,8 @@ pub struct MedialApproximation<'s> {
 impl<'s> MedialApproximation<'s> {
     /// Builds the adaptive approximation of `surface` covering `samples` (points on the
     /// surface, e.g. from [`sphaera_mesh::sampling::poisson_disk`]), improved until
-    /// `params`' target is reached (the first of [`MedialParams::target_spheres`] and
-    /// [`MedialParams::max_error`]; with neither, coverage only).
+    /// `params`' target is reached (the first of [`MedialOptions::target_spheres`] and
+    /// [`MedialOptions::max_error`]; with neither, coverage only).
     ///
     /// # Errors
     ///
@@ -166,7 +166,7 @@ impl<'s> MedialApproximation<'s> {
     pub fn build(
         surface: &'s Surface,
         samples: &[DVec3],
-        params: &MedialParams,
+        params: &MedialOptions,
     ) -> Result<Self, MedialError> {
         Self::build_with_progress(surface, samples, params, &|_| {})
     }
@@ -180,8 +180,8 @@ impl<'s> MedialApproximation<'s> {
     pub fn build_with_progress(
         surface: &'s Surface,
         samples: &[DVec3],
-        params: &MedialParams,
-        progress: &dyn Fn(&MedialProgress),
+        params: &MedialOptions,
+        progress: &(dyn Fn(&MedialProgress) + Sync),
     ) -> Result<Self, MedialError> {
         validate_params(params)?;
         let mut medial = Self::start(surface, samples, params.initial_points, params.cover)?;
@@ -222,10 +222,9 @@ impl<'s> MedialApproximation<'s> {
             return Err(MedialError::NonFiniteSample { index });
         }
         if samples.len() >= u32::MAX as usize {
-            return Err(MedialError::InvalidParameter(format!(
-                "{} samples: more than 32-bit ids can name",
-                samples.len()
-            )));
+            return Err(MedialError::TooManySamples {
+                count: samples.len(),
+            });
         }
         let delaunay = initial_diagram(samples, initial)?;
         let mut medial = Self {
@@ -341,7 +340,7 @@ impl<'s> MedialApproximation<'s> {
     pub fn refine_region(
         &mut self,
         region: &[u32],
-        goal: RegionGoal,
+        goal: RegionOptions,
     ) -> Result<RegionOutcome, MedialError> {
         if let Some(&index) = region.iter().find(|&&s| s as usize >= self.samples.len()) {
             return Err(MedialError::RegionOutOfRange {
@@ -350,10 +349,11 @@ impl<'s> MedialApproximation<'s> {
             });
         }
         if goal.max_error.is_nan() || goal.max_error < 0.0 {
-            return Err(MedialError::InvalidParameter(format!(
-                "region max_error {} must be non-negative",
-                goal.max_error
-            )));
+            return Err(MedialError::InvalidParameter {
+                name: "max_error",
+                value: goal.max_error,
+                requirement: "non-negative",
+            });
         }
         let mut in_region = vec![false; self.samples.len()];
         for &s in region {
@@ -420,8 +420,8 @@ impl<'s> MedialApproximation<'s> {
     /// Improvement steps until the target.
     fn improve(
         &mut self,
-        params: &MedialParams,
-        progress: &dyn Fn(&MedialProgress),
+        params: &MedialOptions,
+        progress: &(dyn Fn(&MedialProgress) + Sync),
     ) -> Result<(), MedialError> {
         if params.target_spheres.is_none() && params.max_error.is_none() {
             return Ok(());
@@ -747,19 +747,22 @@ fn measure_sphere(surface: &Surface, centre: DVec3, radius: f64) -> Record {
     }
 }
 
-fn validate_params(params: &MedialParams) -> Result<(), MedialError> {
+fn validate_params(params: &MedialOptions) -> Result<(), MedialError> {
     if let Some(e) = params.max_error
         && (e.is_nan() || e < 0.0)
     {
-        return Err(MedialError::InvalidParameter(format!(
-            "max_error {e} must be a non-negative number"
-        )));
+        return Err(MedialError::InvalidParameter {
+            name: "max_error",
+            value: e,
+            requirement: "a non-negative number",
+        });
     }
     if params.initial_points < 4 {
-        return Err(MedialError::InvalidParameter(format!(
-            "initial_points {} must be at least 4",
-            params.initial_points
-        )));
+        return Err(MedialError::InvalidParameter {
+            name: "initial_points",
+            value: params.initial_points as f64,
+            requirement: "at least 4",
+        });
     }
     Ok(())
 }

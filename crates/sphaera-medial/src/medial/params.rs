@@ -11,19 +11,20 @@ pub enum CoverCriterion {
     LargestCoverage,
 }
 
-/// Parameters of [`MedialApproximation::build`](crate::MedialApproximation::build).
+/// Options of [`MedialApproximation::build`](crate::MedialApproximation::build).
 ///
 /// # Examples
 ///
 /// ```
-/// use sphaera_medial::MedialParams;
+/// use sphaera_medial::MedialOptions;
 ///
-/// let params = MedialParams::default().spheres(500);
-/// assert_eq!(params.target_spheres, Some(500));
-/// assert_eq!(params.max_error, None);
+/// let options = MedialOptions::default().with_target_spheres(500);
+/// assert_eq!(options.target_spheres, Some(500));
+/// assert_eq!(options.max_error, None);
 /// ```
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct MedialParams {
+#[non_exhaustive]
+pub struct MedialOptions {
     /// Stop improving once the set has at least this many spheres.
     pub target_spheres: Option<usize>,
     /// Stop improving once the worst sphere error is at most this (absolute, in mesh
@@ -38,7 +39,7 @@ pub struct MedialParams {
     pub max_iterations: usize,
 }
 
-impl Default for MedialParams {
+impl Default for MedialOptions {
     fn default() -> Self {
         Self {
             target_spheres: None,
@@ -50,32 +51,39 @@ impl Default for MedialParams {
     }
 }
 
-impl MedialParams {
+impl MedialOptions {
     /// Improve until the set has at least `n` spheres.
     #[must_use]
-    pub fn spheres(mut self, n: usize) -> Self {
+    pub fn with_target_spheres(mut self, n: usize) -> Self {
         self.target_spheres = Some(n);
         self
     }
 
     /// Improve until the worst sphere error is at most `e` (mesh units).
     #[must_use]
-    pub fn max_error(mut self, e: f64) -> Self {
+    pub fn with_max_error(mut self, e: f64) -> Self {
         self.max_error = Some(e);
         self
     }
 
-    /// The cover criterion.
+    /// With the given cover criterion.
     #[must_use]
-    pub fn cover(mut self, cover: CoverCriterion) -> Self {
+    pub fn with_cover(mut self, cover: CoverCriterion) -> Self {
         self.cover = cover;
         self
     }
 
-    /// The number of samples the Voronoi diagram starts from.
+    /// With `n` samples for the Voronoi diagram to start from.
     #[must_use]
-    pub fn initial_points(mut self, n: usize) -> Self {
+    pub fn with_initial_points(mut self, n: usize) -> Self {
         self.initial_points = n;
+        self
+    }
+
+    /// With at most `n` improvement steps.
+    #[must_use]
+    pub fn with_max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
         self
     }
 }
@@ -83,24 +91,57 @@ impl MedialParams {
 /// What [`MedialApproximation::refine_region`](crate::MedialApproximation::refine_region)
 /// must reach for the spheres covering a region: at least `min_spheres` of them, and a
 /// worst error of at most `max_error`.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::RegionOptions;
+///
+/// let options = RegionOptions::default().with_min_spheres(100).with_max_error(0.01);
+/// assert_eq!((options.min_spheres, options.max_error), (100, 0.01));
+/// assert_eq!(options.max_iterations, 20_000);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct RegionGoal {
-    /// At least this many spheres cover some sample of the region.
+#[non_exhaustive]
+pub struct RegionOptions {
+    /// At least this many spheres cover some sample of the region (default 1).
     pub min_spheres: usize,
-    /// Worst error of those spheres (mesh units); `f64::INFINITY` for no bound.
+    /// Worst error of those spheres (mesh units); `f64::INFINITY` for no bound (the
+    /// default).
     pub max_error: f64,
-    /// A cap on improvement steps for this region.
+    /// A cap on improvement steps for this region (default 20,000).
     pub max_iterations: usize,
 }
 
-impl RegionGoal {
-    /// At least `min_spheres` spheres with worst error at most `max_error`.
-    #[must_use]
-    pub fn new(min_spheres: usize, max_error: f64) -> Self {
+impl Default for RegionOptions {
+    fn default() -> Self {
         Self {
-            min_spheres,
-            max_error,
+            min_spheres: 1,
+            max_error: f64::INFINITY,
             max_iterations: 20_000,
         }
+    }
+}
+
+impl RegionOptions {
+    /// With at least `n` spheres covering the region.
+    #[must_use]
+    pub fn with_min_spheres(mut self, n: usize) -> Self {
+        self.min_spheres = n;
+        self
+    }
+
+    /// With a worst error of at most `e` (mesh units).
+    #[must_use]
+    pub fn with_max_error(mut self, e: f64) -> Self {
+        self.max_error = e;
+        self
+    }
+
+    /// With at most `n` improvement steps.
+    #[must_use]
+    pub fn with_max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
     }
 }
