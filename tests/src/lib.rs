@@ -11,8 +11,10 @@
 use std::path::{Path, PathBuf};
 
 pub mod hausdorff;
+pub mod random;
 
 pub use hausdorff::{SampledHausdorff, sampled_hausdorff};
+pub use random::SplitMix64;
 
 /// Where the shared meshes are: `$SPHAERA_DATA`, or `../shared/data` beside the workspace.
 pub fn data_root() -> PathBuf {
