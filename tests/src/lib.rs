@@ -11,6 +11,7 @@
 use std::path::{Path, PathBuf};
 
 pub mod hausdorff;
+pub mod pattern_search;
 pub mod random;
 
 pub use hausdorff::{SampledHausdorff, sampled_hausdorff};

@@ -8,6 +8,7 @@ use proptest::prelude::*;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
 use sphaera_mesh::shapes;
+use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, TWELVE_DIRECTIONS};
 use sphaera_tests::random::SplitMix64;
 
 /// Slack of the brute-force checks (the meshes are of unit size).
@@ -49,61 +50,25 @@ fn noisy_grid(n: u32, jitter: f64, bump: f64, rng: &mut SplitMix64) -> HalfEdgeM
 }
 
 /// `min over λ of |x − λ·P| + sign · λ·R` over the triangle (convex in `λ`): a grid of
-/// the simplex refined around its best point. Any sampled value bounds the minimum from
-/// above, so a small value proves the inclusion being checked.
+/// the simplex refined around its best point ([`sphaera_tests::pattern_search`]: 16 grid
+/// steps, twelve directions, negative coordinates clamped, steps down to 1e-13). Any
+/// sampled value bounds the minimum from above, so a small value proves the inclusion
+/// being checked. The pattern search is capped at 3,000 rounds: a (nearly) flat valley
+/// would otherwise be crawled at tiny steps; stopping early only makes the check stricter.
 fn min_over_triangle(x: DVec3, p: [DVec3; 3], r: [f64; 3], sign: f64) -> f64 {
-    let f = |a: f64, b: f64| {
+    let f = move |a: f64, b: f64| {
         let c = 1.0 - a - b;
         (x - (a * p[0] + b * p[1] + c * p[2])).length() + sign * (a * r[0] + b * r[1] + c * r[2])
     };
-    let n = 16;
-    let mut best = (f64::INFINITY, 0.0, 0.0);
-    for i in 0..=n {
-        for j in 0..=(n - i) {
-            let (a, b) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
-            let value = f(a, b);
-            if value < best.0 {
-                best = (value, a, b);
-            }
-        }
+    PatternSearch {
+        grid: 16,
+        directions: &TWELVE_DIRECTIONS,
+        min_step: 1e-13,
+        budget: Budget::Rounds(3000),
+        boundary: Boundary::ClampNegative,
     }
-    let mut step = 1.0 / f64::from(n);
-    let directions = [
-        (1.0, 0.0),
-        (-1.0, 0.0),
-        (0.0, 1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (-1.0, 1.0),
-        (1.0, 1.0),
-        (-1.0, -1.0),
-        (2.0, -1.0),
-        (-2.0, 1.0),
-        (1.0, -2.0),
-        (-1.0, 2.0),
-    ];
-    // Capped: a (nearly) flat valley would otherwise be crawled at tiny steps; stopping
-    // early only makes the check stricter (the value bounds the minimum from above).
-    let mut budget = 3000;
-    while step > 1e-13 && budget > 0 {
-        budget -= 1;
-        let mut improved = false;
-        for (da, db) in directions {
-            let (a, b) = ((best.1 + da * step).max(0.0), (best.2 + db * step).max(0.0));
-            if a + b > 1.0 {
-                continue;
-            }
-            let value = f(a, b);
-            if value < best.0 {
-                best = (value, a, b);
-                improved = true;
-            }
-        }
-        if !improved {
-            step *= 0.5;
-        }
-    }
-    best.0
+    .minimise(f)
+    .value
 }
 
 /// Triangles with per-corner radii.
