@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 pub mod hausdorff;
 pub mod pattern_search;
+pub mod point_sets;
 pub mod random;
 
 pub use hausdorff::{SampledHausdorff, sampled_hausdorff};
