@@ -10,6 +10,7 @@
 
 use std::path::{Path, PathBuf};
 
+pub mod delaunay_fuzz;
 pub mod hausdorff;
 pub mod pattern_search;
 pub mod point_sets;
