@@ -41,8 +41,8 @@
 //!   target only.
 //!
 //! The normal dependencies are what the helpers need and no more: `sphaera-mesh`,
-//! parry3d-f64 and rayon ([`hausdorff`]), rand and rand_chacha ([`point_sets`]),
-//! `sphaera-medial` and robust ([`delaunay_fuzz`]). The crates the tests check against
+//! `parry3d-f64` and `rayon` ([`hausdorff`]), `rand` and `rand_chacha` ([`point_sets`]),
+//! `sphaera-medial` and `robust` ([`delaunay_fuzz`]). The crates the tests check against
 //! each other (`sphaera-simplify`, `sphaera-sweep`, `sphaera-spheretree`, the facade)
 //! are dev-dependencies.
 //!
