@@ -37,9 +37,10 @@
 //! # Time
 //!
 //! Measured in the test profile (`opt-level = 1`, dependencies at 2) on the shared 2-core
-//! machine (load average 2–3): 15–16 s wall for the file, its two tests side by side (the
-//! meshes of more than 40,000 triangles: 15 s alone, `dragon_vrip_res2.ply` most of it;
-//! the others: 9 s alone).
+//! machine: 26 s of CPU time; 15–16 s wall for the file when the cores are free (its two
+//! tests side by side: the meshes of more than 40,000 triangles take 15 s alone,
+//! `dragon_vrip_res2.ply` most of it, the others 9 s), 27 s wall while two other builds
+//! ran.
 
 #![allow(clippy::print_stderr)] // each mesh reports its numbers
 
