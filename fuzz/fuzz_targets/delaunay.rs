@@ -3,14 +3,12 @@
 //! built and a few more points are inserted, and everything is checked
 //! (`Delaunay::validate`, duplicates, errors against brute force, determinism).
 //!
-//! `cargo +nightly fuzz run delaunay` from the repository root. The body is shared with
-//! `crates/sphaera-medial/tests/fuzz_replay.rs`, which runs it on proptest's bytes in CI.
+//! `cargo +nightly fuzz run delaunay` from the repository root. The body is
+//! `sphaera_tests::delaunay_fuzz` (`tests/src/delaunay_fuzz.rs`), shared with
+//! `tests/tests/delaunay_fuzz_replay.rs`, which runs it on proptest's bytes in CI.
 
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 
-#[path = "../../crates/sphaera-medial/tests/common/fuzz_body.rs"]
-mod fuzz_body;
-
-fuzz_target!(|data: &[u8]| fuzz_body::check(data));
+fuzz_target!(|data: &[u8]| sphaera_tests::delaunay_fuzz::check(data));

@@ -1,18 +1,68 @@
-//! Shared fixtures for Sphaera's cross-crate tests, benches and experiments.
+//! Sphaera's cross-crate tests, and the one home of the helpers that tests, benches,
+//! examples and the fuzz target share.
+//!
+//! # The tests (`tests/tests/`)
+//!
+//! Where one crate's output is checked by another crate, or against brute force and
+//! parry3d:
+//!
+//! | file | what checks what |
+//! |---|---|
+//! | `simplify_bound_vs_hausdorff.rs` | the simplifier's error bound against `sphaera-sweep`'s certified Hausdorff bracket, and the bracket against the parry-sampled distance, on every mesh of the shared data |
+//! | `spheretree_vs_sweep.rs` | sphere-tree coverage against independent surface samples, and the certified and construction errors of every node against sweep's exact distances |
+//! | `medial_vs_delaunay.rs` | the medial approximation's Delaunay `validate` after every step, its Voronoi spheres empty by brute force, its sphere errors against sweep's distances |
+//! | `delaunay_fuzz_replay.rs` | the Delaunay fuzz body ([`delaunay_fuzz`]) on proptest's bytes |
+//! | `facade.rs` | the `sphaera` facade used as a user writes it: a broken re-export fails to compile |
+//! | `hausdorff_sampling.rs`, `geometry_real_meshes.rs`, `winding_real_meshes.rs`, `data_topology.rs`, `fixtures.rs` | `sphaera-mesh` and this crate's fixtures against parry3d, brute force and the data README |
+//!
+//! # The helpers
+//!
+//! | item | what | used by |
+//! |---|---|---|
+//! | [`data_dir`], [`mesh_files`], [`expected_stats`] | the shared real meshes | tests of every crate, benches, `sphaera-eval` |
+//! | [`hausdorff`] | the sampled Hausdorff distance (parry3d-f64), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
+//! | [`random`] | [`SplitMix64`] and the MMIX [`random::Lcg64`], each caller's mapping of words to numbers named | unit tests of mesh (indexed heap), simplify (edge radius, quadric, queue) and sweep (queue, polyline hierarchy); the sweep and sphere-tree integration tests |
+//! | [`pattern_search`] | the grid-then-pattern search over a triangle | [`hausdorff`]'s refinement; simplify's edge-radius unit tests |
+//! | [`point_sets`] | reproducible and degenerate point sets for Delaunay codes | medial's unit tests (sample grid), integration tests, bench and example; `sphaera-eval`'s Delaunay bench |
+//! | [`delaunay_fuzz`] | the body of the `delaunay` fuzz target | `fuzz/` (by path) and `delaunay_fuzz_replay.rs` |
+//!
+//! # Which helper may use which crate
+//!
+//! Every workspace crate has `sphaera-tests` as a dev-dependency, so a normal dependency of
+//! this crate on a workspace crate `X` closes a cycle `X → sphaera-tests → X`. Cargo
+//! allows it: `X`'s integration tests, benches and examples link the same `X` as this
+//! crate does. But `X`'s **unit tests** (`#[cfg(test)]` in `src/`) are a second copy of
+//! `X`, whose types differ from the ones this crate was built against. So:
+//!
+//! - [`random`], [`pattern_search`] and [`point_sets`] take and return only numbers and
+//!   glam's `DVec3` (one glam for everyone): any unit test may use them;
+//! - [`hausdorff`] takes `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
+//!   `sphaera-medial`: they serve integration tests, benches, experiments and the fuzz
+//!   target only.
+//!
+//! The normal dependencies are what the helpers need and no more: `sphaera-mesh`,
+//! `parry3d-f64` and `rayon` ([`hausdorff`]), `rand` and `rand_chacha` ([`point_sets`]),
+//! `sphaera-medial` and `robust` ([`delaunay_fuzz`]). The crates the tests check against
+//! each other (`sphaera-simplify`, `sphaera-sweep`, `sphaera-spheretree`, the facade)
+//! are dev-dependencies.
+//!
+//! # The shared meshes
 //!
 //! The real meshes live outside the repository, in `../shared/data` beside the checkout
 //! (override with `SPHAERA_DATA=/path/to/data`). Tests that need them call [`data_dir`]:
 //! when the folder is absent they skip with a message, unless `SPHAERA_REQUIRE_DATA=1`
 //! (CI sets it), in which case they fail.
-//!
-//! [`hausdorff`] measures a sampled Hausdorff distance between two meshes with parry3d-f64
-//! (a lower bound of the true distance), to check certified upper bounds against.
 
 use std::path::{Path, PathBuf};
 
+pub mod delaunay_fuzz;
 pub mod hausdorff;
+pub mod pattern_search;
+pub mod point_sets;
+pub mod random;
 
 pub use hausdorff::{SampledHausdorff, sampled_hausdorff};
+pub use random::SplitMix64;
 
 /// Where the shared meshes are: `$SPHAERA_DATA`, or `../shared/data` beside the workspace.
 pub fn data_root() -> PathBuf {

@@ -27,7 +27,8 @@ use std::{
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use delaunay::prelude::construction::{DelaunayTriangulation, vertex};
-use sphaera::medial::{DVec3, Delaunay, point_sets};
+use sphaera::medial::{DVec3, Delaunay};
+use sphaera_tests::point_sets;
 
 /// The peer's input type for 3D points without attached data.
 type PeerVertex = delaunay::prelude::construction::Vertex<f64, (), 3>;

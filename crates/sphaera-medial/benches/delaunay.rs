@@ -11,7 +11,8 @@
 use std::{hint::black_box, time::Duration};
 
 use criterion::{BatchSize, Criterion, Throughput, criterion_group, criterion_main};
-use sphaera_medial::{DVec3, Delaunay, point_sets};
+use sphaera_medial::{DVec3, Delaunay};
+use sphaera_tests::point_sets;
 
 /// `Delaunay::new` on the whole point set; throughput in inserted points.
 fn build(c: &mut Criterion) {

@@ -12,11 +12,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for (name, points) in [
         (
             "random 100k",
-            sphaera_medial::point_sets::random_in_cube(100_000, 1),
+            sphaera_tests::point_sets::random_in_cube(100_000, 1),
         ),
         (
             "cube surface 100k",
-            sphaera_medial::point_sets::cube_surface_grid(100_000),
+            sphaera_tests::point_sets::cube_surface_grid(100_000),
         ),
     ] {
         let start = Instant::now();

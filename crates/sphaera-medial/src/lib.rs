@@ -28,7 +28,6 @@
 pub mod delaunay;
 mod error;
 pub mod medial;
-pub mod point_sets;
 
 pub use delaunay::{Delaunay, INFINITE, Insertion, TetId, VoronoiCell};
 pub use error::{DelaunayError, MedialError, Violation};

@@ -8,8 +8,8 @@
 use std::collections::BTreeSet;
 
 use proptest::prelude::*;
-use sphaera_medial::point_sets::integer_sphere;
 use sphaera_medial::{DVec3, Delaunay, DelaunayError, INFINITE};
+use sphaera_tests::point_sets::integer_sphere;
 
 fn signed_volume(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     (a - d).dot((b - d).cross(c - d)) / 6.0

@@ -281,19 +281,7 @@ fn transpose(a: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 mod tests {
     use super::*;
     use sphaera_mesh::TriMesh;
-
-    /// A deterministic pseudo-random sequence in `[0, 1)` (splitmix64).
-    fn random(seed: &mut u64) -> f64 {
-        *seed = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *seed;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64
-    }
-
-    fn random_point(seed: &mut u64) -> DVec3 {
-        DVec3::new(random(seed), random(seed), random(seed)) * 2.0 - 1.0
-    }
+    use sphaera_tests::random::SplitMix64;
 
     fn plane_through(p: DVec3, n: DVec3) -> Quadric {
         let n = n.normalize();
@@ -357,15 +345,15 @@ mod tests {
 
     #[test]
     fn random_tetrahedra_corners_are_found_and_beat_the_fallbacks() {
-        let mut seed = 7;
+        let mut rng = SplitMix64::new(7);
         for _ in 0..200 {
-            let p = [0, 1, 2, 3].map(|_| random_point(&mut seed));
+            let p = [0, 1, 2, 3].map(|_| rng.vector_by_max());
             // The quadric of the three faces around p[0] vanishes at p[0] only.
             let q = Quadric::triangle(p[0], p[1], p[2])
                 + Quadric::triangle(p[0], p[2], p[3])
                 + Quadric::triangle(p[0], p[3], p[1]);
-            let u = p[0] + 0.1 * random_point(&mut seed);
-            let v = p[0] + 0.1 * random_point(&mut seed);
+            let u = p[0] + 0.1 * rng.vector_by_max();
+            let v = p[0] + 0.1 * rng.vector_by_max();
             let x = optimal_position(&q, u, v);
             assert!(x.is_finite());
             let best = q.evaluate(x);
@@ -388,10 +376,10 @@ mod tests {
 
     #[test]
     fn optimum_is_scale_and_translation_invariant() {
-        let mut seed = 11;
+        let mut rng = SplitMix64::new(11);
         for _ in 0..50 {
-            let p = [0, 1, 2, 3].map(|_| random_point(&mut seed));
-            let (u, v) = (random_point(&mut seed), random_point(&mut seed));
+            let p = [0, 1, 2, 3].map(|_| rng.vector_by_max());
+            let (u, v) = (rng.vector_by_max(), rng.vector_by_max());
             for (scale, shift) in [(1e-6, DVec3::ZERO), (1e6, DVec3::new(3e6, -1e6, 2e6))] {
                 let build = |s: f64, t: DVec3| {
                     let p = p.map(|x| s * x + t);
@@ -421,9 +409,9 @@ mod tests {
 
     #[test]
     fn eigen_decomposition_reconstructs_the_matrix() {
-        let mut seed = 3;
+        let mut rng = SplitMix64::new(3);
         for _ in 0..100 {
-            let r = [0; 6].map(|_| random(&mut seed) - 0.5);
+            let r = [0; 6].map(|_| rng.unit_by_max() - 0.5);
             let a = [[r[0], r[1], r[2]], [r[1], r[3], r[4]], [r[2], r[4], r[5]]];
             let (values, vectors) = symmetric_eigen(a);
             for (l, e) in values.iter().zip(vectors) {

@@ -13,8 +13,10 @@ use sphaera_mesh::{DVec3, Sphere, shapes};
 use sphaera_spheretree::collide::{
     Budget, Collision, CostModel, Similarity, TraversalStats, collide, overlaps,
 };
-use sphaera_spheretree::export::{JSON_FORMAT, JSON_VERSION, LevelJson, NodeJson, TreeJson};
-use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, Surface, build};
+use sphaera_spheretree::{
+    SphereTree, SphereTreeError, SphereTreeOptions, Surface, TreeNode, build,
+};
+use sphaera_tests::SplitMix64;
 
 /// Two small built trees: a capsule and a cube, depth 2, branch 4.
 fn built() -> &'static (SphereTree, SphereTree) {
@@ -40,90 +42,55 @@ fn built() -> &'static (SphereTree, SphereTree) {
     })
 }
 
-/// A small deterministic generator (`SplitMix64`), for synthetic trees.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1_u64 << 53) as f64
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
-
 /// A random tree of up to `depth` levels below the root, with 0–3 children per node (so
 /// leaves at every level), children near their parent.
 fn synthetic(seed: u64, depth: usize, branch: usize) -> SphereTree {
-    let mut rng = Rng(seed);
-    let mut nodes = vec![NodeJson {
-        center: [0.0; 3],
-        radius: 1.0,
+    let mut rng = SplitMix64::new(seed);
+    let root = TreeNode {
+        sphere: Sphere::new(DVec3::ZERO, 1.0),
         error: 0.5,
         level: 0,
         parent: None,
-        children: vec![],
+        children: 0..0,
         region_samples: 0,
-    }];
-    let mut levels = vec![(0, 1)];
+    };
+    let mut levels = vec![vec![root]];
+    // The index of the first node of the level being expanded.
+    let mut first = 0;
     for level in 0..depth {
-        let (first, count) = levels[level];
-        let next_first = nodes.len();
-        for parent in first..first + count {
+        let next_first = first + levels[level].len();
+        let mut next = Vec::new();
+        for (k, parent) in levels[level].iter_mut().enumerate() {
             let kids = rng.below(branch as u64 + 1) as usize;
-            let start = nodes.len() as u32;
-            let pc = nodes[parent].center;
-            let pr = nodes[parent].radius;
+            let start = (next_first + next.len()) as u32;
+            let (pc, pr) = (parent.sphere.center, parent.sphere.radius);
             for _ in 0..kids {
                 let r = pr * (0.3 + 0.4 * rng.unit());
                 let offset = [0, 1, 2].map(|_| (rng.unit() - 0.5) * pr);
-                nodes.push(NodeJson {
-                    center: [pc[0] + offset[0], pc[1] + offset[1], pc[2] + offset[2]],
-                    radius: r,
-                    error: 0.5 * r * rng.unit(),
+                let error = 0.5 * r * rng.unit();
+                next.push(TreeNode {
+                    sphere: Sphere::new(
+                        DVec3::new(pc.x + offset[0], pc.y + offset[1], pc.z + offset[2]),
+                        r,
+                    ),
+                    error,
                     level: level as u32 + 1,
-                    parent: Some(parent as u32),
-                    children: vec![],
+                    parent: Some((first + k) as u32),
+                    children: 0..0,
                     region_samples: 0,
                 });
             }
-            nodes[parent].children = (start..nodes.len() as u32).collect();
+            if kids > 0 {
+                parent.children = start..start + kids as u32;
+            }
         }
-        if nodes.len() == next_first {
+        if next.is_empty() {
             break;
         }
-        levels.push((next_first, nodes.len() - next_first));
+        first = next_first;
+        levels.push(next);
     }
-    let levels = levels
-        .iter()
-        .map(|&(first, count)| LevelJson {
-            first,
-            count,
-            worst_error: nodes[first..first + count]
-                .iter()
-                .map(|n| n.error)
-                .fold(f64::NEG_INFINITY, f64::max),
-            coverage: None,
-        })
-        .collect();
-    TreeJson {
-        format: JSON_FORMAT.into(),
-        version: JSON_VERSION,
-        branch,
-        levels,
-        nodes,
-    }
-    .to_tree()
-    .unwrap()
+    SphereTree::from_levels(branch, levels).unwrap()
 }
 
 fn is_leaf(tree: &SphereTree, i: usize) -> bool {

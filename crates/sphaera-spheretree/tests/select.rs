@@ -2,68 +2,48 @@
 //! exhaustive search for the smallest cut.
 
 use proptest::prelude::*;
-use sphaera_mesh::shapes;
-use sphaera_spheretree::export::{JSON_FORMAT, JSON_VERSION, LevelJson, NodeJson, TreeJson};
+use sphaera_mesh::{DVec3, Sphere, shapes};
 use sphaera_spheretree::select::{
     cut_for_tolerance, level_for_tolerance, level_worst_errors, spheres_for_tolerance,
 };
-use sphaera_spheretree::{SphereTree, SphereTreeOptions, Surface, build};
+use sphaera_spheretree::{SphereTree, SphereTreeOptions, Surface, TreeNode, build};
 
 /// A tree from child counts listed breadth-first (the root first) and one error per node.
 fn tree_from_shape(child_counts: &[usize], errors: &[f64], branch: usize) -> SphereTree {
-    let mut nodes: Vec<NodeJson> = Vec::new();
-    let mut levels = vec![(0_usize, 1_usize)];
-    let node = |level: u32, parent: Option<u32>, error: f64| NodeJson {
-        center: [0.0; 3],
-        radius: 1.0 / f64::from(level + 1),
+    let node = |level: u32, parent: Option<u32>, error: f64| TreeNode {
+        sphere: Sphere::new(DVec3::ZERO, 1.0 / f64::from(level + 1)),
         error,
         level,
         parent,
-        children: vec![],
+        children: 0..0,
         region_samples: 0,
     };
-    nodes.push(node(0, None, errors[0]));
+    let mut levels = vec![vec![node(0, None, errors[0])]];
     let mut counts = child_counts.iter().copied();
-    let mut level = 0;
+    // Nodes before the level being expanded.
+    let mut first = 0;
     loop {
-        let (first, count) = levels[level];
-        let next_first = nodes.len();
-        for parent in first..first + count {
+        let level = levels.len() - 1;
+        let next_first = first + levels[level].len();
+        let mut next = Vec::new();
+        for (k, parent) in levels[level].iter_mut().enumerate() {
             let kids = counts.next().unwrap_or(0).min(branch);
-            let start = nodes.len() as u32;
+            let start = (next_first + next.len()) as u32;
             for _ in 0..kids {
-                let e = errors[nodes.len() % errors.len()];
-                nodes.push(node(level as u32 + 1, Some(parent as u32), e));
+                let e = errors[(next_first + next.len()) % errors.len()];
+                next.push(node(level as u32 + 1, Some((first + k) as u32), e));
             }
-            nodes[parent].children = (start..nodes.len() as u32).collect();
+            if kids > 0 {
+                parent.children = start..start + kids as u32;
+            }
         }
-        if nodes.len() == next_first {
+        if next.is_empty() {
             break;
         }
-        levels.push((next_first, nodes.len() - next_first));
-        level += 1;
+        first = next_first;
+        levels.push(next);
     }
-    let levels = levels
-        .iter()
-        .map(|&(first, count)| LevelJson {
-            first,
-            count,
-            worst_error: nodes[first..first + count]
-                .iter()
-                .map(|n| n.error)
-                .fold(f64::NEG_INFINITY, f64::max),
-            coverage: None,
-        })
-        .collect();
-    TreeJson {
-        format: JSON_FORMAT.into(),
-        version: JSON_VERSION,
-        branch,
-        levels,
-        nodes,
-    }
-    .to_tree()
-    .unwrap()
+    SphereTree::from_levels(branch, levels).unwrap()
 }
 
 fn children(tree: &SphereTree, i: usize) -> Vec<usize> {

@@ -96,23 +96,16 @@ impl Queue {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A small deterministic pseudo-random sequence.
-    fn lcg(state: &mut u64) -> u64 {
-        *state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        *state >> 33
-    }
+    use sphaera_tests::random::Lcg64;
 
     #[test]
     fn first_is_the_smallest_current_entry() {
         let n = 300_u32;
         let mut queue = Queue::new(n as usize);
         let mut model: Vec<Option<f64>> = vec![None; n as usize];
-        let mut state = 11;
+        let mut rng = Lcg64::new(11);
         for step in 0..5000 {
-            let r = lcg(&mut state);
+            let r = rng.next_high31();
             let t = (r % u64::from(n)) as u32;
             if step % 4 == 0 {
                 assert_eq!(queue.remove(t).map(|e| e.key), model[t as usize]);

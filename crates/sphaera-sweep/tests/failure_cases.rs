@@ -12,6 +12,7 @@ use sphaera_mesh::{DVec3, TriMesh, shapes, topology};
 use sphaera_sweep::{
     ClosestPoint, Feature, Session, SessionOptions, SweepError, Sweeper, Tolerance, build_hierarchy,
 };
+use sphaera_tests::SplitMix64;
 
 // ---------------------------------------------------------------------------------------
 // Brute force and checks
@@ -155,49 +156,6 @@ fn check_bounds(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3, tolerance: 
     assert!(
         bounds.gap() <= tolerance.allowed_gap(bounds.upper) + slack || bounds.closest.is_some()
     );
-}
-
-/// A small deterministic generator (`SplitMix64`).
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// A uniformly random unit vector.
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let l = v.length();
-            if l > 1e-3 && l <= 1.0 {
-                return v / l;
-            }
-        }
-    }
-
-    /// Uniform in `[0, n)`.
-    fn index(&mut self, n: usize) -> usize {
-        (self.unit() * n as f64) as usize % n.max(1)
-    }
 }
 
 // ---------------------------------------------------------------------------------------
@@ -483,7 +441,7 @@ fn far_away_queries_are_exact() {
     let hierarchy = build_hierarchy(&torus).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     let mut session = sweeper.session();
-    let mut rng = Rng(11);
+    let mut rng = SplitMix64::new(11);
     for _ in 0..20 {
         let p = 1e6 * size * rng.direction();
         check(&torus, &mut session, p);
@@ -542,7 +500,7 @@ fn check_random_queries(mesh: &TriMesh, seed: u64, count: usize) {
     let mut session = sweeper.session();
     let bbox = mesh.bounding_box();
     let (center, extent) = (bbox.center(), bbox.extent().max(DVec3::splat(1e-3)));
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     for i in 0..count {
         let p = if i % 4 == 3 {
             mesh.positions()[rng.index(mesh.vertex_count())]
@@ -970,7 +928,7 @@ fn random_walk(mesh: &TriMesh, options: SessionOptions, seed: u64, steps: usize,
     let mut session = sweeper.session_with(options);
     let bbox = mesh.bounding_box();
     let (center, size) = (bbox.center(), mesh.bounding_box_diagonal());
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let mut p = center;
     for step in 0..steps {
         let roll = rng.unit();

@@ -10,6 +10,7 @@ use std::time::Instant;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, io};
 use sphaera_sweep::{Session, Sweeper, Tolerance, build_hierarchy};
+use sphaera_tests::SplitMix64;
 use sphaera_tests::hausdorff::DistanceToMesh;
 
 /// Meshes above this size are left to the benchmarks (test time).
@@ -27,49 +28,6 @@ const BIG_MESH: usize = 40_000;
 /// them comes out exact.
 const KNOWN_WRONG: &[&str] = &[];
 
-/// A small deterministic generator (`SplitMix64`).
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[lo, hi)`.
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// Uniform in `[0, n)`.
-    fn index(&mut self, n: usize) -> usize {
-        (self.unit() * n as f64) as usize % n.max(1)
-    }
-
-    /// A uniformly random unit vector.
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let l = v.length();
-            if l > 1e-3 && l <= 1.0 {
-                return v / l;
-            }
-        }
-    }
-}
-
 /// The query points for `mesh`: `n` of them, about 40 % uniform in the bounding box
 /// scaled 1.5× about its centre, 40 % within 1 % of the diagonal of a random surface
 /// point, 20 % a smooth path of small steps near the surface.
@@ -77,8 +35,8 @@ fn query_points(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
     let bbox = mesh.bounding_box();
     let (center, half) = (bbox.center(), 0.75 * bbox.extent());
     let diagonal = mesh.bounding_box_diagonal();
-    let mut rng = Rng(seed);
-    let surface_point = |rng: &mut Rng| {
+    let mut rng = SplitMix64::new(seed);
+    let surface_point = |rng: &mut SplitMix64| {
         let triangle = mesh
             .triangle(rng.index(mesh.triangle_count()))
             .expect("in range");

@@ -123,9 +123,12 @@ mod tests {
 
     #[test]
     fn ball_queries_match_brute_force() {
-        let points = crate::point_sets::random_in_cube(3_000, 4);
+        let points = sphaera_tests::point_sets::random_in_cube(3_000, 4);
         let grid = SampleGrid::new(&points);
-        for (k, &c) in crate::point_sets::random_in_cube(50, 9).iter().enumerate() {
+        for (k, &c) in sphaera_tests::point_sets::random_in_cube(50, 9)
+            .iter()
+            .enumerate()
+        {
             let r = 0.02 + 0.03 * k as f64;
             let mut got = Vec::new();
             grid.within(&points, c, r, &mut got);

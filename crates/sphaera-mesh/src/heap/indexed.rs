@@ -220,6 +220,7 @@ mod tests {
 
     use super::super::TotalF64;
     use super::*;
+    use sphaera_tests::random::Lcg64;
 
     #[derive(Clone, Copy, Debug, PartialEq)]
     struct Item {
@@ -240,14 +241,6 @@ mod tests {
         }
     }
 
-    /// A small deterministic pseudo-random sequence.
-    fn lcg(state: &mut u64) -> u64 {
-        *state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        *state >> 33
-    }
-
     #[test]
     fn behaves_like_a_sorted_list_of_current_items() {
         let n = 300_u32;
@@ -260,9 +253,9 @@ mod tests {
         for item in initial {
             model[item.id as usize] = Some(item.key);
         }
-        let mut state = 11;
+        let mut rng = Lcg64::new(11);
         for step in 0..6000 {
-            let r = lcg(&mut state);
+            let r = rng.next_high31();
             let id = (r % u64::from(n)) as u32;
             match step % 5 {
                 0 => {

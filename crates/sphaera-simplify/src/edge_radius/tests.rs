@@ -8,42 +8,31 @@ use proptest::prelude::*;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
 use sphaera_mesh::shapes;
+use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, TWELVE_DIRECTIONS};
+use sphaera_tests::random::SplitMix64;
 
 /// Slack of the brute-force checks (the meshes are of unit size).
 const SLACK: f64 = 1e-9;
 
-/// A deterministic pseudo-random number in `[0, 1)` (splitmix64).
-fn random(seed: &mut u64) -> f64 {
-    *seed = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *seed;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    (z ^ (z >> 31)) as f64 / u64::MAX as f64
-}
-
-fn random_vector(seed: &mut u64) -> DVec3 {
-    DVec3::new(random(seed), random(seed), random(seed)) * 2.0 - 1.0
-}
-
 /// A unit sphere with every vertex moved by up to `noise` in each coordinate.
-fn noisy_sphere(resolution: usize, noise: f64, seed: &mut u64) -> HalfEdgeMesh {
+fn noisy_sphere(resolution: usize, noise: f64, rng: &mut SplitMix64) -> HalfEdgeMesh {
     let mesh = shapes::sphere(1.0, resolution).unwrap();
     let p = mesh
         .positions()
         .iter()
-        .map(|&x| x + noise * random_vector(seed))
+        .map(|&x| x + noise * rng.vector_by_max())
         .collect();
     HalfEdgeMesh::from_trimesh(&TriMesh::new(p, mesh.triangles().to_vec()).unwrap())
 }
 
 /// An `n × n` grid of the unit square, jittered in the plane by `jitter` (in cells) and
 /// in height by `bump`.
-fn noisy_grid(n: u32, jitter: f64, bump: f64, seed: &mut u64) -> HalfEdgeMesh {
+fn noisy_grid(n: u32, jitter: f64, bump: f64, rng: &mut SplitMix64) -> HalfEdgeMesh {
     let cell = 1.0 / f64::from(n);
     let mut p = Vec::new();
     for j in 0..=n {
         for i in 0..=n {
-            let d = random_vector(seed);
+            let d = rng.vector_by_max();
             let x = f64::from(i) * cell + jitter * cell * d.x;
             let y = f64::from(j) * cell + jitter * cell * d.y;
             p.push(DVec3::new(x, y, bump * d.z));
@@ -61,61 +50,25 @@ fn noisy_grid(n: u32, jitter: f64, bump: f64, seed: &mut u64) -> HalfEdgeMesh {
 }
 
 /// `min over λ of |x − λ·P| + sign · λ·R` over the triangle (convex in `λ`): a grid of
-/// the simplex refined around its best point. Any sampled value bounds the minimum from
-/// above, so a small value proves the inclusion being checked.
+/// the simplex refined around its best point ([`sphaera_tests::pattern_search`]: 16 grid
+/// steps, twelve directions, negative coordinates clamped, steps down to 1e-13). Any
+/// sampled value bounds the minimum from above, so a small value proves the inclusion
+/// being checked. The pattern search is capped at 3,000 rounds: a (nearly) flat valley
+/// would otherwise be crawled at tiny steps; stopping early only makes the check stricter.
 fn min_over_triangle(x: DVec3, p: [DVec3; 3], r: [f64; 3], sign: f64) -> f64 {
-    let f = |a: f64, b: f64| {
+    let f = move |a: f64, b: f64| {
         let c = 1.0 - a - b;
         (x - (a * p[0] + b * p[1] + c * p[2])).length() + sign * (a * r[0] + b * r[1] + c * r[2])
     };
-    let n = 16;
-    let mut best = (f64::INFINITY, 0.0, 0.0);
-    for i in 0..=n {
-        for j in 0..=(n - i) {
-            let (a, b) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
-            let value = f(a, b);
-            if value < best.0 {
-                best = (value, a, b);
-            }
-        }
+    PatternSearch {
+        grid: 16,
+        directions: &TWELVE_DIRECTIONS,
+        min_step: 1e-13,
+        budget: Budget::Rounds(3000),
+        boundary: Boundary::ClampNegative,
     }
-    let mut step = 1.0 / f64::from(n);
-    let directions = [
-        (1.0, 0.0),
-        (-1.0, 0.0),
-        (0.0, 1.0),
-        (0.0, -1.0),
-        (1.0, -1.0),
-        (-1.0, 1.0),
-        (1.0, 1.0),
-        (-1.0, -1.0),
-        (2.0, -1.0),
-        (-2.0, 1.0),
-        (1.0, -2.0),
-        (-1.0, 2.0),
-    ];
-    // Capped: a (nearly) flat valley would otherwise be crawled at tiny steps; stopping
-    // early only makes the check stricter (the value bounds the minimum from above).
-    let mut budget = 3000;
-    while step > 1e-13 && budget > 0 {
-        budget -= 1;
-        let mut improved = false;
-        for (da, db) in directions {
-            let (a, b) = ((best.1 + da * step).max(0.0), (best.2 + db * step).max(0.0));
-            if a + b > 1.0 {
-                continue;
-            }
-            let value = f(a, b);
-            if value < best.0 {
-                best = (value, a, b);
-                improved = true;
-            }
-        }
-        if !improved {
-            step *= 0.5;
-        }
-    }
-    best.0
+    .minimise(f)
+    .value
 }
 
 /// Triangles with per-corner radii.
@@ -248,20 +201,25 @@ fn check(mesh: &HalfEdgeMesh, radii: &[f64], h: HalfEdgeId, target: DVec3, r: f6
 
 /// The targets tried for an edge: `v`, the midpoint, the quadric optimum and a random
 /// point near the edge.
-fn targets(mesh: &HalfEdgeMesh, h: HalfEdgeId, seed: &mut u64) -> [DVec3; 4] {
+fn targets(mesh: &HalfEdgeMesh, h: HalfEdgeId, rng: &mut SplitMix64) -> [DVec3; 4] {
     let (u, v) = (mesh.origin(h), mesh.target(h));
     let (pu, pv) = (mesh.position(u), mesh.position(v));
     let q = vertex_quadrics(mesh, 0.0);
     let optimum = optimal_position(&(q[u.0 as usize] + q[v.0 as usize]), pu, pv);
-    let near = 0.5 * (pu + pv) + 0.3 * (pu - pv).length() * random_vector(seed);
+    let near = 0.5 * (pu + pv) + 0.3 * (pu - pv).length() * rng.vector_by_max();
     [pv, 0.5 * (pu + pv), optimum, near]
 }
 
 /// Checks both invariants for every collapsible interior edge of `mesh` (every
 /// `stride`-th one) and every target; returns how many collapses were checked.
-fn check_mesh(mesh: &HalfEdgeMesh, stride: usize, radius_scale: f64, seed: &mut u64) -> usize {
+fn check_mesh(
+    mesh: &HalfEdgeMesh,
+    stride: usize,
+    radius_scale: f64,
+    rng: &mut SplitMix64,
+) -> usize {
     let radii: Vec<f64> = (0..mesh.vertex_count())
-        .map(|_| radius_scale * random(seed))
+        .map(|_| radius_scale * rng.unit_by_max())
         .collect();
     let mut checked = 0;
     for h in (0..mesh.halfedge_count()).step_by(stride) {
@@ -269,7 +227,7 @@ fn check_mesh(mesh: &HalfEdgeMesh, stride: usize, radius_scale: f64, seed: &mut 
         if mesh.check_collapse(h).is_err() {
             continue;
         }
-        for target in targets(mesh, h, seed) {
+        for target in targets(mesh, h, rng) {
             let Some(r) = edge_collapse_radius(mesh, &radii, h, target) else {
                 continue;
             };
@@ -290,22 +248,22 @@ fn check_mesh(mesh: &HalfEdgeMesh, stride: usize, radius_scale: f64, seed: &mut 
 
 #[test]
 fn invariants_hold_on_a_noisy_sphere() {
-    let mut seed = 1;
-    let mesh = noisy_sphere(10, 0.02, &mut seed);
-    assert!(check_mesh(&mesh, 5, 0.0, &mut seed) > 30);
+    let mut rng = SplitMix64::new(1);
+    let mesh = noisy_sphere(10, 0.02, &mut rng);
+    assert!(check_mesh(&mesh, 5, 0.0, &mut rng) > 30);
 }
 
 #[test]
 fn invariants_hold_on_a_noisy_grid_with_old_radii() {
-    let mut seed = 2;
-    let mesh = noisy_grid(6, 0.25, 0.05, &mut seed);
-    assert!(check_mesh(&mesh, 3, 0.03, &mut seed) > 30);
+    let mut rng = SplitMix64::new(2);
+    let mesh = noisy_grid(6, 0.25, 0.05, &mut rng);
+    assert!(check_mesh(&mesh, 3, 0.03, &mut rng) > 30);
 }
 
 #[test]
 fn flat_region_with_target_in_the_plane_costs_nothing() {
-    let mut seed = 3;
-    let mesh = noisy_grid(6, 0.2, 0.0, &mut seed);
+    let mut rng = SplitMix64::new(3);
+    let mesh = noisy_grid(6, 0.2, 0.0, &mut rng);
     let radii = vec![0.0; mesh.vertex_count()];
     let mut tried = 0;
     for h in 0..mesh.halfedge_count() {
@@ -325,12 +283,12 @@ fn flat_region_with_target_in_the_plane_costs_nothing() {
 
 #[test]
 fn tight_map_beats_the_simple_one_on_smooth_fans() {
-    let mut seed = 4;
+    let mut rng = SplitMix64::new(4);
     // On a coarse sphere the tight map is better; on a fine one (a smoother region) by
     // far more, since its cost shrinks like the square of the edge length (least near the
     // poles of the UV sphere, where the regions are wide fans of slivers).
     for (resolution, worst_ratio) in [(16, 0.7), (64, 0.15)] {
-        let mesh = noisy_sphere(resolution, 0.0, &mut seed);
+        let mesh = noisy_sphere(resolution, 0.0, &mut rng);
         let radii = vec![0.0; mesh.vertex_count()];
         let mut compared = 0;
         for h in (0..mesh.halfedge_count()).step_by(17) {
@@ -354,13 +312,13 @@ fn tight_map_beats_the_simple_one_on_smooth_fans() {
 
 #[test]
 fn target_at_v_is_no_worse_than_the_half_edge_collapse() {
-    let mut seed = 5;
+    let mut rng = SplitMix64::new(5);
     for mesh in [
-        noisy_sphere(12, 0.01, &mut seed),
-        noisy_grid(7, 0.2, 0.03, &mut seed),
+        noisy_sphere(12, 0.01, &mut rng),
+        noisy_grid(7, 0.2, 0.03, &mut rng),
     ] {
         let radii: Vec<f64> = (0..mesh.vertex_count())
-            .map(|_| 0.02 * random(&mut seed))
+            .map(|_| 0.02 * rng.unit_by_max())
             .collect();
         let mut compared = 0;
         for h in 0..mesh.halfedge_count() {
@@ -382,8 +340,8 @@ fn target_at_v_is_no_worse_than_the_half_edge_collapse() {
 
 #[test]
 fn boundary_edges_and_bad_targets_are_refused() {
-    let mut seed = 6;
-    let mesh = noisy_grid(4, 0.1, 0.0, &mut seed);
+    let mut rng = SplitMix64::new(6);
+    let mesh = noisy_grid(4, 0.1, 0.0, &mut rng);
     let radii = vec![0.0; mesh.vertex_count()];
     for h in 0..mesh.halfedge_count() {
         let h = HalfEdgeId(h as u32);
@@ -402,8 +360,8 @@ fn boundary_edges_and_bad_targets_are_refused() {
 
 #[test]
 fn raised_target_needs_at_least_its_height() {
-    let mut seed = 8;
-    let mesh = noisy_grid(6, 0.0, 0.0, &mut seed);
+    let mut rng = SplitMix64::new(8);
+    let mesh = noisy_grid(6, 0.0, 0.0, &mut rng);
     let radii = vec![0.0; mesh.vertex_count()];
     // Interior vertex (3, 3) and its right neighbour (4, 3).
     let (u, v) = (VertexId(7 * 3 + 3), VertexId(7 * 3 + 4));
@@ -465,16 +423,16 @@ proptest! {
         which in 0usize..4,
         seed in 0u64..u64::MAX,
     ) {
-        let mut seed = seed;
+        let mut rng = SplitMix64::new(seed);
         let mesh = if sphere {
-            noisy_sphere(8, 0.1 * noise, &mut seed)
+            noisy_sphere(8, 0.1 * noise, &mut rng)
         } else {
-            noisy_grid(5, noise, 0.2 * noise, &mut seed)
+            noisy_grid(5, noise, 0.2 * noise, &mut rng)
         };
-        let radii: Vec<f64> = (0..mesh.vertex_count()).map(|_| old_radii * random(&mut seed)).collect();
+        let radii: Vec<f64> = (0..mesh.vertex_count()).map(|_| old_radii * rng.unit_by_max()).collect();
         let h = HalfEdgeId((edge % mesh.halfedge_count()) as u32);
         prop_assume!(mesh.check_collapse(h).is_ok());
-        let target = targets(&mesh, h, &mut seed)[which];
+        let target = targets(&mesh, h, &mut rng)[which];
         if let Some(r) = edge_collapse_radius(&mesh, &radii, h, target) {
             prop_assert!(r >= 0.0);
             let (a, b) = check(&mesh, &radii, h, target, r);

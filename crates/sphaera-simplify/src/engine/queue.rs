@@ -89,29 +89,22 @@ impl Queue {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A small deterministic pseudo-random sequence.
-    fn lcg(state: &mut u64) -> u64 {
-        *state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        *state >> 33
-    }
+    use sphaera_tests::random::Lcg64;
 
     #[test]
     fn pops_like_a_sorted_list_of_current_candidates() {
         let n = 200_u32;
-        let mut state = 7;
+        let mut rng = Lcg64::new(7);
         let initial: Vec<Option<(f64, HalfEdgeId)>> = (0..n)
             .map(|_| {
-                let r = lcg(&mut state);
+                let r = rng.next_high31();
                 (!r.is_multiple_of(5)).then_some(((r % 17) as f64, HalfEdgeId((r % 1000) as u32)))
             })
             .collect();
         let mut queue = Queue::new(&initial);
         let mut model = initial.clone();
         for step in 0..3000 {
-            let r = lcg(&mut state);
+            let r = rng.next_high31();
             let u = (r % u64::from(n)) as u32;
             if step % 3 == 0 {
                 let expected = model

@@ -158,11 +158,13 @@ impl TreeJson {
     /// # Errors
     ///
     /// - [`SphereTreeError::InvalidTree`] naming what is wrong: a `format` or `version`
-    ///   other than this crate's, a branching factor of 0, no nodes, a first level that
-    ///   is not a single root, levels that do not tile the nodes in order, a `level`,
-    ///   `parent` or `children` field that disagrees with them (children not consecutive,
-    ///   not in the next level, more than `branch`, or not naming their parent back), a
-    ///   non-finite error, or a `worst_error` that is not its level's largest error.
+    ///   other than this crate's, a first level that is not a single root, levels that do
+    ///   not tile the nodes in order, children that are not consecutive indices, a
+    ///   `worst_error` that is not its level's largest error, or anything
+    ///   [`SphereTree::from_levels`] refuses (a branching factor of 0, no nodes, a
+    ///   `level`, `parent` or `children` field that disagrees with the levels: children
+    ///   not in the next level, more than `branch`, or not naming their parent back; a
+    ///   non-finite error).
     /// - [`SphereTreeError::InvalidSphere`] for a NaN or infinite centre or radius, or a
     ///   negative radius, with the node's index.
     ///
@@ -183,16 +185,13 @@ impl TreeJson {
                 self.version
             ));
         }
-        if self.branch == 0 {
-            return bad("branch must be at least 1".into());
-        }
-        if self.nodes.is_empty() {
-            return bad("the tree has no nodes".into());
+        if self.branch == 0 || self.nodes.is_empty() {
+            // `SphereTree::from_levels` names both.
+            return SphereTree::from_levels(self.branch, Vec::new());
         }
         if self.levels.first().map(|l| (l.first, l.count)) != Some((0, 1)) {
             return bad("level 0 must hold exactly the root, node 0".into());
         }
-        let mut level_starts = Vec::with_capacity(self.levels.len() + 1);
         let mut next = 0_usize;
         for (k, level) in self.levels.iter().enumerate() {
             if level.first != next || level.count == 0 {
@@ -202,7 +201,6 @@ impl TreeJson {
                     level.first, level.count
                 ));
             }
-            level_starts.push(next);
             next = next.saturating_add(level.count);
         }
         if next != self.nodes.len() {
@@ -211,16 +209,19 @@ impl TreeJson {
                 self.nodes.len()
             ));
         }
-        level_starts.push(next);
-        let mut nodes = Vec::with_capacity(self.nodes.len());
-        for (k, window) in level_starts.windows(2).enumerate() {
-            for index in window[0]..window[1] {
-                nodes.push(self.node(index, k, &level_starts)?);
+        // The levels tile the nodes in order: split them, and let `from_levels` check the
+        // structure (levels, parents, children, spheres, errors).
+        let mut levels = Vec::with_capacity(self.levels.len());
+        for level in &self.levels {
+            let mut nodes = Vec::with_capacity(level.count);
+            for index in level.first..level.first + level.count {
+                nodes.push(self.node(index)?);
             }
+            levels.push(nodes);
         }
+        let mut tree = SphereTree::from_levels(self.branch, levels)?;
         for (k, level) in self.levels.iter().enumerate() {
-            let range = level_starts[k]..level_starts[k + 1];
-            let actual = worst_error(nodes.get(range).unwrap_or_default());
+            let actual = worst_error(tree.level(k));
             if level.worst_error.to_bits() != actual.to_bits() {
                 return bad(format!(
                     "level {k} has worst_error {} but its largest node error is {actual}",
@@ -229,27 +230,18 @@ impl TreeJson {
             }
         }
         // Certificates are kept only when every level has one.
-        let coverage = self
+        tree.coverage = self
             .levels
             .iter()
             .map(|l| l.coverage)
             .collect::<Option<Vec<_>>>()
             .unwrap_or_default();
-        Ok(SphereTree {
-            branch: self.branch,
-            nodes,
-            level_starts,
-            coverage,
-        })
+        Ok(tree)
     }
 
-    /// Node `index` of level `level`, checked against its parent and children.
-    fn node(
-        &self,
-        index: usize,
-        level: usize,
-        level_starts: &[usize],
-    ) -> Result<TreeNode, SphereTreeError> {
+    /// Node `index` as a [`TreeNode`]; its children must be consecutive indices (the rest
+    /// is checked by [`SphereTree::from_levels`]).
+    fn node(&self, index: usize) -> Result<TreeNode, SphereTreeError> {
         let bad = |message: String| {
             Err(SphereTreeError::InvalidTree(format!(
                 "node {index}: {message}"
@@ -258,48 +250,6 @@ impl TreeJson {
         let Some(node) = self.nodes.get(index) else {
             return bad("missing".into());
         };
-        let sphere = Sphere::new(DVec3::from_array(node.center), node.radius);
-        if !sphere.is_valid() {
-            return Err(SphereTreeError::InvalidSphere { index });
-        }
-        if !node.error.is_finite() {
-            return bad(format!("error {} is not finite", node.error));
-        }
-        if node.level as usize != level {
-            return bad(format!(
-                "level is {}, but it is stored in level {level}",
-                node.level
-            ));
-        }
-        let range_of = |k: usize| match (level_starts.get(k), level_starts.get(k + 1)) {
-            (Some(&a), Some(&b)) => a..b,
-            _ => 0..0,
-        };
-        match (node.parent, level.checked_sub(1)) {
-            (None, None) => {}
-            (Some(parent), Some(above)) => {
-                let parent = parent as usize;
-                if !range_of(above).contains(&parent) {
-                    return bad(format!("parent {parent} is not in level {above}"));
-                }
-                let listed = self
-                    .nodes
-                    .get(parent)
-                    .is_some_and(|p| p.children.iter().any(|&c| c as usize == index));
-                if !listed {
-                    return bad(format!("parent {parent} does not list it as a child"));
-                }
-            }
-            (None, Some(_)) => return bad("only the root may have no parent".into()),
-            (Some(_), None) => return bad("the root cannot have a parent".into()),
-        }
-        if node.children.len() > self.branch {
-            return bad(format!(
-                "{} children, more than the branching factor {}",
-                node.children.len(),
-                self.branch
-            ));
-        }
         let start = node.children.first().copied().unwrap_or(0);
         let consecutive = node
             .children
@@ -309,24 +259,11 @@ impl TreeJson {
         if !consecutive {
             return bad("children are not consecutive increasing indices".into());
         }
-        let below = range_of(level + 1);
-        for &child in &node.children {
-            let child = child as usize;
-            if !below.contains(&child) {
-                return bad(format!("child {child} is not in level {}", level + 1));
-            }
-            if self.nodes.get(child).and_then(|c| c.parent) != u32::try_from(index).ok() {
-                return bad(format!("child {child} does not name it as its parent"));
-            }
-        }
-        let Ok(level_u32) = u32::try_from(level) else {
-            return bad("too many levels".into());
-        };
         let end = start.saturating_add(u32::try_from(node.children.len()).unwrap_or(u32::MAX));
         Ok(TreeNode {
-            sphere,
+            sphere: Sphere::new(DVec3::from_array(node.center), node.radius),
             error: node.error,
-            level: level_u32,
+            level: node.level,
             parent: node.parent,
             children: if node.children.is_empty() {
                 0..0

@@ -151,14 +151,7 @@ mod tests {
     use glam::{DVec2, DVec3};
 
     use super::*;
-
-    /// A small deterministic generator (uniform in `[0, 1)`).
-    fn lcg(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (*state >> 11) as f64 / (1_u64 << 53) as f64
-    }
+    use sphaera_tests::random::Lcg64;
 
     fn scale<P: PolylinePoint>(points: &[P]) -> f64 {
         points.iter().map(|p| p.max_abs()).fold(0.0, f64::max)
@@ -202,14 +195,14 @@ mod tests {
 
     #[test]
     fn every_point_is_within_its_nodes_error() {
-        let mut state = 5;
+        let mut rng = Lcg64::new(5);
         for n in [2, 3, 4, 7, 50, 301] {
             let random2: Vec<DVec2> = (0..n)
-                .map(|_| DVec2::new(lcg(&mut state), lcg(&mut state)) * 10.0)
+                .map(|_| DVec2::new(rng.unit(), rng.unit()) * 10.0)
                 .collect();
             check(&random2);
             let random3: Vec<DVec3> = (0..n)
-                .map(|_| DVec3::new(lcg(&mut state), lcg(&mut state), lcg(&mut state)))
+                .map(|_| DVec3::new(rng.unit(), rng.unit(), rng.unit()))
                 .collect();
             check(&random3);
             // A closed loop: the first point repeated at the end.

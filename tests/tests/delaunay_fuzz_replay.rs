@@ -1,16 +1,14 @@
-//! The `delaunay` fuzz target's body (`tests/common/fuzz_body.rs`) on bytes from
-//! proptest, so that every CI run exercises what `cargo +nightly fuzz run delaunay`
+//! The `delaunay` fuzz target's body ([`sphaera_tests::delaunay_fuzz`]) on bytes from
+//! proptest: `sphaera-medial`'s tetrahedralization checked by the shared harness, so that every CI run exercises what `cargo +nightly fuzz run delaunay`
 //! explores for hours, plus a few hand-made byte strings for the edge cases of the
 //! decoder.
 
 // The decoder produces exact values: exact comparisons are the point.
 #![allow(clippy::float_cmp)]
 
-mod common;
-
-use common::fuzz_body::{check, decode};
 use proptest::prelude::*;
 use sphaera_medial::DVec3;
+use sphaera_tests::delaunay_fuzz::{check, decode};
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(1024))]

@@ -1,17 +1,21 @@
 //! Reproducible point sets for tests and benchmarks, including the degenerate ones a
 //! Delaunay code must survive (grids, exactly cospherical and cocircular points).
+//!
+//! They were `sphaera_medial::point_sets`, public API that only tests, benches and
+//! examples used. They return plain [`DVec3`]s (glam's), so unit tests of any crate may
+//! use them (see the [crate documentation](crate)).
 
-use glam::DVec3;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use sphaera_mesh::DVec3;
 
 /// `n` points uniform in the unit cube, from `seed`.
 ///
 /// # Examples
 ///
 /// ```
-/// let points = sphaera_medial::point_sets::random_in_cube(100, 7);
-/// assert_eq!(points, sphaera_medial::point_sets::random_in_cube(100, 7));
+/// let points = sphaera_tests::point_sets::random_in_cube(100, 7);
+/// assert_eq!(points, sphaera_tests::point_sets::random_in_cube(100, 7));
 /// assert!(points.iter().all(|p| p.min_element() >= 0.0 && p.max_element() < 1.0));
 /// ```
 #[must_use]
@@ -29,7 +33,7 @@ pub fn random_in_cube(n: usize, seed: u64) -> Vec<DVec3> {
 /// # Examples
 ///
 /// ```
-/// let points = sphaera_medial::point_sets::cube_surface_grid(100_000);
+/// let points = sphaera_tests::point_sets::cube_surface_grid(100_000);
 /// assert!(points.len().abs_diff(100_000) < 1_000);
 /// ```
 #[must_use]
@@ -55,7 +59,7 @@ pub fn cube_surface_grid(n: usize) -> Vec<DVec3> {
 /// # Examples
 ///
 /// ```
-/// let points = sphaera_medial::point_sets::integer_sphere(5);
+/// let points = sphaera_tests::point_sets::integer_sphere(5);
 /// assert!(points.iter().all(|p| p.length_squared() == 25.0));
 /// ```
 #[must_use]

@@ -1,5 +1,6 @@
-//! The body of the `delaunay` fuzz target (`fuzz/fuzz_targets/delaunay.rs`), shared with
-//! the proptest replay in `tests/fuzz_replay.rs` so that CI exercises it on every run.
+//! The body of the `delaunay` fuzz target (`fuzz/fuzz_targets/delaunay.rs`, which depends
+//! on this crate by path), shared with the proptest replay in
+//! `tests/tests/delaunay_fuzz_replay.rs` so that every CI run exercises it.
 //!
 //! [`check`] decodes arbitrary bytes into points (grids of small integers, so that ties,
 //! cospherical and coplanar subsets and duplicates are the rule), tetrahedralizes all but
@@ -25,6 +26,7 @@ use sphaera_medial::{DVec3, Delaunay, DelaunayError};
 const MAX_POINTS: usize = 300;
 
 /// The points to build from and the points to insert afterwards, one at a time.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Decoded {
     /// Given to `Delaunay::new`.
     pub initial: Vec<DVec3>,
@@ -33,6 +35,18 @@ pub struct Decoded {
 }
 
 /// Decodes `bytes` as described in the module documentation.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::DVec3;
+/// use sphaera_tests::delaunay_fuzz::decode;
+///
+/// // Mode 0 on a grid of side 2 + (8 >> 2) % 7 = 4; one point inserted late.
+/// let decoded = decode(&[8, 1, 1, 2, 3, 5, 6, 7]);
+/// assert_eq!(decoded.initial, [DVec3::new(1.0, 2.0, 3.0)]);
+/// assert_eq!(decoded.inserted, [DVec3::new(1.0, 2.0, 3.0)]);
+/// ```
 pub fn decode(bytes: &[u8]) -> Decoded {
     let (&header, rest) = bytes.split_first().unwrap_or((&0, &[]));
     let (&insert_byte, body) = rest.split_first().unwrap_or((&0, &[]));
@@ -85,6 +99,23 @@ pub fn decode(bytes: &[u8]) -> Decoded {
 }
 
 /// Decodes `bytes` and checks everything; panics on any failure.
+///
+/// # Examples
+///
+/// ```
+/// // Three points: too few for a tetrahedralization, and `check` agrees with the error.
+/// sphaera_tests::delaunay_fuzz::check(&[0, 0, 1, 2, 3]);
+/// // A 2×2×2 grid (header 0: side 2) is cospherical everywhere and still valid.
+/// let mut bytes = vec![0, 0];
+/// for i in 0..8_u8 {
+///     bytes.extend([i & 1, (i >> 1) & 1, (i >> 2) & 1]);
+/// }
+/// sphaera_tests::delaunay_fuzz::check(&bytes);
+/// ```
+///
+/// # Panics
+///
+/// On any failed check, with the input points.
 pub fn check(bytes: &[u8]) {
     let Decoded { initial, inserted } = decode(bytes);
     let expected = expected_error(&initial);
