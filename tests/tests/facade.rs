@@ -36,9 +36,10 @@ fn prelude_and_mesh() -> Result<()> {
 #[test]
 fn simplify_then_sweep() -> Result<()> {
     let sphere = mesh::shapes::sphere(1.0, 24)?;
-    let out: simplify::Simplified = simplify::Simplifier::new(&sphere)
-        .target_ratio(0.1)
-        .build()?;
+    let out: simplify::Simplified = simplify::simplify(
+        &sphere,
+        &simplify::SimplifyOptions::default().with_target_ratio(0.1),
+    )?;
     assert!(out.mesh.triangle_count() <= sphere.triangle_count() / 10 + 1);
 
     let (ha, hb) = (
@@ -128,9 +129,10 @@ fn errors_of_every_crate_convert_for_question_mark() {
     }
     fn nan_ratio() -> Result<()> {
         let capsule = mesh::shapes::capsule(0.5, 2.0, 8)?;
-        simplify::Simplifier::new(&capsule)
-            .target_ratio(f64::NAN)
-            .build()?;
+        simplify::simplify(
+            &capsule,
+            &simplify::SimplifyOptions::default().with_target_ratio(f64::NAN),
+        )?;
         Ok(())
     }
     fn flat_points() -> Result<()> {

@@ -48,7 +48,7 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use sphaera_mesh::{TriMesh, io};
-use sphaera_simplify::Simplifier;
+use sphaera_simplify::{SimplifyOptions, simplify};
 use sphaera_sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff};
 
 /// Meshes above this many triangles are checked through [`REDUCED_VARIANTS`] (see the
@@ -159,9 +159,7 @@ fn check_all(dir: &Path, select: impl Fn(usize) -> bool) -> HashMap<String, Chec
 /// The three checks on one mesh.
 fn check(name: &str, mesh: &TriMesh) {
     let diagonal = mesh.bounding_box_diagonal();
-    let out = Simplifier::new(mesh)
-        .target_ratio(RATIO)
-        .build()
+    let out = simplify(mesh, &SimplifyOptions::default().with_target_ratio(RATIO))
         .unwrap_or_else(|e| panic!("{name}: simplify: {e}"));
     let (ha, hb) = (
         build_hierarchy(mesh).unwrap_or_else(|e| panic!("{name}: hierarchy: {e}")),

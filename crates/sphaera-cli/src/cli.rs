@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum, builder::PossibleValue};
+use sphaera::mesh::Length;
 use sphaera::simplify::Placement;
 use sphaera::spheretree::Method;
 
@@ -97,8 +98,8 @@ pub struct SpheretreeArgs {
 
     /// Report the shallowest level whose worst error is at most this: an absolute
     /// distance (`0.002`) or a percentage of the bounding-box diagonal (`2%`).
-    #[arg(long, value_parser = parse_max_error)]
-    pub tolerance: Option<MaxErrorArg>,
+    #[arg(long, value_parser = parse_length)]
+    pub tolerance: Option<Length>,
 
     /// Skip the certified evaluation of every level (worst error by branch and bound,
     /// coverage on 100,000 independent samples); report the construction error only.
@@ -168,8 +169,8 @@ pub struct MedialArgs {
 
     /// Improve until no sphere reaches farther than this beyond the surface: an absolute
     /// distance (`0.002`) or a percentage of the bounding-box diagonal (`1%`).
-    #[arg(long, value_parser = parse_max_error)]
-    pub max_error: Option<MaxErrorArg>,
+    #[arg(long, value_parser = parse_length)]
+    pub max_error: Option<Length>,
 
     /// Surface samples that must be covered (Poisson-disk, reproducible).
     #[arg(long, default_value_t = 10_000)]
@@ -218,8 +219,8 @@ pub struct HausdorffArgs {
 
     /// Stop once `upper − lower` is at most this: an absolute distance (`1e-4`) or a
     /// percentage of the bounding-box diagonal of both meshes (`0.001%`).
-    #[arg(long, value_parser = parse_max_error, default_value = "0.001%")]
-    pub tolerance: MaxErrorArg,
+    #[arg(long, value_parser = parse_length, default_value = "0.001%")]
+    pub tolerance: Length,
 
     /// Only the one-sided distance from A to B (default: symmetric).
     #[arg(long)]
@@ -261,8 +262,8 @@ pub struct DistanceArgs {
     /// Stop each query once its certified interval is at most this wide: an absolute
     /// distance (`0.001`) or a percentage of the bounding-box diagonal (`0.1%`). Without
     /// it, every answer is exact.
-    #[arg(long, value_parser = parse_max_error)]
-    pub tolerance: Option<MaxErrorArg>,
+    #[arg(long, value_parser = parse_length)]
+    pub tolerance: Option<Length>,
 
     #[command(flatten)]
     pub print: OutputArgs,
@@ -289,8 +290,8 @@ pub struct SimplifyArgs {
 
     /// Stop before the error bound exceeds this: an absolute distance (`0.002`) or a
     /// percentage of the bounding-box diagonal (`0.5%`).
-    #[arg(long, value_parser = parse_max_error)]
-    pub max_error: Option<MaxErrorArg>,
+    #[arg(long, value_parser = parse_length)]
+    pub max_error: Option<Length>,
 
     /// Keep every boundary vertex in place (the default; gives the tightest bound).
     #[arg(long, conflicts_with = "free_boundary")]
@@ -370,16 +371,9 @@ impl ValueEnum for PlacementArg {
     }
 }
 
-/// A `--max-error` value: absolute, or relative to the bounding-box diagonal.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum MaxErrorArg {
-    /// A distance in the mesh's units.
-    Absolute(f64),
-    /// A fraction of the bounding-box diagonal (the command line says it in percent).
-    RelativeToDiagonal(f64),
-}
-
-fn parse_max_error(text: &str) -> Result<MaxErrorArg, String> {
+/// A length on the command line: an absolute distance (`0.002`) or a percentage of the
+/// bounding-box diagonal (`2%`).
+fn parse_length(text: &str) -> Result<Length, String> {
     let (number, relative) = match text.strip_suffix('%') {
         Some(number) => (number, true),
         None => (text, false),
@@ -392,9 +386,9 @@ fn parse_max_error(text: &str) -> Result<MaxErrorArg, String> {
         return Err(format!("`{text}` must be finite and non-negative"));
     }
     Ok(if relative {
-        MaxErrorArg::RelativeToDiagonal(value / 100.0)
+        Length::RelativeToDiagonal(value / 100.0)
     } else {
-        MaxErrorArg::Absolute(value)
+        Length::Absolute(value)
     })
 }
 
@@ -429,14 +423,11 @@ mod tests {
 
     #[test]
     fn max_error_takes_distances_and_percentages() {
-        assert_eq!(parse_max_error("0.002"), Ok(MaxErrorArg::Absolute(0.002)));
-        assert_eq!(
-            parse_max_error("0.5%"),
-            Ok(MaxErrorArg::RelativeToDiagonal(0.005))
-        );
-        assert!(parse_max_error("abc").is_err());
-        assert!(parse_max_error("-1").is_err());
-        assert!(parse_max_error("NaN%").is_err());
+        assert_eq!(parse_length("0.002"), Ok(Length::Absolute(0.002)));
+        assert_eq!(parse_length("0.5%"), Ok(Length::RelativeToDiagonal(0.005)));
+        assert!(parse_length("abc").is_err());
+        assert!(parse_length("-1").is_err());
+        assert!(parse_length("NaN%").is_err());
     }
 
     #[test]

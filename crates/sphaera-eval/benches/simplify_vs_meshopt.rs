@@ -18,7 +18,10 @@
 use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphaera::{mesh::io, simplify::Simplifier};
+use sphaera::{
+    mesh::io,
+    simplify::{Hierarchy, SimplifyOptions, simplify},
+};
 use sphaera_eval::methods::{MeshoptInput, PLACEMENTS, sphaera_simplify, target_triangles};
 
 /// The meshes: bench name, file in `shared/data`, measurement time per group.
@@ -90,18 +93,20 @@ fn full_depth(c: &mut Criterion) {
     for &(placement_name, placement) in PLACEMENTS {
         group.bench_function(format!("simplifier_{placement_name}"), |b| {
             b.iter(|| {
-                Simplifier::new(black_box(&mesh))
-                    .placement(placement)
-                    .build()
-                    .expect("Sphaera simplifies the mesh")
+                simplify(
+                    black_box(&mesh),
+                    &SimplifyOptions::default().with_placement(placement),
+                )
+                .expect("Sphaera simplifies the mesh")
             });
         });
         group.bench_function(format!("hierarchy_{placement_name}"), |b| {
             b.iter(|| {
-                Simplifier::new(black_box(&mesh))
-                    .placement(placement)
-                    .build_hierarchy()
-                    .expect("Sphaera records the hierarchy")
+                Hierarchy::build(
+                    black_box(&mesh),
+                    &SimplifyOptions::default().with_placement(placement),
+                )
+                .expect("Sphaera records the hierarchy")
             });
         });
     }

@@ -1,7 +1,7 @@
 //! The simplification methods compared by the `simplify_error_vs_time` experiment and the
 //! `simplify_vs_meshopt` bench, so both measure exactly the same calls.
 //!
-//! - **Sphaera**: [`Simplifier`] with each placement of [`PLACEMENTS`], boundary locked (the
+//! - **Sphaera**: [`simplify`] with each placement of [`PLACEMENTS`], boundary locked (the
 //!   default), stopped by a triangle count only.
 //! - **meshopt** 0.7.0 (meshoptimizer's `meshopt_simplify`): positions converted to `f32`
 //!   once, before timing; target index count `3 × triangles`, target error `f32::MAX` so
@@ -11,10 +11,10 @@
 //!   measured with the original `f64` positions.
 
 use anyhow::{Context, Result};
-use meshopt::{SimplifyOptions, VertexDataAdapter};
+use meshopt::VertexDataAdapter;
 use sphaera::{
     mesh::TriMesh,
-    simplify::{Placement, Simplified, Simplifier},
+    simplify::{Placement, Simplified, SimplifyOptions, simplify},
 };
 
 /// Every placement measured, with its name in tables and charts. Adding a placement to the
@@ -25,10 +25,10 @@ pub const PLACEMENTS: &[(&str, Placement)] = &[
 ];
 
 /// meshopt's options: lock the topological border, as Sphaera does by default.
-pub const MESHOPT_OPTIONS: SimplifyOptions = SimplifyOptions::LockBorder;
+pub const MESHOPT_OPTIONS: meshopt::SimplifyOptions = meshopt::SimplifyOptions::LockBorder;
 
 /// The triangle target of a ratio: `ceil(ratio × triangles)`, what
-/// [`Simplifier::target_ratio`] aims at, used for both methods.
+/// [`SimplifyOptions::target_ratio`] aims at, used for both methods.
 pub fn target_triangles(mesh: &TriMesh, ratio: f64) -> usize {
     // A ratio in (0, 1] of a count below 2^53 is exact enough in f64.
     (ratio * mesh.triangle_count() as f64).ceil() as usize
@@ -40,11 +40,13 @@ pub fn sphaera_simplify(
     placement: Placement,
     triangles: usize,
 ) -> Result<Simplified> {
-    Simplifier::new(mesh)
-        .placement(placement)
-        .target_triangles(triangles)
-        .build()
-        .context("Sphaera's simplifier failed")
+    simplify(
+        mesh,
+        &SimplifyOptions::default()
+            .with_placement(placement)
+            .with_target_triangles(triangles),
+    )
+    .context("Sphaera's simplifier failed")
 }
 
 /// A mesh in meshopt's input format: `f32` positions and a flat index buffer.

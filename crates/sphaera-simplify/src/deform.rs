@@ -44,10 +44,10 @@ impl Hierarchy {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 12)?;
-    /// let hierarchy = Simplifier::new(&sphere).target_ratio(0.1).build_hierarchy()?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default().with_target_ratio(0.1))?;
     /// // Stretch along x by 50 %.
     /// let stretched: Vec<_> = sphere.positions().iter().map(|p| p * glam::DVec3::new(1.5, 1.0, 1.0)).collect();
     /// let frame = hierarchy.replay(&stretched)?;
@@ -137,10 +137,10 @@ impl Hierarchy {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 12)?;
-    /// let hierarchy = Simplifier::new(&sphere).target_ratio(0.1).build_hierarchy()?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default().with_target_ratio(0.1))?;
     /// let moving = hierarchy.inflate(&vec![0.01; sphere.vertex_count()])?;
     /// let (a, b) = (hierarchy.base(), moving.base());
     /// assert!((b.error_bound - a.error_bound - 0.02).abs() < 1e-12);

@@ -21,7 +21,7 @@ use sphaera_mesh::topology::{HalfEdgeId, HalfEdgeMesh, VertexId};
 use crate::edge_radius::edge_collapse_radius;
 use crate::quadric::{Quadric, optimal_position, vertex_quadrics};
 use crate::record::Recorder;
-use crate::simplifier::{LockReport, Progress};
+use crate::simplifier::{LockReport, SimplifyProgress};
 use crate::spheres::{BoundaryPolicy, Fan, collapse_radius, edge_radius, simple_map_radius};
 use crate::weights::Weights;
 use glam::DVec3;
@@ -293,7 +293,7 @@ pub(crate) fn run(
     stop: Stop,
     weights: Option<&Weights>,
     optimal: bool,
-    progress: Option<&(dyn Fn(Progress) + Sync)>,
+    progress: &(dyn Fn(&SimplifyProgress) + Sync),
     mut recorder: Option<&mut Recorder>,
 ) -> Outcome {
     let mut quadrics = optimal.then(|| vertex_quadrics(&mesh, 0.0));
@@ -325,12 +325,10 @@ pub(crate) fn run(
     let report_every = (to_remove / 256).max(1);
     let mut next_report = 0;
     let report = |faces: usize| {
-        if let Some(callback) = progress {
-            callback(Progress {
-                removed: start_faces - faces,
-                to_remove,
-            });
-        }
+        progress(&SimplifyProgress {
+            removed: start_faces - faces,
+            to_remove,
+        });
     };
     while mesh.live_face_count() > stop.triangles {
         let removed = start_faces - mesh.live_face_count();

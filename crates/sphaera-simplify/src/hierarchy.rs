@@ -95,7 +95,7 @@ pub(crate) struct Geometry {
     pub offsets: Vec<f64>,
 }
 
-/// The progressive hierarchy recorded by [`Simplifier::build_hierarchy`](crate::Simplifier::build_hierarchy):
+/// The progressive hierarchy recorded by [`Hierarchy::build`]:
 /// the collapse sequence from the finest mesh (the input) to the base mesh (where the
 /// simplification stopped), with everything needed to undo collapses selectively.
 ///
@@ -130,10 +130,10 @@ pub(crate) struct Geometry {
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_simplify::Simplifier;
+/// use sphaera_simplify::{SimplifyOptions, Hierarchy};
 ///
 /// let sphere = shapes::sphere(1.0, 16)?;
-/// let hierarchy = Simplifier::new(&sphere).target_triangles(20).build_hierarchy()?;
+/// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default().with_target_triangles(20))?;
 /// let base = hierarchy.base();
 /// assert!(base.mesh.triangle_count() <= 21);
 ///
@@ -241,10 +241,10 @@ impl Hierarchy {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
     ///
     /// let cube = shapes::cube(1.0, 2)?;
-    /// let hierarchy = Simplifier::new(&cube).build_hierarchy()?;
+    /// let hierarchy = Hierarchy::build(&cube, &SimplifyOptions::default())?;
     /// assert_eq!(hierarchy.input_vertex_count(), cube.vertex_count());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -260,13 +260,13 @@ impl Hierarchy {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 8)?;
-    /// let hierarchy = Simplifier::new(&sphere).build_hierarchy()?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default())?;
     /// let moving = hierarchy.inflate(&vec![0.1; sphere.vertex_count()])?;
     /// assert!(hierarchy.shares_tables(&moving));
-    /// let rebuilt = Simplifier::new(&sphere).build_hierarchy()?;
+    /// let rebuilt = Hierarchy::build(&sphere, &SimplifyOptions::default())?;
     /// assert!(!hierarchy.shares_tables(&rebuilt));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -426,7 +426,7 @@ impl Hierarchy {
     }
 
     /// The base mesh (every collapse applied): the same result as
-    /// [`Simplifier::build`](crate::Simplifier::build) with the same parameters.
+    /// [`simplify`](crate::simplify) with the same options.
     pub fn base(&self) -> Simplified {
         Refinement::at_prefix(self, self.collapse_count()).to_simplified()
     }
@@ -530,10 +530,10 @@ impl Hierarchy {
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_simplify::Simplifier;
+/// use sphaera_simplify::{SimplifyOptions, Hierarchy};
 ///
 /// let sphere = shapes::sphere(1.0, 16)?;
-/// let memory = Simplifier::new(&sphere).build_hierarchy()?.memory();
+/// let memory = Hierarchy::build(&sphere, &SimplifyOptions::default())?.memory();
 /// assert!(memory.fixed_tables > 0);
 /// assert!(memory.bytes_per_triangle(memory.refinement_state) < 16.0);
 /// # Ok::<(), Box<dyn std::error::Error>>(())

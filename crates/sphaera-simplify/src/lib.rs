@@ -14,11 +14,11 @@
 //! # Quick start
 //!
 //! ```
-//! use sphaera_mesh::shapes;
-//! use sphaera_simplify::{MaxError, Simplifier};
+//! use sphaera_mesh::{Length, shapes};
+//! use sphaera_simplify::{SimplifyOptions, simplify};
 //!
 //! let sphere = shapes::sphere(1.0, 24)?;
-//! let out = Simplifier::new(&sphere).target_ratio(0.1).build()?;
+//! let out = simplify(&sphere, &SimplifyOptions::default().with_target_ratio(0.1))?;
 //! assert!(out.mesh.triangle_count() <= sphere.triangle_count() / 10 + 1);
 //! assert!(out.error_bound >= 0.0);
 //! assert_eq!(out.vertex_radii.len(), out.mesh.vertex_count());
@@ -28,9 +28,10 @@
 //! }
 //!
 //! // Or stop at an error bound (relative to the bounding-box diagonal).
-//! let fine = Simplifier::new(&sphere)
-//!     .max_error(MaxError::RelativeToDiagonal(0.005))
-//!     .build()?;
+//! let fine = simplify(
+//!     &sphere,
+//!     &SimplifyOptions::default().with_max_error(Length::RelativeToDiagonal(0.005)),
+//! )?;
 //! assert!(fine.error_bound <= 0.005 * sphere.bounding_box_diagonal());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -72,7 +73,7 @@
 //! engine keeps the smaller radius. Collapses that flip a triangle's normal (more than
 //! 90°) or create a sliver are refused. By default boundary vertices are never removed
 //! (interior vertices may collapse onto them); with
-//! [`Simplifier::lock_boundary`]`(false)` they may collapse along boundary edges, with the
+//! [`SimplifyOptions::with_lock_boundary`]`(false)` they may collapse along boundary edges, with the
 //! simple map sending `u` to `v` (rigorous, but it needs `r_v ≥ r_u + |u − v|`).
 //! With [`Placement::Optimal`] each vertex's edge with the smallest merged error quadric
 //! is also tried as a full-edge collapse, the kept vertex moving to the quadric's minimum;
@@ -86,14 +87,14 @@
 //!
 //! The order is error-driven: a priority queue (one entry per vertex, updated in place)
 //! holds each vertex's cheapest legal collapse, keyed by the radius it would give `v`
-//! divided by the smallest [tolerance weight](Simplifier::weights) of the vertices it
+//! divided by the smallest [tolerance weight](SimplifyOptions::with_weights) of the vertices it
 //! changes (ties broken by vertex and half-edge index, so the result is deterministic);
 //! after a collapse the kept vertex and its neighbours are re-evaluated, and a popped
 //! candidate is re-validated before it is applied.
 //!
 //! # The progressive hierarchy
 //!
-//! [`Simplifier::build_hierarchy`] records every collapse: the removed vertex, its parent,
+//! [`Hierarchy::build`] records every collapse: the removed vertex, its parent,
 //! the parent's new radius, the faces around both, and what the collapse *read* (the radii
 //! of the removed vertex's one-ring and the faces around both ends). A collapse depends on
 //! the latest earlier collapses that wrote what it read; "split before" is the inverse
@@ -117,7 +118,7 @@
 //!
 //! # Errors
 //!
-//! [`Simplifier::build`] returns [`SimplifyError`] for an empty mesh or parameters out of
+//! [`simplify`] returns [`SimplifyError`] for an empty mesh or parameters out of
 //! their domain (NaN, negative bounds, a ratio outside `(0, 1]`). It never panics.
 //!
 //! # Performance
@@ -151,4 +152,7 @@ mod weights;
 pub use error::SimplifyError;
 pub use hierarchy::{Hierarchy, MemoryUse};
 pub use refine::Refinement;
-pub use simplifier::{LockReport, MaxError, Placement, Progress, Simplified, Simplifier};
+pub use simplifier::{
+    LockReport, Placement, Simplified, SimplifyOptions, SimplifyProgress, simplify,
+    simplify_with_progress,
+};

@@ -19,10 +19,10 @@ const REMOVED: u32 = 1 << 31;
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_simplify::Simplifier;
+/// use sphaera_simplify::{SimplifyOptions, Hierarchy};
 ///
 /// let torus = shapes::torus(1.0, 0.3, 16)?;
-/// let hierarchy = Simplifier::new(&torus).target_triangles(32).build_hierarchy()?;
+/// let hierarchy = Hierarchy::build(&torus, &SimplifyOptions::default().with_target_triangles(32))?;
 /// let mut refinement = hierarchy.refinement();
 /// let before = refinement.live_triangle_count();
 /// // Split vertex by vertex, keeping a triangle set in sync from the reports.
@@ -121,16 +121,16 @@ impl<'h> Refinement<'h> {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 8)?;
-    /// let hierarchy = Simplifier::new(&sphere).build_hierarchy()?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default())?;
     /// let moving = hierarchy.inflate(&vec![0.1; sphere.vertex_count()])?;
     /// let refinement = hierarchy.refinement();
     /// let v = (0..hierarchy.vertex_count() as u32).find(|&v| refinement.is_present(v)).unwrap();
     /// let inflated = refinement.radius_in(v, &moving).unwrap();
     /// assert!(inflated >= refinement.radius(v) + 0.2 - 1e-12);
-    /// let other = Simplifier::new(&sphere).build_hierarchy()?;
+    /// let other = Hierarchy::build(&sphere, &SimplifyOptions::default())?;
     /// assert_eq!(refinement.radius_in(v, &other), None);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -291,10 +291,10 @@ impl<'h> Refinement<'h> {
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
     ///
     /// let sphere = shapes::sphere(1.0, 12)?;
-    /// let hierarchy = Simplifier::new(&sphere).target_triangles(20).build_hierarchy()?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default().with_target_triangles(20))?;
     /// let mut refinement = hierarchy.refinement();
     /// refinement.refine_to_error(0.1);
     /// let (kept, live) = (refinement.undone_count(), refinement.live_triangle_count());

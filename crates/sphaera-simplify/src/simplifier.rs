@@ -1,7 +1,8 @@
-//! The [`Simplifier`] builder and its result, [`Simplified`].
+//! The entry points [`simplify`] and [`Hierarchy::build`], their [`SimplifyOptions`], and
+//! the result, [`Simplified`].
 
-use sphaera_mesh::TriMesh;
 use sphaera_mesh::topology::HalfEdgeMesh;
+use sphaera_mesh::{Length, TriMesh};
 
 use crate::engine::{self, Stop};
 use crate::record::Recorder;
@@ -38,42 +39,6 @@ pub enum Placement {
     Optimal,
 }
 
-/// A maximum error bound: the simplification stops before any vertex's error radius would
-/// exceed it.
-///
-/// # Examples
-///
-/// ```
-/// use sphaera_simplify::MaxError;
-///
-/// assert_eq!(MaxError::Absolute(0.5).resolve(10.0), 0.5);
-/// assert_eq!(MaxError::RelativeToDiagonal(0.01).resolve(10.0), 0.1);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum MaxError {
-    /// In the mesh's length unit.
-    Absolute(f64),
-    /// As a fraction of the input's bounding-box diagonal.
-    RelativeToDiagonal(f64),
-}
-
-impl MaxError {
-    /// The bound in length units, for a mesh whose bounding-box diagonal is `diagonal`.
-    pub fn resolve(self, diagonal: f64) -> f64 {
-        match self {
-            Self::Absolute(e) => e,
-            Self::RelativeToDiagonal(f) => f * diagonal,
-        }
-    }
-
-    /// The value as given (for validation messages).
-    fn value(self) -> f64 {
-        match self {
-            Self::Absolute(x) | Self::RelativeToDiagonal(x) => x,
-        }
-    }
-}
-
 /// What the simplifier could not touch.
 ///
 /// # Examples
@@ -86,7 +51,7 @@ impl MaxError {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub struct LockReport {
-    /// Boundary vertices, when [`Simplifier::lock_boundary`] is on (the default); 0
+    /// Boundary vertices, when [`SimplifyOptions::lock_boundary`] is on (the default); 0
     /// otherwise.
     pub boundary: usize,
     /// Non-manifold vertices and their copies (never removed; neither are edges into them).
@@ -100,7 +65,7 @@ impl LockReport {
     }
 }
 
-/// The result of [`Simplifier::build`].
+/// The result of [`simplify`].
 ///
 /// The two-sided guarantee: every point of the input surface lies within the tolerance
 /// volume of some output triangle (the triangle swept by the balls centred on its points
@@ -125,125 +90,86 @@ pub struct Simplified {
     pub locked: LockReport,
 }
 
-/// Builder for a simplification.
+/// Options of [`simplify`] and [`Hierarchy::build`].
 ///
-/// Stops at whichever comes first: the triangle target ([`Simplifier::target_triangles`],
-/// [`Simplifier::target_ratio`]), the error bound ([`Simplifier::max_error`]), or no legal
-/// collapse left. With no target and no bound it simplifies as far as it can.
+/// The simplification stops at whichever comes first: the triangle target
+/// ([`SimplifyOptions::target_triangles`], [`SimplifyOptions::target_ratio`]), the error
+/// bound ([`SimplifyOptions::max_error`]), or no legal collapse left. With no target and
+/// no bound it simplifies as far as it can.
 ///
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::shapes;
-/// use sphaera_simplify::{MaxError, Simplifier};
+/// use sphaera_mesh::{Length, shapes};
+/// use sphaera_simplify::{SimplifyOptions, simplify};
 ///
 /// let sphere = shapes::sphere(1.0, 16)?;
-/// let out = Simplifier::new(&sphere)
-///     .target_ratio(0.25)
-///     .max_error(MaxError::RelativeToDiagonal(0.5))
-///     .build()?;
+/// let options = SimplifyOptions::default()
+///     .with_target_ratio(0.25)
+///     .with_max_error(Length::RelativeToDiagonal(0.5));
+/// let out = simplify(&sphere, &options)?;
 /// assert!(out.mesh.triangle_count() <= sphere.triangle_count() / 4 + 1);
 /// assert!(out.error_bound > 0.0);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone)]
-pub struct Simplifier<'a> {
-    mesh: &'a TriMesh,
-    target_triangles: Option<usize>,
-    target_ratio: Option<f64>,
-    max_error: Option<MaxError>,
-    lock_boundary: bool,
-    placement: Placement,
-    progress: Option<&'a (dyn Fn(Progress) + Sync)>,
-    weights: Option<&'a [f64]>,
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SimplifyOptions {
+    /// Stop at this many triangles (or one more: an interior collapse removes two).
+    pub target_triangles: Option<usize>,
+    /// Stop at `ceil(ratio × input triangles)` triangles; in `(0, 1]` (checked when run).
+    pub target_ratio: Option<f64>,
+    /// Never let the error bound exceed this (finite and non-negative, checked when run).
+    pub max_error: Option<Length>,
+    /// Keep every boundary vertex (`true`, the default), or let boundary vertices
+    /// collapse along boundary edges (`false`). See [`SimplifyOptions::with_lock_boundary`].
+    pub lock_boundary: bool,
+    /// Where kept vertices go ([`Placement::Subset`] by default).
+    pub placement: Placement,
+    /// Per-vertex tolerance weights, one per input vertex (see
+    /// [`SimplifyOptions::with_weights`]); `None` weighs every vertex 1.
+    pub weights: Option<Vec<f64>>,
 }
 
-/// How far a running simplification is, passed to the [`Simplifier::progress`] callback.
-///
-/// # Examples
-///
-/// ```
-/// use sphaera_simplify::Progress;
-///
-/// let p = Progress { removed: 50, to_remove: 200 };
-/// assert_eq!(p.fraction(), 0.25);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Progress {
-    /// Triangles removed so far.
-    pub removed: usize,
-    /// Triangles to remove to reach the triangle target (the whole mesh minus the target;
-    /// the run may stop earlier at the error bound or when no collapse is legal).
-    pub to_remove: usize,
-}
-
-impl Progress {
-    /// `removed / to_remove`, in `[0, 1]` (1 when there is nothing to remove).
-    pub fn fraction(&self) -> f64 {
-        if self.to_remove == 0 {
-            1.0
-        } else {
-            (self.removed as f64 / self.to_remove as f64).min(1.0)
-        }
-    }
-}
-
-impl std::fmt::Debug for Simplifier<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Simplifier")
-            .field("triangles", &self.mesh.triangle_count())
-            .field("target_triangles", &self.target_triangles)
-            .field("target_ratio", &self.target_ratio)
-            .field("max_error", &self.max_error)
-            .field("lock_boundary", &self.lock_boundary)
-            .field("placement", &self.placement)
-            .field("progress", &self.progress.is_some())
-            .field("weights", &self.weights.map(<[f64]>::len))
-            .finish()
-    }
-}
-
-impl<'a> Simplifier<'a> {
-    /// A simplifier of `mesh` with no target (as far as possible), boundary locked and
-    /// [`Placement::Subset`].
-    pub fn new(mesh: &'a TriMesh) -> Self {
+impl Default for SimplifyOptions {
+    /// No target (as far as possible), no error bound, boundary locked,
+    /// [`Placement::Subset`], no weights.
+    fn default() -> Self {
         Self {
-            mesh,
             target_triangles: None,
             target_ratio: None,
             max_error: None,
             lock_boundary: true,
             placement: Placement::Subset,
-            progress: None,
             weights: None,
         }
     }
+}
 
-    /// Stop at `n` triangles (or one more: an interior collapse removes two).
+impl SimplifyOptions {
+    /// With a target of `n` triangles.
     #[must_use]
-    pub fn target_triangles(mut self, n: usize) -> Self {
+    pub fn with_target_triangles(mut self, n: usize) -> Self {
         self.target_triangles = Some(n);
         self
     }
 
-    /// Stop at `ceil(ratio × input triangles)` triangles; `ratio` must be in `(0, 1]`
-    /// (checked by [`Simplifier::build`]).
+    /// With a target of `ceil(ratio × input triangles)` triangles.
     #[must_use]
-    pub fn target_ratio(mut self, ratio: f64) -> Self {
+    pub fn with_target_ratio(mut self, ratio: f64) -> Self {
         self.target_ratio = Some(ratio);
         self
     }
 
-    /// Never let the error bound exceed `bound` (must be finite and non-negative, checked
-    /// by [`Simplifier::build`]).
+    /// With an error bound the simplification never exceeds.
     #[must_use]
-    pub fn max_error(mut self, bound: MaxError) -> Self {
+    pub fn with_max_error(mut self, bound: Length) -> Self {
         self.max_error = Some(bound);
         self
     }
 
-    /// Keep every boundary vertex (`true`, the default), or let boundary vertices collapse
-    /// along boundary edges (`false`).
+    /// With every boundary vertex kept (`true`, the default), or boundary vertices
+    /// collapsing along boundary edges (`false`).
     ///
     /// Interior vertices collapse with a tight error map (see the crate documentation);
     /// boundary collapses use the simple map that sends `u` to `v`, whose radius
@@ -254,7 +180,7 @@ impl<'a> Simplifier<'a> {
     ///
     /// ```
     /// use sphaera_mesh::{DVec3, TriMesh};
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, simplify};
     ///
     /// // A flat 4 × 4 grid of squares.
     /// let mut p = Vec::new();
@@ -266,47 +192,47 @@ impl<'a> Simplifier<'a> {
     ///     t.push([a, a + 6, a + 5]);
     /// } }
     /// let grid = TriMesh::new(p, t)?;
-    /// let locked = Simplifier::new(&grid).build()?;
-    /// let free = Simplifier::new(&grid).lock_boundary(false).build()?;
+    /// let locked = simplify(&grid, &SimplifyOptions::default())?;
+    /// let free = simplify(&grid, &SimplifyOptions::default().with_lock_boundary(false))?;
     /// assert_eq!(locked.locked.boundary, 16);
     /// assert!(free.mesh.triangle_count() < locked.mesh.triangle_count());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     #[must_use]
-    pub fn lock_boundary(mut self, lock: bool) -> Self {
+    pub fn with_lock_boundary(mut self, lock: bool) -> Self {
         self.lock_boundary = lock;
         self
     }
 
-    /// Where kept vertices go ([`Placement::Subset`] by default).
+    /// With the given vertex placement.
     #[must_use]
-    pub fn placement(mut self, placement: Placement) -> Self {
+    pub fn with_placement(mut self, placement: Placement) -> Self {
         self.placement = placement;
         self
     }
 
-    /// Per-vertex tolerance weights, one per input vertex: a collapse is ranked by its
-    /// radius divided by the smallest weight over the vertices it changes (the removed
-    /// vertex, its parent and the removed vertex's neighbours), and with
-    /// [`Simplifier::max_error`] it is only allowed while its radius stays below that
+    /// With per-vertex tolerance weights, one per input vertex: a collapse is ranked by
+    /// its radius divided by the smallest weight over the vertices it changes (the
+    /// removed vertex, its parent and the removed vertex's neighbours), and with
+    /// [`SimplifyOptions::max_error`] it is only allowed while its radius stays below that
     /// weight times the bound. So `f < 1` keeps the error near a vertex `f` times smaller
     /// (regions with small weights are simplified last), `f > 1` allows more, and `f = 0`
     /// forbids every collapse that would change the surface near the vertex: that region
     /// stays exactly as it is.
     ///
-    /// Checked by [`Simplifier::build`]: one finite, non-negative weight per input vertex,
-    /// not all zero.
+    /// Checked when run: one finite, non-negative weight per input vertex, not all zero.
     ///
     /// # Examples
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{SimplifyOptions, simplify};
     ///
     /// let sphere = shapes::sphere(1.0, 16)?;
     /// // Freeze the northern hemisphere.
     /// let weights: Vec<f64> = sphere.positions().iter().map(|p| if p.z > 0.0 { 0.0 } else { 1.0 }).collect();
-    /// let out = Simplifier::new(&sphere).weights(&weights).target_ratio(0.1).build()?;
+    /// let options = SimplifyOptions::default().with_weights(weights).with_target_ratio(0.1);
+    /// let out = simplify(&sphere, &options)?;
     /// for (i, &o) in out.original_vertex.iter().enumerate() {
     ///     if sphere.positions()[o as usize].z > 0.0 {
     ///         assert_eq!(out.vertex_radii[i], 0.0);
@@ -315,115 +241,164 @@ impl<'a> Simplifier<'a> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     #[must_use]
-    pub fn weights(mut self, weights: &'a [f64]) -> Self {
+    pub fn with_weights(mut self, weights: Vec<f64>) -> Self {
         self.weights = Some(weights);
         self
     }
+}
 
-    /// Calls `callback` now and then (about every 1/256 of the work, and at the end) while
-    /// [`Simplifier::build`] runs, e.g. to drive a progress bar. It runs on the calling
-    /// thread and should be cheap.
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use std::sync::atomic::{AtomicUsize, Ordering};
-    /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::{Progress, Simplifier};
-    ///
-    /// let sphere = shapes::sphere(1.0, 16)?;
-    /// let last = AtomicUsize::new(0);
-    /// let report = |p: Progress| last.store(p.removed, Ordering::Relaxed);
-    /// let out = Simplifier::new(&sphere).target_ratio(0.5).progress(&report).build()?;
-    /// assert_eq!(last.load(Ordering::Relaxed), sphere.triangle_count() - out.mesh.triangle_count());
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    #[must_use]
-    pub fn progress(mut self, callback: &'a (dyn Fn(Progress) + Sync)) -> Self {
-        self.progress = Some(callback);
-        self
-    }
+/// How far a running simplification is, passed to the progress callback of
+/// [`simplify_with_progress`] and [`Hierarchy::build_with_progress`].
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_simplify::SimplifyProgress;
+///
+/// let p = SimplifyProgress { removed: 50, to_remove: 200 };
+/// assert_eq!(p.fraction(), 0.25);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SimplifyProgress {
+    /// Triangles removed so far.
+    pub removed: usize,
+    /// Triangles to remove to reach the triangle target (the whole mesh minus the target;
+    /// the run may stop earlier at the error bound or when no collapse is legal).
+    pub to_remove: usize,
+}
 
-    /// Runs the simplification.
-    ///
-    /// A target at or above the input's triangle count returns the input unchanged, with
-    /// all radii and the bound 0 (and no lock report: nothing was attempted). Triangles
-    /// with a repeated vertex index (segments or points) are dropped from the output; the
-    /// guarantee is with respect to the other triangles.
-    ///
-    /// # Errors
-    ///
-    /// - [`SimplifyError::EmptyMesh`] if the input has no triangles;
-    /// - [`SimplifyError::InvalidParameter`] if the ratio is not in `(0, 1]` or the error
-    ///   bound is NaN, infinite or negative.
-    ///
-    /// # Panics
-    ///
-    /// Never.
-    ///
-    /// # Performance
-    ///
-    /// `O(T log T)` for `T` triangles (valence-bounded local work per collapse); not yet
-    /// benchmarked.
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::{Simplifier, SimplifyError};
-    ///
-    /// let cube = shapes::cube(1.0, 4)?;
-    /// let err = Simplifier::new(&cube).target_ratio(f64::NAN).build().unwrap_err();
-    /// assert!(matches!(err, SimplifyError::InvalidParameter { name: "target_ratio", .. }));
-    /// let same = Simplifier::new(&cube).target_triangles(1_000_000).build()?;
-    /// assert_eq!(same.mesh, cube);
-    /// assert_eq!(same.error_bound, 0.0);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn build(&self) -> Result<Simplified, SimplifyError> {
-        let stop = self.stop()?;
-        if stop.triangles >= self.mesh.triangle_count() {
-            let n = self.mesh.vertex_count();
-            return Ok(Simplified {
-                mesh: self.mesh.clone(),
-                vertex_radii: vec![0.0; n],
-                error_bound: 0.0,
-                original_vertex: (0..n as u32).collect(),
-                collapses: 0,
-                locked: LockReport::default(),
-            });
+impl SimplifyProgress {
+    /// `removed / to_remove`, in `[0, 1]` (1 when there is nothing to remove).
+    pub fn fraction(&self) -> f64 {
+        if self.to_remove == 0 {
+            1.0
+        } else {
+            (self.removed as f64 / self.to_remove as f64).min(1.0)
         }
-        let outcome = self.run(HalfEdgeMesh::from_trimesh(self.mesh), stop, None);
-        let live = outcome.mesh.to_trimesh();
-        let vertex_radii: Vec<f64> = live
-            .vertex_map
-            .iter()
-            .map(|x| outcome.radii.get(x.0 as usize).copied().unwrap_or(0.0))
-            .collect();
-        let original_vertex = live
-            .vertex_map
-            .iter()
-            .map(|&x| outcome.mesh.original_vertex(x))
-            .collect();
-        let error_bound = vertex_radii.iter().fold(0.0_f64, |m, &r| m.max(r));
-        Ok(Simplified {
-            mesh: live.mesh,
-            vertex_radii,
-            error_bound,
-            original_vertex,
-            collapses: outcome.collapses,
-            locked: outcome.locked,
-        })
     }
+}
 
-    /// Runs the simplification and records it as a progressive [`Hierarchy`], from the
-    /// input (the finest mesh) to where the simplification stopped (the base mesh, equal
-    /// to what [`Simplifier::build`] returns). For a distance hierarchy, leave the target
+/// Simplifies `mesh` as `options` say.
+///
+/// A target at or above the input's triangle count returns the input unchanged, with all
+/// radii and the bound 0 (and no lock report: nothing was attempted). Triangles with a
+/// repeated vertex index (segments or points) are dropped from the output; the guarantee
+/// is with respect to the other triangles.
+///
+/// # Errors
+///
+/// - [`SimplifyError::EmptyMesh`] if the input has no triangles;
+/// - [`SimplifyError::InvalidParameter`] if the ratio is not in `(0, 1]` or the error
+///   bound is NaN, infinite or negative;
+/// - [`SimplifyError::LengthMismatch`] or [`SimplifyError::InvalidVertexValue`] for
+///   weights that are not one finite, non-negative value per vertex, and
+///   [`SimplifyError::AllWeightsZero`].
+///
+/// # Panics
+///
+/// Never.
+///
+/// # Performance
+///
+/// `O(T log T)` for `T` triangles (valence-bounded local work per collapse); see the
+/// crate documentation for measured figures.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::shapes;
+/// use sphaera_simplify::{SimplifyError, SimplifyOptions, simplify};
+///
+/// let cube = shapes::cube(1.0, 4)?;
+/// let err = simplify(&cube, &SimplifyOptions::default().with_target_ratio(f64::NAN)).unwrap_err();
+/// assert!(matches!(err, SimplifyError::InvalidParameter { name: "target_ratio", .. }));
+/// let same = simplify(&cube, &SimplifyOptions::default().with_target_triangles(1_000_000))?;
+/// assert_eq!(same.mesh, cube);
+/// assert_eq!(same.error_bound, 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn simplify(mesh: &TriMesh, options: &SimplifyOptions) -> Result<Simplified, SimplifyError> {
+    simplify_with_progress(mesh, options, &|_| {})
+}
+
+/// [`simplify`], calling `progress` now and then (about every 1/256 of the work, and at
+/// the end), e.g. to drive a progress bar. It runs on the calling thread and should be
+/// cheap.
+///
+/// # Errors
+///
+/// As [`simplify`].
+///
+/// # Examples
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use sphaera_mesh::shapes;
+/// use sphaera_simplify::{SimplifyOptions, SimplifyProgress, simplify_with_progress};
+///
+/// let sphere = shapes::sphere(1.0, 16)?;
+/// let last = AtomicUsize::new(0);
+/// let report = |p: &SimplifyProgress| last.store(p.removed, Ordering::Relaxed);
+/// let options = SimplifyOptions::default().with_target_ratio(0.5);
+/// let out = simplify_with_progress(&sphere, &options, &report)?;
+/// assert_eq!(last.load(Ordering::Relaxed), sphere.triangle_count() - out.mesh.triangle_count());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn simplify_with_progress(
+    mesh: &TriMesh,
+    options: &SimplifyOptions,
+    progress: &(dyn Fn(&SimplifyProgress) + Sync),
+) -> Result<Simplified, SimplifyError> {
+    let stop = stop(mesh, options)?;
+    if stop.triangles >= mesh.triangle_count() {
+        let n = mesh.vertex_count();
+        return Ok(Simplified {
+            mesh: mesh.clone(),
+            vertex_radii: vec![0.0; n],
+            error_bound: 0.0,
+            original_vertex: (0..n as u32).collect(),
+            collapses: 0,
+            locked: LockReport::default(),
+        });
+    }
+    let outcome = run(
+        HalfEdgeMesh::from_trimesh(mesh),
+        options,
+        stop,
+        progress,
+        None,
+    );
+    let live = outcome.mesh.to_trimesh();
+    let vertex_radii: Vec<f64> = live
+        .vertex_map
+        .iter()
+        .map(|x| outcome.radii.get(x.0 as usize).copied().unwrap_or(0.0))
+        .collect();
+    let original_vertex = live
+        .vertex_map
+        .iter()
+        .map(|&x| outcome.mesh.original_vertex(x))
+        .collect();
+    let error_bound = vertex_radii.iter().fold(0.0_f64, |m, &r| m.max(r));
+    Ok(Simplified {
+        mesh: live.mesh,
+        vertex_radii,
+        error_bound,
+        original_vertex,
+        collapses: outcome.collapses,
+        locked: outcome.locked,
+    })
+}
+
+impl Hierarchy {
+    /// Simplifies `mesh` as `options` say and records it as a progressive hierarchy, from
+    /// the input (the finest mesh) to where the simplification stopped (the base mesh,
+    /// equal to what [`simplify`] returns). For a distance hierarchy, leave the target
     /// unset so the base mesh is as coarse as possible.
     ///
     /// # Errors
     ///
-    /// As [`Simplifier::build`].
+    /// As [`simplify`].
     ///
     /// # Panics
     ///
@@ -431,99 +406,116 @@ impl<'a> Simplifier<'a> {
     ///
     /// # Performance
     ///
-    /// The run of [`Simplifier::build`] plus the recording (a few lists per collapse); see
+    /// The run of [`simplify`] plus the recording (a few lists per collapse); see
     /// [`Hierarchy::memory`] for the size.
     ///
     /// # Examples
     ///
     /// ```
     /// use sphaera_mesh::shapes;
-    /// use sphaera_simplify::Simplifier;
+    /// use sphaera_simplify::{Hierarchy, SimplifyOptions, simplify};
     ///
     /// let cube = shapes::cube(1.0, 6)?;
-    /// let simplifier = Simplifier::new(&cube).target_ratio(0.2);
-    /// let hierarchy = simplifier.build_hierarchy()?;
-    /// assert_eq!(hierarchy.base(), simplifier.build()?);
+    /// let options = SimplifyOptions::default().with_target_ratio(0.2);
+    /// let hierarchy = Hierarchy::build(&cube, &options)?;
+    /// assert_eq!(hierarchy.base(), simplify(&cube, &options)?);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn build_hierarchy(&self) -> Result<Hierarchy, SimplifyError> {
-        let stop = self.stop()?;
-        let half_edges = HalfEdgeMesh::from_trimesh(self.mesh);
+    pub fn build(mesh: &TriMesh, options: &SimplifyOptions) -> Result<Self, SimplifyError> {
+        Self::build_with_progress(mesh, options, &|_| {})
+    }
+
+    /// [`Hierarchy::build`], calling `progress` as [`simplify_with_progress`] does.
+    ///
+    /// # Errors
+    ///
+    /// As [`simplify`].
+    pub fn build_with_progress(
+        mesh: &TriMesh,
+        options: &SimplifyOptions,
+        progress: &(dyn Fn(&SimplifyProgress) + Sync),
+    ) -> Result<Self, SimplifyError> {
+        let stop = stop(mesh, options)?;
+        let half_edges = HalfEdgeMesh::from_trimesh(mesh);
         let finest = half_edges.clone();
         let mut recorder = Recorder::new(&half_edges);
-        let outcome = self.run(half_edges, stop, Some(&mut recorder));
-        Ok(Hierarchy::from_record(
+        let outcome = run(half_edges, options, stop, progress, Some(&mut recorder));
+        Ok(Self::from_record(
             &finest,
             recorder,
-            (self.mesh.vertex_count(), self.mesh.triangle_count()),
+            (mesh.vertex_count(), mesh.triangle_count()),
             outcome.locked,
-            self.placement,
+            options.placement,
         ))
     }
+}
 
-    /// Runs the engine on `half_edges` with this builder's weights, placement and progress.
-    fn run(
-        &self,
-        half_edges: HalfEdgeMesh,
-        stop: Stop,
-        recorder: Option<&mut Recorder>,
-    ) -> engine::Outcome {
-        let weights = self.weights.map(|w| Weights::for_mesh(&half_edges, w));
-        engine::run(
-            half_edges,
-            stop,
-            weights.as_ref(),
-            self.placement == Placement::Optimal,
-            self.progress,
-            recorder,
-        )
+/// Runs the engine on `half_edges` with the options' weights and placement.
+fn run(
+    half_edges: HalfEdgeMesh,
+    options: &SimplifyOptions,
+    stop: Stop,
+    progress: &(dyn Fn(&SimplifyProgress) + Sync),
+    recorder: Option<&mut Recorder>,
+) -> engine::Outcome {
+    let weights = options
+        .weights
+        .as_deref()
+        .map(|w| Weights::for_mesh(&half_edges, w));
+    engine::run(
+        half_edges,
+        stop,
+        weights.as_ref(),
+        options.placement == Placement::Optimal,
+        progress,
+        recorder,
+    )
+}
+
+/// Validates the options into the engine's stopping rule.
+fn stop(mesh: &TriMesh, options: &SimplifyOptions) -> Result<Stop, SimplifyError> {
+    let input = mesh.triangle_count();
+    if input == 0 {
+        return Err(SimplifyError::EmptyMesh);
     }
-
-    /// Validates the parameters into the engine's stopping rule.
-    fn stop(&self) -> Result<Stop, SimplifyError> {
-        let input = self.mesh.triangle_count();
-        if input == 0 {
-            return Err(SimplifyError::EmptyMesh);
+    let mut target = options.target_triangles.unwrap_or(0);
+    if let Some(ratio) = options.target_ratio {
+        if !(ratio > 0.0 && ratio <= 1.0) {
+            return Err(SimplifyError::InvalidParameter {
+                name: "target_ratio",
+                value: ratio,
+                requirement: "in (0, 1]",
+            });
         }
-        let mut target = self.target_triangles.unwrap_or(0);
-        if let Some(ratio) = self.target_ratio {
-            if !(ratio > 0.0 && ratio <= 1.0) {
+        // `ratio ≤ 1`, so the product is at most `input` and the cast is exact enough.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let by_ratio = (ratio * input as f64).ceil() as usize;
+        target = target.max(by_ratio);
+    }
+    let max_radius = match options.max_error {
+        None => f64::INFINITY,
+        Some(bound) => {
+            let value = bound.value();
+            if !(value.is_finite() && value >= 0.0) {
                 return Err(SimplifyError::InvalidParameter {
-                    name: "target_ratio",
-                    value: ratio,
-                    requirement: "in (0, 1]",
+                    name: "max_error",
+                    value,
+                    requirement: "finite and non-negative",
                 });
             }
-            // `ratio ≤ 1`, so the product is at most `input` and the cast is exact enough.
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            let by_ratio = (ratio * input as f64).ceil() as usize;
-            target = target.max(by_ratio);
+            bound.resolve(mesh.bounding_box_diagonal())
         }
-        let max_radius = match self.max_error {
-            None => f64::INFINITY,
-            Some(bound) => {
-                let value = bound.value();
-                if !(value.is_finite() && value >= 0.0) {
-                    return Err(SimplifyError::InvalidParameter {
-                        name: "max_error",
-                        value,
-                        requirement: "finite and non-negative",
-                    });
-                }
-                bound.resolve(self.mesh.bounding_box_diagonal())
-            }
-        };
-        if let Some(weights) = self.weights {
-            Weights::validate(self.mesh, weights)?;
-        }
-        Ok(Stop {
-            triangles: target,
-            max_radius,
-            boundary: if self.lock_boundary {
-                BoundaryPolicy::Lock
-            } else {
-                BoundaryPolicy::Collapse
-            },
-        })
+    };
+    if let Some(weights) = &options.weights {
+        Weights::validate(mesh, weights)?;
     }
+    Ok(Stop {
+        triangles: target,
+        max_radius,
+        boundary: if options.lock_boundary {
+            BoundaryPolicy::Lock
+        } else {
+            BoundaryPolicy::Collapse
+        },
+    })
 }

@@ -6,7 +6,7 @@ mod common;
 use common::{SLACK, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
-use sphaera_simplify::{Hierarchy, Simplified, Simplifier, SimplifyError};
+use sphaera_simplify::{Hierarchy, Simplified, SimplifyError, SimplifyOptions};
 
 /// A smooth deformation of amplitude `amplitude`, different per `seed`.
 fn deform(p: DVec3, amplitude: f64, seed: u64) -> DVec3 {
@@ -63,7 +63,7 @@ proptest! {
         seed in 0u64..1000,
     ) {
         let mesh = shape(kind, resolution);
-        let h = Simplifier::new(&mesh).build_hierarchy().unwrap();
+        let h = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
         let moved: Vec<DVec3> = mesh.positions().iter().map(|&p| deform(p, amplitude, seed)).collect();
         let frame = h.replay(&moved).unwrap();
         let deformed = TriMesh::new(moved.clone(), mesh.triangles().to_vec()).unwrap();
@@ -80,7 +80,7 @@ proptest! {
         seed in 0u64..1000,
     ) {
         let mesh = shape(kind, resolution);
-        let h = Simplifier::new(&mesh).build_hierarchy().unwrap();
+        let h = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
         let moved: Vec<DVec3> = mesh.positions().iter().map(|&p| deform(p, amplitude, seed)).collect();
         let displacement: Vec<f64> = mesh.positions().iter().zip(&moved).map(|(a, b)| (*a - *b).length()).collect();
         let inflated = h.inflate(&displacement).unwrap();
@@ -95,7 +95,7 @@ fn replay_with_the_same_positions_is_valid_and_close_to_the_build() {
     // Not identical: the replay may take the simple map where it is cheaper, which
     // changes later radii either way.
     let mesh = shapes::torus(1.0, 0.3, 14).unwrap();
-    let h = Simplifier::new(&mesh).build_hierarchy().unwrap();
+    let h = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
     let same = h.replay(mesh.positions()).unwrap();
     check(&mesh, same.base(), mesh.positions(), 7);
     let (a, b) = (h.base().error_bound, same.base().error_bound);
@@ -105,7 +105,7 @@ fn replay_with_the_same_positions_is_valid_and_close_to_the_build() {
 #[test]
 fn zero_displacement_changes_nothing() {
     let mesh = shapes::sphere(1.0, 8).unwrap();
-    let h = Simplifier::new(&mesh).build_hierarchy().unwrap();
+    let h = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
     let same = h.inflate(&vec![0.0; mesh.vertex_count()]).unwrap();
     assert_eq!(same.base(), h.base());
 }
@@ -113,7 +113,7 @@ fn zero_displacement_changes_nothing() {
 #[test]
 fn bad_deformation_input_is_an_error() {
     let mesh = shapes::sphere(1.0, 6).unwrap();
-    let h = Simplifier::new(&mesh).build_hierarchy().unwrap();
+    let h = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
     let n = mesh.vertex_count();
     assert!(matches!(
         h.replay(&mesh.positions()[1..]),
@@ -148,10 +148,11 @@ fn bad_deformation_input_is_an_error() {
 #[test]
 fn deformation_of_an_optimal_placement_hierarchy_is_a_clear_error() {
     let mesh = shapes::sphere(1.0, 6).unwrap();
-    let h = Simplifier::new(&mesh)
-        .placement(sphaera_simplify::Placement::Optimal)
-        .build_hierarchy()
-        .unwrap();
+    let h = Hierarchy::build(
+        &mesh,
+        &SimplifyOptions::default().with_placement(sphaera_simplify::Placement::Optimal),
+    )
+    .unwrap();
     let err = h.replay(mesh.positions()).unwrap_err();
     assert!(matches!(
         err,

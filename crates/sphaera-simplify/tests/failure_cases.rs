@@ -7,13 +7,13 @@ mod common;
 
 use common::{SLACK, grid, original_samples, worst_containment, worst_coverage};
 use glam::DVec3;
-use sphaera_mesh::{TriMesh, shapes, topology};
-use sphaera_simplify::{MaxError, Simplifier, SimplifyError};
+use sphaera_mesh::{Length, TriMesh, shapes, topology};
+use sphaera_simplify::{Hierarchy, SimplifyError, SimplifyOptions, simplify};
 
 #[test]
 fn closed_genus_zero_mesh_reaches_a_tetrahedron_and_no_further() {
     let mesh = shapes::sphere(1.0, 8).unwrap();
-    let out = Simplifier::new(&mesh).target_triangles(0).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_triangles(0)).unwrap();
     assert_eq!(out.mesh.triangle_count(), 4);
     assert_eq!(out.mesh.vertex_count(), 4);
     let report = topology::analyze(&out.mesh);
@@ -23,10 +23,11 @@ fn closed_genus_zero_mesh_reaches_a_tetrahedron_and_no_further() {
     assert!(worst_coverage(&out, &xs) <= SLACK);
     assert!(worst_containment(&out, &mesh, 4) <= SLACK);
     // Simplifying the tetrahedron again changes nothing.
-    let again = Simplifier::new(&out.mesh)
-        .target_triangles(0)
-        .build()
-        .unwrap();
+    let again = simplify(
+        &out.mesh,
+        &SimplifyOptions::default().with_target_triangles(0),
+    )
+    .unwrap();
     assert_eq!(again.mesh.triangle_count(), 4);
     assert_eq!(again.collapses, 0);
 }
@@ -34,7 +35,7 @@ fn closed_genus_zero_mesh_reaches_a_tetrahedron_and_no_further() {
 #[test]
 fn open_grid_keeps_its_boundary() {
     let mesh = grid(8, |x, y| 0.05 * x * y);
-    let out = Simplifier::new(&mesh).target_triangles(0).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_triangles(0)).unwrap();
     assert_eq!(out.locked.boundary, 32);
     let before = topology::analyze(&mesh);
     let after = topology::analyze(&out.mesh);
@@ -51,7 +52,7 @@ fn open_grid_keeps_its_boundary() {
 #[test]
 fn flat_grid_collapses_at_almost_no_cost() {
     let mesh = grid(12, |_, _| 0.0);
-    let out = Simplifier::new(&mesh).target_ratio(0.2).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.2)).unwrap();
     assert!(out.mesh.triangle_count() <= mesh.triangle_count() / 5 + 1);
     assert!(
         out.error_bound < 1e-9,
@@ -89,7 +90,7 @@ fn two_cubes_sharing_an_edge() -> TriMesh {
 fn non_manifold_input_simplifies_and_reports_locks() {
     let mesh = two_cubes_sharing_an_edge();
     assert!(!topology::analyze(&mesh).is_manifold);
-    let out = Simplifier::new(&mesh).target_ratio(0.3).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.3)).unwrap();
     assert!(out.locked.non_manifold > 0);
     assert!(out.mesh.triangle_count() < mesh.triangle_count());
     let xs = original_samples(&mesh, 500, 4);
@@ -112,7 +113,7 @@ fn duplicate_vertices_simplify_without_error() {
         .map(|(i, tri)| if i % 2 == 0 { *tri } else { tri.map(|x| x + n) })
         .collect();
     let mesh = TriMesh::new(positions, triangles).unwrap();
-    let out = Simplifier::new(&mesh).target_ratio(0.5).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.5)).unwrap();
     assert!(out.mesh.triangle_count() <= mesh.triangle_count());
     let xs = original_samples(&mesh, 300, 5);
     assert!(worst_coverage(&out, &xs) <= SLACK);
@@ -130,7 +131,7 @@ fn zero_area_triangles_simplify_without_error() {
     }
     mesh.set_positions(p).unwrap();
     assert!(mesh.triangle_iter().any(|t| t.area() == 0.0));
-    let out = Simplifier::new(&mesh).target_ratio(0.2).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.2)).unwrap();
     assert!(out.mesh.triangle_count() < mesh.triangle_count());
     let xs = original_samples(&mesh, 300, 6);
     assert!(worst_coverage(&out, &xs) <= SLACK);
@@ -140,10 +141,11 @@ fn zero_area_triangles_simplify_without_error() {
 #[test]
 fn target_above_the_input_returns_it_unchanged() {
     let mesh = shapes::torus(1.0, 0.4, 8).unwrap();
-    let out = Simplifier::new(&mesh)
-        .target_triangles(mesh.triangle_count())
-        .build()
-        .unwrap();
+    let out = simplify(
+        &mesh,
+        &SimplifyOptions::default().with_target_triangles(mesh.triangle_count()),
+    )
+    .unwrap();
     assert_eq!(out.mesh, mesh);
     assert_eq!(out.error_bound, 0.0);
     assert_eq!(out.collapses, 0);
@@ -152,7 +154,7 @@ fn target_above_the_input_returns_it_unchanged() {
         out.original_vertex,
         (0..mesh.vertex_count() as u32).collect::<Vec<_>>()
     );
-    let full = Simplifier::new(&mesh).target_ratio(1.0).build().unwrap();
+    let full = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(1.0)).unwrap();
     assert_eq!(full.mesh, mesh);
 }
 
@@ -160,10 +162,8 @@ fn target_above_the_input_returns_it_unchanged() {
 fn nan_and_out_of_range_parameters_are_errors() {
     let mesh = shapes::cube(1.0, 2).unwrap();
     for ratio in [f64::NAN, 0.0, -0.5, 1.5, f64::INFINITY] {
-        let err = Simplifier::new(&mesh)
-            .target_ratio(ratio)
-            .build()
-            .unwrap_err();
+        let err =
+            simplify(&mesh, &SimplifyOptions::default().with_target_ratio(ratio)).unwrap_err();
         assert!(
             matches!(
                 err,
@@ -176,12 +176,12 @@ fn nan_and_out_of_range_parameters_are_errors() {
         );
     }
     for bound in [
-        MaxError::Absolute(f64::NAN),
-        MaxError::Absolute(-1.0),
-        MaxError::RelativeToDiagonal(f64::INFINITY),
-        MaxError::RelativeToDiagonal(f64::NAN),
+        Length::Absolute(f64::NAN),
+        Length::Absolute(-1.0),
+        Length::RelativeToDiagonal(f64::INFINITY),
+        Length::RelativeToDiagonal(f64::NAN),
     ] {
-        let err = Simplifier::new(&mesh).max_error(bound).build().unwrap_err();
+        let err = simplify(&mesh, &SimplifyOptions::default().with_max_error(bound)).unwrap_err();
         assert!(
             matches!(
                 err,
@@ -199,37 +199,37 @@ fn nan_and_out_of_range_parameters_are_errors() {
 #[test]
 fn empty_mesh_is_an_error() {
     let mesh = TriMesh::new(vec![DVec3::ZERO], vec![]).unwrap();
-    let err = Simplifier::new(&mesh)
-        .target_ratio(0.5)
-        .build()
-        .unwrap_err();
+    let err = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.5)).unwrap_err();
     assert!(matches!(err, SimplifyError::EmptyMesh));
 }
 
 #[test]
 fn max_error_stops_first_and_is_respected() {
     let mesh = shapes::sphere(1.0, 16).unwrap();
-    let loose = Simplifier::new(&mesh).target_ratio(0.05).build().unwrap();
+    let loose = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.05)).unwrap();
     let bound = loose.error_bound / 2.0;
-    let out = Simplifier::new(&mesh)
-        .target_ratio(0.05)
-        .max_error(MaxError::Absolute(bound))
-        .build()
-        .unwrap();
+    let out = simplify(
+        &mesh,
+        &SimplifyOptions::default()
+            .with_target_ratio(0.05)
+            .with_max_error(Length::Absolute(bound)),
+    )
+    .unwrap();
     assert!(out.error_bound <= bound);
     assert!(out.mesh.triangle_count() > loose.mesh.triangle_count());
-    let zero = Simplifier::new(&mesh)
-        .max_error(MaxError::Absolute(0.0))
-        .build()
-        .unwrap();
+    let zero = simplify(
+        &mesh,
+        &SimplifyOptions::default().with_max_error(Length::Absolute(0.0)),
+    )
+    .unwrap();
     assert_eq!(zero.collapses, 0);
 }
 
 #[test]
 fn output_is_deterministic() {
     let mesh = shapes::torus(1.0, 0.3, 12).unwrap();
-    let a = Simplifier::new(&mesh).target_ratio(0.3).build().unwrap();
-    let b = Simplifier::new(&mesh).target_ratio(0.3).build().unwrap();
+    let a = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.3)).unwrap();
+    let b = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.3)).unwrap();
     assert_eq!(a, b);
 }
 
@@ -237,13 +237,18 @@ fn output_is_deterministic() {
 fn all_zero_weights_are_a_clear_error() {
     let mesh = shapes::sphere(1.0, 8).unwrap();
     let zeros = vec![0.0; mesh.vertex_count()];
-    let err = Simplifier::new(&mesh).weights(&zeros).build().unwrap_err();
+    let err = simplify(
+        &mesh,
+        &SimplifyOptions::default().with_weights(zeros.to_vec()),
+    )
+    .unwrap_err();
     assert!(matches!(err, SimplifyError::AllWeightsZero), "{err}");
     assert!(err.to_string().contains("nothing can be simplified"));
-    let err = Simplifier::new(&mesh)
-        .weights(&zeros)
-        .build_hierarchy()
-        .unwrap_err();
+    let err = Hierarchy::build(
+        &mesh,
+        &SimplifyOptions::default().with_weights(zeros.to_vec()),
+    )
+    .unwrap_err();
     assert!(matches!(err, SimplifyError::AllWeightsZero));
 }
 
@@ -251,10 +256,11 @@ fn all_zero_weights_are_a_clear_error() {
 fn bad_weights_are_errors() {
     let mesh = shapes::sphere(1.0, 8).unwrap();
     let n = mesh.vertex_count();
-    let err = Simplifier::new(&mesh)
-        .weights(&vec![1.0; n - 1])
-        .build()
-        .unwrap_err();
+    let err = simplify(
+        &mesh,
+        &SimplifyOptions::default().with_weights(vec![1.0; n - 1].to_vec()),
+    )
+    .unwrap_err();
     assert!(matches!(
         err,
         SimplifyError::LengthMismatch { name: "weights", actual, expected } if actual == n - 1 && expected == n
@@ -262,7 +268,8 @@ fn bad_weights_are_errors() {
     for bad in [f64::NAN, -0.5, f64::INFINITY] {
         let mut w = vec![1.0; n];
         w[5] = bad;
-        let err = Simplifier::new(&mesh).weights(&w).build().unwrap_err();
+        let err =
+            simplify(&mesh, &SimplifyOptions::default().with_weights(w.to_vec())).unwrap_err();
         assert!(
             matches!(
                 err,
@@ -294,12 +301,14 @@ fn zero_weight_regions_do_not_move_and_small_weights_keep_their_error_small() {
             }
         })
         .collect();
-    let plain = Simplifier::new(&mesh).target_ratio(0.2).build().unwrap();
-    let out = Simplifier::new(&mesh)
-        .weights(&weights)
-        .target_ratio(0.2)
-        .build()
-        .unwrap();
+    let plain = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.2)).unwrap();
+    let out = simplify(
+        &mesh,
+        &SimplifyOptions::default()
+            .with_weights(weights.to_vec())
+            .with_target_ratio(0.2),
+    )
+    .unwrap();
     // Every input triangle touching a frozen vertex is still there, unchanged.
     let kept: std::collections::BTreeSet<[u32; 3]> = out
         .mesh
@@ -326,10 +335,12 @@ fn zero_weight_regions_do_not_move_and_small_weights_keep_their_error_small() {
     assert!(worst_south(&out) < worst_south(&plain));
     // With a bound, the strict region stays within a tenth of it.
     let bound = 0.05;
-    let bounded = Simplifier::new(&mesh)
-        .weights(&weights)
-        .max_error(MaxError::Absolute(bound))
-        .build()
-        .unwrap();
+    let bounded = simplify(
+        &mesh,
+        &SimplifyOptions::default()
+            .with_weights(weights.to_vec())
+            .with_max_error(Length::Absolute(bound)),
+    )
+    .unwrap();
     assert!(worst_south(&bounded) <= 0.1 * bound + 1e-12);
 }

@@ -12,7 +12,9 @@ use std::collections::BTreeSet;
 use common::{SLACK, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
-use sphaera_simplify::{Hierarchy, Placement, Refinement, Simplified, Simplifier, SimplifyError};
+use sphaera_simplify::{
+    Hierarchy, Placement, Refinement, Simplified, SimplifyError, SimplifyOptions, simplify,
+};
 
 fn check_invariants(original: &TriMesh, out: &Simplified, seed: u64) {
     let xs = original_samples(original, 300, seed);
@@ -85,12 +87,12 @@ proptest! {
         lock_boundary: bool,
     ) {
         let mesh = shape(kind, resolution);
-        let simplifier = Simplifier::new(&mesh).lock_boundary(lock_boundary);
-        let hierarchy = simplifier.clone().build_hierarchy().unwrap();
-        prop_assert_eq!(hierarchy.base(), simplifier.build().unwrap());
+        let options = SimplifyOptions::default().with_lock_boundary(lock_boundary);
+        let hierarchy = Hierarchy::build(&mesh, &options).unwrap();
+        prop_assert_eq!(hierarchy.base(), simplify(&mesh, &options).unwrap());
         let n = (ratio * mesh.triangle_count() as f64) as usize;
         let level = hierarchy.level_by_triangles(n);
-        let direct = simplifier.target_triangles(n).build().unwrap();
+        let direct = simplify(&mesh, &options.with_target_triangles(n)).unwrap();
         prop_assert_eq!(&level.mesh, &direct.mesh);
         prop_assert_eq!(&level.vertex_radii, &direct.vertex_radii);
         prop_assert_eq!(level.error_bound, direct.error_bound);
@@ -106,7 +108,7 @@ proptest! {
     ) {
         let mesh = shape(kind, resolution);
         let placement = if optimal { Placement::Optimal } else { Placement::Subset };
-        let hierarchy = Simplifier::new(&mesh).placement(placement).build_hierarchy().unwrap();
+        let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default().with_placement(placement)).unwrap();
         let mut refinement = hierarchy.refinement();
         let base_count = refinement.live_triangle_count();
         let mut live: BTreeSet<u32> = refinement.live_triangles().collect();
@@ -145,7 +147,7 @@ proptest! {
         seed in 0u64..1000,
     ) {
         let mesh = shape(kind, resolution);
-        let hierarchy = Simplifier::new(&mesh).build_hierarchy().unwrap();
+        let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
         let base = hierarchy.base();
         let bound = fraction * base.error_bound;
         let level = hierarchy.level_by_error(bound);
@@ -158,7 +160,7 @@ proptest! {
 #[test]
 fn vertex_errors_are_the_papers_two_values() {
     let mesh = shapes::sphere(1.0, 10).unwrap();
-    let hierarchy = Simplifier::new(&mesh).build_hierarchy().unwrap();
+    let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
     let mut seen = 0;
     for v in 0..hierarchy.vertex_count() as u32 {
         let Some(c) = hierarchy.collapse_of(v) else {
@@ -184,7 +186,7 @@ fn vertex_errors_are_the_papers_two_values() {
 #[test]
 fn splitting_a_removed_or_unknown_vertex_is_an_error() {
     let mesh = shapes::sphere(1.0, 8).unwrap();
-    let hierarchy = Simplifier::new(&mesh).build_hierarchy().unwrap();
+    let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
     let mut refinement = hierarchy.refinement();
     let removed = (0..hierarchy.vertex_count() as u32)
         .find(|&v| !refinement.is_present(v))
@@ -208,7 +210,7 @@ fn splitting_a_removed_or_unknown_vertex_is_an_error() {
 #[test]
 fn refining_everything_gives_back_the_input() {
     let mesh = shapes::torus(1.0, 0.4, 12).unwrap();
-    let hierarchy = Simplifier::new(&mesh).build_hierarchy().unwrap();
+    let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
     let finest = hierarchy.level_by_error(0.0);
     assert_eq!(finest.mesh.triangle_count(), mesh.triangle_count());
     assert_eq!(finest.error_bound, 0.0);
@@ -224,10 +226,11 @@ fn refining_everything_gives_back_the_input() {
 #[test]
 fn refined_open_grid_with_optimal_placement_keeps_invariant_a() {
     let mesh = shape(3, 6);
-    let hierarchy = Simplifier::new(&mesh)
-        .placement(Placement::Optimal)
-        .build_hierarchy()
-        .unwrap();
+    let hierarchy = Hierarchy::build(
+        &mesh,
+        &SimplifyOptions::default().with_placement(Placement::Optimal),
+    )
+    .unwrap();
     let mut refinement = hierarchy.refinement();
     for pick in [386_499_168_u32, 1_059_914_931, 147_362_565] {
         let splittable: Vec<u32> = (0..hierarchy.vertex_count() as u32)

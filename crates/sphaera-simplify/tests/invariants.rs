@@ -8,7 +8,7 @@ mod common;
 use common::{SLACK, grid, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
-use sphaera_simplify::{Placement, Simplified, Simplifier};
+use sphaera_simplify::{Placement, Simplified, SimplifyOptions, simplify};
 
 fn check_both(original: &TriMesh, out: &Simplified, samples: usize, seed: u64) {
     let xs = original_samples(original, samples, seed);
@@ -46,11 +46,7 @@ proptest! {
     ) {
         let mesh = shape(kind, resolution);
         let placement = if optimal { Placement::Optimal } else { Placement::Subset };
-        let out = Simplifier::new(&mesh)
-            .target_ratio(ratio)
-            .lock_boundary(lock_boundary)
-            .placement(placement)
-            .build()
+        let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(ratio).with_lock_boundary(lock_boundary).with_placement(placement))
             .unwrap();
         check_both(&mesh, &out, 300, seed);
     }
@@ -59,7 +55,7 @@ proptest! {
 #[test]
 fn sphere_to_ten_percent_keeps_both_invariants() {
     let mesh = shapes::sphere(1.0, 16).unwrap();
-    let out = Simplifier::new(&mesh).target_ratio(0.1).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.1)).unwrap();
     assert!(out.mesh.triangle_count() <= mesh.triangle_count() / 10 + 1);
     assert!(out.error_bound > 0.0);
     check_both(&mesh, &out, 2000, 7);
@@ -68,14 +64,14 @@ fn sphere_to_ten_percent_keeps_both_invariants() {
 #[test]
 fn torus_keeps_both_invariants() {
     let mesh = shapes::torus(1.0, 0.3, 16).unwrap();
-    let out = Simplifier::new(&mesh).target_ratio(0.2).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.2)).unwrap();
     check_both(&mesh, &out, 1000, 3);
 }
 
 #[test]
 fn bumpy_open_grid_keeps_both_invariants_and_its_boundary() {
     let mesh = grid(10, |x, y| 0.1 * (5.0 * x).sin() * (4.0 * y).sin());
-    let out = Simplifier::new(&mesh).target_ratio(0.1).build().unwrap();
+    let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(0.1)).unwrap();
     assert_eq!(out.locked.boundary, 40);
     check_both(&mesh, &out, 1000, 11);
 }
@@ -83,11 +79,13 @@ fn bumpy_open_grid_keeps_both_invariants_and_its_boundary() {
 #[test]
 fn open_grid_with_free_boundary_keeps_both_invariants() {
     let mesh = grid(10, |x, y| 0.1 * (5.0 * x).sin() * (4.0 * y).sin());
-    let out = Simplifier::new(&mesh)
-        .target_ratio(0.05)
-        .lock_boundary(false)
-        .build()
-        .unwrap();
+    let out = simplify(
+        &mesh,
+        &SimplifyOptions::default()
+            .with_target_ratio(0.05)
+            .with_lock_boundary(false),
+    )
+    .unwrap();
     assert_eq!(out.locked.boundary, 0);
     assert!(out.mesh.triangle_count() <= 11);
     check_both(&mesh, &out, 1000, 12);

@@ -5,7 +5,7 @@
 #![allow(clippy::print_stderr)]
 
 use sphaera_mesh::io;
-use sphaera_simplify::Simplifier;
+use sphaera_simplify::{Hierarchy, SimplifyOptions, simplify};
 
 /// Meshes above this size are measured by `sphaera-eval` instead (test time).
 const MAX_TRIANGLES: usize = 120_000;
@@ -52,14 +52,12 @@ fn every_real_mesh_simplifies_with_a_tight_conservative_bound() {
             eprintln!("{name}: {} triangles, skipped here", mesh.triangle_count());
             continue;
         }
-        let simplifier = Simplifier::new(&mesh).target_ratio(0.1);
-        let hierarchy = simplifier
-            .build_hierarchy()
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        let options = SimplifyOptions::default().with_target_ratio(0.1);
+        let hierarchy = Hierarchy::build(&mesh, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
         let out = hierarchy.base();
         assert_eq!(
             out,
-            simplifier.build().unwrap(),
+            simplify(&mesh, &options).unwrap(),
             "{name}: hierarchy base differs"
         );
         if out.collapses == 0 {

@@ -311,11 +311,12 @@ fn real_meshes_agree_with_the_parry_sampler() {
         let b = match b_name {
             Some(name) => read(name),
             None => {
-                sphaera_simplify::Simplifier::new(&a)
-                    .target_ratio(0.15)
-                    .build()
-                    .expect("simplifies")
-                    .mesh
+                sphaera_simplify::simplify(
+                    &a,
+                    &sphaera_simplify::SimplifyOptions::default().with_target_ratio(0.15),
+                )
+                .expect("simplifies")
+                .mesh
             }
         };
         let (ha, hb) = (

@@ -12,7 +12,7 @@ use sphaera::{
 };
 
 use crate::{
-    cli::{DistanceArgs, MaxErrorArg},
+    cli::DistanceArgs,
     input::read_mesh,
     output::{print_json, thousands},
     progress,
@@ -94,10 +94,7 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
         }
     };
     let diagonal = mesh.bounding_box_diagonal();
-    let tolerance = args.tolerance.map(|t| match t {
-        MaxErrorArg::Absolute(e) => e,
-        MaxErrorArg::RelativeToDiagonal(f) => f * diagonal,
-    });
+    let tolerance = args.tolerance.map(|t| t.resolve(diagonal));
 
     let spinner = progress::spinner(
         quiet,

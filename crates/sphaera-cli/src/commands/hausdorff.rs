@@ -9,7 +9,7 @@ use sphaera::{
         TriMesh,
         io::{self, PlyEncoding, colormap},
     },
-    simplify::Simplifier,
+    simplify::{SimplifyOptions, simplify},
     sweep::{
         DirectedHausdorff, Direction, HausdorffProgress, Sweeper, Tolerance, build_hierarchy,
         hausdorff,
@@ -17,7 +17,7 @@ use sphaera::{
 };
 
 use crate::{
-    cli::{HausdorffArgs, MaxErrorArg},
+    cli::HausdorffArgs,
     input::read_mesh,
     output::{print_json, thousands},
     progress,
@@ -99,7 +99,10 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
         None => {
             let spinner = progress::spinner(quiet, "simplifying A to 15 % (B was omitted)");
             let started = Instant::now();
-            let simplified = Simplifier::new(mesh_a).target_ratio(DEFAULT_RATIO).build();
+            let simplified = simplify(
+                mesh_a,
+                &SimplifyOptions::default().with_target_ratio(DEFAULT_RATIO),
+            );
             spinner.finish_and_clear();
             let simplified = simplified?;
             (
@@ -120,10 +123,7 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
     let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
 
     let diagonal = joint_diagonal(mesh_a, &mesh_b);
-    let tolerance = match args.tolerance {
-        MaxErrorArg::Absolute(t) => t,
-        MaxErrorArg::RelativeToDiagonal(f) => f * diagonal,
-    };
+    let tolerance = args.tolerance.resolve(diagonal);
     let spinner = progress::spinner(quiet, "querying the vertices");
     let report_progress = |p: &HausdorffProgress| {
         if p.vertices_done < p.vertices {

@@ -13,7 +13,7 @@ use sphaera::{
 };
 
 use crate::{
-    cli::{CoverArg, MaxErrorArg, MedialArgs},
+    cli::{CoverArg, MedialArgs},
     input::read_mesh,
     output::{print_json, thousands},
     progress,
@@ -112,10 +112,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
             args.static_points.unwrap_or_default()
         ),
         (_, Some(error)) => {
-            let e = match error {
-                MaxErrorArg::Absolute(e) => e,
-                MaxErrorArg::RelativeToDiagonal(f) => f * diagonal,
-            };
+            let e = error.resolve(diagonal);
             params = params.with_max_error(e);
             format!("max-error {e:.6e}")
         }

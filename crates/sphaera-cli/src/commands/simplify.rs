@@ -6,11 +6,11 @@ use anyhow::Result;
 use serde::Serialize;
 use sphaera::{
     mesh::io,
-    simplify::{MaxError, Progress, Simplifier},
+    simplify::{SimplifyOptions, SimplifyProgress, simplify_with_progress},
 };
 
 use crate::{
-    cli::{MaxErrorArg, SimplifyArgs},
+    cli::SimplifyArgs,
     input::read_mesh,
     measure,
     output::{print_json, thousands},
@@ -59,32 +59,23 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     }
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
     let mesh = &input.loaded.mesh;
-    let mut simplifier = Simplifier::new(mesh)
-        .lock_boundary(!args.free_boundary)
-        .placement(args.placement.placement());
-    if let Some(n) = args.triangles {
-        simplifier = simplifier.target_triangles(n);
-    }
-    if let Some(ratio) = args.ratio {
-        simplifier = simplifier.target_ratio(ratio);
-    }
-    if let Some(bound) = args.max_error {
-        simplifier = simplifier.max_error(match bound {
-            MaxErrorArg::Absolute(e) => MaxError::Absolute(e),
-            MaxErrorArg::RelativeToDiagonal(f) => MaxError::RelativeToDiagonal(f),
-        });
-    }
+    let mut options = SimplifyOptions::default()
+        .with_lock_boundary(!args.free_boundary)
+        .with_placement(args.placement.placement());
+    options.target_triangles = args.triangles;
+    options.target_ratio = args.ratio;
+    options.max_error = args.max_error;
     let bar = progress::bar(
         quiet,
         &format!("simplifying {} triangles", thousands(mesh.triangle_count())),
         mesh.triangle_count() as u64,
     );
-    let report_progress = |p: Progress| {
+    let report_progress = |p: &SimplifyProgress| {
         bar.set_length(p.to_remove as u64);
         bar.set_position(p.removed as u64);
     };
     let started = Instant::now();
-    let simplified = simplifier.progress(&report_progress).build();
+    let simplified = simplify_with_progress(mesh, &options, &report_progress);
     let simplify_seconds = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let simplified = simplified?;

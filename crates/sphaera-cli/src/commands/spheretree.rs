@@ -18,7 +18,7 @@ use sphaera::spheretree::{
 };
 
 use crate::{
-    cli::{MaxErrorArg, SpheretreeArgs},
+    cli::SpheretreeArgs,
     input::read_mesh,
     output::{print_json, thousands},
     progress,
@@ -124,10 +124,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     let levels = evaluate_levels(&surface, &tree, args.no_evaluation, quiet)?;
     let evaluate_seconds = started.elapsed().as_secs_f64();
 
-    let tolerance = args.tolerance.map(|t| match t {
-        MaxErrorArg::Absolute(e) => e,
-        MaxErrorArg::RelativeToDiagonal(f) => f * diagonal,
-    });
+    let tolerance = args.tolerance.map(|t| t.resolve(diagonal));
     let level_for_tolerance = tolerance.and_then(|t| {
         levels
             .iter()

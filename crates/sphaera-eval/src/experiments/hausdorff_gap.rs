@@ -4,7 +4,8 @@
 //! Two pairs of meshes ([`PAIRS`]): the 69k-triangle bunny against its 15 % quadric
 //! simplification made by `MeshLab` (`stanford-bunny-qem15.obj`), and the 3.7k-triangle
 //! `bunny_lowres.obj` against Sphaera's own 15 % simplification of it
-//! (`Simplifier::new(&m).target_ratio(0.15)`, defaults otherwise).
+//! (`simplify(&m, &SimplifyOptions::default().with_target_ratio(0.15))`, defaults
+//! otherwise).
 //!
 //! - **Sphaera**: `hausdorff(&a, &b).tolerance(Tolerance::Relative(t)).symmetric()` for
 //!   each `t` of [`TOLERANCES`] (relative to the bounding-box diagonal of both meshes
@@ -24,7 +25,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::{
     mesh::TriMesh,
-    simplify::Simplifier,
+    simplify::{SimplifyOptions, simplify},
     sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff},
 };
 
@@ -78,9 +79,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
         let (b, other) = match other {
             Some(name) => (load_mesh(&data.join(name))?, name.to_owned()),
             None => {
-                let simplified = Simplifier::new(&a)
-                    .target_ratio(0.15)
-                    .build()
+                let simplified = simplify(&a, &SimplifyOptions::default().with_target_ratio(0.15))
                     .context("cannot simplify")?;
                 (simplified.mesh, SIMPLIFIED.to_owned())
             }

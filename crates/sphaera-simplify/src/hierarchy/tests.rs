@@ -6,7 +6,7 @@ use sphaera_mesh::shapes;
 use sphaera_mesh::topology::{FaceId, HalfEdgeMesh, VertexId};
 
 use crate::spheres::{BoundaryPolicy, edge_radius};
-use crate::{Hierarchy, Refinement, Simplifier};
+use crate::{Hierarchy, Refinement, SimplifyOptions};
 
 /// Replays the applied collapses of `state` in build order and compares.
 fn assert_state_is_a_replay(mesh: &sphaera_mesh::TriMesh, h: &Hierarchy, state: &Refinement<'_>) {
@@ -70,7 +70,7 @@ proptest! {
                 sphaera_mesh::TriMesh::new(p, t[..keep].to_vec()).unwrap()
             }
         };
-        let h = Simplifier::new(&mesh).lock_boundary(lock_boundary).build_hierarchy().unwrap();
+        let h = Hierarchy::build(&mesh, &SimplifyOptions::default().with_lock_boundary(lock_boundary)).unwrap();
         let mut state = h.refinement();
         assert_state_is_a_replay(&mesh, &h, &state);
         for pick in picks {

@@ -334,7 +334,7 @@ pub fn tree_to_json(tree: &SphereTree) -> String {
 ///
 /// # Errors
 ///
-/// [`SphereTreeError::Format`] (with the line) when the text is not JSON of the
+/// [`SphereTreeError::Json`] (with the line) when the text is not JSON of the
 /// [`TreeJson`] shape; otherwise as [`TreeJson::to_tree`].
 ///
 /// # Panics

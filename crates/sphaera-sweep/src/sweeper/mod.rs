@@ -1,7 +1,7 @@
 //! The shared, read-only part of the distance engine.
 
 use sphaera_mesh::{DVec3, TriMesh};
-use sphaera_simplify::{Hierarchy, Simplifier, SimplifyError};
+use sphaera_simplify::{Hierarchy, SimplifyError, SimplifyOptions};
 
 mod warm_start;
 
@@ -155,7 +155,7 @@ impl<'h> Sweeper<'h> {
 ///
 /// # Errors
 ///
-/// As [`Simplifier::build_hierarchy`] (an empty mesh, non-finite coordinates).
+/// As [`Hierarchy::build`] (an empty mesh, non-finite coordinates).
 ///
 /// # Examples
 ///
@@ -168,5 +168,5 @@ impl<'h> Sweeper<'h> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn build_hierarchy(mesh: &TriMesh) -> Result<Hierarchy, SimplifyError> {
-    Simplifier::new(mesh).lock_boundary(false).build_hierarchy()
+    Hierarchy::build(mesh, &SimplifyOptions::default().with_lock_boundary(false))
 }
