@@ -49,7 +49,7 @@ use std::path::Path;
 
 use sphaera_mesh::{TriMesh, io};
 use sphaera_simplify::{SimplifyOptions, simplify};
-use sphaera_sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff};
+use sphaera_sweep::{HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff};
 
 /// Meshes above this many triangles are checked through [`REDUCED_VARIANTS`] (see the
 /// module documentation for the measured cost).
@@ -170,10 +170,12 @@ fn check(name: &str, mesh: &TriMesh) {
         Sweeper::new(&hb).unwrap_or_else(|e| panic!("{name}: {e}")),
     );
     let tolerance = (RELATIVE_GAP * out.error_bound).max(1e-9 * diagonal);
-    let certified = hausdorff(&sa, &sb)
-        .tolerance(Tolerance::Absolute(tolerance))
-        .symmetric()
-        .unwrap_or_else(|e| panic!("{name}: hausdorff: {e}"));
+    let certified = hausdorff(
+        &sa,
+        &sb,
+        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(tolerance)),
+    )
+    .unwrap_or_else(|e| panic!("{name}: hausdorff: {e}"));
     let sampled = sphaera_tests::sampled_hausdorff(mesh, &out.mesh, SAMPLES, 1).symmetric();
     eprintln!(
         "{name}: {} -> {} triangles, bound {:.4e}, certified [{:.4e}, {:.4e}]{}, sampled {:.4e}",

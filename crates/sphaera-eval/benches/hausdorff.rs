@@ -3,8 +3,8 @@
 //! joint diagonal (the target: under 0.5 s on one thread), and the paper's naive
 //! alternative in the same run.
 //!
-//! - `sphaera_symmetric_1e-5`: `hausdorff(&a, &b).tolerance(Tolerance::Relative(1e-5))
-//!   .symmetric()`. The two hierarchies and sweepers are built once, **outside** the timed
+//! - `sphaera_symmetric_1e-5`: `hausdorff(&a, &b, &HausdorffOptions::default()
+//!   .with_tolerance(Tolerance::Relative(1e-5)))`. The two hierarchies and sweepers are built once, **outside** the timed
 //!   loop (their build, which is parallel, is benched beside as `hierarchies`); the
 //!   computation itself runs on one thread.
 //! - `naive_1_in_N`: every `N`-th referenced vertex of each mesh against every triangle of
@@ -24,7 +24,7 @@ use std::{hint::black_box, time::Duration};
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphaera::{
     mesh::{TriMesh, io},
-    sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff},
+    sweep::{HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff},
 };
 use sphaera_eval::brute::{naive_hausdorff, referenced_vertices};
 
@@ -69,10 +69,12 @@ fn hausdorff_bench(c: &mut Criterion) {
         Sweeper::new(&ha).expect("non-empty"),
         Sweeper::new(&hb).expect("non-empty"),
     );
-    let certified = hausdorff(&sa, &sb)
-        .tolerance(Tolerance::Relative(1e-5))
-        .symmetric()
-        .expect("a valid tolerance");
+    let certified = hausdorff(
+        &sa,
+        &sb,
+        &HausdorffOptions::default().with_tolerance(Tolerance::Relative(1e-5)),
+    )
+    .expect("a valid tolerance");
     eprintln!(
         "hausdorff bench: H(bunny, qem15) in [{:.8}, {:.8}], gap {:.3e}, converged {}",
         certified.lower,
@@ -82,10 +84,12 @@ fn hausdorff_bench(c: &mut Criterion) {
     );
     group.bench_function("sphaera_symmetric_1e-5", |bench| {
         bench.iter(|| {
-            hausdorff(black_box(&sa), black_box(&sb))
-                .tolerance(Tolerance::Relative(1e-5))
-                .symmetric()
-                .expect("a valid tolerance")
+            hausdorff(
+                black_box(&sa),
+                black_box(&sb),
+                &HausdorffOptions::default().with_tolerance(Tolerance::Relative(1e-5)),
+            )
+            .expect("a valid tolerance")
         });
     });
     let subset = naive_hausdorff(&a, &b, NAIVE_STRIDE);

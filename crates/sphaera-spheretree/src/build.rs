@@ -7,7 +7,7 @@ use sphaera_mesh::sampling;
 
 use crate::SphereTreeError;
 use crate::baseline;
-use crate::options::{BuildProgress, SphereTreeOptions};
+use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{
     Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
 };
@@ -60,7 +60,7 @@ pub fn build(
 pub fn build_with_progress(
     surface: &Surface,
     options: &SphereTreeOptions,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     options.validate()?;
     match options.method.reducer() {
@@ -74,7 +74,7 @@ fn medial_tree(
     surface: &Surface,
     options: &SphereTreeOptions,
     reducer: Reducer,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let mesh = surface.mesh();
 
@@ -115,7 +115,7 @@ fn medial_tree(
         // Refine each parent's region in turn (the medial set is shared), then reduce.
         let mut problems = Vec::with_capacity(total);
         for (done, parent) in parents.clone().enumerate() {
-            progress(&BuildProgress { level, done, total });
+            progress(&SphereTreeProgress { level, done, total });
             let region = &regions[parent];
             if region.is_empty() {
                 problems.push(None);

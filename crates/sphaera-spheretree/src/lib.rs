@@ -62,7 +62,7 @@ pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
 pub use options::{
-    BuildProgress, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTreeOptions,
+    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTreeOptions, SphereTreeProgress,
 };
 pub use reduce::Reducer;
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};

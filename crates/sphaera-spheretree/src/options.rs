@@ -346,7 +346,7 @@ impl SphereTreeOptions {
 
 /// Progress of [`build_with_progress`](crate::build_with_progress).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BuildProgress {
+pub struct SphereTreeProgress {
     /// The level being built (1 for the root's children).
     pub level: usize,
     /// Nodes of that level's parents done.

@@ -42,7 +42,7 @@ pub struct DirectedHausdorff {
     pub closest: DVec3,
     /// The distance to `T` of every input vertex of `S` (by input vertex index): the
     /// distance to the nearest point found, an upper bound that is almost always exact;
-    /// certified exact for every vertex with [`Hausdorff::exact_vertex_distances`]. 0 for
+    /// certified exact for every vertex with [`HausdorffOptions::exact_vertex_distances`]. 0 for
     /// a vertex no triangle uses (not a point of the surface).
     pub vertex_distances: Vec<f64>,
     /// Points of `S` sampled: its vertices plus the edge midpoints of refined triangles.
@@ -54,7 +54,7 @@ pub struct DirectedHausdorff {
     pub refined_triangles: usize,
 }
 
-/// The result of [`Hausdorff::symmetric`] or [`Hausdorff::one_sided`].
+/// The result of [`hausdorff`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct HausdorffDistance {
     /// A lower bound of the distance (`h(A → B)`, or `H(A, B)` when symmetric).
@@ -102,9 +102,8 @@ pub struct HausdorffProgress {
     pub upper: f64,
 }
 
-/// A Hausdorff distance computation between the meshes of two sweepers (paper section 6),
-/// configured by its methods and run by [`one_sided`](Self::one_sided) or
-/// [`symmetric`](Self::symmetric).
+/// Options of [`hausdorff`], the Hausdorff distance between the meshes of two sweepers
+/// (paper section 6).
 ///
 /// The one-sided distance `h(A → B) = max over x ∈ A of d(x, B)` is bracketed:
 ///
@@ -134,14 +133,15 @@ pub struct HausdorffProgress {
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_sweep::{Direction, Sweeper, Tolerance, build_hierarchy, hausdorff};
+/// use sphaera_sweep::{Direction, HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff};
 ///
 /// // A cube with corners at ±1 and a unit sphere inside it.
 /// let (cube, sphere) = (shapes::cube(2.0, 8)?, shapes::sphere(1.0, 32)?);
 /// let (hc, hs) = (build_hierarchy(&cube)?, build_hierarchy(&sphere)?);
 /// let (a, b) = (Sweeper::new(&hc)?, Sweeper::new(&hs)?);
 ///
-/// let result = hausdorff(&a, &b).tolerance(Tolerance::Absolute(1e-6)).symmetric()?;
+/// let options = HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-6));
+/// let result = hausdorff(&a, &b, &options)?;
 /// assert!(result.lower <= result.upper && result.gap() <= 1e-6);
 /// // The cube's corners are farthest: √3 − 1 from the (tessellated) sphere.
 /// assert_eq!(result.dominating, Direction::AToB);
@@ -149,106 +149,134 @@ pub struct HausdorffProgress {
 /// assert!(result.dominating_side().farthest.abs().min_element() > 0.999);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[must_use = "a Hausdorff builder does nothing until `one_sided` or `symmetric` is called"]
-pub struct Hausdorff<'a> {
-    a: &'a Sweeper<'a>,
-    b: &'a Sweeper<'a>,
-    tolerance: Tolerance,
-    max_samples: usize,
-    exact_vertex_distances: bool,
-    progress: Option<&'a dyn Fn(&HausdorffProgress)>,
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct HausdorffOptions {
+    /// Stop once `upper − lower` is at most this: [`Tolerance::Absolute`] in the meshes'
+    /// units, or [`Tolerance::Relative`] as a fraction of the bounding-box diagonal of both
+    /// meshes together (not of the distance). Default `Tolerance::Relative(1e-4)`.
+    pub tolerance: Tolerance,
+    /// Stop refining once this many samples (vertices included) were queried; the result
+    /// then says `converged: false`. Default 20 million (about 1.3 GB of samples).
+    pub max_samples: usize,
+    /// Certify the distance of every vertex (default `false`): the
+    /// [`vertex_distances`](DirectedHausdorff::vertex_distances) are then exact, at the
+    /// cost of one coherent closest-point query per vertex instead of a local walk.
+    pub exact_vertex_distances: bool,
+    /// The symmetric `H(A, B) = max(h(A → B), h(B → A))` (`true`, the default), or the
+    /// one-sided `h(A → B)` only.
+    pub symmetric: bool,
 }
 
-/// A Hausdorff distance computation from mesh `a` to mesh `b` (and back, if symmetric).
-///
-/// The default tolerance is `Tolerance::Relative(1e-4)`: `upper − lower` at most 1e-4 of
-/// the bounding-box diagonal of both meshes together.
+impl Default for HausdorffOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: Tolerance::Relative(1e-4),
+            max_samples: 20_000_000,
+            exact_vertex_distances: false,
+            symmetric: true,
+        }
+    }
+}
+
+impl HausdorffOptions {
+    /// With the given tolerance.
+    #[must_use]
+    pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
+        self.tolerance = tolerance;
+        self
+    }
+
+    /// With a sample budget.
+    #[must_use]
+    pub fn with_max_samples(mut self, max_samples: usize) -> Self {
+        self.max_samples = max_samples;
+        self
+    }
+
+    /// With every vertex distance certified exact, or not.
+    #[must_use]
+    pub fn with_exact_vertex_distances(mut self, exact: bool) -> Self {
+        self.exact_vertex_distances = exact;
+        self
+    }
+
+    /// With the symmetric distance (`true`) or the one-sided `h(A → B)` (`false`).
+    #[must_use]
+    pub fn with_symmetric(mut self, symmetric: bool) -> Self {
+        self.symmetric = symmetric;
+        self
+    }
+}
+
+/// The Hausdorff distance between the meshes of sweepers `a` and `b`, bracketed by
+/// certified bounds as `options` say (see [`HausdorffOptions`] for the method).
 ///
 /// # Examples
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_sweep::{Sweeper, build_hierarchy, hausdorff};
+/// use sphaera_sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
 ///
 /// let cube = shapes::cube(2.0, 4)?;
 /// let h = build_hierarchy(&cube)?;
 /// let s = Sweeper::new(&h)?;
-/// let same = hausdorff(&s, &s).symmetric()?;
+/// let same = hausdorff(&s, &s, &HausdorffOptions::default())?;
 /// assert_eq!((same.lower, same.upper), (0.0, 0.0));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn hausdorff<'a>(a: &'a Sweeper<'a>, b: &'a Sweeper<'a>) -> Hausdorff<'a> {
-    Hausdorff {
-        a,
-        b,
-        tolerance: Tolerance::Relative(1e-4),
-        max_samples: 20_000_000,
-        exact_vertex_distances: false,
-        progress: None,
-    }
+///
+/// # Errors
+///
+/// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
+///
+/// # Performance
+///
+/// One closest-point query per vertex of `A` (coherent, along peel paths), then a few per
+/// refined triangle; memory about 64 bytes per sample. Symmetric: both directions, but
+/// only the dominating direction is refined once the other's upper bound falls below the
+/// lower bound.
+pub fn hausdorff(
+    a: &Sweeper<'_>,
+    b: &Sweeper<'_>,
+    options: &HausdorffOptions,
+) -> Result<HausdorffDistance, SweepError> {
+    hausdorff_with_progress(a, b, options, &|_| {})
 }
 
-impl<'a> Hausdorff<'a> {
-    /// Stop once `upper − lower` is at most this: [`Tolerance::Absolute`] in the meshes'
-    /// units, or [`Tolerance::Relative`] as a fraction of the bounding-box diagonal of both
-    /// meshes together (not of the distance).
-    pub fn tolerance(mut self, tolerance: Tolerance) -> Self {
-        self.tolerance = tolerance;
-        self
+/// [`hausdorff`], calling `progress` every few thousand samples.
+///
+/// # Errors
+///
+/// As [`hausdorff`].
+pub fn hausdorff_with_progress(
+    a: &Sweeper<'_>,
+    b: &Sweeper<'_>,
+    options: &HausdorffOptions,
+    progress: &(dyn Fn(&HausdorffProgress) + Sync),
+) -> Result<HausdorffDistance, SweepError> {
+    Run {
+        a,
+        b,
+        options,
+        progress,
     }
+    .run()
+}
 
-    /// Stop refining once this many samples (vertices included) were queried; the result
-    /// then says `converged: false`. Default 20 million (about 1.3 GB of samples).
-    pub fn max_samples(mut self, max_samples: usize) -> Self {
-        self.max_samples = max_samples;
-        self
-    }
+/// One computation.
+struct Run<'r, 's> {
+    a: &'r Sweeper<'s>,
+    b: &'r Sweeper<'s>,
+    options: &'r HausdorffOptions,
+    progress: &'r (dyn Fn(&HausdorffProgress) + Sync),
+}
 
-    /// Certify the distance of every vertex (default `false`): the
-    /// [`vertex_distances`](DirectedHausdorff::vertex_distances) are then exact, at the
-    /// cost of one coherent closest-point query per vertex instead of a local walk.
-    pub fn exact_vertex_distances(mut self, exact: bool) -> Self {
-        self.exact_vertex_distances = exact;
-        self
-    }
-
-    /// Calls `report` every few thousand samples.
-    pub fn progress(mut self, report: &'a dyn Fn(&HausdorffProgress)) -> Self {
-        self.progress = Some(report);
-        self
-    }
-
-    /// The one-sided `h(A → B)`.
-    ///
-    /// # Errors
-    ///
-    /// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
-    ///
-    /// # Performance
-    ///
-    /// One closest-point query per vertex of `A` (coherent, along peel paths), then a few
-    /// per refined triangle; memory about 64 bytes per sample.
-    pub fn one_sided(self) -> Result<HausdorffDistance, SweepError> {
-        self.run(false)
-    }
-
-    /// The symmetric `H(A, B) = max(h(A → B), h(B → A))`.
-    ///
-    /// # Errors
-    ///
-    /// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
-    ///
-    /// # Performance
-    ///
-    /// As [`one_sided`](Self::one_sided) for both directions, but only the dominating
-    /// direction is refined once the other's upper bound falls below the lower bound.
-    pub fn symmetric(self) -> Result<HausdorffDistance, SweepError> {
-        self.run(true)
-    }
-
-    fn run(self, symmetric: bool) -> Result<HausdorffDistance, SweepError> {
-        check_non_negative("tolerance", self.tolerance.value())?;
-        let allowed = match self.tolerance {
+impl Run<'_, '_> {
+    fn run(self) -> Result<HausdorffDistance, SweepError> {
+        let symmetric = self.options.symmetric;
+        check_non_negative("tolerance", self.options.tolerance.value())?;
+        let allowed = match self.options.tolerance {
             Tolerance::Absolute(t) => t,
             Tolerance::Relative(f) => f * joint_diagonal(self.a.hierarchy(), self.b.hierarchy()),
         };
@@ -266,7 +294,7 @@ impl<'a> Hausdorff<'a> {
         let mut floor = 0.0_f64;
         for side in &mut sides {
             side.floor = floor;
-            side.query_vertices(self.exact_vertex_distances, &mut tracker)?;
+            side.query_vertices(self.options.exact_vertex_distances, &mut tracker)?;
             floor = floor.max(side.lower);
         }
         // A level of detail of each target at a quarter of the lower bound: its larger
@@ -291,7 +319,7 @@ impl<'a> Hausdorff<'a> {
             &mut queue,
             &mut nodes,
             allowed,
-            self.max_samples,
+            self.options.max_samples,
             &mut tracker,
         )?;
         // Each direction's upper bound: its own lower bound, or its largest queued bound.
@@ -431,7 +459,7 @@ impl Priority for Queued {
 
 /// Calls the progress callback now and then.
 struct Tracker<'a> {
-    report: Option<&'a dyn Fn(&HausdorffProgress)>,
+    report: &'a (dyn Fn(&HausdorffProgress) + Sync),
     vertices: usize,
     vertices_done: usize,
     next_report: usize,
@@ -451,14 +479,12 @@ impl Tracker<'_> {
             return;
         }
         self.next_report = samples + 4096;
-        if let Some(report) = self.report {
-            report(&HausdorffProgress {
-                vertices_done: self.vertices_done,
-                vertices: self.vertices,
-                samples,
-                lower,
-                upper,
-            });
-        }
+        (self.report)(&HausdorffProgress {
+            vertices_done: self.vertices_done,
+            vertices: self.vertices,
+            samples,
+            lower,
+            upper,
+        });
     }
 }

@@ -90,7 +90,8 @@ pub use answer::{DistanceBounds, SessionStats, Tolerance};
 pub use deformed_shape::DeformedShape;
 pub use error::SweepError;
 pub use hausdorff::{
-    DirectedHausdorff, Direction, Hausdorff, HausdorffDistance, HausdorffProgress, hausdorff,
+    DirectedHausdorff, Direction, HausdorffDistance, HausdorffOptions, HausdorffProgress,
+    hausdorff, hausdorff_with_progress,
 };
 pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};

@@ -871,14 +871,12 @@ fn one_session_through_every_case_in_sequence() {
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     for options in [
         SessionOptions::default(),
-        SessionOptions {
-            max_triangles: usize::MAX,
-            jump_factor: f64::INFINITY,
-        },
-        SessionOptions {
-            max_triangles: 0,
-            jump_factor: 0.0,
-        },
+        SessionOptions::default()
+            .with_max_triangles(usize::MAX)
+            .with_jump_factor(f64::INFINITY),
+        SessionOptions::default()
+            .with_max_triangles(0)
+            .with_jump_factor(0.0),
     ] {
         let mut s = sweeper.session_with(options);
         let vertex = mesh.positions()[5];
@@ -987,10 +985,9 @@ fn random_walk_with_a_session_that_never_resets() {
     for (i, mesh) in walk_meshes().iter().enumerate() {
         random_walk(
             mesh,
-            SessionOptions {
-                max_triangles: usize::MAX,
-                jump_factor: f64::INFINITY,
-            },
+            SessionOptions::default()
+                .with_max_triangles(usize::MAX)
+                .with_jump_factor(f64::INFINITY),
             100 + i as u64,
             300,
             false,
@@ -1004,10 +1001,7 @@ fn random_walk_with_a_tiny_refinement_budget() {
         for max_triangles in [0, 1, 8] {
             random_walk(
                 mesh,
-                SessionOptions {
-                    max_triangles,
-                    ..SessionOptions::default()
-                },
+                SessionOptions::default().with_max_triangles(max_triangles),
                 200 + i as u64,
                 150,
                 true,
@@ -1076,10 +1070,11 @@ fn far_jumps_keep_the_bounds_of_a_kept_session_certified() {
     let hierarchy = build_hierarchy(&sphere).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     for far in [1e6, 1e12] {
-        let mut session = sweeper.session_with(SessionOptions {
-            max_triangles: usize::MAX,
-            jump_factor: f64::INFINITY,
-        });
+        let mut session = sweeper.session_with(
+            SessionOptions::default()
+                .with_max_triangles(usize::MAX)
+                .with_jump_factor(f64::INFINITY),
+        );
         let q = DVec3::new(0.3, 1.2, -0.4);
         check(&sphere, &mut session, q);
         for sign in [1.0, -1.0, 1.0, -1.0] {
@@ -1102,10 +1097,9 @@ fn random_walks_with_very_far_jumps_in_kept_sessions() {
     for (i, mesh) in walk_meshes().iter().enumerate() {
         for options in [
             SessionOptions::default(),
-            SessionOptions {
-                max_triangles: usize::MAX,
-                jump_factor: f64::INFINITY,
-            },
+            SessionOptions::default()
+                .with_max_triangles(usize::MAX)
+                .with_jump_factor(f64::INFINITY),
         ] {
             random_walk(mesh, options, 400 + i as u64, 300, true);
         }

@@ -8,7 +8,8 @@ use proptest::prelude::*;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_sweep::{
-    DirectedHausdorff, Direction, SweepError, Sweeper, Tolerance, build_hierarchy, hausdorff,
+    DirectedHausdorff, Direction, HausdorffOptions, SweepError, Sweeper, Tolerance,
+    build_hierarchy, hausdorff,
 };
 use sphaera_tests::hausdorff::sampled_hausdorff;
 
@@ -112,9 +113,7 @@ proptest! {
         let b = blob(rb, scale, DVec3::new(x, y, z), 0.0);
         let (ha, hb) = (build_hierarchy(&a).expect("a"), build_hierarchy(&b).expect("b"));
         let (sa, sb) = (Sweeper::new(&ha).expect("a"), Sweeper::new(&hb).expect("b"));
-        let result = hausdorff(&sa, &sb)
-            .tolerance(Tolerance::Absolute(tolerance))
-            .symmetric()
+        let result = hausdorff(&sa, &sb, &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(tolerance)))
             .expect("valid tolerance");
         prop_assert!(result.converged);
         prop_assert!(result.gap() <= tolerance, "gap {} > {tolerance}", result.gap());
@@ -129,9 +128,7 @@ proptest! {
         prop_assert!(result.upper >= result.a_to_b.upper.max(back.upper) - 1e-15);
 
         // One-sided agrees with the symmetric run's direction.
-        let one = hausdorff(&sa, &sb)
-            .tolerance(Tolerance::Absolute(tolerance))
-            .one_sided()
+        let one = hausdorff(&sa, &sb, &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(tolerance)).with_symmetric(false))
             .expect("valid tolerance");
         prop_assert!(one.b_to_a.is_none());
         check_direction(&a, &b, &one.a_to_b);
@@ -148,10 +145,12 @@ fn identical_meshes_are_at_distance_zero_with_both_bounds() {
     ] {
         let h = build_hierarchy(&mesh).expect("hierarchy");
         let s = Sweeper::new(&h).expect("sweeper");
-        let result = hausdorff(&s, &s)
-            .tolerance(Tolerance::Absolute(0.0))
-            .symmetric()
-            .expect("tolerance 0 is valid");
+        let result = hausdorff(
+            &s,
+            &s,
+            &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(0.0)),
+        )
+        .expect("tolerance 0 is valid");
         assert!(result.lower <= 0.0 && result.upper <= 0.0, "{result:?}");
         assert!(result.converged);
         assert!(result.a_to_b.vertex_distances.iter().all(|&d| d <= 0.0));
@@ -165,7 +164,11 @@ fn bad_tolerances_are_errors() {
     let s = Sweeper::new(&h).expect("sweeper");
     for bad in [f64::NAN, -1e-3, f64::INFINITY] {
         for tolerance in [Tolerance::Absolute(bad), Tolerance::Relative(bad)] {
-            let err = hausdorff(&s, &s).tolerance(tolerance).symmetric();
+            let err = hausdorff(
+                &s,
+                &s,
+                &HausdorffOptions::default().with_tolerance(tolerance),
+            );
             assert!(
                 matches!(err, Err(SweepError::InvalidParameter { .. })),
                 "{tolerance:?}: {err:?}"
@@ -185,18 +188,23 @@ fn a_sample_budget_stops_early_with_certified_bounds() {
         build_hierarchy(&b).expect("b"),
     );
     let (sa, sb) = (Sweeper::new(&ha).expect("a"), Sweeper::new(&hb).expect("b"));
-    let budget = hausdorff(&sa, &sb)
-        .tolerance(Tolerance::Absolute(0.0))
-        .max_samples(ha.vertex_count() + hb.vertex_count() + 50)
-        .symmetric()
-        .expect("valid");
+    let budget = hausdorff(
+        &sa,
+        &sb,
+        &HausdorffOptions::default()
+            .with_tolerance(Tolerance::Absolute(0.0))
+            .with_max_samples(ha.vertex_count() + hb.vertex_count() + 50),
+    )
+    .expect("valid");
     assert!(!budget.converged);
     check_direction(&a, &b, &budget.a_to_b);
     check_direction(&b, &a, budget.b_to_a.as_ref().expect("symmetric"));
-    let full = hausdorff(&sa, &sb)
-        .tolerance(Tolerance::Absolute(1e-7))
-        .symmetric()
-        .expect("valid");
+    let full = hausdorff(
+        &sa,
+        &sb,
+        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-7)),
+    )
+    .expect("valid");
     assert!(full.converged && full.gap() <= 1e-7);
     assert!(budget.lower <= full.upper && full.lower <= budget.upper);
 }
@@ -224,10 +232,12 @@ fn open_single_triangle_and_unused_vertices() {
         Sweeper::new(&h1).expect("one"),
         Sweeper::new(&h2).expect("two"),
     );
-    let result = hausdorff(&s1, &s2)
-        .tolerance(Tolerance::Absolute(1e-9))
-        .symmetric()
-        .expect("valid");
+    let result = hausdorff(
+        &s1,
+        &s2,
+        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-9)),
+    )
+    .expect("valid");
     assert!(
         result.lower <= 0.5 + 1e-12 && result.upper >= 0.5 - 1e-12,
         "{result:?}"
@@ -248,10 +258,12 @@ fn open_single_triangle_and_unused_vertices() {
         Sweeper::new(&hg).expect("grid"),
         Sweeper::new(&hc).expect("cube"),
     );
-    let result = hausdorff(&sg, &sc)
-        .tolerance(Tolerance::Absolute(1e-4))
-        .symmetric()
-        .expect("valid");
+    let result = hausdorff(
+        &sg,
+        &sc,
+        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-4)),
+    )
+    .expect("valid");
     assert!(result.converged && result.gap() <= 1e-4);
     check_direction(&grid, &cube, &result.a_to_b);
     check_direction(&cube, &grid, result.b_to_a.as_ref().expect("symmetric"));
@@ -281,10 +293,12 @@ fn non_manifold_meshes_are_measured() {
         Sweeper::new(&hp).expect("pair"),
         Sweeper::new(&hs).expect("s"),
     );
-    let result = hausdorff(&sp, &ss)
-        .tolerance(Tolerance::Absolute(1e-4))
-        .symmetric()
-        .expect("valid");
+    let result = hausdorff(
+        &sp,
+        &ss,
+        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-4)),
+    )
+    .expect("valid");
     assert!(result.converged && result.gap() <= 1e-4);
     check_direction(&pair, &sphere, &result.a_to_b);
     check_direction(&sphere, &pair, result.b_to_a.as_ref().expect("symmetric"));
@@ -324,10 +338,12 @@ fn real_meshes_agree_with_the_parry_sampler() {
             build_hierarchy(&b).expect("b"),
         );
         let (sa, sb) = (Sweeper::new(&ha).expect("a"), Sweeper::new(&hb).expect("b"));
-        let result = hausdorff(&sa, &sb)
-            .tolerance(Tolerance::Relative(1e-4))
-            .symmetric()
-            .expect("valid");
+        let result = hausdorff(
+            &sa,
+            &sb,
+            &HausdorffOptions::default().with_tolerance(Tolerance::Relative(1e-4)),
+        )
+        .expect("valid");
         let sampled = sampled_hausdorff(&a, &b, 20_000, 3);
         let back = result.b_to_a.as_ref().expect("symmetric");
         assert!(

@@ -85,10 +85,8 @@ fn check_all<P: PolylinePoint>(polyline: &Polyline<P>, queries: &[P], step: P) {
         check_exact(polyline, p, &shared.closest(p).expect("finite"));
     }
     // A coherent walk: small steps, never resetting for jumps.
-    let mut walk = polyline.session_with(PolylineSessionOptions {
-        jump_factor: f64::INFINITY,
-        ..PolylineSessionOptions::default()
-    });
+    let mut walk =
+        polyline.session_with(PolylineSessionOptions::default().with_jump_factor(f64::INFINITY));
     let mut p = queries[0];
     for i in 0..40 {
         let wiggle = if i % 3 == 0 { step * -0.5 } else { step };
@@ -383,10 +381,11 @@ fn repeated_points_vertices_and_far_queries() {
 #[test]
 fn the_reset_policy_keeps_answers_exact_and_is_counted() {
     let polyline = Polyline::closed(helix(3000)).expect("valid");
-    let mut session = polyline.session_with(PolylineSessionOptions {
-        max_front: 8,
-        jump_factor: f64::INFINITY,
-    });
+    let mut session = polyline.session_with(
+        PolylineSessionOptions::default()
+            .with_max_front(8)
+            .with_jump_factor(f64::INFINITY),
+    );
     let mut state = 3_u64;
     let mut next = || {
         state = state

@@ -11,8 +11,8 @@ use sphaera::{
     },
     simplify::{SimplifyOptions, simplify},
     sweep::{
-        DirectedHausdorff, Direction, HausdorffProgress, Sweeper, Tolerance, build_hierarchy,
-        hausdorff,
+        DirectedHausdorff, Direction, HausdorffOptions, HausdorffProgress, Sweeper, Tolerance,
+        build_hierarchy, hausdorff_with_progress,
     },
 };
 
@@ -141,15 +141,11 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
         }
     };
     let started = Instant::now();
-    let builder = hausdorff(&sa, &sb)
-        .tolerance(Tolerance::Absolute(tolerance))
-        .max_samples(args.max_samples)
-        .progress(&report_progress);
-    let result = if args.one_sided {
-        builder.one_sided()
-    } else {
-        builder.symmetric()
-    };
+    let options = HausdorffOptions::default()
+        .with_tolerance(Tolerance::Absolute(tolerance))
+        .with_max_samples(args.max_samples)
+        .with_symmetric(!args.one_sided);
+    let result = hausdorff_with_progress(&sa, &sb, &options, &report_progress);
     let hausdorff_seconds = started.elapsed().as_secs_f64();
     spinner.finish_and_clear();
     let result = result?;

@@ -13,7 +13,7 @@ use sphaera::spheretree::export::{
     CollisionLink, SphFile, write_collision_spheres_yaml, write_sph, write_tree_json,
 };
 use sphaera::spheretree::{
-    BuildProgress, CoverageCertificate, EvaluationOptions, SphereTree, SphereTreeOptions,
+    CoverageCertificate, EvaluationOptions, SphereTree, SphereTreeOptions, SphereTreeProgress,
     build_with_progress, cut_for_tolerance, evaluate_set,
 };
 
@@ -96,7 +96,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     }
 
     let bar = progress::bar(quiet, "sampling, initial spheres", 1);
-    let report_progress = |p: &BuildProgress| {
+    let report_progress = |p: &SphereTreeProgress| {
         bar.set_length(p.total.max(1) as u64);
         bar.set_position(p.done as u64);
         bar.set_message(format!(

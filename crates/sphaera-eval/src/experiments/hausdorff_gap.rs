@@ -7,7 +7,7 @@
 //! (`simplify(&m, &SimplifyOptions::default().with_target_ratio(0.15))`, defaults
 //! otherwise).
 //!
-//! - **Sphaera**: `hausdorff(&a, &b).tolerance(Tolerance::Relative(t)).symmetric()` for
+//! - **Sphaera**: `hausdorff(&a, &b, &HausdorffOptions::default().with_tolerance(Tolerance::Relative(t)))` for
 //!   each `t` of [`TOLERANCES`] (relative to the bounding-box diagonal of both meshes
 //!   together). The hierarchies and sweepers are built once per pair, **outside** the
 //!   timing (their build time, which is parallel, is in the CSV as `build_seconds`); the
@@ -26,7 +26,7 @@ use anyhow::{Context, Result};
 use sphaera::{
     mesh::TriMesh,
     simplify::{SimplifyOptions, simplify},
-    sweep::{Sweeper, Tolerance, build_hierarchy, hausdorff},
+    sweep::{HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff},
 };
 
 use super::{load_mesh, load_or_skip, min_time};
@@ -112,9 +112,11 @@ fn measure_pair(
     let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
     for &tolerance in TOLERANCES {
         let (seconds, result) = min_time(RUNS, || {
-            Ok(hausdorff(&sa, &sb)
-                .tolerance(Tolerance::Relative(tolerance))
-                .symmetric()?)
+            Ok(hausdorff(
+                &sa,
+                &sb,
+                &HausdorffOptions::default().with_tolerance(Tolerance::Relative(tolerance)),
+            )?)
         })?;
         let samples = result.a_to_b.samples + result.b_to_a.as_ref().map_or(0, |s| s.samples);
         rows.push(Row {

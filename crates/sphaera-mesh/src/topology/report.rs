@@ -47,9 +47,14 @@ impl TopologyOptions {
     /// assert!(!TopologyOptions::indices_as_given().merge_identical_positions);
     /// ```
     pub fn indices_as_given() -> Self {
-        Self {
-            merge_identical_positions: false,
-        }
+        Self::default().with_merge_identical_positions(false)
+    }
+
+    /// With identical positions merged (`true`) or indices taken as given (`false`).
+    #[must_use]
+    pub fn with_merge_identical_positions(mut self, merge: bool) -> Self {
+        self.merge_identical_positions = merge;
+        self
     }
 }
 

@@ -5,7 +5,7 @@ use std::collections::HashSet;
 use glam::DVec3;
 
 use super::{CellGrid, Child, Start, assemble, group_by_cell};
-use crate::options::{BuildProgress, SphereTreeOptions};
+use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::{SphereTree, SphereTreeError};
 
 /// Bisection steps of the cell-size search.
@@ -26,7 +26,7 @@ const SIZE_STEPS: usize = 48;
 pub(crate) fn grid(
     start: &Start<'_>,
     params: &SphereTreeOptions,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let bounds = start.surface.mesh().bounding_box();
     let extent = bounds.extent();

@@ -9,7 +9,7 @@ use sphaera_mesh::Sphere;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::{Child, Start, assemble};
-use crate::options::{BuildProgress, SphereTreeOptions};
+use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{centre_depth, eq2_error};
 use crate::segment::divide;
 use crate::{SphereTree, SphereTreeError};
@@ -41,7 +41,7 @@ const NEIGHBOURS: usize = 8;
 pub(crate) fn hubbard(
     start: &Start<'_>,
     params: &SphereTreeOptions,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let medial = MedialApproximation::build_static(
         start.surface,

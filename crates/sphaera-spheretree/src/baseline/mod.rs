@@ -12,7 +12,7 @@ use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, sampling};
 
 use crate::SphereTreeError;
-use crate::options::{BuildProgress, Method, SphereTreeOptions};
+use crate::options::{Method, SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{centre_depth, eq2_error};
 use crate::tree::{SphereTree, TreeNode};
 
@@ -20,7 +20,7 @@ use crate::tree::{SphereTree, TreeNode};
 pub(crate) fn build(
     surface: &Surface,
     options: &SphereTreeOptions,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let start = start(surface, options)?;
     match options.method {
@@ -72,7 +72,7 @@ pub(crate) fn assemble(
     start: &Start<'_>,
     depth: usize,
     branch: usize,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
     mut split: impl FnMut(usize, usize, &[u32]) -> Result<Vec<Child>, SphereTreeError>,
 ) -> Result<SphereTree, SphereTreeError> {
     let error = |sphere: &Sphere| {
@@ -94,7 +94,7 @@ pub(crate) fn assemble(
         let parents = level_starts[level - 1]..level_starts[level];
         let total = parents.len();
         for (done, parent) in parents.enumerate() {
-            progress(&BuildProgress { level, done, total });
+            progress(&SphereTreeProgress { level, done, total });
             let first = nodes.len() as u32;
             let children = split(level, parent, &regions[parent])?;
             for child in children {

@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use super::{CellGrid, Child, Start, assemble, group_by_cell};
-use crate::options::{BuildProgress, SphereTreeOptions};
+use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::{SphereTree, SphereTreeError};
 
 /// Builds the octree sphere-tree of `mesh`: the bounding cube of the mesh is subdivided
@@ -25,7 +25,7 @@ use crate::{SphereTree, SphereTreeError};
 pub(crate) fn octree(
     start: &Start<'_>,
     params: &SphereTreeOptions,
-    progress: &(dyn Fn(&BuildProgress) + Sync),
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let bounds = start.surface.mesh().bounding_box();
     let extent = bounds.extent();

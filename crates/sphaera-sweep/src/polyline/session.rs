@@ -25,13 +25,11 @@ use crate::{SessionStats, SweepError, Tolerance};
 /// ```
 /// use sphaera_sweep::polyline::PolylineSessionOptions;
 ///
-/// let never_for_jumps = PolylineSessionOptions {
-///     jump_factor: f64::INFINITY,
-///     ..PolylineSessionOptions::default()
-/// };
+/// let never_for_jumps = PolylineSessionOptions::default().with_jump_factor(f64::INFINITY);
 /// assert_eq!(never_for_jumps.max_front, 16_384);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PolylineSessionOptions {
     /// Reset before a query when the front has more capsules than this.
     pub max_front: usize,
@@ -46,6 +44,23 @@ impl Default for PolylineSessionOptions {
             max_front: 16_384,
             jump_factor: 1.0,
         }
+    }
+}
+
+impl PolylineSessionOptions {
+    /// With a reset past `n` capsules in the front.
+    #[must_use]
+    pub fn with_max_front(mut self, n: usize) -> Self {
+        self.max_front = n;
+        self
+    }
+
+    /// With a reset when the query point jumps more than `factor` times the previous
+    /// distance.
+    #[must_use]
+    pub fn with_jump_factor(mut self, factor: f64) -> Self {
+        self.jump_factor = factor;
+        self
     }
 }
 

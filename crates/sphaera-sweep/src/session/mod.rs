@@ -30,10 +30,11 @@ mod motion;
 /// ```
 /// use sphaera_sweep::SessionOptions;
 ///
-/// let options = SessionOptions { jump_factor: 4.0, ..SessionOptions::default() };
+/// let options = SessionOptions::default().with_jump_factor(4.0);
 /// assert_eq!(options.max_triangles, SessionOptions::default().max_triangles);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SessionOptions {
     /// Reset before a query when the refined mesh has grown by more than this many live
     /// triangles beyond the warm start.
@@ -49,6 +50,23 @@ impl Default for SessionOptions {
             max_triangles: 20_000,
             jump_factor: 1.0,
         }
+    }
+}
+
+impl SessionOptions {
+    /// With a reset past `n` live triangles beyond the warm start.
+    #[must_use]
+    pub fn with_max_triangles(mut self, n: usize) -> Self {
+        self.max_triangles = n;
+        self
+    }
+
+    /// With a reset when the query point jumps more than `factor` times the previous
+    /// distance.
+    #[must_use]
+    pub fn with_jump_factor(mut self, factor: f64) -> Self {
+        self.jump_factor = factor;
+        self
     }
 }
 
