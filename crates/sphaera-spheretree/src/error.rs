@@ -1,6 +1,7 @@
 //! Errors of sphere-tree construction, evaluation, traversal and file formats.
 
 use crate::export::SphDefect;
+use crate::tree::TreeDefect;
 
 /// Why a sphere-tree could not be built, evaluated, traversed, read or written.
 ///
@@ -93,5 +94,5 @@ pub enum SphereTreeError {
     /// A sphere-tree read from a file is inconsistent (levels, parents and children that
     /// do not match, a wrong format tag or version).
     #[error("invalid sphere-tree: {0}")]
-    InvalidTree(String),
+    InvalidTree(TreeDefect),
 }

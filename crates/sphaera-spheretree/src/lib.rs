@@ -67,4 +67,4 @@ pub use options::{
 pub use reduce::Reducer;
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sphaera_mesh::{Sphere, Surface};
-pub use tree::{SphereTree, TreeNode};
+pub use tree::{SphereTree, TreeDefect, TreeNode};

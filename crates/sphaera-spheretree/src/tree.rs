@@ -49,7 +49,7 @@ impl SphereTree {
     /// # Examples
     ///
     /// ```
-    /// use sphaera_spheretree::{DVec3, Sphere, SphereTree, SphereTreeError, TreeNode};
+    /// use sphaera_spheretree::{DVec3, Sphere, SphereTree, SphereTreeError, TreeDefect, TreeNode};
     ///
     /// let node = |x: f64, radius: f64, level: u32, parent: Option<u32>| TreeNode {
     ///     sphere: Sphere::new(DVec3::new(x, 0.0, 0.0), radius),
@@ -68,7 +68,10 @@ impl SphereTree {
     /// // A child that does not name its parent back is refused, and says where.
     /// let orphan = TreeNode { parent: None, ..leaves[1].clone() };
     /// let broken = SphereTree::from_levels(2, vec![vec![root], vec![leaves[0].clone(), orphan]]);
-    /// assert!(matches!(broken, Err(SphereTreeError::InvalidTree(m)) if m.contains("node 0: child 2")));
+    /// assert!(matches!(
+    ///     broken,
+    ///     Err(SphereTreeError::InvalidTree(TreeDefect::ChildDisowns { node: 0, child: 2 }))
+    /// ));
     /// # Ok::<(), SphereTreeError>(())
     /// ```
     ///
@@ -88,18 +91,18 @@ impl SphereTree {
     ///
     /// Never.
     pub fn from_levels(branch: usize, levels: Vec<Vec<TreeNode>>) -> Result<Self, SphereTreeError> {
-        let bad = |message: String| Err(SphereTreeError::InvalidTree(message));
+        let bad = |defect: TreeDefect| Err(SphereTreeError::InvalidTree(defect));
         if branch == 0 {
-            return bad("branch must be at least 1".into());
+            return bad(TreeDefect::NoBranch);
         }
         if levels.iter().all(Vec::is_empty) {
-            return bad("the tree has no nodes".into());
+            return bad(TreeDefect::NoNodes);
         }
         if levels.first().map(Vec::len) != Some(1) {
-            return bad("level 0 must hold exactly the root, node 0".into());
+            return bad(TreeDefect::NotSingleRoot);
         }
-        if let Some(k) = levels.iter().position(Vec::is_empty) {
-            return bad(format!("level {k} is empty"));
+        if let Some(level) = levels.iter().position(Vec::is_empty) {
+            return bad(TreeDefect::EmptyLevel { level });
         }
         let mut level_starts = Vec::with_capacity(levels.len() + 1);
         let mut next = 0_usize;
@@ -109,7 +112,7 @@ impl SphereTree {
         }
         level_starts.push(next);
         if u32::try_from(next).is_err() {
-            return bad(format!("{next} nodes: more than 32-bit indices can name"));
+            return bad(TreeDefect::TooManyNodes { count: next });
         }
         let nodes: Vec<TreeNode> = levels.into_iter().flatten().collect();
         let tree = Self {
@@ -128,25 +131,25 @@ impl SphereTree {
 
     /// Node `index`, stored in level `level`, checked against its parent and children.
     fn check_node(&self, index: usize, level: usize) -> Result<(), SphereTreeError> {
-        let bad = |message: String| {
-            Err(SphereTreeError::InvalidTree(format!(
-                "node {index}: {message}"
-            )))
-        };
+        let bad = |defect: TreeDefect| Err(SphereTreeError::InvalidTree(defect));
         let Some(node) = self.nodes.get(index) else {
-            return bad("missing".into());
+            return bad(TreeDefect::MissingNode { node: index });
         };
         if !node.sphere.is_valid() {
             return Err(SphereTreeError::InvalidSphere { index });
         }
         if !node.error.is_finite() {
-            return bad(format!("error {} is not finite", node.error));
+            return bad(TreeDefect::NonFiniteError {
+                node: index,
+                error: node.error,
+            });
         }
         if node.level as usize != level {
-            return bad(format!(
-                "level is {}, but it is stored in level {level}",
-                node.level
-            ));
+            return bad(TreeDefect::WrongLevel {
+                node: index,
+                field: node.level,
+                stored: level,
+            });
         }
         let range_of = |k: usize| match (self.level_starts.get(k), self.level_starts.get(k + 1)) {
             (Some(&a), Some(&b)) => a..b,
@@ -157,40 +160,52 @@ impl SphereTree {
             (Some(parent), Some(above)) => {
                 let parent = parent as usize;
                 if !range_of(above).contains(&parent) {
-                    return bad(format!("parent {parent} is not in level {above}"));
+                    return bad(TreeDefect::ParentNotAbove {
+                        node: index,
+                        parent,
+                        level: above,
+                    });
                 }
                 let listed = self.nodes.get(parent).is_some_and(|p| {
                     p.children.start as usize <= index && index < p.children.end as usize
                 });
                 if !listed {
-                    return bad(format!("parent {parent} does not list it as a child"));
+                    return bad(TreeDefect::NotListedByParent {
+                        node: index,
+                        parent,
+                    });
                 }
             }
-            (None, Some(_)) => return bad("only the root may have no parent".into()),
-            (Some(_), None) => return bad("the root cannot have a parent".into()),
+            (None, Some(_)) => return bad(TreeDefect::NoParent { node: index }),
+            (Some(_), None) => return bad(TreeDefect::RootWithParent { node: index }),
         }
         let children = node.children.clone();
         if children.start > children.end {
-            return bad(format!(
-                "children {}..{} is not a range",
-                children.start, children.end
-            ));
+            return bad(TreeDefect::ChildrenNotARange {
+                node: index,
+                start: children.start,
+                end: children.end,
+            });
         }
         if children.len() > self.branch {
-            return bad(format!(
-                "{} children, more than the branching factor {}",
-                children.len(),
-                self.branch
-            ));
+            return bad(TreeDefect::TooManyChildren {
+                node: index,
+                children: children.len(),
+                branch: self.branch,
+            });
         }
         let below = range_of(level + 1);
         for child in children {
             let child = child as usize;
             if !below.contains(&child) {
-                return bad(format!("child {child} is not in level {}", level + 1));
+                return bad(TreeDefect::ChildNotBelow {
+                    node: index,
+                    child,
+                    level: level + 1,
+                });
             }
             if self.nodes.get(child).and_then(|c| c.parent) != u32::try_from(index).ok() {
-                return bad(format!("child {child} does not name it as its parent"));
+                return bad(TreeDefect::ChildDisowns { node: index, child });
             }
         }
         Ok(())
@@ -247,4 +262,174 @@ impl SphereTree {
             &self.nodes[n.children.start as usize..n.children.end as usize]
         })
     }
+}
+
+/// What makes a sphere-tree inconsistent, in [`SphereTreeError::InvalidTree`]: found by
+/// [`SphereTree::from_levels`] or by the JSON reader.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TreeDefect {
+    /// The branching factor is 0.
+    #[error("branch must be at least 1")]
+    NoBranch,
+    /// There is no node.
+    #[error("the tree has no nodes")]
+    NoNodes,
+    /// The first level is not the root alone.
+    #[error("level 0 must hold exactly the root, node 0")]
+    NotSingleRoot,
+    /// A level holds no node.
+    #[error("level {level} is empty")]
+    EmptyLevel {
+        /// The level.
+        level: usize,
+    },
+    /// More nodes than 32-bit indices name.
+    #[error("{count} nodes: more than 32-bit indices can name")]
+    TooManyNodes {
+        /// The node count.
+        count: usize,
+    },
+    /// A node is missing.
+    #[error("node {node}: missing")]
+    MissingNode {
+        /// The node.
+        node: usize,
+    },
+    /// A node's error is NaN or infinite.
+    #[error("node {node}: error {error} is not finite")]
+    NonFiniteError {
+        /// The node.
+        node: usize,
+        /// Its error.
+        error: f64,
+    },
+    /// A node's `level` field disagrees with the level it is stored in.
+    #[error("node {node}: level is {field}, but it is stored in level {stored}")]
+    WrongLevel {
+        /// The node.
+        node: usize,
+        /// Its `level` field.
+        field: u32,
+        /// The level it is stored in.
+        stored: usize,
+    },
+    /// A node's parent is not in the level above.
+    #[error("node {node}: parent {parent} is not in level {level}")]
+    ParentNotAbove {
+        /// The node.
+        node: usize,
+        /// Its parent.
+        parent: usize,
+        /// The level above.
+        level: usize,
+    },
+    /// A node's parent does not list it among its children.
+    #[error("node {node}: parent {parent} does not list it as a child")]
+    NotListedByParent {
+        /// The node.
+        node: usize,
+        /// Its parent.
+        parent: usize,
+    },
+    /// A node below the root has no parent.
+    #[error("node {node}: only the root may have no parent")]
+    NoParent {
+        /// The node.
+        node: usize,
+    },
+    /// The root has a parent.
+    #[error("node {node}: the root cannot have a parent")]
+    RootWithParent {
+        /// The node.
+        node: usize,
+    },
+    /// A node's `children` range decreases.
+    #[error("node {node}: children {start}..{end} is not a range")]
+    ChildrenNotARange {
+        /// The node.
+        node: usize,
+        /// The range's start.
+        start: u32,
+        /// The range's end.
+        end: u32,
+    },
+    /// A node has more children than the branching factor.
+    #[error("node {node}: {children} children, more than the branching factor {branch}")]
+    TooManyChildren {
+        /// The node.
+        node: usize,
+        /// Its children.
+        children: usize,
+        /// The branching factor.
+        branch: usize,
+    },
+    /// A child is not in the level below.
+    #[error("node {node}: child {child} is not in level {level}")]
+    ChildNotBelow {
+        /// The node.
+        node: usize,
+        /// The child.
+        child: usize,
+        /// The level below.
+        level: usize,
+    },
+    /// A child does not name the node as its parent.
+    #[error("node {node}: child {child} does not name it as its parent")]
+    ChildDisowns {
+        /// The node.
+        node: usize,
+        /// The child.
+        child: usize,
+    },
+    /// JSON: the children of a node are not consecutive increasing indices.
+    #[error("node {node}: children are not consecutive increasing indices")]
+    NonConsecutiveChildren {
+        /// The node.
+        node: usize,
+    },
+    /// JSON: the format tag is not this crate's.
+    #[error("format is {found:?}, expected \"sphaera-spheretree\"")]
+    WrongFormat {
+        /// The tag found.
+        found: String,
+    },
+    /// JSON: a version this reader does not read.
+    #[error("version {version} is not supported (this reader reads version 1)")]
+    UnsupportedVersion {
+        /// The version found.
+        version: u32,
+    },
+    /// JSON: the levels do not tile the nodes in order.
+    #[error(
+        "level {level} starts at node {first} with {count} nodes; expected a non-empty level starting at node {expected}"
+    )]
+    LevelTiling {
+        /// The level.
+        level: usize,
+        /// Its first node.
+        first: usize,
+        /// Its node count.
+        count: usize,
+        /// Where it should start.
+        expected: usize,
+    },
+    /// JSON: the levels hold a different number of nodes than the node list.
+    #[error("the levels hold {levels} nodes but there are {nodes}")]
+    NodeCountMismatch {
+        /// Nodes the levels hold.
+        levels: usize,
+        /// Nodes listed.
+        nodes: usize,
+    },
+    /// JSON: a level's `worst_error` is not its largest node error.
+    #[error("level {level} has worst_error {stored} but its largest node error is {actual}")]
+    WorstErrorMismatch {
+        /// The level.
+        level: usize,
+        /// The `worst_error` written.
+        stored: f64,
+        /// The largest node error.
+        actual: f64,
+    },
 }

@@ -76,7 +76,8 @@ fn read_edited(edit: impl FnOnce(&mut Value)) -> Result<SphereTree, SphereTreeEr
 
 fn invalid_tree(result: Result<SphereTree, SphereTreeError>, needle: &str) {
     match result {
-        Err(SphereTreeError::InvalidTree(message)) => {
+        Err(SphereTreeError::InvalidTree(defect)) => {
+            let message = defect.to_string();
             assert!(message.contains(needle), "{message:?} lacks {needle:?}");
         }
         other => panic!("expected an invalid tree ({needle}), got {other:?}"),

@@ -6,7 +6,7 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 use sphaera_mesh::Sphere;
 
-use crate::{SphereTree, SphereTreeError, TreeNode};
+use crate::{SphereTree, SphereTreeError, TreeDefect, TreeNode};
 
 /// The value of [`TreeJson::format`].
 pub const JSON_FORMAT: &str = "sphaera-spheretree";
@@ -172,42 +172,41 @@ impl TreeJson {
     ///
     /// Never.
     pub fn to_tree(&self) -> Result<SphereTree, SphereTreeError> {
-        let bad = |message: String| Err(SphereTreeError::InvalidTree(message));
+        let bad = |defect: TreeDefect| Err(SphereTreeError::InvalidTree(defect));
         if self.format != JSON_FORMAT {
-            return bad(format!(
-                "format is {:?}, expected {JSON_FORMAT:?}",
-                self.format
-            ));
+            return bad(TreeDefect::WrongFormat {
+                found: self.format.clone(),
+            });
         }
         if self.version != JSON_VERSION {
-            return bad(format!(
-                "version {} is not supported (this reader reads version {JSON_VERSION})",
-                self.version
-            ));
+            return bad(TreeDefect::UnsupportedVersion {
+                version: self.version,
+            });
         }
         if self.branch == 0 || self.nodes.is_empty() {
             // `SphereTree::from_levels` names both.
             return SphereTree::from_levels(self.branch, Vec::new());
         }
         if self.levels.first().map(|l| (l.first, l.count)) != Some((0, 1)) {
-            return bad("level 0 must hold exactly the root, node 0".into());
+            return bad(TreeDefect::NotSingleRoot);
         }
         let mut next = 0_usize;
         for (k, level) in self.levels.iter().enumerate() {
             if level.first != next || level.count == 0 {
-                return bad(format!(
-                    "level {k} starts at node {} with {} nodes; expected a non-empty level \
-                     starting at node {next}",
-                    level.first, level.count
-                ));
+                return bad(TreeDefect::LevelTiling {
+                    level: k,
+                    first: level.first,
+                    count: level.count,
+                    expected: next,
+                });
             }
             next = next.saturating_add(level.count);
         }
         if next != self.nodes.len() {
-            return bad(format!(
-                "the levels hold {next} nodes but there are {}",
-                self.nodes.len()
-            ));
+            return bad(TreeDefect::NodeCountMismatch {
+                levels: next,
+                nodes: self.nodes.len(),
+            });
         }
         // The levels tile the nodes in order: split them, and let `from_levels` check the
         // structure (levels, parents, children, spheres, errors).
@@ -223,10 +222,11 @@ impl TreeJson {
         for (k, level) in self.levels.iter().enumerate() {
             let actual = worst_error(tree.level(k));
             if level.worst_error.to_bits() != actual.to_bits() {
-                return bad(format!(
-                    "level {k} has worst_error {} but its largest node error is {actual}",
-                    level.worst_error
-                ));
+                return bad(TreeDefect::WorstErrorMismatch {
+                    level: k,
+                    stored: level.worst_error,
+                    actual,
+                });
             }
         }
         // Certificates are kept only when every level has one.
@@ -242,13 +242,9 @@ impl TreeJson {
     /// Node `index` as a [`TreeNode`]; its children must be consecutive indices (the rest
     /// is checked by [`SphereTree::from_levels`]).
     fn node(&self, index: usize) -> Result<TreeNode, SphereTreeError> {
-        let bad = |message: String| {
-            Err(SphereTreeError::InvalidTree(format!(
-                "node {index}: {message}"
-            )))
-        };
+        let bad = |defect: TreeDefect| Err(SphereTreeError::InvalidTree(defect));
         let Some(node) = self.nodes.get(index) else {
-            return bad("missing".into());
+            return bad(TreeDefect::MissingNode { node: index });
         };
         let start = node.children.first().copied().unwrap_or(0);
         let consecutive = node
@@ -257,7 +253,7 @@ impl TreeJson {
             .enumerate()
             .all(|(k, &c)| u32::try_from(k).ok().and_then(|k| start.checked_add(k)) == Some(c));
         if !consecutive {
-            return bad("children are not consecutive increasing indices".into());
+            return bad(TreeDefect::NonConsecutiveChildren { node: index });
         }
         let end = start.saturating_add(u32::try_from(node.children.len()).unwrap_or(u32::MAX));
         Ok(TreeNode {
