@@ -6,62 +6,30 @@ use glam::DVec3;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
 use sphaera_simplify::Simplified;
+use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, TWELVE_DIRECTIONS};
 
 /// Slack allowed in the checks (absolute, the shapes are of unit size).
 pub const SLACK: f64 = 1e-9;
 
 /// `min over λ of |x − λ·P| − λ·R` on a grid of the simplex, refined around the best
-/// point (the function is convex, so this converges; any sampled value is an upper bound
-/// of the true minimum, so a value ≤ slack proves membership).
+/// point by the shared pattern search (24 grid steps, twelve directions, negative
+/// coordinates clamped, steps down to 1e-14). The function is convex, so this converges;
+/// any sampled value is an upper bound of the true minimum, so a value ≤ slack proves
+/// membership.
 pub fn tolerance_slack(x: DVec3, p: [DVec3; 3], r: [f64; 3]) -> f64 {
     let f = |a: f64, b: f64| {
         let c = 1.0 - a - b;
         (x - (a * p[0] + b * p[1] + c * p[2])).length() - (a * r[0] + b * r[1] + c * r[2])
     };
-    let n = 24;
-    let mut best = (f64::INFINITY, 0.0, 0.0);
-    for i in 0..=n {
-        for j in 0..=(n - i) {
-            let (a, b) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
-            let value = f(a, b);
-            if value < best.0 {
-                best = (value, a, b);
-            }
-        }
+    PatternSearch {
+        grid: 24,
+        directions: &TWELVE_DIRECTIONS,
+        min_step: 1e-14,
+        budget: Budget::Rounds(usize::MAX),
+        boundary: Boundary::ClampNegative,
     }
-    let mut step = 1.0 / f64::from(n);
-    while step > 1e-14 {
-        let mut improved = false;
-        for (da, db) in [
-            (1.0, 0.0),
-            (-1.0, 0.0),
-            (0.0, 1.0),
-            (0.0, -1.0),
-            (1.0, -1.0),
-            (-1.0, 1.0),
-            (1.0, 1.0),
-            (-1.0, -1.0),
-            (2.0, -1.0),
-            (-2.0, 1.0),
-            (1.0, -2.0),
-            (-1.0, 2.0),
-        ] {
-            let (a, b) = (best.1 + da * step, best.2 + db * step);
-            let (a, b) = (a.max(0.0), b.max(0.0));
-            if a + b > 1.0 {
-                continue;
-            }
-            let value = f(a, b);
-            if value < best.0 {
-                best = (value, a, b);
-                improved = true;
-            }
-        }
-        if !improved {
-            step *= 0.5;
-        }
-    }
-    best.0
+    .minimise(f)
+    .value
 }
 
 /// Checks invariant (A) for the points `xs` of the original surface; returns the worst
