@@ -55,10 +55,13 @@
 //!
 //! | module | what it holds |
 //! |---|---|
-//! | crate root | [`TriMesh`] (finite `f64` positions, in-range `[u32; 3]` triangles), [`Sphere`] (the one sphere type of the workspace), [`Aabb`], [`MeshError`] |
+//! | crate root | [`TriMesh`] (finite `f64` positions, in-range `[u32; 3]` triangles), [`Sphere`] (the one sphere type of the workspace), [`Aabb`], [`Length`] (absolute or relative to the diagonal), [`Surface`] (a mesh with its inside test and closest points, checked for a meaningful inside), [`MeshError`] |
 //! | [`topology`] | [`topology::analyze`]: closed, manifold, oriented, genus, components, boundary loops, Euler characteristic, degenerate and duplicate triangles, for any mesh; [`topology::HalfEdgeMesh`]: editable half-edges with edge collapse and its exact inverse, vertex split; repair helpers (weld, drop degenerate / duplicate triangles, drop unreferenced vertices) that report what they changed |
 //! | [`io`] | read OBJ, PLY (ASCII, binary), STL (ASCII, binary), OFF; write OBJ and PLY (with per-vertex colours); polygons triangulated; atomic writes |
-//! | [`geometry`] | closest point on a triangle (with the feature hit) and on a segment, segment–segment closest points, minimum enclosing ball of points and of balls, circumspheres, ray–triangle intersection |
+//! | [`geometry`] | closest point on a triangle (with the feature hit) and on a segment, segment–segment closest points, minimum enclosing ball of points and of balls, circumspheres, ray–triangle intersection, similarity transforms (placing a mesh or spheres in a scene; rigid motions) |
+//! | [`bvh`] | the workspace's one bounding-volume hierarchy: a box tree over items, built by median splits, with a nearest-first search |
+//! | [`closest`] | exact closest points on a mesh: [`closest::TriangleTree`] and its [`closest::ClosestPoint`] with the mesh [`closest::Feature`] hit |
+//! | [`heap`] | priority queues with one convention (the highest [`heap::Priority`] first): a binary max-heap and an indexed heap of one item per id |
 //! | [`winding`] | generalized winding number, brute force and hierarchically accelerated (Barill et al. 2018), ray-parity reference, a solidity check |
 //! | [`sampling`] | seeded area-weighted random and Poisson-disk (sample elimination, Yuksel 2015) surface samples |
 //! | [`shapes`] | closed procedural shapes with a resolution: cube, sphere, ellipsoid, capsule, cylinder, cone, torus, thick-walled tube, S tube, L block |
