@@ -7,10 +7,14 @@
 //! *certified upper bounds* on the Hausdorff distance between two surfaces. This module
 //! gives the other side of the check: a *measured* distance that is, by construction, a
 //! **lower bound** of the true one-sided distances. A certified bound that ever comes out
-//! below the measured value is wrong. The measurement shares no code with the code it
-//! checks: the distance from a point to a mesh is parry's BVH-accelerated projection, not
-//! our own closest-point routine (which appears here only for degenerate triangles, see
-//! [`DistanceToMesh`]).
+//! below the measured value is wrong. The measurement shares no distance code with the
+//! code it checks: the distance from a point to a mesh is parry's BVH-accelerated
+//! projection, not our own closest-point routine (which appears here only for degenerate
+//! triangles, see [`DistanceToMesh`]).
+//!
+//! The sample set and the maxima are `sphaera-mesh`'s ([`sphaera_mesh::measure`], the
+//! same code behind `sphaera simplify --measure`), measured here with the parry oracle;
+//! the local refinement (below) is this module's own.
 //!
 //! # Why the result is a lower bound
 //!
@@ -28,16 +32,19 @@
 //! often at vertices: corners that were cut or pushed by a simplification; unreferenced
 //! vertex records are not on the surface and are ignored), every **edge midpoint** (one
 //! per distinct undirected edge), and `samples_per_mesh` **uniform random points**
-//! ([`sphaera_mesh::sampling::random`], reproducible from the seed). Then a **local
-//! refinement** around the best few samples: each triangle that holds one of them is
-//! sampled on a barycentric grid, and a pattern search walks uphill from the best grid
+//! ([`sphaera_mesh::sampling::random`], reproducible from the seed; the second mesh's
+//! seed is offset by a fixed constant, 2⁶⁴ over the golden ratio): a [`SurfaceSamples`]
+//! with the default [`SampleOptions`] but for the random points and the seed. Then a
+//! **local refinement** around the best few samples: each triangle that holds one of them
+//! is sampled on a barycentric grid, and a pattern search walks uphill from the best grid
 //! point with shrinking steps (see [`HausdorffOptions::refine_top`]).
 //!
 //! # Determinism
 //!
-//! Distances are computed in parallel with rayon but collected in sample order, and every
-//! maximum breaks ties by the lowest sample index, so the result (value and location) is
-//! the same on every run and for any number of threads.
+//! Distances are computed in parallel (by [`sphaera_mesh::measure::distances`] with
+//! `sphaera-mesh`'s `parallel` feature, and by rayon for the refinement) but collected in
+//! order, and every maximum breaks ties by the lowest sample index, so the result (value
+//! and location) is the same on every run and for any number of threads.
 //!
 //! # Examples
 //!
@@ -63,9 +70,9 @@ use parry3d_f64::{
 };
 use rayon::prelude::*;
 use sphaera_mesh::{
-    DVec3, TriMesh,
+    DVec3, MeshError, TriMesh,
     geometry::{Triangle, closest_point_on_triangle},
-    sampling,
+    measure::{self, DirectedDistance, SampleOptions, SampleOrigin, SurfaceSamples},
 };
 
 use crate::pattern_search::{Boundary, Budget, PatternSearch, SIX_DIRECTIONS};
@@ -75,7 +82,8 @@ use crate::pattern_search::{Boundary, Budget, PatternSearch, SIX_DIRECTIONS};
 pub const DEGENERATE_RELATIVE_TOLERANCE: f64 = 1e-12;
 
 /// Seed offset for the second mesh, so that the two meshes never draw the same random
-/// stream.
+/// stream (the value of [`measure::DEFAULT_SECOND_SEED_OFFSET`], spelled out: this
+/// helper's published figures depend on it).
 const SECOND_MESH_SEED_OFFSET: u64 = 0x9E37_79B9_7F4A_7C15;
 
 /// A measured Hausdorff distance between meshes `A` and `B`: both one-sided maxima, where
@@ -272,62 +280,38 @@ impl DistanceToMesh {
     }
 }
 
-/// Where a sample comes from on its own mesh: says which triangles to refine around it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Origin {
-    Vertex(u32),
-    Edge(u32, u32),
-    Triangle(usize),
-}
-
-/// The sample points of `mesh` and their origins: referenced vertices (in index order),
-/// distinct edge midpoints (sorted by vertex pair), then `n` random points.
-fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> (Vec<DVec3>, Vec<Origin>) {
-    let positions = mesh.positions();
-    let mut referenced = vec![false; positions.len()];
-    let mut edges = Vec::with_capacity(3 * mesh.triangle_count());
-    for tri in mesh.triangles() {
-        for k in 0..3 {
-            let (u, w) = (tri[k], tri[(k + 1) % 3]);
-            referenced[u as usize] = true;
-            if u != w {
-                edges.push((u.min(w), u.max(w)));
+/// The sample set of `mesh`: every referenced vertex, the midpoint of every distinct edge,
+/// then `n` random points drawn with `seed` ([`SurfaceSamples::new`]).
+///
+/// # Panics
+///
+/// If `n > 0` and random sampling fails: the mesh has no triangle of positive area, or `n`
+/// exceeds [`sphaera_mesh::sampling::MAX_SAMPLES`].
+fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> SurfaceSamples {
+    let options = SampleOptions::default()
+        .with_random_points(n)
+        .with_seed(seed);
+    let samples = SurfaceSamples::new(mesh, &options)
+        .unwrap_or_else(|e| panic!("cannot sample {n} random points on the mesh: {e}"));
+    if n > 0 && samples.random_point_count() == 0 {
+        // The library skips the random points of a surface without area; this helper has
+        // always refused it.
+        let e = if mesh.is_empty() {
+            MeshError::EmptyMesh
+        } else {
+            MeshError::ZeroSurfaceArea {
+                triangle_count: mesh.triangle_count(),
             }
-        }
+        };
+        panic!("cannot sample {n} random points on the mesh: {e}");
     }
-    edges.sort_unstable();
-    edges.dedup();
-    let mut points = Vec::new();
-    let mut origins = Vec::new();
-    for (v, (&p, _)) in positions
-        .iter()
-        .zip(&referenced)
-        .enumerate()
-        .filter(|(_, (_, used))| **used)
-    {
-        points.push(p);
-        // `TriMesh::new` checked that indices fit in u32, so this always converts
-        // (invariant).
-        origins.push(Origin::Vertex(u32::try_from(v).unwrap_or(u32::MAX)));
-    }
-    for &(u, w) in &edges {
-        points.push(0.5 * (positions[u as usize] + positions[w as usize]));
-        origins.push(Origin::Edge(u, w));
-    }
-    if n > 0 {
-        let random = sampling::random(mesh, n, seed)
-            .unwrap_or_else(|e| panic!("cannot sample {n} random points on the mesh: {e}"));
-        for s in random {
-            points.push(s.position);
-            origins.push(Origin::Triangle(s.triangle));
-        }
-    }
-    (points, origins)
+    samples
 }
 
 /// The points of `mesh` that [`sampled_hausdorff`] measures before refinement: every
 /// referenced vertex, the midpoint of every distinct edge, and `n` uniform random points
-/// from [`sampling::random`] with `seed`, in that order.
+/// from [`sphaera_mesh::sampling::random`] with `seed`, in that order
+/// ([`SurfaceSamples`]).
 ///
 /// # Examples
 ///
@@ -343,15 +327,16 @@ fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> (Vec<DVec3>, Vec<Origin>) 
 /// # Panics
 ///
 /// If `n > 0` and random sampling fails: the mesh has no triangle of positive area, or `n`
-/// exceeds [`sampling::MAX_SAMPLES`].
+/// exceeds [`sphaera_mesh::sampling::MAX_SAMPLES`].
 pub fn surface_points(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
-    sample_set(mesh, n, seed).0
+    sample_set(mesh, n, seed).into_points()
 }
 
 /// The largest distance from `points` to `target`, and the first point (lowest index)
-/// reaching it; `None` for no points.
+/// reaching it; `None` for no points ([`DirectedDistance::measure`] with the parry
+/// oracle).
 ///
-/// Parallel over the points (rayon); deterministic.
+/// Parallel over the points (with `sphaera-mesh`'s `parallel` feature); deterministic.
 ///
 /// # Examples
 ///
@@ -372,24 +357,8 @@ pub fn surface_points(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
 ///
 /// Never.
 pub fn directed_max(points: &[DVec3], target: &DistanceToMesh) -> Option<(f64, DVec3)> {
-    let distances = distances(points, target);
-    argmax(&distances).map(|i| (distances[i], points[i]))
-}
-
-/// Distances of every point, in order (parallel).
-fn distances(points: &[DVec3], target: &DistanceToMesh) -> Vec<f64> {
-    points.par_iter().map(|&p| target.distance(p)).collect()
-}
-
-/// The index of the largest value, the lowest index on ties; `None` when empty.
-fn argmax(values: &[f64]) -> Option<usize> {
-    let mut best: Option<usize> = None;
-    for (i, &v) in values.iter().enumerate() {
-        if best.is_none_or(|b| v > values[b]) {
-            best = Some(i);
-        }
-    }
-    best
+    let directed = DirectedDistance::measure(points, |p| target.distance(p));
+    directed.farthest.map(|f| (directed.distance, f.point))
 }
 
 /// The sampled Hausdorff distance between the surfaces of `a` and `b`, with
@@ -480,25 +449,26 @@ fn directed(
     options: &HausdorffOptions,
     seed: u64,
 ) -> (f64, DVec3, usize) {
-    let (points, origins) = sample_set(source, options.samples_per_mesh, seed);
-    let distances = distances(&points, target);
-    let Some(best) = argmax(&distances) else {
+    let samples = sample_set(source, options.samples_per_mesh, seed);
+    let distances = measure::distances(samples.points(), |p| target.distance(p));
+    let best = DirectedDistance::from_distances(samples.points(), &distances);
+    let Some(farthest) = best.farthest else {
         return (0.0, DVec3::ZERO, 0);
     };
-    let (mut value, mut at) = (distances[best], points[best]);
-    let mut evaluated = points.len();
+    let (mut value, mut at) = (best.distance, farthest.point);
+    let mut evaluated = best.measured;
     if options.refine_top == 0 {
         return (value, at, evaluated);
     }
     // The best samples: by decreasing distance, then increasing index.
-    let mut order: Vec<usize> = (0..points.len()).collect();
+    let mut order: Vec<usize> = (0..distances.len()).collect();
     order.sort_unstable_by(|&i, &j| distances[j].total_cmp(&distances[i]).then(i.cmp(&j)));
     order.truncate(options.refine_top);
     let mut candidates: Vec<usize> = Vec::new();
     for &i in &order {
-        match origins[i] {
-            Origin::Triangle(t) => candidates.push(t),
-            Origin::Vertex(v) => candidates.extend(
+        match samples.origins()[i] {
+            SampleOrigin::Random { triangle } => candidates.push(triangle),
+            SampleOrigin::Vertex(v) => candidates.extend(
                 source
                     .triangles()
                     .iter()
@@ -506,7 +476,7 @@ fn directed(
                     .filter(|(_, tri)| tri.contains(&v))
                     .map(|(t, _)| t),
             ),
-            Origin::Edge(u, w) => candidates.extend(
+            SampleOrigin::EdgeMidpoint(u, w) => candidates.extend(
                 source
                     .triangles()
                     .iter()

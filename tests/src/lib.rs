@@ -20,7 +20,7 @@
 //! | item | what | used by |
 //! |---|---|---|
 //! | [`data_dir`], [`mesh_files`], [`expected_stats`] | the shared real meshes | tests of every crate, benches, `sphaera-eval` |
-//! | [`hausdorff`] | the sampled Hausdorff distance (parry3d-f64), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
+//! | [`hausdorff`] | the sampled Hausdorff distance measured with parry3d-f64 (samples and maxima from `sphaera_mesh::measure`, plus a local refinement), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
 //! | [`random`] | [`SplitMix64`] and the MMIX [`random::Lcg64`], each caller's mapping of words to numbers named | unit tests of mesh (indexed heap), simplify (edge radius, quadric, queue) and sweep (queue, polyline hierarchy); the sweep and sphere-tree integration tests |
 //! | [`pattern_search`] | the grid-then-pattern search over a triangle | [`hausdorff`]'s refinement; simplify's edge-radius unit tests |
 //! | [`point_sets`] | reproducible and degenerate point sets for Delaunay codes | medial's unit tests (sample grid), integration tests, bench and example; `sphaera-eval`'s Delaunay bench |

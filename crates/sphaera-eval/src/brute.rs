@@ -5,10 +5,15 @@
 //! The distance to each triangle is [`point_triangle_distance_squared`] (exact, with its
 //! own fallback for degenerate triangles), so the minimum is the exact distance to the
 //! surface up to rounding.
+//!
+//! The naive Hausdorff estimate is `sphaera_mesh`'s sampled Hausdorff distance
+//! ([`measure::sampled_hausdorff_by`]) on the vertex samples only, with this brute force as
+//! its distance oracle, on one thread.
 
 use sphaera::mesh::{
-    DVec3, TriMesh,
+    DVec3, MeshError, TriMesh,
     geometry::{Triangle, point_triangle_distance_squared},
+    measure::{self, MeasureOptions, SampleOptions, SurfaceSamples},
 };
 
 /// Every triangle of a mesh, ready for brute-force distances.
@@ -53,44 +58,51 @@ pub struct NaiveHausdorff {
 
 /// The naive estimate of [`NaiveHausdorff`] with the referenced vertices of each mesh as
 /// samples (an unreferenced vertex is not a point of the surface), taking every
-/// `stride`-th of them (`stride` 1: all; a larger stride measures a subset whose time is
-/// scaled by `evaluations` to extrapolate).
-pub fn naive_hausdorff(a: &TriMesh, b: &TriMesh, stride: usize) -> NaiveHausdorff {
-    let mut result = NaiveHausdorff {
-        value: 0.0,
-        samples: 0,
-        evaluations: 0,
-    };
-    for (source, target) in [(a, b), (b, a)] {
-        let target = BruteForce::new(target);
-        for p in referenced_vertices(source)
-            .into_iter()
-            .step_by(stride.max(1))
-        {
-            result.value = result.value.max(target.distance(p));
-            result.samples += 1;
-            result.evaluations += target.triangle_count();
-        }
-    }
-    result
+/// `stride`-th of them (`stride` 1 or 0: all; a larger stride measures a subset whose time
+/// is scaled by `evaluations` to extrapolate).
+///
+/// The samples are [`SurfaceSamples`] of [`vertex_samples`], measured by
+/// [`measure::sampled_hausdorff_by`] with [`BruteForce`] distances on the calling thread:
+/// first every sample of `a` against `b`, then those of `b` against `a`.
+///
+/// # Errors
+///
+/// [`MeshError::EmptyMesh`] if a mesh has no triangle.
+pub fn naive_hausdorff(
+    a: &TriMesh,
+    b: &TriMesh,
+    stride: usize,
+) -> Result<NaiveHausdorff, MeshError> {
+    let (to_a, to_b) = (BruteForce::new(a), BruteForce::new(b));
+    let options = MeasureOptions::default()
+        .with_samples(vertex_samples(stride))
+        .with_parallel(false);
+    let h =
+        measure::sampled_hausdorff_by(a, b, &options, |p| to_a.distance(p), |p| to_b.distance(p))?;
+    Ok(NaiveHausdorff {
+        value: h.symmetric(),
+        samples: h.a_to_b.measured + h.b_to_a.measured,
+        evaluations: h.a_to_b.measured * to_b.triangle_count()
+            + h.b_to_a.measured * to_a.triangle_count(),
+    })
 }
 
-/// The vertices of `mesh` that some triangle uses, in index order.
+/// The naive estimate's samples: every `stride`-th referenced vertex (all for 0 or 1), no
+/// edge midpoint, no random point.
+pub fn vertex_samples(stride: usize) -> SampleOptions {
+    SampleOptions::default()
+        .with_edge_midpoints(false)
+        .with_random_points(0)
+        .with_vertex_stride(stride.max(1))
+}
+
+/// The vertices of `mesh` that some triangle uses, in index order (the samples of
+/// [`naive_hausdorff`] with stride 1).
 pub fn referenced_vertices(mesh: &TriMesh) -> Vec<DVec3> {
-    let mut used = vec![false; mesh.vertex_count()];
-    for &[i, j, k] in mesh.triangles() {
-        for v in [i, j, k] {
-            // A valid TriMesh's indices are in range (invariant); `get_mut` avoids a panic.
-            if let Some(flag) = used.get_mut(v as usize) {
-                *flag = true;
-            }
-        }
-    }
-    mesh.positions()
-        .iter()
-        .zip(&used)
-        .filter_map(|(&p, &u)| u.then_some(p))
-        .collect()
+    // Vertex samples without random points cannot fail (no parameter is out of range).
+    SurfaceSamples::new(mesh, &vertex_samples(1))
+        .map(SurfaceSamples::into_points)
+        .unwrap_or_default()
 }
 
 #[cfg(test)]
@@ -112,7 +124,7 @@ mod tests {
         let small = shapes::cube(2.0, 2).unwrap();
         let (positions, triangles) = small.clone().into_parts();
         let big = TriMesh::new(positions.iter().map(|&p| 1.5 * p).collect(), triangles).unwrap();
-        let naive = naive_hausdorff(&small, &big, 1);
+        let naive = naive_hausdorff(&small, &big, 1).unwrap();
         // The big cube's corners are √3 × 0.5 from the small one's.
         assert!((naive.value - 0.5 * 3f64.sqrt()).abs() < 1e-12);
         assert_eq!(naive.samples, 2 * small.vertex_count());

@@ -64,6 +64,7 @@
 //! | [`heap`] | priority queues with one convention (the highest [`heap::Priority`] first): a binary max-heap and an indexed heap of one item per id |
 //! | [`winding`] | generalized winding number, brute force and hierarchically accelerated (Barill et al. 2018), ray-parity reference, a solidity check |
 //! | [`sampling`] | seeded area-weighted random and Poisson-disk (sample elimination, Yuksel 2015) surface samples |
+//! | [`measure`] | sampled Hausdorff distance between two surfaces, a lower bound of the true one: the sample set of a surface (referenced vertices, edge midpoints, seeded random points), directed and symmetric maxima over any distance oracle, exact by default through [`closest::TriangleTree`] |
 //! | [`shapes`] | closed procedural shapes with a resolution: cube, sphere, ellipsoid, capsule, cylinder, cone, torus, thick-walled tube, S tube, L block |
 //!
 //! # Algorithm notes
@@ -114,6 +115,7 @@ pub mod geometry;
 pub mod heap;
 pub mod io;
 mod length;
+pub mod measure;
 mod mesh;
 pub mod sampling;
 pub mod shapes;

@@ -85,7 +85,7 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
         let started = Instant::now();
         let h = measure::sampled_hausdorff(mesh, &simplified.mesh);
         spinner.finish_and_clear();
-        (Some(h), Some(started.elapsed().as_secs_f64()))
+        (Some(h?), Some(started.elapsed().as_secs_f64()))
     } else {
         (None, None)
     };

@@ -133,7 +133,7 @@ fn measure_pair(
         });
         report(rows.last());
     }
-    let (seconds, naive) = min_time(1, || Ok(naive_hausdorff(a, b, 1)))?;
+    let (seconds, naive) = min_time(1, || Ok(naive_hausdorff(a, b, 1)?))?;
     rows.push(Row {
         file,
         other: other.to_owned(),
