@@ -23,9 +23,13 @@ use crate::SphereTree;
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let worst = level_worst_errors(&tree);
 /// assert_eq!(worst.len(), tree.level_count());
 /// assert!(worst[1] < worst[0]);
@@ -57,9 +61,13 @@ pub fn level_worst_errors(tree: &SphereTree) -> Vec<f64> {
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let worst = level_worst_errors(&tree);
 /// assert_eq!(level_for_tolerance(&tree, worst[0]), Some(0));
 /// assert_eq!(level_for_tolerance(&tree, worst[1]), Some(1));
@@ -87,9 +95,13 @@ pub fn level_for_tolerance(tree: &SphereTree, tolerance: f64) -> Option<usize> {
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// assert_eq!(spheres_for_tolerance(&tree, f64::INFINITY), Some(tree.level_spheres(0)));
 /// assert_eq!(spheres_for_tolerance(&tree, -1.0), None);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -126,9 +138,13 @@ impl Cut {
     /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
     ///
     /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-    ///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-    /// let tree = build(&Surface::new(&mesh)?, &params)?;
+    /// let options = SphereTreeOptions::default()
+    ///     .with_depth(1)
+    ///     .with_branch(4)
+    ///     .with_samples(400)
+    ///     .with_initial_spheres(60)
+    ///     .with_min_spheres_per_node(20);
+    /// let tree = build(&Surface::new(&mesh)?, &options)?;
     /// let cut = cut_for_tolerance(&tree, f64::INFINITY);
     /// assert_eq!(cut.spheres(&tree), tree.level_spheres(0));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -164,9 +180,13 @@ impl Cut {
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let worst = level_worst_errors(&tree);
 ///
 /// let cut = cut_for_tolerance(&tree, worst[1]);

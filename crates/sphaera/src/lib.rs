@@ -10,11 +10,11 @@
 //!
 //! | module | crate | what it does |
 //! |---|---|---|
-//! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, winding numbers, surface sampling, procedural test shapes |
+//! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, the box tree and exact closest points, the `Surface` (inside test and closest points), winding numbers, surface sampling, sampled Hausdorff distances, procedural test shapes |
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | edge-collapse simplification whose reported error bound holds in both directions (error spheres) |
 //! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions, motion, polylines and certified Hausdorff distances |
 //! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
-//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection (merge, expand-select and combined reducers), with coverage of the whole surface certified at every level, certified fit evaluation and `.sph` files |
+//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection through one entry point (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), with coverage of the whole surface certified at every level, certified fit evaluation, traversal and exports |
 //!
 //! Later capabilities (HAL trees,
 //! silhouette labels) join this table as their crates land; see `docs/architecture.md` in
@@ -48,5 +48,5 @@ pub use sphaera_sweep as sweep;
 
 /// The types almost every Sphaera user needs.
 pub mod prelude {
-    pub use sphaera_mesh::{Aabb, DVec3, MeshError, Sphere, TriMesh};
+    pub use sphaera_mesh::{Aabb, DVec3, Length, MeshError, Sphere, Surface, TriMesh};
 }

@@ -118,8 +118,8 @@ pub struct RegionOutcome {
 ///     .map(|s| s.position)
 ///     .collect();
 /// // Improve until no sphere reaches more than 0.05 beyond the surface.
-/// let params = MedialOptions::default().with_max_error(0.05);
-/// let medial = MedialApproximation::build(&surface, &samples, &params)?;
+/// let options = MedialOptions::default().with_max_error(0.05);
+/// let medial = MedialApproximation::build(&surface, &samples, &options)?;
 /// assert!(medial.worst_error() <= 0.05);
 /// // Every sample is covered by some sphere.
 /// assert!(medial.uncovered_samples().is_empty());

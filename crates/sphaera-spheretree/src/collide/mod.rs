@@ -171,9 +171,13 @@ fn touch(a: &Sphere, b: &Sphere) -> bool {
 /// use sphaera_spheretree::{DVec3, SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let here = Similarity::IDENTITY;
 /// let near = Similarity::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
 ///
@@ -402,9 +406,13 @@ fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
 /// use sphaera_spheretree::{DVec3, SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let here = Similarity::IDENTITY;
 /// assert!(overlaps(&tree, &here, &tree, &Similarity::from_translation(DVec3::X)?));
 /// assert!(!overlaps(&tree, &here, &tree, &Similarity::from_translation(DVec3::X * 5.0)?));

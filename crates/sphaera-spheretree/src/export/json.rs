@@ -45,9 +45,13 @@ pub const JSON_VERSION: u32 = 1;
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let json = TreeJson::from_tree(&tree);
 /// assert_eq!(json.levels.len(), 2);
 /// assert_eq!(json.nodes[0].parent, None);
@@ -287,9 +291,13 @@ fn worst_error(nodes: &[TreeNode]) -> f64 {
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let text = tree_to_json(&tree);
 /// assert!(text.contains("\"format\": \"sphaera-spheretree\""));
 /// assert_eq!(tree_from_json(&text)?, tree);
@@ -354,9 +362,13 @@ pub fn tree_from_json(text: &str) -> Result<SphereTree, SphereTreeError> {
 /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
 ///
 /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-/// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-/// let tree = build(&Surface::new(&mesh)?, &params)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
 /// let path = std::env::temp_dir().join(format!("doc-tree-{}.json", std::process::id()));
 /// write_tree_json(&path, &tree)?;
 /// assert_eq!(tree_from_json(&std::fs::read_to_string(&path)?)?, tree);

@@ -208,9 +208,13 @@ impl SphFile {
     /// use sphaera_spheretree::{SphereTreeOptions, Surface, build, export::SphFile};
     ///
     /// let mesh = shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(800).with_initial_spheres(60)
+    /// let options = SphereTreeOptions::default()
+    ///     .with_depth(1)
+    ///     .with_branch(4)
+    ///     .with_samples(800)
+    ///     .with_initial_spheres(60)
     ///     .with_min_spheres_per_node(20);
-    /// let tree = build(&Surface::new(&mesh)?, &params)?;
+    /// let tree = build(&Surface::new(&mesh)?, &options)?;
     /// let file = SphFile::from_tree(&tree)?;
     /// assert_eq!((file.levels, file.branch, file.nodes.len()), (2, 4, 5));
     /// assert_eq!(file.level(1).len(), tree.level(1).len());

@@ -48,9 +48,13 @@ impl CollisionLink {
     /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
     ///
     /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-    ///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-    /// let tree = build(&Surface::new(&mesh)?, &params)?;
+    /// let options = SphereTreeOptions::default()
+    ///     .with_depth(1)
+    ///     .with_branch(4)
+    ///     .with_samples(400)
+    ///     .with_initial_spheres(60)
+    ///     .with_min_spheres_per_node(20);
+    /// let tree = build(&Surface::new(&mesh)?, &options)?;
     /// let link = CollisionLink::from_level("arm", &tree, 1);
     /// assert_eq!(link.spheres, tree.level_spheres(1));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
@@ -71,9 +75,13 @@ impl CollisionLink {
     /// use sphaera_spheretree::{SphereTreeOptions, build, Surface};
     ///
     /// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
-    /// let params = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
-    ///     .with_initial_spheres(60).with_min_spheres_per_node(20);
-    /// let tree = build(&Surface::new(&mesh)?, &params)?;
+    /// let options = SphereTreeOptions::default()
+    ///     .with_depth(1)
+    ///     .with_branch(4)
+    ///     .with_samples(400)
+    ///     .with_initial_spheres(60)
+    ///     .with_min_spheres_per_node(20);
+    /// let tree = build(&Surface::new(&mesh)?, &options)?;
     /// let cut = cut_for_tolerance(&tree, 0.1);
     /// let link = CollisionLink::from_cut("arm", &tree, &cut);
     /// assert_eq!(link.spheres.len(), cut.nodes.len());
