@@ -64,7 +64,7 @@ fn simplify_then_sweep() -> Result<()> {
 #[test]
 fn medial_approximation() -> Result<()> {
     let capsule = mesh::shapes::capsule(0.5, 2.0, 12)?;
-    let surface = medial::Surface::new(&capsule)?;
+    let surface = Surface::new(&capsule)?;
     let samples: Vec<DVec3> = mesh::sampling::poisson_disk(&capsule, 1_000, 1)?
         .samples
         .iter()
@@ -85,7 +85,7 @@ fn medial_approximation() -> Result<()> {
 #[test]
 fn spheretree_build_select_evaluate_export() -> Result<()> {
     let capsule = mesh::shapes::capsule(0.5, 2.0, 12)?;
-    let surface = mesh::Surface::new(&capsule)?;
+    let surface = Surface::new(&capsule)?;
     let options = spheretree::SphereTreeOptions::default()
         .with_method(spheretree::Method::Expand)
         .with_depth(2)
@@ -142,7 +142,7 @@ fn errors_of_every_crate_convert_for_question_mark() {
     }
     fn no_branching() -> Result<()> {
         let capsule = mesh::shapes::capsule(0.5, 2.0, 8)?;
-        let surface = mesh::Surface::new(&capsule)?;
+        let surface = Surface::new(&capsule)?;
         spheretree::build(
             &surface,
             &spheretree::SphereTreeOptions::default().with_branch(0),
