@@ -4,6 +4,9 @@
 // Costs are sums of small integers and placed spheres the same arithmetic: exact.
 #![allow(clippy::float_cmp)]
 
+mod common;
+
+use common::small_tree;
 use std::sync::OnceLock;
 use std::time::Duration;
 
@@ -13,32 +16,17 @@ use sphaera_mesh::{DVec3, Sphere, shapes};
 use sphaera_spheretree::collide::{
     Budget, Collision, CostModel, Similarity, TraversalStats, collide, overlaps,
 };
-use sphaera_spheretree::{
-    SphereTree, SphereTreeError, SphereTreeOptions, Surface, TreeNode, build,
-};
+use sphaera_spheretree::{SphereTree, SphereTreeError, TreeNode};
 use sphaera_tests::SplitMix64;
 
 /// Two small built trees: a capsule and a cube, depth 2, branch 4.
 fn built() -> &'static (SphereTree, SphereTree) {
     static TREES: OnceLock<(SphereTree, SphereTree)> = OnceLock::new();
     TREES.get_or_init(|| {
-        let params = SphereTreeOptions::default()
-            .with_depth(2)
-            .with_branch(4)
-            .with_samples(1_200)
-            .with_initial_spheres(120)
-            .with_min_spheres_per_node(30);
-        let capsule = build(
-            &Surface::new(&shapes::capsule(0.5, 2.0, 10).unwrap()).unwrap(),
-            &params,
+        (
+            small_tree(&shapes::capsule(0.5, 2.0, 10).unwrap()),
+            small_tree(&shapes::cube(1.5, 2).unwrap()),
         )
-        .unwrap();
-        let cube = build(
-            &Surface::new(&shapes::cube(1.5, 2).unwrap()).unwrap(),
-            &params,
-        )
-        .unwrap();
-        (capsule, cube)
     })
 }
 

@@ -1,6 +1,9 @@
 //! Exports: JSON round trips and validation errors, the YAML collision-sphere list read
 //! back by a tiny reader, the parry compound (with the `parry` feature).
 
+mod common;
+
+use common::small_tree;
 use std::sync::OnceLock;
 
 use proptest::prelude::*;
@@ -11,23 +14,11 @@ use sphaera_spheretree::export::{
     write_collision_spheres_yaml, write_tree_json,
 };
 use sphaera_spheretree::select::cut_for_tolerance;
-use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, Surface, build};
+use sphaera_spheretree::{SphereTree, SphereTreeError};
 
 fn tree() -> &'static SphereTree {
     static TREE: OnceLock<SphereTree> = OnceLock::new();
-    TREE.get_or_init(|| {
-        let params = SphereTreeOptions::default()
-            .with_depth(2)
-            .with_branch(4)
-            .with_samples(1_200)
-            .with_initial_spheres(120)
-            .with_min_spheres_per_node(30);
-        build(
-            &Surface::new(&shapes::capsule(0.5, 2.0, 10).unwrap()).unwrap(),
-            &params,
-        )
-        .unwrap()
-    })
+    TREE.get_or_init(|| small_tree(&shapes::capsule(0.5, 2.0, 10).unwrap()))
 }
 
 fn temp_path(name: &str) -> std::path::PathBuf {

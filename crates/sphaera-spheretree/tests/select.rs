@@ -1,12 +1,15 @@
 //! Level and cut choice by tolerance: against their definitions and against an
 //! exhaustive search for the smallest cut.
 
+mod common;
+
+use common::small_tree;
 use proptest::prelude::*;
 use sphaera_mesh::{DVec3, Sphere, shapes};
 use sphaera_spheretree::select::{
     cut_for_tolerance, level_for_tolerance, level_worst_errors, spheres_for_tolerance,
 };
-use sphaera_spheretree::{SphereTree, SphereTreeOptions, Surface, TreeNode, build};
+use sphaera_spheretree::{SphereTree, TreeNode};
 
 /// A tree from child counts listed breadth-first (the root first) and one error per node.
 fn tree_from_shape(child_counts: &[usize], errors: &[f64], branch: usize) -> SphereTree {
@@ -142,17 +145,7 @@ proptest! {
 
 #[test]
 fn on_a_built_tree_the_cut_never_has_more_spheres_than_the_level() {
-    let params = SphereTreeOptions::default()
-        .with_depth(2)
-        .with_branch(4)
-        .with_samples(1_200)
-        .with_initial_spheres(120)
-        .with_min_spheres_per_node(30);
-    let tree = build(
-        &Surface::new(&shapes::capsule(0.4, 2.5, 10).unwrap()).unwrap(),
-        &params,
-    )
-    .unwrap();
+    let tree = small_tree(&shapes::capsule(0.4, 2.5, 10).unwrap());
     let worst = level_worst_errors(&tree);
     assert_eq!(worst.len(), 3);
     for (k, &w) in worst.iter().enumerate() {
