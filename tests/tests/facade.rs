@@ -51,8 +51,8 @@ fn simplify_then_sweep() -> Result<()> {
     let answer: sweep::ClosestPoint = session.closest(DVec3::new(2.0, 0.0, 0.0))?;
     assert!((answer.distance - 1.0).abs() < 1e-2);
 
-    let options = sweep::HausdorffOptions::default()
-        .with_tolerance(sweep::Tolerance::Absolute(1e-2 * out.error_bound));
+    let options =
+        sweep::HausdorffOptions::default().with_tolerance(Length::Absolute(1e-2 * out.error_bound));
     let h = sweep::hausdorff(&a, &b, &options)?;
     assert!(h.lower <= h.upper);
     assert!(out.error_bound >= h.lower - 1e-12);

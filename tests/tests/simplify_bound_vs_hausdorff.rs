@@ -47,9 +47,9 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use sphaera_mesh::{TriMesh, io};
+use sphaera_mesh::{Length, TriMesh, io};
 use sphaera_simplify::{SimplifyOptions, simplify};
-use sphaera_sweep::{HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff};
+use sphaera_sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
 
 /// Meshes above this many triangles are checked through [`REDUCED_VARIANTS`] (see the
 /// module documentation for the measured cost).
@@ -173,7 +173,7 @@ fn check(name: &str, mesh: &TriMesh) {
     let certified = hausdorff(
         &sa,
         &sb,
-        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(tolerance)),
+        &HausdorffOptions::default().with_tolerance(Length::Absolute(tolerance)),
     )
     .unwrap_or_else(|e| panic!("{name}: hausdorff: {e}"));
     let sampled = sphaera_tests::sampled_hausdorff(mesh, &out.mesh, SAMPLES, 1).symmetric();

@@ -4,7 +4,7 @@
 //! alternative in the same run.
 //!
 //! - `sphaera_symmetric_1e-5`: `hausdorff(&a, &b, &HausdorffOptions::default()
-//!   .with_tolerance(Tolerance::Relative(1e-5)))`. The two hierarchies and sweepers are built once, **outside** the timed
+//!   .with_tolerance(Length::RelativeToDiagonal(1e-5)))`. The two hierarchies and sweepers are built once, **outside** the timed
 //!   loop (their build, which is parallel, is benched beside as `hierarchies`); the
 //!   computation itself runs on one thread.
 //! - `naive_1_in_N`: every `N`-th referenced vertex of each mesh against every triangle of
@@ -23,8 +23,8 @@ use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sphaera::{
-    mesh::{TriMesh, io},
-    sweep::{HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff},
+    mesh::{Length, TriMesh, io},
+    sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff},
 };
 use sphaera_eval::brute::{naive_hausdorff, referenced_vertices};
 
@@ -72,7 +72,7 @@ fn hausdorff_bench(c: &mut Criterion) {
     let certified = hausdorff(
         &sa,
         &sb,
-        &HausdorffOptions::default().with_tolerance(Tolerance::Relative(1e-5)),
+        &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-5)),
     )
     .expect("a valid tolerance");
     eprintln!(
@@ -87,7 +87,7 @@ fn hausdorff_bench(c: &mut Criterion) {
             hausdorff(
                 black_box(&sa),
                 black_box(&sb),
-                &HausdorffOptions::default().with_tolerance(Tolerance::Relative(1e-5)),
+                &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-5)),
             )
             .expect("a valid tolerance")
         });

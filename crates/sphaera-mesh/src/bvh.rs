@@ -21,9 +21,11 @@
 //! use sphaera_mesh::{Aabb, DVec3, bvh::BoxTree};
 //!
 //! // Ten points on a line, as degenerate boxes, two per leaf.
-//! let points: Vec<DVec3> = (0..10).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
-//! let boxes: Vec<Aabb> = points.iter().map(|&p| Aabb::new(p, p)).collect();
-//! let tree = BoxTree::build(&boxes, &points, 2);
+//! let items: Vec<(Aabb, DVec3)> = (0..10)
+//!     .map(|i| DVec3::new(f64::from(i), 0.0, 0.0))
+//!     .map(|p| (Aabb::new(p, p), p))
+//!     .collect();
+//! let tree = BoxTree::build(&items, 2)?;
 //! let root = tree.nodes()[0];
 //! assert_eq!(root.items(), 0..10);
 //! assert_eq!(root.bounds, Aabb::new(DVec3::ZERO, DVec3::new(9.0, 0.0, 0.0)));
@@ -31,13 +33,14 @@
 //! let leaves: usize = tree.nodes().iter().filter(|n| n.is_leaf()).map(|n| n.items().len()).sum();
 //! assert_eq!(leaves, 10);
 //! # let _ = tree.order();
+//! # Ok::<(), sphaera_mesh::MeshError>(())
 //! ```
 
 use std::ops::{ControlFlow, Range};
 
 use glam::DVec3;
 
-use crate::Aabb;
+use crate::{Aabb, MeshError};
 
 /// One node of a [`BoxTree`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,25 +96,23 @@ pub trait NearestFirst {
 }
 
 impl BoxTree {
-    /// Builds the tree over items with boxes `bounds` and split points `centroids` (one
-    /// per item), at most `leaf_size` items per leaf.
+    /// Builds the tree over `items` (each item's box and split point), at most
+    /// `leaf_size` items per leaf (0 is taken as 1).
     ///
     /// A node of more than `leaf_size` items is split at the median of its items'
     /// centroids along the longest axis of the centroids' box, ties broken by item index,
     /// so the same items always give the same tree.
     ///
-    /// # Panics
+    /// # Errors
     ///
-    /// If `bounds` and `centroids` differ in length, or there are more than `u32::MAX`
-    /// items (callers check their item counts first).
+    /// [`MeshError::TooManyItems`] for more items than 32-bit indices address.
     ///
     /// # Performance
     ///
     /// `O(n log n)` for `n` items; 64 bytes per node (about `2n / leaf_size` nodes) and
     /// 4 bytes per item.
-    #[must_use]
-    pub fn build(bounds: &[Aabb], centroids: &[DVec3], leaf_size: usize) -> Self {
-        Self::build_visiting(bounds, centroids, leaf_size, |_| {})
+    pub fn build(items: &[(Aabb, DVec3)], leaf_size: usize) -> Result<Self, MeshError> {
+        Self::build_visiting(items, leaf_size, |_| {})
     }
 
     /// [`BoxTree::build`], calling `on_node` with each node's items as the node is made
@@ -119,33 +120,34 @@ impl BoxTree {
     /// that sums over a node's items gets the same sums, in the same order, whatever
     /// happens to the node's descendants.
     ///
-    /// # Panics
+    /// # Errors
     ///
     /// As [`BoxTree::build`].
-    #[must_use]
     pub fn build_visiting(
-        bounds: &[Aabb],
-        centroids: &[DVec3],
+        items: &[(Aabb, DVec3)],
         leaf_size: usize,
         mut on_node: impl FnMut(&[u32]),
-    ) -> Self {
-        assert_eq!(bounds.len(), centroids.len(), "one centroid per item");
-        let count = u32::try_from(bounds.len()).expect("fewer than u32::MAX items");
+    ) -> Result<Self, MeshError> {
+        let Ok(count) = u32::try_from(items.len()) else {
+            return Err(MeshError::TooManyItems {
+                operation: "box tree",
+                count: items.len(),
+            });
+        };
         let mut builder = Builder {
-            bounds,
-            centroids,
+            items,
             leaf_size: leaf_size.max(1),
-            nodes: Vec::with_capacity(2 * bounds.len() / leaf_size.max(1) + 1),
+            nodes: Vec::with_capacity(2 * items.len() / leaf_size.max(1) + 1),
             on_node: &mut on_node,
         };
         let mut order: Vec<u32> = (0..count).collect();
         if !order.is_empty() {
             builder.node(&mut order, 0);
         }
-        Self {
+        Ok(Self {
             nodes: builder.nodes,
             order,
-        }
+        })
     }
 
     /// The nodes, depth first (the root first; empty for no items).
@@ -197,8 +199,7 @@ impl BoxTree {
 
 /// The state of a build.
 struct Builder<'a> {
-    bounds: &'a [Aabb],
-    centroids: &'a [DVec3],
+    items: &'a [(Aabb, DVec3)],
     leaf_size: usize,
     nodes: Vec<BoxNode>,
     on_node: &'a mut dyn FnMut(&[u32]),
@@ -213,9 +214,10 @@ impl Builder<'_> {
     fn node(&mut self, order: &mut [u32], offset: usize) {
         let index = self.nodes.len();
         (self.on_node)(order);
+        let items = self.items;
         let bounds = order
             .iter()
-            .fold(Aabb::EMPTY, |b, &i| b.union(self.bounds[i as usize]));
+            .fold(Aabb::EMPTY, |b, &i| b.union(items[i as usize].0));
         // Lossless: the build checked that the item count fits a u32.
         let start = offset as u32;
         self.nodes.push(BoxNode {
@@ -227,12 +229,11 @@ impl Builder<'_> {
         if order.len() <= self.leaf_size {
             return;
         }
-        let centroids = self.centroids;
-        let axis = Aabb::from_points(order.iter().map(|&i| centroids[i as usize])).longest_axis();
+        let axis = Aabb::from_points(order.iter().map(|&i| items[i as usize].1)).longest_axis();
         let middle = order.len() / 2;
         order.select_nth_unstable_by(middle, |&a, &b| {
-            centroids[a as usize][axis]
-                .total_cmp(&centroids[b as usize][axis])
+            items[a as usize].1[axis]
+                .total_cmp(&items[b as usize].1[axis])
                 .then(a.cmp(&b))
         });
         let (left, right) = order.split_at_mut(middle);
@@ -259,11 +260,12 @@ mod tests {
     #[test]
     fn nodes_partition_their_items_and_boxes_contain_them() {
         let centroids = points(333);
-        let boxes: Vec<Aabb> = centroids
+        let items: Vec<(Aabb, DVec3)> = centroids
             .iter()
-            .map(|&c| Aabb::new(c - 0.1, c + 0.2))
+            .map(|&c| (Aabb::new(c - 0.1, c + 0.2), c))
             .collect();
-        let tree = BoxTree::build(&boxes, &centroids, 4);
+        let boxes: Vec<Aabb> = items.iter().map(|i| i.0).collect();
+        let tree = BoxTree::build(&items, 4).unwrap();
         let mut sorted = tree.order().to_vec();
         sorted.sort_unstable();
         assert_eq!(sorted, (0..333).collect::<Vec<_>>());
@@ -286,15 +288,17 @@ mod tests {
 
     #[test]
     fn the_same_items_give_the_same_tree() {
-        let centroids = points(200);
-        let boxes: Vec<Aabb> = centroids.iter().map(|&c| Aabb::new(c, c)).collect();
+        let items: Vec<(Aabb, DVec3)> = points(200)
+            .into_iter()
+            .map(|c| (Aabb::new(c, c), c))
+            .collect();
         let (a, b) = (
-            BoxTree::build(&boxes, &centroids, 3),
-            BoxTree::build(&boxes, &centroids, 3),
+            BoxTree::build(&items, 3).unwrap(),
+            BoxTree::build(&items, 3).unwrap(),
         );
         assert_eq!(a.order(), b.order());
         assert_eq!(a.nodes(), b.nodes());
-        assert!(BoxTree::build(&[], &[], 4).nodes().is_empty());
+        assert!(BoxTree::build(&[], 4).unwrap().nodes().is_empty());
     }
 
     /// The nearest centroid by a nearest-first search.
@@ -325,8 +329,8 @@ mod tests {
     #[test]
     fn nearest_first_search_finds_the_nearest_and_prunes() {
         let centroids = points(1000);
-        let boxes: Vec<Aabb> = centroids.iter().map(|&c| Aabb::new(c, c)).collect();
-        let tree = BoxTree::build(&boxes, &centroids, 4);
+        let items: Vec<(Aabb, DVec3)> = centroids.iter().map(|&c| (Aabb::new(c, c), c)).collect();
+        let tree = BoxTree::build(&items, 4).unwrap();
         let p = DVec3::new(0.5, -1.0, 0.25);
         let mut search = Nearest {
             p,

@@ -170,6 +170,14 @@ pub enum MeshError {
         /// Index of the offending item in the input slice.
         index: usize,
     },
+    /// More input items than 32-bit indices can address.
+    #[error("{operation}: {count} items, more than 32-bit indices can address")]
+    TooManyItems {
+        /// The operation, e.g. `"box tree"`.
+        operation: &'static str,
+        /// The number of items given.
+        count: usize,
+    },
     /// An input ball has a negative, NaN or infinite radius.
     #[error(
         "{operation}: ball {index} has radius {radius}, but it must be finite and non-negative"

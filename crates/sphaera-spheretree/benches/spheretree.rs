@@ -14,7 +14,7 @@
 use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphaera_mesh::{Surface, TriMesh, io};
+use sphaera_mesh::{Length, Surface, TriMesh, io};
 use sphaera_spheretree::{
     EvaluationOptions, Method, SphereTree, SphereTreeError, SphereTreeOptions, build, evaluate_set,
 };
@@ -22,7 +22,7 @@ use sphaera_spheretree::{
 /// Prints each level's certified worst error (upper bound) and uncovered surface.
 fn report(name: &str, mesh: &TriMesh, tree: &SphereTree) {
     let surface = Surface::new(mesh).expect("the mesh has an inside");
-    let options = EvaluationOptions::default().with_relative_tolerance(1e-3);
+    let options = EvaluationOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-3));
     let diagonal = mesh.bounding_box_diagonal();
     let levels: Vec<String> = (1..tree.level_count())
         .map(|level| {

@@ -6,7 +6,7 @@
 
 use std::time::Instant;
 
-use sphaera_mesh::{Surface, io, shapes};
+use sphaera_mesh::{Length, Surface, io, shapes};
 use sphaera_spheretree::{EvaluationOptions, Method, SphereTreeOptions, build, evaluate_set};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -28,7 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         method.name(),
         started.elapsed().as_secs_f64()
     );
-    let options = EvaluationOptions::default().with_relative_tolerance(1e-3);
+    let options = EvaluationOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-3));
     for level in 0..tree.level_count() {
         let nodes = tree.level(level);
         let worst = nodes.iter().map(|n| n.error).fold(0.0, f64::max);

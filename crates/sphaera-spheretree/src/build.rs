@@ -7,7 +7,7 @@ use sphaera_mesh::sampling;
 
 use crate::SphereTreeError;
 use crate::baseline;
-use crate::options::{SphereTreeOptions, SphereTreeProgress};
+use crate::options::{Method, SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{
     Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
 };
@@ -63,9 +63,15 @@ pub fn build_with_progress(
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     options.validate()?;
-    match options.method.reducer() {
-        Some(reducer) => medial_tree(surface, options, reducer, progress),
-        None => baseline::build(surface, options, progress),
+    let medial = |reducer| medial_tree(surface, options, reducer, progress);
+    match options.method {
+        Method::Merge => medial(Reducer::Merge),
+        Method::Burst => medial(Reducer::Burst),
+        Method::Expand => medial(Reducer::Expand),
+        Method::Combined => medial(Reducer::Combined),
+        Method::Octree => baseline::octree(surface, options, progress),
+        Method::Grid => baseline::grid(surface, options, progress),
+        Method::Hubbard => baseline::hubbard(surface, options, progress),
     }
 }
 
@@ -180,7 +186,9 @@ fn medial_tree(
 /// Certifies the tree's coverage of the surface when asked to.
 fn finish(surface: &Surface, options: &SphereTreeOptions, mut tree: SphereTree) -> SphereTree {
     if options.certify_coverage {
-        let resolution = options.coverage_resolution * surface.mesh().bounding_box_diagonal();
+        let resolution = options
+            .coverage_resolution
+            .resolve(surface.mesh().bounding_box_diagonal());
         crate::cover::certify_tree(surface, &mut tree, resolution);
     }
     tree

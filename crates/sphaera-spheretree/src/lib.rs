@@ -64,7 +64,6 @@ pub use glam::DVec3;
 pub use options::{
     MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTreeOptions, SphereTreeProgress,
 };
-pub use reduce::Reducer;
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sphaera_mesh::{Sphere, Surface};
 pub use tree::{SphereTree, TreeDefect, TreeNode};

@@ -1,6 +1,8 @@
 //! How a sphere-tree is built: the [`Method`] and the [`SphereTreeOptions`] of
 //! [`build`](crate::build).
 
+use sphaera_mesh::Length;
+
 use crate::SphereTreeError;
 use crate::reduce::Reducer;
 
@@ -120,8 +122,7 @@ impl Method {
     }
 
     /// The reducer of a medial method.
-    #[must_use]
-    pub fn reducer(self) -> Option<Reducer> {
+    pub(crate) fn reducer(self) -> Option<Reducer> {
         match self {
             Self::Merge => Some(Reducer::Merge),
             Self::Burst => Some(Reducer::Burst),
@@ -145,7 +146,7 @@ impl Method {
 ///     .with_branch(4);
 /// assert_eq!((options.depth, options.branch, options.samples), (2, 4, 10_000));
 /// ```
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub struct SphereTreeOptions {
     /// How the tree is built (default [`Method::Combined`]).
@@ -176,11 +177,11 @@ pub struct SphereTreeOptions {
     /// Medial methods: certify that every level covers the whole surface, not only the
     /// samples, growing spheres where needed ([`crate::cover`]; default on).
     pub certify_coverage: bool,
-    /// Medial methods: the certification's resolution, as a fraction of the mesh's
-    /// bounding-box diagonal (default 10⁻³): triangle pieces are split down to this size
-    /// before a sphere is grown to contain one, so a sphere grows by about this much at
-    /// most where two spheres barely overlap, and by the gap's size where a gap was.
-    pub coverage_resolution: f64,
+    /// Medial methods: the certification's resolution (default 10⁻³ of the mesh's
+    /// bounding-box diagonal): triangle pieces are split down to this size before a
+    /// sphere is grown to contain one, so a sphere grows by about this much at most where
+    /// two spheres barely overlap, and by the gap's size where a gap was.
+    pub coverage_resolution: Length,
     /// [`Method::Hubbard`]: forming points of the static Voronoi diagram (default 600,
     /// which gives about 2,500 medial spheres on the low-res bunny, the size the paper
     /// used for Hubbard's method there).
@@ -200,7 +201,7 @@ impl Default for SphereTreeOptions {
             error_fraction: 0.5,
             balance_regions: true,
             certify_coverage: true,
-            coverage_resolution: 1e-3,
+            coverage_resolution: Length::RelativeToDiagonal(1e-3),
             forming_points: 600,
         }
     }
@@ -278,10 +279,10 @@ impl SphereTreeOptions {
         self
     }
 
-    /// With the given certification resolution (a fraction of the diagonal).
+    /// With the given certification resolution.
     #[must_use]
-    pub fn with_coverage_resolution(mut self, fraction: f64) -> Self {
-        self.coverage_resolution = fraction;
+    pub fn with_coverage_resolution(mut self, resolution: Length) -> Self {
+        self.coverage_resolution = resolution;
         self
     }
 
@@ -308,12 +309,9 @@ impl SphereTreeOptions {
             if self.samples < 4 {
                 return bad("samples", self.samples as f64, "at least 4");
             }
-            if !(self.coverage_resolution > 0.0 && self.coverage_resolution.is_finite()) {
-                return bad(
-                    "coverage_resolution",
-                    self.coverage_resolution,
-                    "positive and finite",
-                );
+            let resolution = self.coverage_resolution.value();
+            if !(resolution > 0.0 && resolution.is_finite()) {
+                return bad("coverage_resolution", resolution, "positive and finite");
             }
             if !(self.error_fraction > 0.0 && self.error_fraction <= 1.0) {
                 return bad("error_fraction", self.error_fraction, "in (0, 1]");

@@ -1,7 +1,7 @@
 //! The baseline sphere-trees (octree, grid, Hubbard): structure, coverage of the samples
 //! at every level, clear errors, and the octree's loose fit against the medial build.
 
-use sphaera_mesh::{DVec3, Surface, TriMesh, sampling, shapes};
+use sphaera_mesh::{DVec3, Length, Surface, TriMesh, sampling, shapes};
 use sphaera_spheretree::{
     EvaluationOptions, MAX_BASELINE_DEPTH, Method, SphereTree, SphereTreeError, SphereTreeOptions,
     build, evaluate_set,
@@ -184,7 +184,7 @@ fn bunny_baselines_are_consistent_and_the_octree_is_looser_than_the_medial_build
     )
     .unwrap();
     let options = EvaluationOptions::default()
-        .with_relative_tolerance(1e-2)
+        .with_tolerance(Length::RelativeToDiagonal(1e-2))
         .with_coverage_samples(2_000);
     for level in 2..=3 {
         let evaluate =

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use proptest::prelude::*;
 use sphaera_medial::Surface;
-use sphaera_mesh::{TriMesh, sampling, shapes};
+use sphaera_mesh::{Length, TriMesh, sampling, shapes};
 use sphaera_spheretree::evaluate::{
     EvaluationOptions, coverage, evaluate_set, sphere_error, sphere_errors,
 };
@@ -203,7 +203,7 @@ fn budget_exhaustion_keeps_a_valid_interval() {
     let s = shape(0);
     let sphere = Sphere::new(DVec3::ZERO, 1.3);
     let options = EvaluationOptions::default()
-        .with_tolerance(1e-9)
+        .with_tolerance(Length::Absolute(1e-9))
         .with_max_patches(200);
     let fit = sphere_error(&s.surface, &sphere, &options).unwrap();
     assert!(!fit.converged);
@@ -336,9 +336,9 @@ fn invalid_input_is_reported() {
         Err(SphereTreeError::EmptySphereSet)
     ));
     for bad in [
-        options.with_tolerance(0.0),
-        options.with_tolerance(f64::NAN),
-        options.with_relative_tolerance(-1.0),
+        options.with_tolerance(Length::Absolute(0.0)),
+        options.with_tolerance(Length::Absolute(f64::NAN)),
+        options.with_tolerance(Length::RelativeToDiagonal(-1.0)),
         options.with_max_patches(3),
         options.with_coverage_samples(0),
     ] {
@@ -439,7 +439,8 @@ fn bunny_512_spheres_timing() {
     let surface = Surface::new(&mesh).unwrap();
     let spheres = poking_spheres(&mesh, 512, 5, (0.03, 0.08), (0.001, 0.008));
     for relative in [1e-3, 1e-4] {
-        let options = EvaluationOptions::default().with_relative_tolerance(relative);
+        let options =
+            EvaluationOptions::default().with_tolerance(Length::RelativeToDiagonal(relative));
         let start = Instant::now();
         let fits = sphere_errors(&surface, &spheres, &options).unwrap();
         let errors = start.elapsed();

@@ -30,7 +30,9 @@ impl DistanceBounds {
     }
 }
 
-/// When an approximate query may stop: once `upper − lower` is at most this.
+/// When an approximate closest-point query may stop: once `upper − lower` is at most
+/// this. (Tolerances relative to a mesh's size, such as the Hausdorff distance's, are a
+/// [`Length`](sphaera_mesh::Length).)
 ///
 /// # Examples
 ///
@@ -38,14 +40,14 @@ impl DistanceBounds {
 /// use sphaera_sweep::Tolerance;
 ///
 /// assert_eq!(Tolerance::Absolute(0.01).allowed_gap(5.0), 0.01);
-/// assert_eq!(Tolerance::Relative(0.01).allowed_gap(5.0), 0.05);
+/// assert_eq!(Tolerance::RelativeToUpper(0.01).allowed_gap(5.0), 0.05);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tolerance {
     /// An absolute gap, in the mesh's units.
     Absolute(f64),
     /// A fraction of the upper bound (`0.01`: the distance is known to 1 %).
-    Relative(f64),
+    RelativeToUpper(f64),
 }
 
 impl Tolerance {
@@ -53,14 +55,14 @@ impl Tolerance {
     pub fn allowed_gap(self, upper: f64) -> f64 {
         match self {
             Self::Absolute(t) => t,
-            Self::Relative(t) => t * upper,
+            Self::RelativeToUpper(t) => t * upper,
         }
     }
 
     /// The tolerance's value.
     pub(crate) fn value(self) -> f64 {
         match self {
-            Self::Absolute(t) | Self::Relative(t) => t,
+            Self::Absolute(t) | Self::RelativeToUpper(t) => t,
         }
     }
 }

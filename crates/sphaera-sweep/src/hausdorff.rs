@@ -8,11 +8,12 @@ mod target;
 use std::cmp::Reverse;
 
 use glam::DVec3;
+use sphaera_mesh::Length;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 use sphaera_simplify::Hierarchy;
 
 use crate::error::check_non_negative;
-use crate::{SweepError, Sweeper, Tolerance};
+use crate::{SweepError, Sweeper};
 use side::Side;
 
 /// The error of the target's level of detail used for bounds, as a fraction of the lower
@@ -133,14 +134,15 @@ pub struct HausdorffProgress {
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_sweep::{Direction, HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff};
+/// use sphaera_mesh::Length;
+/// use sphaera_sweep::{Direction, HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
 ///
 /// // A cube with corners at ±1 and a unit sphere inside it.
 /// let (cube, sphere) = (shapes::cube(2.0, 8)?, shapes::sphere(1.0, 32)?);
 /// let (hc, hs) = (build_hierarchy(&cube)?, build_hierarchy(&sphere)?);
 /// let (a, b) = (Sweeper::new(&hc)?, Sweeper::new(&hs)?);
 ///
-/// let options = HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-6));
+/// let options = HausdorffOptions::default().with_tolerance(Length::Absolute(1e-6));
 /// let result = hausdorff(&a, &b, &options)?;
 /// assert!(result.lower <= result.upper && result.gap() <= 1e-6);
 /// // The cube's corners are farthest: √3 − 1 from the (tessellated) sphere.
@@ -152,10 +154,11 @@ pub struct HausdorffProgress {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct HausdorffOptions {
-    /// Stop once `upper − lower` is at most this: [`Tolerance::Absolute`] in the meshes'
-    /// units, or [`Tolerance::Relative`] as a fraction of the bounding-box diagonal of both
-    /// meshes together (not of the distance). Default `Tolerance::Relative(1e-4)`.
-    pub tolerance: Tolerance,
+    /// Stop once `upper − lower` is at most this: [`Length::Absolute`] in the meshes'
+    /// units, or [`Length::RelativeToDiagonal`] as a fraction of the bounding-box diagonal
+    /// of both meshes together (not of the distance). Default
+    /// `Length::RelativeToDiagonal(1e-4)`.
+    pub tolerance: Length,
     /// Stop refining once this many samples (vertices included) were queried; the result
     /// then says `converged: false`. Default 20 million (about 1.3 GB of samples).
     pub max_samples: usize,
@@ -171,7 +174,7 @@ pub struct HausdorffOptions {
 impl Default for HausdorffOptions {
     fn default() -> Self {
         Self {
-            tolerance: Tolerance::Relative(1e-4),
+            tolerance: Length::RelativeToDiagonal(1e-4),
             max_samples: 20_000_000,
             exact_vertex_distances: false,
             symmetric: true,
@@ -182,7 +185,7 @@ impl Default for HausdorffOptions {
 impl HausdorffOptions {
     /// With the given tolerance.
     #[must_use]
-    pub fn with_tolerance(mut self, tolerance: Tolerance) -> Self {
+    pub fn with_tolerance(mut self, tolerance: Length) -> Self {
         self.tolerance = tolerance;
         self
     }
@@ -277,8 +280,10 @@ impl Run<'_, '_> {
         let symmetric = self.options.symmetric;
         check_non_negative("tolerance", self.options.tolerance.value())?;
         let allowed = match self.options.tolerance {
-            Tolerance::Absolute(t) => t,
-            Tolerance::Relative(f) => f * joint_diagonal(self.a.hierarchy(), self.b.hierarchy()),
+            Length::Absolute(t) => t,
+            Length::RelativeToDiagonal(f) => {
+                f * joint_diagonal(self.a.hierarchy(), self.b.hierarchy())
+            }
         };
         let mut sides = vec![Side::new(self.a, self.b)];
         if symmetric {

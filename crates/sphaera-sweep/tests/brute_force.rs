@@ -111,7 +111,7 @@ proptest! {
         prop_assert!(bounds.lower <= truth + 1e-12 && truth <= bounds.upper + 1e-12,
             "{bounds:?} misses {truth}");
         prop_assert!(bounds.splits <= budget);
-        let relative = session.closest_within(p, Tolerance::Relative(0.1)).expect("ok");
+        let relative = session.closest_within(p, Tolerance::RelativeToUpper(0.1)).expect("ok");
         prop_assert!(relative.lower <= truth + 1e-12 && truth <= relative.upper + 1e-12);
         prop_assert!(relative.gap() <= 0.1 * relative.upper + 1e-12 || relative.closest.is_some());
     }

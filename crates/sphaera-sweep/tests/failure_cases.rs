@@ -517,7 +517,7 @@ fn check_random_queries(mesh: &TriMesh, seed: u64, count: usize) {
         check(mesh, &mut sweeper.session(), p);
         if i % 8 == 0 {
             check_k_closest(mesh, &mut session, p, 3);
-            check_bounds(mesh, &mut session, p, Tolerance::Relative(0.05));
+            check_bounds(mesh, &mut session, p, Tolerance::RelativeToUpper(0.05));
         }
     }
 }
@@ -777,7 +777,10 @@ fn negative_and_nan_parameters_are_errors() {
     let p = DVec3::new(0.2, 0.9, 0.1);
     let invalid = |e: &SweepError, expected: &str| matches!(e, SweepError::InvalidParameter { name, .. } if *name == expected);
     for value in [-1.0, -1e-300, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
-        for tolerance in [Tolerance::Absolute(value), Tolerance::Relative(value)] {
+        for tolerance in [
+            Tolerance::Absolute(value),
+            Tolerance::RelativeToUpper(value),
+        ] {
             let error = session.closest_within(p, tolerance).unwrap_err();
             assert!(invalid(&error, "tolerance"), "{error}");
         }

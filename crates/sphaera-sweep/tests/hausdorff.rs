@@ -6,10 +6,9 @@
 
 use proptest::prelude::*;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
-use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
 use sphaera_sweep::{
-    DirectedHausdorff, Direction, HausdorffOptions, SweepError, Sweeper, Tolerance,
-    build_hierarchy, hausdorff,
+    DirectedHausdorff, Direction, HausdorffOptions, SweepError, Sweeper, build_hierarchy, hausdorff,
 };
 use sphaera_tests::hausdorff::sampled_hausdorff;
 
@@ -113,7 +112,7 @@ proptest! {
         let b = blob(rb, scale, DVec3::new(x, y, z), 0.0);
         let (ha, hb) = (build_hierarchy(&a).expect("a"), build_hierarchy(&b).expect("b"));
         let (sa, sb) = (Sweeper::new(&ha).expect("a"), Sweeper::new(&hb).expect("b"));
-        let result = hausdorff(&sa, &sb, &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(tolerance)))
+        let result = hausdorff(&sa, &sb, &HausdorffOptions::default().with_tolerance(Length::Absolute(tolerance)))
             .expect("valid tolerance");
         prop_assert!(result.converged);
         prop_assert!(result.gap() <= tolerance, "gap {} > {tolerance}", result.gap());
@@ -128,7 +127,7 @@ proptest! {
         prop_assert!(result.upper >= result.a_to_b.upper.max(back.upper) - 1e-15);
 
         // One-sided agrees with the symmetric run's direction.
-        let one = hausdorff(&sa, &sb, &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(tolerance)).with_symmetric(false))
+        let one = hausdorff(&sa, &sb, &HausdorffOptions::default().with_tolerance(Length::Absolute(tolerance)).with_symmetric(false))
             .expect("valid tolerance");
         prop_assert!(one.b_to_a.is_none());
         check_direction(&a, &b, &one.a_to_b);
@@ -148,7 +147,7 @@ fn identical_meshes_are_at_distance_zero_with_both_bounds() {
         let result = hausdorff(
             &s,
             &s,
-            &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(0.0)),
+            &HausdorffOptions::default().with_tolerance(Length::Absolute(0.0)),
         )
         .expect("tolerance 0 is valid");
         assert!(result.lower <= 0.0 && result.upper <= 0.0, "{result:?}");
@@ -163,7 +162,7 @@ fn bad_tolerances_are_errors() {
     let h = build_hierarchy(&mesh).expect("hierarchy");
     let s = Sweeper::new(&h).expect("sweeper");
     for bad in [f64::NAN, -1e-3, f64::INFINITY] {
-        for tolerance in [Tolerance::Absolute(bad), Tolerance::Relative(bad)] {
+        for tolerance in [Length::Absolute(bad), Length::RelativeToDiagonal(bad)] {
             let err = hausdorff(
                 &s,
                 &s,
@@ -192,7 +191,7 @@ fn a_sample_budget_stops_early_with_certified_bounds() {
         &sa,
         &sb,
         &HausdorffOptions::default()
-            .with_tolerance(Tolerance::Absolute(0.0))
+            .with_tolerance(Length::Absolute(0.0))
             .with_max_samples(ha.vertex_count() + hb.vertex_count() + 50),
     )
     .expect("valid");
@@ -202,7 +201,7 @@ fn a_sample_budget_stops_early_with_certified_bounds() {
     let full = hausdorff(
         &sa,
         &sb,
-        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-7)),
+        &HausdorffOptions::default().with_tolerance(Length::Absolute(1e-7)),
     )
     .expect("valid");
     assert!(full.converged && full.gap() <= 1e-7);
@@ -235,7 +234,7 @@ fn open_single_triangle_and_unused_vertices() {
     let result = hausdorff(
         &s1,
         &s2,
-        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-9)),
+        &HausdorffOptions::default().with_tolerance(Length::Absolute(1e-9)),
     )
     .expect("valid");
     assert!(
@@ -261,7 +260,7 @@ fn open_single_triangle_and_unused_vertices() {
     let result = hausdorff(
         &sg,
         &sc,
-        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-4)),
+        &HausdorffOptions::default().with_tolerance(Length::Absolute(1e-4)),
     )
     .expect("valid");
     assert!(result.converged && result.gap() <= 1e-4);
@@ -296,7 +295,7 @@ fn non_manifold_meshes_are_measured() {
     let result = hausdorff(
         &sp,
         &ss,
-        &HausdorffOptions::default().with_tolerance(Tolerance::Absolute(1e-4)),
+        &HausdorffOptions::default().with_tolerance(Length::Absolute(1e-4)),
     )
     .expect("valid");
     assert!(result.converged && result.gap() <= 1e-4);
@@ -341,7 +340,7 @@ fn real_meshes_agree_with_the_parry_sampler() {
         let result = hausdorff(
             &sa,
             &sb,
-            &HausdorffOptions::default().with_tolerance(Tolerance::Relative(1e-4)),
+            &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-4)),
         )
         .expect("valid");
         let sampled = sampled_hausdorff(&a, &b, 20_000, 3);

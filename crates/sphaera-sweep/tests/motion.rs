@@ -73,7 +73,7 @@ fn check(session: &mut Session<'_>, mesh: &TriMesh, positions: &[DVec3], p: DVec
     let q = p + DVec3::new(0.013, -0.007, 0.011);
     let truth = brute(mesh, positions, q);
     let bounds = session
-        .closest_within(q, Tolerance::Relative(0.05))
+        .closest_within(q, Tolerance::RelativeToUpper(0.05))
         .expect("a finite query");
     let slack = 1e-12 * truth.max(1.0);
     assert!(

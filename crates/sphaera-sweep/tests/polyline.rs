@@ -110,7 +110,7 @@ fn check_all<P: PolylinePoint>(polyline: &Polyline<P>, queries: &[P], step: P) {
             assert_eq!((b.lower, b.upper), (c.distance, c.distance));
         }
         let r = anytime
-            .closest_within(p, Tolerance::Relative(0.1))
+            .closest_within(p, Tolerance::RelativeToUpper(0.1))
             .expect("finite");
         check_bounds(polyline, p, r.lower, r.upper);
         assert!(r.gap() <= 0.1 * r.upper + 1e-15 || r.closest.is_some());
@@ -318,7 +318,7 @@ fn non_finite_queries_and_tolerances_are_errors_and_the_session_survives() {
         Err(SweepError::NonFiniteQuery { .. })
     ));
     assert!(matches!(
-        session.closest_within(DVec2::ONE, Tolerance::Relative(-1.0)),
+        session.closest_within(DVec2::ONE, Tolerance::RelativeToUpper(-1.0)),
         Err(SweepError::InvalidParameter { .. })
     ));
     assert!(matches!(

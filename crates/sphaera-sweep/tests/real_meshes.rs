@@ -121,7 +121,7 @@ fn check_bounds(
     let diagonal = mesh.bounding_box_diagonal();
     let slack = 1e-12 * diagonal;
     for tolerance in [
-        Tolerance::Relative(0.01),
+        Tolerance::RelativeToUpper(0.01),
         Tolerance::Absolute(1e-4 * diagonal),
     ] {
         let bounds = session

@@ -6,12 +6,12 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use sphaera::{
     mesh::{
-        TriMesh,
+        Length, TriMesh,
         io::{self, PlyEncoding, colormap},
     },
     simplify::{SimplifyOptions, simplify},
     sweep::{
-        DirectedHausdorff, Direction, HausdorffOptions, HausdorffProgress, Sweeper, Tolerance,
+        DirectedHausdorff, Direction, HausdorffOptions, HausdorffProgress, Sweeper,
         build_hierarchy, hausdorff_with_progress,
     },
 };
@@ -142,7 +142,7 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
     };
     let started = Instant::now();
     let options = HausdorffOptions::default()
-        .with_tolerance(Tolerance::Absolute(tolerance))
+        .with_tolerance(Length::Absolute(tolerance))
         .with_max_samples(args.max_samples)
         .with_symmetric(!args.one_sided);
     let result = hausdorff_with_progress(&sa, &sb, &options, &report_progress);

@@ -7,8 +7,8 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
-use sphaera::mesh::Surface;
 use sphaera::mesh::io::write_atomic;
+use sphaera::mesh::{Length, Surface};
 use sphaera::spheretree::export::{
     CollisionLink, SphFile, write_collision_spheres_yaml, write_sph, write_tree_json,
 };
@@ -178,7 +178,8 @@ fn evaluate_levels(
     skip: bool,
     quiet: bool,
 ) -> Result<Vec<LevelReport>> {
-    let options = EvaluationOptions::default().with_relative_tolerance(EVALUATION_TOLERANCE);
+    let options = EvaluationOptions::default()
+        .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE));
     let bar = progress::bar(quiet, "evaluating", tree.level_count() as u64);
     let mut out = Vec::with_capacity(tree.level_count());
     for level in 0..tree.level_count() {

@@ -7,7 +7,7 @@
 //! (`simplify(&m, &SimplifyOptions::default().with_target_ratio(0.15))`, defaults
 //! otherwise).
 //!
-//! - **Sphaera**: `hausdorff(&a, &b, &HausdorffOptions::default().with_tolerance(Tolerance::Relative(t)))` for
+//! - **Sphaera**: `hausdorff(&a, &b, &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(t)))` for
 //!   each `t` of [`TOLERANCES`] (relative to the bounding-box diagonal of both meshes
 //!   together). The hierarchies and sweepers are built once per pair, **outside** the
 //!   timing (their build time, which is parallel, is in the CSV as `build_seconds`); the
@@ -24,9 +24,9 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    mesh::TriMesh,
+    mesh::{Length, TriMesh},
     simplify::{SimplifyOptions, simplify},
-    sweep::{HausdorffOptions, Sweeper, Tolerance, build_hierarchy, hausdorff},
+    sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff},
 };
 
 use super::{load_mesh, load_or_skip, min_time};
@@ -115,7 +115,7 @@ fn measure_pair(
             Ok(hausdorff(
                 &sa,
                 &sb,
-                &HausdorffOptions::default().with_tolerance(Tolerance::Relative(tolerance)),
+                &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(tolerance)),
             )?)
         })?;
         let samples = result.a_to_b.samples + result.b_to_a.as_ref().map_or(0, |s| s.samples);

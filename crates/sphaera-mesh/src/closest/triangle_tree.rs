@@ -53,7 +53,7 @@ impl TriangleTree {
     /// # Errors
     ///
     /// [`MeshError::EmptyMesh`] if the mesh has no triangle;
-    /// [`MeshError::TooManyTriangles`] beyond what 32-bit triangle indices address.
+    /// [`MeshError::TooManyItems`] beyond what 32-bit triangle indices address.
     ///
     /// # Performance
     ///
@@ -64,21 +64,16 @@ impl TriangleTree {
         if indexed.is_empty() {
             return Err(MeshError::EmptyMesh);
         }
-        if u32::try_from(indexed.len()).is_err() {
-            return Err(MeshError::TooManyTriangles {
-                count: indexed.len(),
-            });
-        }
         let corners_of = |t: &[u32; 3]| t.map(|v| positions[v as usize]);
-        let (bounds, centroids): (Vec<Aabb>, Vec<DVec3>) = indexed
+        let items: Vec<(Aabb, DVec3)> = indexed
             .iter()
             .map(|t| {
                 let corners = corners_of(t);
                 let [a, b, c] = corners;
                 (Aabb::from_points(corners), (a + b + c) / 3.0)
             })
-            .unzip();
-        let boxes = BoxTree::build(&bounds, &centroids, LEAF_SIZE);
+            .collect();
+        let boxes = BoxTree::build(&items, LEAF_SIZE)?;
         let corners = boxes
             .order()
             .iter()

@@ -246,7 +246,7 @@ impl WindingNumber {
             });
         }
         Ok(Self {
-            tree: Tree::build(mesh),
+            tree: Tree::build(mesh)?,
             options,
         })
     }

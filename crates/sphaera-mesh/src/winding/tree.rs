@@ -5,7 +5,7 @@
 use glam::{DMat3, DVec3};
 
 use crate::bvh::BoxTree;
-use crate::{Aabb, TriMesh};
+use crate::{Aabb, MeshError, TriMesh};
 
 /// Most triangles in a leaf.
 pub(crate) const LEAF_SIZE: usize = 8;
@@ -64,7 +64,7 @@ impl Tree {
     /// the centroids, at most [`LEAF_SIZE`] per leaf), with each node's expansion computed
     /// over its triangles as the node is made. `mesh` must have at least one triangle and
     /// fewer than `u32::MAX` (the caller checks both).
-    pub(crate) fn build(mesh: &TriMesh) -> Self {
+    pub(crate) fn build(mesh: &TriMesh) -> Result<Self, MeshError> {
         let items: Vec<Item> = mesh
             .triangle_iter()
             .map(|t| {
@@ -85,12 +85,14 @@ impl Tree {
                 }
             })
             .collect();
-        let bounds: Vec<Aabb> = items.iter().map(|i| Aabb::from_points(i.corners)).collect();
-        let centroids: Vec<DVec3> = items.iter().map(|i| i.centroid).collect();
+        let boxed: Vec<(Aabb, DVec3)> = items
+            .iter()
+            .map(|i| (Aabb::from_points(i.corners), i.centroid))
+            .collect();
         let mut nodes = Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1);
-        let boxes = BoxTree::build_visiting(&bounds, &centroids, LEAF_SIZE, |order| {
+        let boxes = BoxTree::build_visiting(&boxed, LEAF_SIZE, |order| {
             nodes.push(expansion_of(&items, order));
-        });
+        })?;
         for (node, shape) in nodes.iter_mut().zip(boxes.nodes()) {
             // Lossless: the caller checked that the triangle count fits a u32.
             (node.first, node.count) = match shape.right() {
@@ -103,7 +105,7 @@ impl Tree {
             .iter()
             .map(|&i| items[i as usize].corners)
             .collect();
-        Self { nodes, corners }
+        Ok(Self { nodes, corners })
     }
 }
 
@@ -179,7 +181,7 @@ mod tests {
     #[test]
     fn leaves_partition_the_triangles_and_radii_cover_them() {
         let mesh = shapes::torus(1.0, 0.35, 20).unwrap();
-        let tree = Tree::build(&mesh);
+        let tree = Tree::build(&mesh).unwrap();
         assert_eq!(tree.corners.len(), mesh.triangle_count());
         let mut covered = vec![false; tree.corners.len()];
         for (index, node) in tree.nodes.iter().enumerate() {
@@ -205,7 +207,7 @@ mod tests {
     #[test]
     fn build_is_deterministic() {
         let mesh = shapes::sphere(1.0, 24).unwrap();
-        let (a, b) = (Tree::build(&mesh), Tree::build(&mesh));
+        let (a, b) = (Tree::build(&mesh).unwrap(), Tree::build(&mesh).unwrap());
         assert_eq!(a.corners, b.corners);
         assert_eq!(a.nodes.len(), b.nodes.len());
     }

@@ -12,23 +12,35 @@ use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, sampling};
 
 use crate::SphereTreeError;
-use crate::options::{Method, SphereTreeOptions, SphereTreeProgress};
+use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{centre_depth, eq2_error};
 use crate::tree::{SphereTree, TreeNode};
 
-/// Builds the tree of a baseline method (`options` validated).
-pub(crate) fn build(
+/// The octree tree of `surface` (`options` validated).
+pub(crate) fn octree(
     surface: &Surface,
     options: &SphereTreeOptions,
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
-    let start = start(surface, options)?;
-    match options.method {
-        Method::Octree => octree::octree(&start, options, progress),
-        Method::Grid => grid::grid(&start, options, progress),
-        // The medial methods never reach here; Hubbard's is the medial baseline.
-        _ => hubbard::hubbard(&start, options, progress),
-    }
+    octree::octree(&start(surface, options)?, options, progress)
+}
+
+/// The grid tree of `surface` (`options` validated).
+pub(crate) fn grid(
+    surface: &Surface,
+    options: &SphereTreeOptions,
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
+    grid::grid(&start(surface, options)?, options, progress)
+}
+
+/// Hubbard's tree of `surface` (`options` validated).
+pub(crate) fn hubbard(
+    surface: &Surface,
+    options: &SphereTreeOptions,
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
+    hubbard::hubbard(&start(surface, options)?, options, progress)
 }
 
 /// The start every baseline shares: the surface, its samples and the root.

@@ -91,9 +91,9 @@ pub fn coverage(
         return Err(SphereTreeError::EmptySphereSet);
     }
     check_spheres(spheres)?;
-    let samples = sampling::random(mesh, options.coverage_samples(), options.seed())?;
+    let samples = sampling::random(mesh, options.coverage_samples, options.seed)?;
     let points: Vec<DVec3> = samples.iter().map(|s| s.position).collect();
-    let bvh = SphereBvh::new(spheres);
+    let bvh = SphereBvh::new(spheres)?;
     let gap = |p: &DVec3| bvh.distance_to_union(*p);
     #[cfg(feature = "parallel")]
     let gaps: Vec<f64> = {

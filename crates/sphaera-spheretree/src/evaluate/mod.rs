@@ -53,7 +53,7 @@
 //!
 //! `lower` is `f(p)` at the best probe. The patches wait in a max-heap by upper bound; the
 //! search stops when the largest upper bound is within the tolerance of `lower`
-//! ([`EvaluationOptions::with_tolerance`], default 10⁻⁴ of the mesh's diagonal), or at
+//! ([`EvaluationOptions::tolerance`], default 10⁻⁴ of the mesh's diagonal), or at
 //! the patch budget ([`EvaluationOptions::with_max_patches`]; then
 //! [`SphereFit::converged`] is `false` and the interval, still valid, is wider). Patches
 //! whose bound is already within the tolerance of `lower` are never split.

@@ -1,5 +1,7 @@
 //! The parameters of fit evaluation.
 
+use sphaera_mesh::Length;
+
 use crate::SphereTreeError;
 
 /// Default error tolerance, as a fraction of the mesh's bounding-box diagonal.
@@ -17,51 +19,49 @@ pub const DEFAULT_COVERAGE_SEED: u64 = 0x5EA1;
 /// The 20 faces of the icosahedron the branch and bound starts from.
 pub(crate) const INITIAL_PATCHES: usize = 20;
 
-/// Parameters of [`sphere_error`](super::sphere_error), [`sphere_errors`](super::sphere_errors),
-/// [`coverage`](super::coverage) and [`evaluate_set`](super::evaluate_set), set
-/// builder-style so that options can be added without breaking callers.
-///
-/// - **tolerance**: the branch and bound stops when the certified interval
-///   `[lower, upper]` of a sphere's error is at most this wide. Absolute (scene units) with
-///   [`EvaluationOptions::with_tolerance`]; by default
-///   [`DEFAULT_RELATIVE_TOLERANCE`] (10⁻⁴) times the mesh's bounding-box diagonal.
-/// - **patch budget** ([`DEFAULT_MAX_PATCHES`]): the most surface patches evaluated per
-///   sphere; a sphere that reaches it reports `converged: false` (its interval stays
-///   valid, only wider).
-/// - **coverage samples and seed** ([`DEFAULT_COVERAGE_SAMPLES`],
-///   [`DEFAULT_COVERAGE_SEED`]): the independent area-weighted surface samples of the
-///   uncovered-surface measure.
+/// Options of [`sphere_error`](super::sphere_error), [`sphere_errors`](super::sphere_errors),
+/// [`coverage`](super::coverage) and [`evaluate_set`](super::evaluate_set).
 ///
 /// # Examples
 ///
 /// ```
+/// use sphaera_mesh::Length;
 /// use sphaera_spheretree::evaluate::EvaluationOptions;
 ///
 /// let options = EvaluationOptions::default()
-///     .with_tolerance(1e-3)
+///     .with_tolerance(Length::Absolute(1e-3))
 ///     .with_coverage_samples(10_000)
 ///     .with_seed(7);
 /// assert_eq!(options.tolerance_for(2.0), 1e-3);
 /// assert_eq!(EvaluationOptions::default().tolerance_for(2.0), 2e-4);
-/// assert_eq!(options.coverage_samples(), 10_000);
+/// assert_eq!(options.coverage_samples, 10_000);
 /// assert!(options.validate().is_ok());
-/// assert!(EvaluationOptions::default().with_tolerance(-1.0).validate().is_err());
+/// let negative = EvaluationOptions::default().with_tolerance(Length::Absolute(-1.0));
+/// assert!(negative.validate().is_err());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct EvaluationOptions {
-    tolerance: Option<f64>,
-    relative_tolerance: f64,
-    max_patches: usize,
-    coverage_samples: usize,
-    seed: u64,
+    /// The branch and bound stops when the certified interval `[lower, upper]` of a
+    /// sphere's error is at most this wide (default [`DEFAULT_RELATIVE_TOLERANCE`], 10⁻⁴,
+    /// of the mesh's bounding-box diagonal). Finite and positive.
+    pub tolerance: Length,
+    /// The most surface patches evaluated per sphere (default [`DEFAULT_MAX_PATCHES`], at
+    /// least 20: the icosahedron's faces); a sphere that reaches it reports
+    /// `converged: false` (its interval stays valid, only wider).
+    pub max_patches: usize,
+    /// Independent area-weighted surface samples of the uncovered-surface measure
+    /// (default [`DEFAULT_COVERAGE_SAMPLES`], at least 1).
+    pub coverage_samples: usize,
+    /// Their seed (default [`DEFAULT_COVERAGE_SEED`]).
+    pub seed: u64,
 }
 
 impl Default for EvaluationOptions {
     /// Tolerance 10⁻⁴ of the diagonal, 50,000 patches per sphere, 100,000 coverage samples.
     fn default() -> Self {
         Self {
-            tolerance: None,
-            relative_tolerance: DEFAULT_RELATIVE_TOLERANCE,
+            tolerance: Length::RelativeToDiagonal(DEFAULT_RELATIVE_TOLERANCE),
             max_patches: DEFAULT_MAX_PATCHES,
             coverage_samples: DEFAULT_COVERAGE_SAMPLES,
             seed: DEFAULT_COVERAGE_SEED,
@@ -70,40 +70,28 @@ impl Default for EvaluationOptions {
 }
 
 impl EvaluationOptions {
-    /// Sets an absolute tolerance (scene units) on the width of each sphere's error
-    /// interval; it replaces the relative tolerance. Must be finite and positive.
+    /// With the given tolerance on the width of each sphere's error interval.
     #[must_use]
-    pub fn with_tolerance(mut self, tolerance: f64) -> Self {
-        self.tolerance = Some(tolerance);
+    pub fn with_tolerance(mut self, tolerance: Length) -> Self {
+        self.tolerance = tolerance;
         self
     }
 
-    /// Sets the tolerance as a fraction of the mesh's bounding-box diagonal (default
-    /// 10⁻⁴), and forgets any absolute tolerance. Must be finite and positive.
-    #[must_use]
-    pub fn with_relative_tolerance(mut self, fraction: f64) -> Self {
-        self.tolerance = None;
-        self.relative_tolerance = fraction;
-        self
-    }
-
-    /// Sets the budget of surface patches evaluated per sphere (default 50,000, at
-    /// least 20: the icosahedron's faces).
+    /// With a budget of surface patches per sphere.
     #[must_use]
     pub fn with_max_patches(mut self, max_patches: usize) -> Self {
         self.max_patches = max_patches;
         self
     }
 
-    /// Sets the number of surface samples of the coverage measure (default 100,000, at
-    /// least 1).
+    /// With `samples` surface samples for the coverage measure.
     #[must_use]
     pub fn with_coverage_samples(mut self, samples: usize) -> Self {
         self.coverage_samples = samples;
         self
     }
 
-    /// Sets the seed of the coverage samples.
+    /// With the given seed of the coverage samples.
     #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
@@ -113,25 +101,7 @@ impl EvaluationOptions {
     /// The absolute tolerance for a mesh of bounding-box diagonal `diagonal`.
     #[must_use]
     pub fn tolerance_for(&self, diagonal: f64) -> f64 {
-        self.tolerance.unwrap_or(self.relative_tolerance * diagonal)
-    }
-
-    /// The budget of patches per sphere.
-    #[must_use]
-    pub fn max_patches(&self) -> usize {
-        self.max_patches
-    }
-
-    /// The number of coverage samples.
-    #[must_use]
-    pub fn coverage_samples(&self) -> usize {
-        self.coverage_samples
-    }
-
-    /// The seed of the coverage samples.
-    #[must_use]
-    pub fn seed(&self) -> u64 {
-        self.seed
+        self.tolerance.resolve(diagonal)
     }
 
     /// Checks every option.
@@ -141,20 +111,11 @@ impl EvaluationOptions {
     /// [`SphereTreeError::InvalidParameter`] for a tolerance that is not finite and
     /// positive, a patch budget below 20 or no coverage samples.
     pub fn validate(&self) -> Result<(), SphereTreeError> {
-        if let Some(t) = self.tolerance
-            && !(t.is_finite() && t > 0.0)
-        {
+        let t = self.tolerance.value();
+        if !(t.is_finite() && t > 0.0) {
             return Err(SphereTreeError::InvalidParameter {
                 name: "tolerance",
                 value: t,
-                requirement: "finite and positive",
-            });
-        }
-        let rel = self.relative_tolerance;
-        if !(rel.is_finite() && rel > 0.0) {
-            return Err(SphereTreeError::InvalidParameter {
-                name: "relative_tolerance",
-                value: rel,
                 requirement: "finite and positive",
             });
         }

@@ -22,14 +22,21 @@ pub(crate) struct SphereBvh {
 
 impl SphereBvh {
     /// The hierarchy over `spheres` (valid spheres).
-    pub fn new(spheres: &[Sphere]) -> Self {
-        let bounds: Vec<Aabb> = spheres.iter().map(Sphere::bounding_box).collect();
-        let centres: Vec<DVec3> = spheres.iter().map(|s| s.center).collect();
-        let boxes = BoxTree::build(&bounds, &centres, LEAF_SIZE);
-        Self {
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::TooManyItems`](sphaera_mesh::MeshError::TooManyItems) for more
+    /// spheres than 32-bit indices address.
+    pub fn new(spheres: &[Sphere]) -> Result<Self, sphaera_mesh::MeshError> {
+        let items: Vec<(Aabb, DVec3)> = spheres
+            .iter()
+            .map(|s| (s.bounding_box(), s.center))
+            .collect();
+        let boxes = BoxTree::build(&items, LEAF_SIZE)?;
+        Ok(Self {
             spheres: boxes.order().iter().map(|&i| spheres[i as usize]).collect(),
             boxes,
-        }
+        })
     }
 
     /// The distance from `p` to the union of the balls: 0 when a ball contains `p`, else
@@ -90,7 +97,7 @@ mod tests {
             let c = DVec3::new((t * 0.37).sin(), (t * 0.71).cos(), (t * 0.13).sin()) * 3.0;
             spheres.push(Sphere::new(c, 0.05 + 0.2 * (t * 0.9).sin().abs()));
         }
-        let bvh = SphereBvh::new(&spheres);
+        let bvh = SphereBvh::new(&spheres).unwrap();
         for j in 0..500_u32 {
             let t = f64::from(j);
             let p = DVec3::new((t * 1.3).sin(), (t * 0.5).cos(), (t * 0.77).cos()) * 4.0;
@@ -103,6 +110,7 @@ mod tests {
     fn empty_is_infinitely_far() {
         assert!(
             SphereBvh::new(&[])
+                .unwrap()
                 .distance_to_union(DVec3::ZERO)
                 .is_infinite()
         );

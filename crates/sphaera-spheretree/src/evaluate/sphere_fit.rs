@@ -158,7 +158,7 @@ pub fn sphere_error(
     if !sphere.is_valid() {
         return Err(SphereTreeError::InvalidSphere { index: 0 });
     }
-    fit(surface, sphere, tolerance, options.max_patches())
+    fit(surface, sphere, tolerance, options.max_patches)
 }
 
 /// The branch and bound, for a valid sphere and a checked tolerance.
@@ -263,7 +263,7 @@ pub fn sphere_errors(
 ) -> Result<Vec<SphereFit>, SphereTreeError> {
     let tolerance = options.checked_tolerance(surface.diagonal())?;
     check_spheres(spheres)?;
-    let max_patches = options.max_patches();
+    let max_patches = options.max_patches;
     let one = |s: &Sphere| fit(surface, s, tolerance, max_patches);
     #[cfg(feature = "parallel")]
     {

@@ -104,8 +104,10 @@ struct State<'a> {
 ///
 /// # Errors
 ///
-/// [`SphereTreeError::InvalidParameter`] for `target == 0` or points no candidate
-/// covers, [`SphereTreeError::InvalidSphere`] for a NaN or negative candidate.
+/// [`SphereTreeError::InvalidParameter`] for `target == 0`,
+/// [`SphereTreeError::UncoveredPoint`] for a point no candidate covers,
+/// [`SphereTreeError::CoverOutOfRange`] for a candidate listing a point that does not
+/// exist, [`SphereTreeError::InvalidSphere`] for a NaN or negative candidate.
 ///
 /// # Panics
 ///

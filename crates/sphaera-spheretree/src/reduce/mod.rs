@@ -119,10 +119,9 @@ pub(crate) fn points_within(points: &[DVec3], sphere: &Sphere) -> Vec<u32> {
         .collect()
 }
 
-/// Which reducer to run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Reducer {
+/// Which reducer a medial [`Method`](crate::Method) runs per node.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) enum Reducer {
     /// [`merge`].
     Merge,
     /// [`burst`].
@@ -169,7 +168,7 @@ pub fn combined(
 /// # Errors
 ///
 /// As [`merge`].
-pub fn reduce(
+pub(crate) fn reduce(
     reducer: Reducer,
     input: &ReductionInput<'_>,
     target: usize,

@@ -32,7 +32,7 @@
 //!     .collect();
 //! let polyline = Polyline::open(wave)?;
 //! let mut session = polyline.session();
-//! let bounds = session.closest_within(DVec3::new(5.0, 0.0, 3.0), Tolerance::Relative(0.01))?;
+//! let bounds = session.closest_within(DVec3::new(5.0, 0.0, 3.0), Tolerance::RelativeToUpper(0.01))?;
 //! let exact = session.closest(DVec3::new(5.0, 0.0, 3.0))?.distance;
 //! assert!(bounds.lower <= exact && exact <= bounds.upper);
 //! assert!(bounds.gap() <= 0.01 * bounds.upper);

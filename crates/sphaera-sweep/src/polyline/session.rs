@@ -258,7 +258,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
     ///     .collect();
     /// let polyline = Polyline::closed(circle)?;
     /// let mut session = polyline.session();
-    /// let bounds = session.closest_within(DVec2::new(3.0, 0.0), Tolerance::Relative(0.01))?;
+    /// let bounds = session.closest_within(DVec2::new(3.0, 0.0), Tolerance::RelativeToUpper(0.01))?;
     /// assert!(bounds.lower <= 2.0 && 2.0 <= bounds.upper);
     /// assert!(bounds.gap() <= 0.01 * bounds.upper);
     /// # Ok::<(), sphaera_sweep::SweepError>(())

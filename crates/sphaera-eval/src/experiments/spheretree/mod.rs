@@ -18,7 +18,7 @@
 //! `parallel` feature on every core, whereas the toolkit's figures are single-threaded
 //! CPU seconds), and per level 1 to
 //! [`DEPTH`] the **certified worst error**: `evaluate_set` on the level's spheres with
-//! `EvaluationOptions::default().with_relative_tolerance(`[`EVALUATION_TOLERANCE`]`)`
+//! `EvaluationOptions::default().with_tolerance(Length::RelativeToDiagonal(`[`EVALUATION_TOLERANCE`]`))`
 //! (the tolerance of `sphaera spheretree`), which bounds the true worst distance from a
 //! sphere's surface to the object (the paper's eq. 2, evaluated exactly) in
 //! `[lower, upper]`. The charts plot the **upper** end, the CSV has both, with the mean
@@ -41,7 +41,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    mesh::{Surface, TriMesh},
+    mesh::{Length, Surface, TriMesh},
     spheretree::{EvaluationOptions, Method, SphereTree, SphereTreeOptions, build, evaluate_set},
 };
 
@@ -182,7 +182,8 @@ fn measure_mesh(
 ) -> Result<()> {
     let surface = Surface::new(mesh).context("cannot prepare the surface")?;
     let diagonal = surface.diagonal();
-    let options = EvaluationOptions::default().with_relative_tolerance(EVALUATION_TOLERANCE);
+    let options = EvaluationOptions::default()
+        .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE));
     for &method in METHODS {
         let (seconds, tree) = min_time(RUNS, || build_tree(method, mesh))?;
         let mut levels = Vec::new();
