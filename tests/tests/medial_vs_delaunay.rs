@@ -78,7 +78,7 @@ fn check(name: &str, mesh: &TriMesh) {
             .with_max_error(0.0);
         goal.max_iterations = 60;
         let outcome = medial
-            .refine_region(region, goal)
+            .refine_region(region, &goal)
             .unwrap_or_else(|e| panic!("{name}: refine {half}: {e}"));
         assert!(outcome.improvements > 0, "{name}: {half} half not refined");
         let worst = outcome.spheres.iter().map(|s| s.error).fold(0.0, f64::max);

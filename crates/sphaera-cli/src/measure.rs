@@ -80,8 +80,8 @@ mod tests {
     fn samples_cover_vertices_midpoints_and_random_points() {
         let cube = shapes::cube(1.0, 1).expect("a cube"); // 8 vertices, 18 edges
         let options = options();
-        let first = measure::SurfaceSamples::new(&cube, &options.samples()).expect("samples");
+        let first = measure::SurfaceSamples::new(&cube, &options.samples).expect("samples");
         assert_eq!(first.len(), 8 + 18 + RANDOM_SAMPLES);
-        assert_eq!(options.second_samples().seed(), SEED + 1);
+        assert_eq!(options.second_samples().seed, SEED + 1);
     }
 }

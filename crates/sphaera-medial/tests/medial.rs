@@ -189,7 +189,7 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     let outcome = medial
         .refine_region(
             &region,
-            RegionOptions::default()
+            &RegionOptions::default()
                 .with_min_spheres(50)
                 .with_max_error(before / 4.0),
         )
@@ -208,7 +208,7 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     let again = medial
         .refine_region(
             &region,
-            RegionOptions::default()
+            &RegionOptions::default()
                 .with_min_spheres(10)
                 .with_max_error(before),
         )
@@ -219,7 +219,7 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     assert!(matches!(
         medial.refine_region(
             &[u32::MAX],
-            RegionOptions::default()
+            &RegionOptions::default()
                 .with_min_spheres(1)
                 .with_max_error(1.0)
         ),
@@ -228,7 +228,7 @@ fn a_region_is_refined_to_its_goal_and_coverage_is_kept() {
     assert!(matches!(
         medial.refine_region(
             &region,
-            RegionOptions::default()
+            &RegionOptions::default()
                 .with_min_spheres(1)
                 .with_max_error(f64::NAN)
         ),

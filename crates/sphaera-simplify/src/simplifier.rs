@@ -253,12 +253,22 @@ impl SimplifyOptions {
 /// # Examples
 ///
 /// ```
-/// use sphaera_simplify::SimplifyProgress;
+/// use std::sync::Mutex;
+/// use sphaera_mesh::shapes;
+/// use sphaera_simplify::{SimplifyOptions, SimplifyProgress, simplify_with_progress};
 ///
-/// let p = SimplifyProgress { removed: 50, to_remove: 200 };
-/// assert_eq!(p.fraction(), 0.25);
+/// let sphere = shapes::sphere(1.0, 16)?;
+/// let fractions = Mutex::new(Vec::new());
+/// let report = |p: &SimplifyProgress| fractions.lock().unwrap().push(p.fraction());
+/// let options = SimplifyOptions::default().with_target_ratio(0.5);
+/// simplify_with_progress(&sphere, &options, &report)?;
+/// let fractions = fractions.into_inner().unwrap();
+/// assert!(fractions.windows(2).all(|w| w[0] <= w[1]));
+/// assert!(fractions.iter().all(|f| (0.0..=1.0).contains(f)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub struct SimplifyProgress {
     /// Triangles removed so far.
     pub removed: usize,

@@ -136,7 +136,7 @@ fn medial_tree(
                 .with_min_spheres(wanted)
                 .with_max_error(options.error_fraction * nodes[parent].error)
                 .with_max_iterations(REFINE_STEPS_PER_SPHERE * wanted.max(1));
-            let outcome = medial.refine_region(region, goal)?;
+            let outcome = medial.refine_region(region, &goal)?;
             problems.push(Some(candidates(region, &outcome.spheres)));
         }
         let reduced = reduce_all(

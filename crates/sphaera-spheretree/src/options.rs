@@ -44,6 +44,7 @@ pub const MAX_BASELINE_SAMPLES: usize = 10_000_000;
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
+#[non_exhaustive]
 pub enum Method {
     /// Medial spheres reduced by pair merges, the tightest result first
     /// ([`reduce::merge`](crate::reduce::merge)).
@@ -344,6 +345,7 @@ impl SphereTreeOptions {
 
 /// Progress of [`build_with_progress`](crate::build_with_progress).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct SphereTreeProgress {
     /// The level being built (1 for the root's children).
     pub level: usize,

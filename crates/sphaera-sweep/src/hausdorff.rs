@@ -90,6 +90,7 @@ impl HausdorffDistance {
 
 /// Progress of a Hausdorff computation, reported every few thousand samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct HausdorffProgress {
     /// Vertices queried so far, of [`vertices`](Self::vertices).
     pub vertices_done: usize,

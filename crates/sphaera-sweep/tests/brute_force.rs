@@ -80,7 +80,7 @@ proptest! {
         let sweeper = Sweeper::new(hierarchy).expect("non-empty");
         // Independent queries, one coherent session, and a session that never resets.
         let mut session = sweeper.session();
-        let mut sticky = sweeper.session_with(SessionOptions::default().with_max_triangles(usize::MAX).with_jump_factor(f64::INFINITY));
+        let mut sticky = sweeper.session_with(&SessionOptions::default().with_max_triangles(usize::MAX).with_jump_factor(f64::INFINITY));
         for &p in &points {
             check_closest(mesh, &mut sweeper.session(), p);
             check_closest(mesh, &mut session, p);

@@ -881,7 +881,7 @@ fn one_session_through_every_case_in_sequence() {
             .with_max_triangles(0)
             .with_jump_factor(0.0),
     ] {
-        let mut s = sweeper.session_with(options);
+        let mut s = sweeper.session_with(&options);
         let vertex = mesh.positions()[5];
         let cube_centre = DVec3::ZERO;
         check(&mesh, &mut s, cube_centre);
@@ -926,7 +926,7 @@ fn one_session_through_every_case_in_sequence() {
 fn random_walk(mesh: &TriMesh, options: SessionOptions, seed: u64, steps: usize, very_far: bool) {
     let hierarchy = build_hierarchy(mesh).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
-    let mut session = sweeper.session_with(options);
+    let mut session = sweeper.session_with(&options);
     let bbox = mesh.bounding_box();
     let (center, size) = (bbox.center(), mesh.bounding_box_diagonal());
     let mut rng = SplitMix64::new(seed);
@@ -1074,7 +1074,7 @@ fn far_jumps_keep_the_bounds_of_a_kept_session_certified() {
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     for far in [1e6, 1e12] {
         let mut session = sweeper.session_with(
-            SessionOptions::default()
+            &SessionOptions::default()
                 .with_max_triangles(usize::MAX)
                 .with_jump_factor(f64::INFINITY),
         );

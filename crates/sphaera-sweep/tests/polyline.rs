@@ -86,7 +86,7 @@ fn check_all<P: PolylinePoint>(polyline: &Polyline<P>, queries: &[P], step: P) {
     }
     // A coherent walk: small steps, never resetting for jumps.
     let mut walk =
-        polyline.session_with(PolylineSessionOptions::default().with_jump_factor(f64::INFINITY));
+        polyline.session_with(&PolylineSessionOptions::default().with_jump_factor(f64::INFINITY));
     let mut p = queries[0];
     for i in 0..40 {
         let wiggle = if i % 3 == 0 { step * -0.5 } else { step };
@@ -382,7 +382,7 @@ fn repeated_points_vertices_and_far_queries() {
 fn the_reset_policy_keeps_answers_exact_and_is_counted() {
     let polyline = Polyline::closed(helix(3000)).expect("valid");
     let mut session = polyline.session_with(
-        PolylineSessionOptions::default()
+        &PolylineSessionOptions::default()
             .with_max_front(8)
             .with_jump_factor(f64::INFINITY),
     );

@@ -105,7 +105,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
         CoverArg::SmallestError => CoverCriterion::SmallestError,
         CoverArg::LargestCoverage => CoverCriterion::LargestCoverage,
     };
-    let mut params = MedialOptions::default().with_cover(cover);
+    let mut options = MedialOptions::default().with_cover(cover);
     let target = match (args.spheres, args.max_error) {
         _ if args.static_points.is_some() => format!(
             "{} forming points, no improvement",
@@ -113,12 +113,12 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
         ),
         (_, Some(error)) => {
             let e = error.resolve(diagonal);
-            params = params.with_max_error(e);
+            options = options.with_max_error(e);
             format!("max-error {e:.6e}")
         }
         (spheres, None) => {
             let n = spheres.unwrap_or(DEFAULT_SPHERES);
-            params = params.with_target_spheres(n);
+            options = options.with_target_spheres(n);
             format!("spheres {n}")
         }
     };
@@ -130,7 +130,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
         spinner.finish_and_clear();
         (medial?, "static")
     } else {
-        let bar = match params.target_spheres {
+        let bar = match options.target_spheres {
             Some(n) => progress::bar(quiet, "improving the medial spheres", n as u64),
             None => progress::spinner(quiet, "improving the medial spheres"),
         };
@@ -142,7 +142,8 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
                 p.worst_error
             ));
         };
-        let medial = MedialApproximation::build_with_progress(&surface, &samples, &params, &report);
+        let medial =
+            MedialApproximation::build_with_progress(&surface, &samples, &options, &report);
         bar.finish_and_clear();
         (medial?, "adaptive")
     };

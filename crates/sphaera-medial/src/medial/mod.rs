@@ -25,12 +25,12 @@
 //! every point of the sphere is within `r` of `v`, which is within `‖q − v‖` of the surface.
 
 mod grid;
-mod params;
+mod options;
 mod sphere;
 
 use glam::DVec3;
 
-pub use params::{CoverCriterion, MedialOptions, RegionOptions};
+pub use options::{CoverCriterion, MedialOptions, RegionOptions};
 pub use sphere::{MedialSphere, SphereKind};
 
 use crate::{Delaunay, DelaunayError, MedialError, Surface, TetId};
@@ -78,6 +78,7 @@ pub struct MedialStats {
 
 /// Progress of [`MedialApproximation::build_with_progress`].
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct MedialProgress {
     /// Spheres in the set now.
     pub spheres: usize,
@@ -152,7 +153,7 @@ pub struct MedialApproximation<'s> {
 impl<'s> MedialApproximation<'s> {
     /// Builds the adaptive approximation of `surface` covering `samples` (points on the
     /// surface, e.g. from [`sphaera_mesh::sampling::poisson_disk`]), improved until
-    /// `params`' target is reached (the first of [`MedialOptions::target_spheres`] and
+    /// `options`' target is reached (the first of [`MedialOptions::target_spheres`] and
     /// [`MedialOptions::max_error`]; with neither, coverage only).
     ///
     /// # Errors
@@ -166,9 +167,9 @@ impl<'s> MedialApproximation<'s> {
     pub fn build(
         surface: &'s Surface,
         samples: &[DVec3],
-        params: &MedialOptions,
+        options: &MedialOptions,
     ) -> Result<Self, MedialError> {
-        Self::build_with_progress(surface, samples, params, &|_| {})
+        Self::build_with_progress(surface, samples, options, &|_| {})
     }
 
     /// [`MedialApproximation::build`], calling `progress` after coverage and then every
@@ -180,13 +181,13 @@ impl<'s> MedialApproximation<'s> {
     pub fn build_with_progress(
         surface: &'s Surface,
         samples: &[DVec3],
-        params: &MedialOptions,
+        options: &MedialOptions,
         progress: &(dyn Fn(&MedialProgress) + Sync),
     ) -> Result<Self, MedialError> {
-        validate_params(params)?;
-        let mut medial = Self::start(surface, samples, params.initial_points, params.cover)?;
+        validate_options(options)?;
+        let mut medial = Self::start(surface, samples, options.initial_points, options.cover)?;
         medial.ensure_coverage()?;
-        medial.improve(params, progress)?;
+        medial.improve(options, progress)?;
         Ok(medial)
     }
 
@@ -329,9 +330,10 @@ impl<'s> MedialApproximation<'s> {
     }
 
     /// Improves the spheres covering `region` (indices of surface samples) until at least
-    /// `goal.min_spheres` of them cover some region sample and their worst error is at
-    /// most `goal.max_error`, replacing the worst of them each step; coverage of all
-    /// samples is kept. This is the per-node step of sphere-tree construction.
+    /// `options.min_spheres` of them cover some region sample and their worst error is at
+    /// most `options.max_error` (when given), replacing the worst of them each step;
+    /// coverage of all samples is kept. This is the per-node step of sphere-tree
+    /// construction.
     ///
     /// # Errors
     ///
@@ -340,7 +342,7 @@ impl<'s> MedialApproximation<'s> {
     pub fn refine_region(
         &mut self,
         region: &[u32],
-        goal: RegionOptions,
+        options: &RegionOptions,
     ) -> Result<RegionOutcome, MedialError> {
         if let Some(&index) = region.iter().find(|&&s| s as usize >= self.samples.len()) {
             return Err(MedialError::RegionOutOfRange {
@@ -348,10 +350,11 @@ impl<'s> MedialApproximation<'s> {
                 count: self.samples.len(),
             });
         }
-        if goal.max_error.is_nan() || goal.max_error < 0.0 {
+        let max_error = options.max_error.unwrap_or(f64::INFINITY);
+        if max_error.is_nan() || max_error < 0.0 {
             return Err(MedialError::InvalidParameter {
                 name: "max_error",
-                value: goal.max_error,
+                value: max_error,
                 requirement: "non-negative",
             });
         }
@@ -386,8 +389,8 @@ impl<'s> MedialApproximation<'s> {
                     worst = Some((t, r.error));
                 }
             }
-            let reached = spheres.len() >= goal.min_spheres && worst_error <= goal.max_error;
-            let stop = reached || improvements >= goal.max_iterations;
+            let reached = spheres.len() >= options.min_spheres && worst_error <= max_error;
+            let stop = reached || improvements >= options.max_iterations;
             let Some((t, _)) = worst.filter(|_| !stop) else {
                 spheres.sort_unstable();
                 break RegionOutcome {
@@ -420,13 +423,13 @@ impl<'s> MedialApproximation<'s> {
     /// Improvement steps until the target.
     fn improve(
         &mut self,
-        params: &MedialOptions,
+        options: &MedialOptions,
         progress: &(dyn Fn(&MedialProgress) + Sync),
     ) -> Result<(), MedialError> {
-        if params.target_spheres.is_none() && params.max_error.is_none() {
+        if options.target_spheres.is_none() && options.max_error.is_none() {
             return Ok(());
         }
-        for step in 0..params.max_iterations {
+        for step in 0..options.max_iterations {
             if step % 16 == 0 {
                 progress(&MedialProgress {
                     spheres: self.members.len(),
@@ -434,10 +437,10 @@ impl<'s> MedialApproximation<'s> {
                     improvements: self.stats.improvements,
                 });
             }
-            let count_reached = params
+            let count_reached = options
                 .target_spheres
                 .is_some_and(|n| self.members.len() >= n);
-            let error_reached = params.max_error.is_some_and(|e| self.worst_error() <= e);
+            let error_reached = options.max_error.is_some_and(|e| self.worst_error() <= e);
             if count_reached || error_reached {
                 break;
             }
@@ -747,8 +750,8 @@ fn measure_sphere(surface: &Surface, centre: DVec3, radius: f64) -> Record {
     }
 }
 
-fn validate_params(params: &MedialOptions) -> Result<(), MedialError> {
-    if let Some(e) = params.max_error
+fn validate_options(options: &MedialOptions) -> Result<(), MedialError> {
+    if let Some(e) = options.max_error
         && (e.is_nan() || e < 0.0)
     {
         return Err(MedialError::InvalidParameter {
@@ -757,10 +760,10 @@ fn validate_params(params: &MedialOptions) -> Result<(), MedialError> {
             requirement: "a non-negative number",
         });
     }
-    if params.initial_points < 4 {
+    if options.initial_points < 4 {
         return Err(MedialError::InvalidParameter {
             name: "initial_points",
-            value: params.initial_points as f64,
+            value: options.initial_points as f64,
             requirement: "at least 4",
         });
     }

@@ -102,15 +102,23 @@ pub const DEFAULT_SECOND_SEED_OFFSET: u64 = 0x9E37_79B9_7F4A_7C15;
 /// let options = MeasureOptions::default()
 ///     .with_samples(SampleOptions::default().with_random_points(100_000).with_seed(7))
 ///     .with_second_seed_offset(1);
-/// assert_eq!(options.samples().seed(), 7);
-/// assert_eq!(options.second_samples().seed(), 8);
-/// assert_eq!(options.second_samples().random_points(), 100_000);
+/// assert_eq!(options.samples.seed, 7);
+/// assert_eq!(options.second_samples().seed, 8);
+/// assert_eq!(options.second_samples().random_points, 100_000);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct MeasureOptions {
-    samples: SampleOptions,
-    second_seed_offset: u64,
-    parallel: bool,
+    /// The samples of both surfaces; the second surface draws its random points with the
+    /// seed offset by [`MeasureOptions::second_seed_offset`].
+    pub samples: SampleOptions,
+    /// Added (wrapping) to the seed for the second surface (default
+    /// [`DEFAULT_SECOND_SEED_OFFSET`]), so the two never draw the same random stream.
+    pub second_seed_offset: u64,
+    /// Measure on every core with the `parallel` feature (default `true`); `false`
+    /// measures on the calling thread, for single-threaded timings. The result is the
+    /// same either way.
+    pub parallel: bool,
 }
 
 impl Default for MeasureOptions {
@@ -126,50 +134,32 @@ impl Default for MeasureOptions {
 }
 
 impl MeasureOptions {
-    /// The samples of both surfaces; the second surface draws its random points with the
-    /// seed offset by [`MeasureOptions::with_second_seed_offset`].
+    /// With the given samples of both surfaces.
     #[must_use]
     pub fn with_samples(mut self, samples: SampleOptions) -> Self {
         self.samples = samples;
         self
     }
 
-    /// The second surface's seed is the first's plus this (wrapping; default
-    /// [`DEFAULT_SECOND_SEED_OFFSET`]).
+    /// With the given offset of the second surface's seed.
     #[must_use]
     pub fn with_second_seed_offset(mut self, second_seed_offset: u64) -> Self {
         self.second_seed_offset = second_seed_offset;
         self
     }
 
-    /// Measure on every core (`true`, the default; effective with the `parallel` feature)
-    /// or on the calling thread only (a baseline timed on one thread). The result is the
-    /// same.
+    /// Measured on every core (`true`) or on the calling thread.
     #[must_use]
     pub fn with_parallel(mut self, parallel: bool) -> Self {
         self.parallel = parallel;
         self
     }
 
-    /// The samples of the first surface.
-    pub fn samples(&self) -> SampleOptions {
-        self.samples
-    }
-
     /// The samples of the second surface: the first's, with the seed offset.
+    #[must_use]
     pub fn second_samples(&self) -> SampleOptions {
         self.samples
-            .with_seed(self.samples.seed().wrapping_add(self.second_seed_offset))
-    }
-
-    /// The offset of the second surface's seed.
-    pub fn second_seed_offset(&self) -> u64 {
-        self.second_seed_offset
-    }
-
-    /// Whether the measurement uses every core.
-    pub fn parallel(&self) -> bool {
-        self.parallel
+            .with_seed(self.samples.seed.wrapping_add(self.second_seed_offset))
     }
 }
 
@@ -292,7 +282,7 @@ where
     if a.is_empty() || b.is_empty() {
         return Err(MeshError::EmptyMesh);
     }
-    let a_to_b = directed(a, &options.samples(), distance_to_b, options.parallel)?;
+    let a_to_b = directed(a, &options.samples, distance_to_b, options.parallel)?;
     let b_to_a = directed(
         b,
         &options.second_samples(),

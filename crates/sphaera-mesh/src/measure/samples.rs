@@ -21,17 +21,27 @@ use crate::{MeshError, TriMesh};
 ///     .with_edge_midpoints(false)
 ///     .with_random_points(100_000)
 ///     .with_seed(0x5EED);
-/// assert!(options.vertices() && !options.edge_midpoints());
-/// assert_eq!(options.random_points(), 100_000);
-/// assert_eq!(options.vertex_stride(), 1);
+/// assert!(options.vertices && !options.edge_midpoints);
+/// assert_eq!(options.random_points, 100_000);
+/// assert_eq!(options.vertex_stride, 1);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct SampleOptions {
-    vertices: bool,
-    vertex_stride: usize,
-    edge_midpoints: bool,
-    random_points: usize,
-    seed: u64,
+    /// Take the referenced vertices (default `true`). Maxima of the distance between a
+    /// surface and its simplification are often at vertices: corners cut or pushed.
+    pub vertices: bool,
+    /// Take only every `vertex_stride`-th referenced vertex, starting with the first
+    /// (default 1: all of them; must be at least 1). A timed baseline measures a subset
+    /// and extrapolates.
+    pub vertex_stride: usize,
+    /// Take the midpoint of every distinct edge (default `true`).
+    pub edge_midpoints: bool,
+    /// Draw this many uniform random points ([`sampling::random`]; default 10,000; at
+    /// most [`MAX_SAMPLES`]; 0 for none).
+    pub random_points: usize,
+    /// The seed of the random points (default 0).
+    pub seed: u64,
 }
 
 impl Default for SampleOptions {
@@ -48,68 +58,39 @@ impl Default for SampleOptions {
 }
 
 impl SampleOptions {
-    /// Take the referenced vertices (default `true`). Maxima of the distance between a
-    /// surface and its simplification are often at vertices: corners cut or pushed.
+    /// With the referenced vertices taken or not.
     #[must_use]
     pub fn with_vertices(mut self, vertices: bool) -> Self {
         self.vertices = vertices;
         self
     }
 
-    /// Take only every `vertex_stride`-th referenced vertex, starting with the first
-    /// (default 1: all of them; must be at least 1). A timed baseline measures a subset
-    /// and extrapolates.
+    /// With one referenced vertex in `vertex_stride` taken.
     #[must_use]
     pub fn with_vertex_stride(mut self, vertex_stride: usize) -> Self {
         self.vertex_stride = vertex_stride;
         self
     }
 
-    /// Take the midpoint of every distinct edge (default `true`).
+    /// With the edge midpoints taken or not.
     #[must_use]
     pub fn with_edge_midpoints(mut self, edge_midpoints: bool) -> Self {
         self.edge_midpoints = edge_midpoints;
         self
     }
 
-    /// Draw this many uniform random points ([`sampling::random`]; default 10,000; at
-    /// most [`MAX_SAMPLES`]; 0 for none).
+    /// With `random_points` random points.
     #[must_use]
     pub fn with_random_points(mut self, random_points: usize) -> Self {
         self.random_points = random_points;
         self
     }
 
-    /// The seed of the random points (default 0).
+    /// With the given seed of the random points.
     #[must_use]
     pub fn with_seed(mut self, seed: u64) -> Self {
         self.seed = seed;
         self
-    }
-
-    /// Whether the referenced vertices are taken.
-    pub fn vertices(&self) -> bool {
-        self.vertices
-    }
-
-    /// One referenced vertex in this many is taken.
-    pub fn vertex_stride(&self) -> usize {
-        self.vertex_stride
-    }
-
-    /// Whether the edge midpoints are taken.
-    pub fn edge_midpoints(&self) -> bool {
-        self.edge_midpoints
-    }
-
-    /// How many random points are drawn.
-    pub fn random_points(&self) -> usize {
-        self.random_points
-    }
-
-    /// The seed of the random points.
-    pub fn seed(&self) -> u64 {
-        self.seed
     }
 }
 

@@ -239,16 +239,16 @@ fn the_second_surface_uses_the_offset_seed() {
                 .with_seed(9),
         )
         .with_second_seed_offset(1);
-    assert_eq!(options.second_samples().seed(), 10);
+    assert_eq!(options.second_samples().seed, 10);
     let h = sampled_hausdorff(&a, &b, &options).unwrap();
     let tree = TriangleTree::new(&a).unwrap();
-    let b_samples = SurfaceSamples::new(&b, &options.samples().with_seed(10)).unwrap();
+    let b_samples = SurfaceSamples::new(&b, &options.samples.with_seed(10)).unwrap();
     let expected = DirectedDistance::measure(b_samples.points(), |p| tree.distance(p).unwrap());
     assert_eq!(h.b_to_a, expected);
     // The default offset.
     let default = MeasureOptions::default().with_samples(SampleOptions::default().with_seed(1));
     assert_eq!(
-        default.second_samples().seed(),
+        default.second_samples().seed,
         1u64.wrapping_add(DEFAULT_SECOND_SEED_OFFSET)
     );
 }
@@ -316,18 +316,18 @@ fn expected_counts(mesh: &TriMesh, options: &SampleOptions) -> (usize, usize, us
         .filter(|(u, w)| u != w)
         .map(|(u, w)| (u.min(w), u.max(w)))
         .collect();
-    let vertices = if options.vertices() {
-        referenced.len().div_ceil(options.vertex_stride())
+    let vertices = if options.vertices {
+        referenced.len().div_ceil(options.vertex_stride)
     } else {
         0
     };
-    let midpoints = if options.edge_midpoints() {
+    let midpoints = if options.edge_midpoints {
         edges.len()
     } else {
         0
     };
     let random = if mesh.surface_area() > 0.0 {
-        options.random_points()
+        options.random_points
     } else {
         0
     };
@@ -357,7 +357,7 @@ proptest! {
         )
         .unwrap();
         for (source, target, sample_options, tree, brute) in [
-            (&a, &b, options.samples(), h.a_to_b, by_brute.a_to_b),
+            (&a, &b, options.samples, h.a_to_b, by_brute.a_to_b),
             (&b, &a, options.second_samples(), h.b_to_a, by_brute.b_to_a),
         ] {
             let set = SurfaceSamples::new(source, &sample_options).unwrap();

@@ -36,11 +36,14 @@ use crate::{MeshError, TriMesh};
 /// ```
 /// use sphaera_mesh::sampling::PoissonDiskOptions;
 /// let options = PoissonDiskOptions::default().with_oversampling(8.0);
-/// assert_eq!(options.oversampling(), 8.0);
+/// assert_eq!(options.oversampling, 8.0);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct PoissonDiskOptions {
-    oversampling: f64,
+    /// Draw `oversampling · n` random candidates to eliminate down to `n` (at least 1;
+    /// larger is more even and slower: 3 is quick, 5 the default, 10 barely better).
+    pub oversampling: f64,
 }
 
 impl Default for PoissonDiskOptions {
@@ -51,17 +54,11 @@ impl Default for PoissonDiskOptions {
 }
 
 impl PoissonDiskOptions {
-    /// Draw `oversampling · n` random candidates to eliminate down to `n` (at least 1;
-    /// larger is more even and slower: 3 is quick, 5 the default, 10 barely better).
+    /// With the given oversampling factor.
     #[must_use]
     pub fn with_oversampling(mut self, oversampling: f64) -> Self {
         self.oversampling = oversampling;
         self
-    }
-
-    /// The oversampling factor.
-    pub fn oversampling(&self) -> f64 {
-        self.oversampling
     }
 }
 

@@ -172,7 +172,7 @@ pub struct TopologyReport {
 /// a counting sort of the half-edges and a few union-find passes. About 0.2 s for the 871k-triangle Stanford dragon on one
 /// core (release).
 pub fn analyze(mesh: &TriMesh) -> TopologyReport {
-    analyze_with(mesh, TopologyOptions::default())
+    analyze_with(mesh, &TopologyOptions::default())
 }
 
 /// The topology of `mesh` with explicit options.
@@ -188,12 +188,12 @@ pub fn analyze(mesh: &TriMesh) -> TopologyReport {
 ///     vec![[0, 1, 2], [3, 5, 4]],
 /// )?;
 /// // Without merging, the two triangles are separate components.
-/// let report = topology::analyze_with(&mesh, TopologyOptions::indices_as_given());
+/// let report = topology::analyze_with(&mesh, &TopologyOptions::indices_as_given());
 /// assert_eq!(report.component_count, 2);
 /// assert_eq!(report.euler_characteristic, 2);
 /// # Ok::<(), sphaera_mesh::MeshError>(())
 /// ```
-pub fn analyze_with(mesh: &TriMesh, options: TopologyOptions) -> TopologyReport {
+pub fn analyze_with(mesh: &TriMesh, options: &TopologyOptions) -> TopologyReport {
     let vertex_count = mesh.vertex_count();
     let (triangles, merged_vertex_count) = if options.merge_identical_positions {
         let rep = identical_position_representatives(mesh.positions());
@@ -703,7 +703,7 @@ mod tests {
         fn report_matches_brute_force(mesh in small_mesh()) {
             prop_assert_eq!(analyze(&mesh), brute_force(&mesh, true));
             prop_assert_eq!(
-                analyze_with(&mesh, TopologyOptions::indices_as_given()),
+                analyze_with(&mesh, &TopologyOptions::indices_as_given()),
                 brute_force(&mesh, false)
             );
         }

@@ -166,7 +166,7 @@ impl WindingNumber {
     /// 870k; 190 to 230 bytes per triangle (about 170 MB for 870k). See the
     /// [module documentation](super).
     pub fn new(mesh: &TriMesh) -> Result<Self, MeshError> {
-        Self::with_options(mesh, WindingOptions::default())
+        Self::with_options(mesh, &WindingOptions::default())
     }
 
     /// Builds the exact evaluator: no far-field approximation (`beta = ∞`). Its values
@@ -193,7 +193,7 @@ impl WindingNumber {
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
     pub fn exact(mesh: &TriMesh) -> Result<Self, MeshError> {
-        Self::with_options(mesh, WindingOptions::default().with_beta(f64::INFINITY))
+        Self::with_options(mesh, &WindingOptions::default().with_beta(f64::INFINITY))
     }
 
     /// Builds the evaluator with the given options.
@@ -217,19 +217,19 @@ impl WindingNumber {
     /// )?;
     /// let careful = WindingNumber::with_options(
     ///     &mesh,
-    ///     WindingOptions::default().with_beta(4.0),
+    ///     &WindingOptions::default().with_beta(4.0),
     /// )?;
     /// assert!(careful.is_inside(DVec3::splat(0.1)));
     ///
     /// let err = WindingNumber::with_options(
     ///     &mesh,
-    ///     WindingOptions::default().with_beta(0.5),
+    ///     &WindingOptions::default().with_beta(0.5),
     /// )
     /// .unwrap_err();
     /// assert!(matches!(err, MeshError::InvalidParameter { name: "beta", .. }));
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
-    pub fn with_options(mesh: &TriMesh, options: WindingOptions) -> Result<Self, MeshError> {
+    pub fn with_options(mesh: &TriMesh, options: &WindingOptions) -> Result<Self, MeshError> {
         if options.beta.is_nan() || options.beta <= 1.0 {
             return Err(MeshError::InvalidParameter {
                 name: "beta",
@@ -247,7 +247,7 @@ impl WindingNumber {
         }
         Ok(Self {
             tree: Tree::build(mesh)?,
-            options,
+            options: *options,
         })
     }
 

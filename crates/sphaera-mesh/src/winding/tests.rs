@@ -290,7 +290,7 @@ fn invalid_parameters_are_rejected() {
     let mesh = test_meshes::unit_cube();
     for beta in [1.0, 0.5, -2.0, f64::NAN, f64::NEG_INFINITY] {
         let options = WindingOptions::default().with_beta(beta);
-        let err = WindingNumber::with_options(&mesh, options).unwrap_err();
+        let err = WindingNumber::with_options(&mesh, &options).unwrap_err();
         assert!(
             matches!(err, crate::MeshError::InvalidParameter { name: "beta", .. }),
             "{beta}"
@@ -328,7 +328,7 @@ fn error_table() {
             for (_, mesh) in all_shapes() {
                 let winding = WindingNumber::with_options(
                     &mesh,
-                    WindingOptions::default()
+                    &WindingOptions::default()
                         .with_beta(beta)
                         .with_expansion(expansion),
                 )

@@ -25,16 +25,16 @@ const SIZE_STEPS: usize = 48;
 /// [`SphereTree::branch`] reports the most children any node has (at least `branch`).
 pub(crate) fn grid(
     start: &Start<'_>,
-    params: &SphereTreeOptions,
+    options: &SphereTreeOptions,
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let bounds = start.surface.mesh().bounding_box();
     let extent = bounds.extent();
     let longest = extent.x.max(extent.y).max(extent.z).max(f64::MIN_POSITIVE);
     let samples = &start.samples;
-    let grids: Vec<CellGrid> = (1..=params.depth)
+    let grids: Vec<CellGrid> = (1..=options.depth)
         .map(|level| {
-            let target = (params.branch as u64)
+            let target = (options.branch as u64)
                 .checked_pow(level as u32)
                 .unwrap_or(u64::MAX)
                 .min(samples.len() as u64);
@@ -43,8 +43,8 @@ pub(crate) fn grid(
         .collect();
     assemble(
         start,
-        params.depth,
-        params.branch,
+        options.depth,
+        options.branch,
         progress,
         |level, _, region| {
             let Some(grid) = grids.get(level - 1) else {

@@ -40,13 +40,13 @@ const NEIGHBOURS: usize = 8;
 ///    by rounding's worth if needed to contain its part.
 pub(crate) fn hubbard(
     start: &Start<'_>,
-    params: &SphereTreeOptions,
+    options: &SphereTreeOptions,
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let medial = MedialApproximation::build_static(
         start.surface,
         &start.samples,
-        params.forming_points.min(start.samples.len()),
+        options.forming_points.min(start.samples.len()),
         Some(CoverCriterion::SmallestError),
     )?;
     let medial_spheres = medial.spheres();
@@ -67,8 +67,8 @@ pub(crate) fn hubbard(
     let surface = start.surface;
     assemble(
         start,
-        params.depth,
-        params.branch,
+        options.depth,
+        options.branch,
         progress,
         |_, _, region| {
             let mut members: Vec<u32> = region
@@ -78,7 +78,7 @@ pub(crate) fn hubbard(
             members.sort_unstable();
             members.dedup();
             let set: Vec<Sphere> = members.iter().map(|&i| spheres[i as usize]).collect();
-            let merged = merge_bounding(surface, &set, params.branch);
+            let merged = merge_bounding(surface, &set, options.branch);
             let points: Vec<DVec3> = region.iter().map(|&s| samples[s as usize]).collect();
             let groups = divide(&points, &merged, true);
             Ok(merged

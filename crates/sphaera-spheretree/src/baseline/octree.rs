@@ -24,7 +24,7 @@ use crate::{SphereTree, SphereTreeError};
 /// `branch` says). Only `depth`, `samples` and `seed` are used.
 pub(crate) fn octree(
     start: &Start<'_>,
-    params: &SphereTreeOptions,
+    options: &SphereTreeOptions,
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     let bounds = start.surface.mesh().bounding_box();
@@ -33,7 +33,7 @@ pub(crate) fn octree(
     let edge = extent.x.max(extent.y).max(extent.z).max(f64::MIN_POSITIVE) * (1.0 + 1e-9);
     let origin = bounds.center() - DVec3::splat(0.5 * edge);
     let samples = &start.samples;
-    assemble(start, params.depth, 8, progress, |level, _, region| {
+    assemble(start, options.depth, 8, progress, |level, _, region| {
         let cells = 1u64 << level;
         let grid = CellGrid {
             origin,

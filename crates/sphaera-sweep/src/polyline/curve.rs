@@ -231,8 +231,8 @@ impl<P: PolylinePoint> Polyline<P> {
     }
 
     /// A query session with `options`.
-    pub fn session_with(&self, options: PolylineSessionOptions) -> PolylineSession<'_, P> {
-        PolylineSession::new(self, options)
+    pub fn session_with(&self, options: &PolylineSessionOptions) -> PolylineSession<'_, P> {
+        PolylineSession::new(self, *options)
     }
 
     /// The hierarchy (node 0 is the root).

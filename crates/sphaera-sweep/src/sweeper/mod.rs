@@ -145,8 +145,8 @@ impl<'h> Sweeper<'h> {
     }
 
     /// A new query session with `options`.
-    pub fn session_with(&self, options: SessionOptions) -> Session<'_> {
-        Session::new(self, options)
+    pub fn session_with(&self, options: &SessionOptions) -> Session<'_> {
+        Session::new(self, *options)
     }
 }
 

@@ -98,7 +98,7 @@ impl MedialOptions {
 /// use sphaera_medial::RegionOptions;
 ///
 /// let options = RegionOptions::default().with_min_spheres(100).with_max_error(0.01);
-/// assert_eq!((options.min_spheres, options.max_error), (100, 0.01));
+/// assert_eq!((options.min_spheres, options.max_error), (100, Some(0.01)));
 /// assert_eq!(options.max_iterations, 20_000);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -106,9 +106,8 @@ impl MedialOptions {
 pub struct RegionOptions {
     /// At least this many spheres cover some sample of the region (default 1).
     pub min_spheres: usize,
-    /// Worst error of those spheres (mesh units); `f64::INFINITY` for no bound (the
-    /// default).
-    pub max_error: f64,
+    /// Worst error of those spheres (mesh units); `None` for no bound (the default).
+    pub max_error: Option<f64>,
     /// A cap on improvement steps for this region (default 20,000).
     pub max_iterations: usize,
 }
@@ -117,7 +116,7 @@ impl Default for RegionOptions {
     fn default() -> Self {
         Self {
             min_spheres: 1,
-            max_error: f64::INFINITY,
+            max_error: None,
             max_iterations: 20_000,
         }
     }
@@ -134,7 +133,7 @@ impl RegionOptions {
     /// With a worst error of at most `e` (mesh units).
     #[must_use]
     pub fn with_max_error(mut self, e: f64) -> Self {
-        self.max_error = e;
+        self.max_error = Some(e);
         self
     }
 
