@@ -165,6 +165,41 @@ impl BoxTree {
     /// Visits the leaves nearest first from `p`: the nearer child of each node is
     /// searched first, and a node is skipped when `search.may_improve` says its box is too
     /// far (asked when the node is reached, so a bound that tightened meanwhile prunes it).
+    ///
+    /// # Examples
+    ///
+    /// The nearest of a thousand points, visiting a few leaves:
+    ///
+    /// ```
+    /// use std::ops::{ControlFlow, Range};
+    /// use sphaera_mesh::{Aabb, DVec3, bvh::{BoxTree, NearestFirst}};
+    ///
+    /// let points: Vec<DVec3> = (0..1000)
+    ///     .map(|i| f64::from(i))
+    ///     .map(|t| DVec3::new(t.sin(), (0.7 * t).cos(), (0.3 * t).sin()))
+    ///     .collect();
+    /// let items: Vec<(Aabb, DVec3)> = points.iter().map(|&p| (Aabb::new(p, p), p)).collect();
+    /// let tree = BoxTree::build(&items, 4)?;
+    ///
+    /// struct Nearest<'a> { p: DVec3, points: &'a [DVec3], order: &'a [u32], best: f64, leaves: usize }
+    /// impl NearestFirst for Nearest<'_> {
+    ///     fn may_improve(&self, distance_squared: f64) -> bool { distance_squared < self.best }
+    ///     fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
+    ///         self.leaves += 1;
+    ///         for &i in &self.order[positions] {
+    ///             self.best = self.best.min(self.p.distance_squared(self.points[i as usize]));
+    ///         }
+    ///         ControlFlow::Continue(())
+    ///     }
+    /// }
+    /// let p = DVec3::new(0.2, 0.1, -0.3);
+    /// let mut search = Nearest { p, points: &points, order: tree.order(), best: f64::INFINITY, leaves: 0 };
+    /// tree.search_nearest_first(p, &mut search);
+    /// let brute = points.iter().map(|&q| p.distance_squared(q)).fold(f64::INFINITY, f64::min);
+    /// assert_eq!(search.best, brute);
+    /// assert!(search.leaves < 250 / 4);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
     pub fn search_nearest_first(&self, p: DVec3, search: &mut impl NearestFirst) {
         let mut stack: Vec<usize> = Vec::with_capacity(64);
         if !self.nodes.is_empty() {

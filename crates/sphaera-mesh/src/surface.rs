@@ -53,7 +53,21 @@ impl Surface {
         Self::from_mesh(mesh.clone())
     }
 
-    /// Prepares `mesh`, keeping it.
+    /// Prepares `mesh`, keeping it (no copy; [`Surface::new`] copies).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, Surface, shapes};
+    ///
+    /// let surface = Surface::from_mesh(shapes::torus(1.0, 0.3, 24)?)?;
+    /// assert!(surface.is_inside(DVec3::new(1.0, 0.0, 0.0)));
+    /// assert!(!surface.is_inside(DVec3::ZERO)); // the hole
+    /// // The inner equator is 0.7 from the centre, up to the tessellation.
+    /// let inner = surface.closest(DVec3::ZERO)?.distance;
+    /// assert!((inner - 0.7).abs() < 0.05, "{inner}");
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
     ///
     /// # Errors
     ///

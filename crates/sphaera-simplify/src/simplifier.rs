@@ -437,6 +437,24 @@ impl Hierarchy {
 
     /// [`Hierarchy::build`], calling `progress` as [`simplify_with_progress`] does.
     ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::{Hierarchy, SimplifyOptions, SimplifyProgress};
+    ///
+    /// let cube = shapes::cube(1.0, 6)?;
+    /// let removed = AtomicUsize::new(0);
+    /// let report = |p: &SimplifyProgress| removed.store(p.removed, Ordering::Relaxed);
+    /// let hierarchy = Hierarchy::build_with_progress(&cube, &SimplifyOptions::default(), &report)?;
+    /// assert_eq!(
+    ///     removed.into_inner(),
+    ///     cube.triangle_count() - hierarchy.base().mesh.triangle_count()
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
     /// # Errors
     ///
     /// As [`simplify`].

@@ -52,7 +52,32 @@ pub fn build(
     build_with_progress(surface, options, &|_| {})
 }
 
-/// [`build`], reporting progress per parent node.
+/// [`build`], reporting progress per parent node (from the calling thread).
+///
+/// # Examples
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use sphaera_mesh::{Surface, shapes};
+/// use sphaera_spheretree::{SphereTreeOptions, SphereTreeProgress, build_with_progress};
+///
+/// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 8)?)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(2)
+///     .with_branch(4)
+///     .with_samples(600)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let deepest = AtomicUsize::new(0);
+/// let report = |p: &SphereTreeProgress| {
+///     assert!(p.done < p.total);
+///     deepest.fetch_max(p.level, Ordering::Relaxed);
+/// };
+/// let tree = build_with_progress(&surface, &options, &report)?;
+/// assert_eq!(deepest.into_inner(), 2);
+/// assert_eq!(tree.level_count(), 3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 ///
 /// # Errors
 ///

@@ -248,7 +248,31 @@ pub fn hausdorff(
     hausdorff_with_progress(a, b, options, &|_| {})
 }
 
-/// [`hausdorff`], calling `progress` every few thousand samples.
+/// [`hausdorff`], calling `progress` every few thousand samples (from the calling
+/// thread).
+///
+/// # Examples
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use sphaera_mesh::shapes;
+/// use sphaera_sweep::{
+///     HausdorffOptions, HausdorffProgress, Sweeper, build_hierarchy, hausdorff_with_progress,
+/// };
+///
+/// let (cube, sphere) = (shapes::cube(2.0, 24)?, shapes::sphere(1.0, 48)?);
+/// let (hc, hs) = (build_hierarchy(&cube)?, build_hierarchy(&sphere)?);
+/// let (a, b) = (Sweeper::new(&hc)?, Sweeper::new(&hs)?);
+/// let reports = AtomicUsize::new(0);
+/// let report = |p: &HausdorffProgress| {
+///     assert!(p.lower <= p.upper);
+///     reports.fetch_add(1, Ordering::Relaxed);
+/// };
+/// let h = hausdorff_with_progress(&a, &b, &HausdorffOptions::default(), &report)?;
+/// assert!(h.lower <= h.upper);
+/// assert!(reports.into_inner() > 0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 ///
 /// # Errors
 ///

@@ -323,6 +323,6 @@ fn failure_cases() {
     assert!(hierarchy.replay(&moved).is_err());
 
     // The session is unchanged by all of this.
-    assert!(session.shape().is_none());
+    assert!(session.deformed_shape().is_none());
     assert_eq!(session.closest(p).expect("finite"), before);
 }

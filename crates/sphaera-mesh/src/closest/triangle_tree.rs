@@ -154,6 +154,17 @@ impl TriangleTree {
     /// [`point_triangle_distance_squared`] per triangle (about three times faster; it may
     /// differ from `closest(p)?.distance` in the last bit).
     ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let tree = TriangleTree::new(&shapes::cube(2.0, 2)?)?; // the cube [-1, 1]³
+    /// assert!((tree.distance(DVec3::new(3.0, 0.5, 0.0))? - 2.0).abs() < 1e-12);
+    /// assert!(tree.distance(DVec3::NAN).is_err());
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
     /// # Errors
     ///
     /// [`MeshError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.

@@ -103,15 +103,15 @@ impl Collision {
 /// One tree in the scene: its placed spheres, filled level by level.
 struct Side<'t> {
     tree: &'t SphereTree,
-    placement: &'t Similarity,
+    world_from_tree: &'t Similarity,
     placed: Vec<Sphere>,
 }
 
 impl<'t> Side<'t> {
-    fn new(tree: &'t SphereTree, placement: &'t Similarity) -> Self {
+    fn new(tree: &'t SphereTree, world_from_tree: &'t Similarity) -> Self {
         Self {
             tree,
-            placement,
+            world_from_tree,
             placed: vec![Sphere::default(); tree.nodes.len()],
         }
     }
@@ -119,7 +119,7 @@ impl<'t> Side<'t> {
     /// Places node `i` (an index below `tree.nodes.len()`).
     fn update(&mut self, i: usize) {
         if let (Some(slot), Some(node)) = (self.placed.get_mut(i), self.tree.nodes.get(i)) {
-            *slot = self.placement.sphere(&node.sphere);
+            *slot = self.world_from_tree.sphere(&node.sphere);
         }
     }
 
@@ -210,15 +210,15 @@ fn touch(a: &Sphere, b: &Sphere) -> bool {
 /// (13,000 tests, 3,089 contacts), single thread (the `collide_probe` example).
 pub fn collide(
     a: &SphereTree,
-    placement_a: &Similarity,
+    world_from_a: &Similarity,
     b: &SphereTree,
-    placement_b: &Similarity,
+    world_from_b: &Similarity,
     budget: &Budget,
 ) -> Result<Collision, SphereTreeError> {
     budget.validate()?;
     let start = Instant::now();
-    let mut sa = Side::new(a, placement_a);
-    let mut sb = Side::new(b, placement_b);
+    let mut sa = Side::new(a, world_from_a);
+    let mut sb = Side::new(b, world_from_b);
     let mut stats = TraversalStats::default();
     // Level 0, whatever the budget.
     for i in roots(a) {
@@ -383,7 +383,7 @@ fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
     let sphere_a = sa.sphere(i);
     let sphere_b = sb.sphere(j);
     let error = |side: &Side<'_>, k: usize| {
-        side.tree.nodes.get(k).map_or(0.0, |n| n.error) * side.placement.scale()
+        side.tree.nodes.get(k).map_or(0.0, |n| n.error) * side.world_from_tree.scale()
     };
     Contact {
         a: i,
@@ -430,14 +430,14 @@ fn contact(sa: &Side<'_>, sb: &Side<'_>, i: usize, j: usize) -> Contact {
 #[must_use]
 pub fn overlaps(
     a: &SphereTree,
-    placement_a: &Similarity,
+    world_from_a: &Similarity,
     b: &SphereTree,
-    placement_b: &Similarity,
+    world_from_b: &Similarity,
 ) -> bool {
-    let place = |tree: &SphereTree, placement: &Similarity, i: usize| {
+    let place = |tree: &SphereTree, world_from_tree: &Similarity, i: usize| {
         tree.nodes
             .get(i)
-            .map_or_else(Sphere::default, |n| placement.sphere(&n.sphere))
+            .map_or_else(Sphere::default, |n| world_from_tree.sphere(&n.sphere))
     };
     let mut stack: Vec<(usize, usize)> = Vec::new();
     for i in roots(a).rev() {
@@ -446,7 +446,7 @@ pub fn overlaps(
         }
     }
     while let Some((i, j)) = stack.pop() {
-        if !touch(&place(a, placement_a, i), &place(b, placement_b, j)) {
+        if !touch(&place(a, world_from_a, i), &place(b, world_from_b, j)) {
             continue;
         }
         if is_leaf(a, i) && is_leaf(b, j) {

@@ -239,7 +239,7 @@ impl Session<'_> {
 
     /// The current deformed shape (`None` until [`Session::deform`] or
     /// [`Session::move_vertices`]).
-    pub fn shape(&self) -> Option<&DeformedShape> {
+    pub fn deformed_shape(&self) -> Option<&DeformedShape> {
         self.shape.as_ref()
     }
 
