@@ -37,7 +37,7 @@
 //! with the default [`SampleOptions`] but for the random points and the seed. Then a
 //! **local refinement** around the best few samples: each triangle that holds one of them
 //! is sampled on a barycentric grid, and a pattern search walks uphill from the best grid
-//! point with shrinking steps (see [`HausdorffOptions::refine_top`]).
+//! point with shrinking steps (see [`ReferenceOptions::refine_top`]).
 //!
 //! # Determinism
 //!
@@ -50,12 +50,12 @@
 //!
 //! ```
 //! use sphaera_mesh::{DVec3, TriMesh, shapes};
-//! use sphaera_tests::hausdorff::sampled_hausdorff;
+//! use sphaera_tests::hausdorff::reference_hausdorff;
 //!
 //! let small = shapes::cube(1.0, 2)?;
 //! let (positions, triangles) = small.clone().into_parts();
 //! let big = TriMesh::new(positions.iter().map(|&p| 1.1 * p).collect(), triangles)?;
-//! let h = sampled_hausdorff(&small, &big, 2_000, 1);
+//! let h = reference_hausdorff(&small, &big, 2_000, 1);
 //! // Every point of the small cube is 0.05 from the big one; the big cube's corners are
 //! // 0.05·√3 from the small one.
 //! assert!((h.a_to_b - 0.05).abs() < 1e-12);
@@ -75,16 +75,11 @@ use sphaera_mesh::{
     measure::{self, DirectedDistance, SampleOptions, SampleOrigin, SurfaceSamples},
 };
 
-use crate::pattern_search::{Boundary, Budget, PatternSearch, SIX_DIRECTIONS};
+use crate::pattern_search::{Boundary, PatternSearch, SIX_DIRECTIONS, SearchBudget};
 
 /// Triangles whose area is at most this times their squared longest edge are kept out of
 /// parry's mesh and measured with our own closest-point routine instead.
 pub const DEGENERATE_RELATIVE_TOLERANCE: f64 = 1e-12;
-
-/// Seed offset for the second mesh, so that the two meshes never draw the same random
-/// stream (the value of [`measure::DEFAULT_SECOND_SEED_OFFSET`], spelled out: this
-/// helper's published figures depend on it).
-const SECOND_MESH_SEED_OFFSET: u64 = 0x9E37_79B9_7F4A_7C15;
 
 /// A measured Hausdorff distance between meshes `A` and `B`: both one-sided maxima, where
 /// they were reached, and how many points were measured.
@@ -92,7 +87,7 @@ const SECOND_MESH_SEED_OFFSET: u64 = 0x9E37_79B9_7F4A_7C15;
 /// Each one-sided value is a **lower bound** of the true directed Hausdorff distance (see
 /// the [module documentation](self)).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SampledHausdorff {
+pub struct ReferenceHausdorff {
     /// The largest measured distance from a point of `A` to the surface `B`.
     pub a_to_b: f64,
     /// The largest measured distance from a point of `B` to the surface `A`.
@@ -108,7 +103,7 @@ pub struct SampledHausdorff {
     pub samples_b: usize,
 }
 
-impl SampledHausdorff {
+impl ReferenceHausdorff {
     /// The symmetric distance `max(a_to_b, b_to_a)`, a lower bound of the true symmetric
     /// Hausdorff distance.
     ///
@@ -116,9 +111,9 @@ impl SampledHausdorff {
     ///
     /// ```
     /// use sphaera_mesh::DVec3;
-    /// use sphaera_tests::hausdorff::SampledHausdorff;
+    /// use sphaera_tests::hausdorff::ReferenceHausdorff;
     ///
-    /// let h = SampledHausdorff {
+    /// let h = ReferenceHausdorff {
     ///     a_to_b: 0.5,
     ///     b_to_a: 0.25,
     ///     a_to_b_at: DVec3::ZERO,
@@ -133,9 +128,9 @@ impl SampledHausdorff {
     }
 }
 
-/// Options of [`sampled_hausdorff_with`].
+/// Options of [`reference_hausdorff_with`].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HausdorffOptions {
+pub struct ReferenceOptions {
     /// Uniform random points per mesh, on top of the vertices and edge midpoints.
     pub samples_per_mesh: usize,
     /// Seed of the random points (the second mesh uses a fixed offset of it).
@@ -150,7 +145,7 @@ pub struct HausdorffOptions {
     pub refine_grid: usize,
 }
 
-impl Default for HausdorffOptions {
+impl Default for ReferenceOptions {
     /// 10,000 random points per mesh, seed 0, refinement of the best 8 samples on a grid
     /// of 8 steps.
     fn default() -> Self {
@@ -308,7 +303,7 @@ fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> SurfaceSamples {
     samples
 }
 
-/// The points of `mesh` that [`sampled_hausdorff`] measures before refinement: every
+/// The points of `mesh` that [`reference_hausdorff`] measures before refinement: every
 /// referenced vertex, the midpoint of every distinct edge, and `n` uniform random points
 /// from [`sphaera_mesh::sampling::random`] with `seed`, in that order
 /// ([`SurfaceSamples`]).
@@ -363,7 +358,7 @@ pub fn directed_max(points: &[DVec3], target: &DistanceToMesh) -> Option<(f64, D
 
 /// The sampled Hausdorff distance between the surfaces of `a` and `b`, with
 /// `samples_per_mesh` random points per mesh on top of the vertices and edge midpoints,
-/// and the default refinement ([`HausdorffOptions::default`]).
+/// and the default refinement ([`ReferenceOptions::default`]).
 ///
 /// Every returned one-sided value is a lower bound of the true directed Hausdorff distance
 /// (see the [module documentation](self)).
@@ -383,37 +378,37 @@ pub fn directed_max(points: &[DVec3], target: &DistanceToMesh) -> Option<(f64, D
 /// the bunny pair (`stanford-bunny.obj`, 69,451 triangles, vs `stanford-bunny-qem15.obj`,
 /// 10,418) with 50,000 random points per mesh: 192,120 + 73,248 measured points in about
 /// 0.24 s wall at `opt-level = 1` (parry at 2) on the shared 2-core machine.
-pub fn sampled_hausdorff(
+pub fn reference_hausdorff(
     a: &TriMesh,
     b: &TriMesh,
     samples_per_mesh: usize,
     seed: u64,
-) -> SampledHausdorff {
-    sampled_hausdorff_with(
+) -> ReferenceHausdorff {
+    reference_hausdorff_with(
         a,
         b,
-        &HausdorffOptions {
+        &ReferenceOptions {
             samples_per_mesh,
             seed,
-            ..HausdorffOptions::default()
+            ..ReferenceOptions::default()
         },
     )
 }
 
-/// [`sampled_hausdorff`] with every option.
+/// [`reference_hausdorff`] with every option.
 ///
 /// # Examples
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_tests::hausdorff::{HausdorffOptions, sampled_hausdorff_with};
+/// use sphaera_tests::hausdorff::{ReferenceOptions, reference_hausdorff_with};
 ///
 /// let inner = shapes::sphere(1.0, 24)?;
 /// let outer = shapes::sphere(1.25, 24)?;
-/// let plain = HausdorffOptions { samples_per_mesh: 500, refine_top: 0, ..Default::default() };
-/// let refined = HausdorffOptions { refine_top: 4, ..plain };
-/// let coarse = sampled_hausdorff_with(&inner, &outer, &plain);
-/// let fine = sampled_hausdorff_with(&inner, &outer, &refined);
+/// let plain = ReferenceOptions { samples_per_mesh: 500, refine_top: 0, ..Default::default() };
+/// let refined = ReferenceOptions { refine_top: 4, ..plain };
+/// let coarse = reference_hausdorff_with(&inner, &outer, &plain);
+/// let fine = reference_hausdorff_with(&inner, &outer, &refined);
 /// assert!(fine.a_to_b >= coarse.a_to_b && fine.b_to_a >= coarse.b_to_a);
 /// assert!((fine.symmetric() - 0.25).abs() < 0.02);
 /// # Ok::<(), sphaera_mesh::MeshError>(())
@@ -421,18 +416,20 @@ pub fn sampled_hausdorff(
 ///
 /// # Panics
 ///
-/// As [`sampled_hausdorff`].
-pub fn sampled_hausdorff_with(
+/// As [`reference_hausdorff`].
+pub fn reference_hausdorff_with(
     a: &TriMesh,
     b: &TriMesh,
-    options: &HausdorffOptions,
-) -> SampledHausdorff {
+    options: &ReferenceOptions,
+) -> ReferenceHausdorff {
     let target_a = DistanceToMesh::new(a);
     let target_b = DistanceToMesh::new(b);
-    let seed_b = options.seed.wrapping_add(SECOND_MESH_SEED_OFFSET);
+    let seed_b = options
+        .seed
+        .wrapping_add(measure::DEFAULT_SECOND_SEED_OFFSET);
     let (a_to_b, a_to_b_at, samples_a) = directed(a, &target_b, options, options.seed);
     let (b_to_a, b_to_a_at, samples_b) = directed(b, &target_a, options, seed_b);
-    SampledHausdorff {
+    ReferenceHausdorff {
         a_to_b,
         b_to_a,
         a_to_b_at,
@@ -446,7 +443,7 @@ pub fn sampled_hausdorff_with(
 fn directed(
     source: &TriMesh,
     target: &DistanceToMesh,
-    options: &HausdorffOptions,
+    options: &ReferenceOptions,
     seed: u64,
 ) -> (f64, DVec3, usize) {
     let samples = sample_set(source, options.samples_per_mesh, seed);
@@ -524,7 +521,7 @@ fn refine_triangle(
         grid: u32::try_from(grid).unwrap_or(u32::MAX),
         directions: &SIX_DIRECTIONS,
         min_step: 1e-7,
-        budget: Budget::Evaluations(MAX_EVALUATIONS - REPEATED_CORNER),
+        budget: SearchBudget::Evaluations(MAX_EVALUATIONS - REPEATED_CORNER),
         boundary: Boundary::Skip,
     };
     let best = search.maximise(|u, v| target.distance(triangle.point_at(u, v)));

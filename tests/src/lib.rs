@@ -61,7 +61,7 @@ pub mod pattern_search;
 pub mod point_sets;
 pub mod random;
 
-pub use hausdorff::{SampledHausdorff, sampled_hausdorff};
+pub use hausdorff::{ReferenceHausdorff, reference_hausdorff};
 pub use random::SplitMix64;
 
 /// Where the shared meshes are: `$SPHAERA_DATA`, or `../shared/data` beside the workspace.

@@ -12,7 +12,7 @@
 //!    replaces the best only when it is strictly better; a round without improvement
 //!    halves the step;
 //! 3. stops when the step is at most [`PatternSearch::min_step`] or the
-//!    [`Budget`] is spent (checked before each round, so the last round may overshoot an
+//!    [`SearchBudget`] is spent (checked before each round, so the last round may overshoot an
 //!    evaluation budget by up to one evaluation per direction).
 //!
 //! Every value it returns was measured at a point of the triangle, so the maximum it
@@ -29,14 +29,14 @@
 //! # Examples
 //!
 //! ```
-//! use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, SIX_DIRECTIONS};
+//! use sphaera_tests::pattern_search::{Boundary, SearchBudget, PatternSearch, SIX_DIRECTIONS};
 //!
 //! // The largest value of −(u − 0.3)² − (v − 0.2)², at (0.3, 0.2).
 //! let search = PatternSearch {
 //!     grid: 4,
 //!     directions: &SIX_DIRECTIONS,
 //!     min_step: 1e-9,
-//!     budget: Budget::Evaluations(10_000),
+//!     budget: SearchBudget::Evaluations(10_000),
 //!     boundary: Boundary::Skip,
 //! };
 //! let best = search.maximise(|u, v| -(u - 0.3).powi(2) - (v - 0.2).powi(2));
@@ -73,7 +73,7 @@ pub const TWELVE_DIRECTIONS: [(f64, f64); 12] = [
 
 /// When the pattern search stops, besides its step reaching [`PatternSearch::min_step`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Budget {
+pub enum SearchBudget {
     /// No new round once this many evaluations were made (the grid included).
     Evaluations(usize),
     /// At most this many polling rounds after the grid.
@@ -101,7 +101,7 @@ pub struct PatternSearch<'a> {
     /// The search stops once the step is at most this.
     pub min_step: f64,
     /// The search also stops when this is spent.
-    pub budget: Budget,
+    pub budget: SearchBudget,
     /// Poll points outside the triangle.
     pub boundary: Boundary,
 }
@@ -160,8 +160,8 @@ impl PatternSearch<'_> {
         let mut rounds = 0;
         loop {
             let spent = match self.budget {
-                Budget::Evaluations(n) => evaluations >= n,
-                Budget::Rounds(n) => rounds >= n,
+                SearchBudget::Evaluations(n) => evaluations >= n,
+                SearchBudget::Rounds(n) => rounds >= n,
             };
             if step <= self.min_step || spent {
                 break;
@@ -204,14 +204,14 @@ impl PatternSearch<'_> {
     /// # Examples
     ///
     /// ```
-    /// use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, TWELVE_DIRECTIONS};
+    /// use sphaera_tests::pattern_search::{Boundary, SearchBudget, PatternSearch, TWELVE_DIRECTIONS};
     ///
     /// // |(u, v) − (0.25, 0.25)| is smallest, 0, at (0.25, 0.25).
     /// let search = PatternSearch {
     ///     grid: 16,
     ///     directions: &TWELVE_DIRECTIONS,
     ///     min_step: 1e-13,
-    ///     budget: Budget::Rounds(3_000),
+    ///     budget: SearchBudget::Rounds(3_000),
     ///     boundary: Boundary::ClampNegative,
     /// };
     /// let best = search.minimise(|u, v| (u - 0.25).hypot(v - 0.25));

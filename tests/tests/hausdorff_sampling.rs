@@ -8,8 +8,8 @@ use sphaera_mesh::{TriMesh, geometry, io, shapes};
 use sphaera_tests::{
     data_dir,
     hausdorff::{
-        DistanceToMesh, HausdorffOptions, directed_max, sampled_hausdorff, sampled_hausdorff_with,
-        surface_points,
+        DistanceToMesh, ReferenceOptions, directed_max, reference_hausdorff,
+        reference_hausdorff_with, surface_points,
     },
 };
 
@@ -115,18 +115,18 @@ fn parry_distances_equal_brute_force_on_the_same_samples() {
         }
         // The refined result is reached at a real point of the source whose brute-force
         // distance is the reported value, and refinement never lowers the estimate.
-        let plain = HausdorffOptions {
+        let plain = ReferenceOptions {
             samples_per_mesh: 300,
             seed: 11,
             refine_top: 0,
             refine_grid: 8,
         };
-        let refined_options = HausdorffOptions {
+        let refined_options = ReferenceOptions {
             refine_top: 8,
             ..plain
         };
-        let coarse = sampled_hausdorff_with(a, b, &plain);
-        let refined = sampled_hausdorff_with(a, b, &refined_options);
+        let coarse = reference_hausdorff_with(a, b, &plain);
+        let refined = reference_hausdorff_with(a, b, &refined_options);
         assert!(refined.a_to_b >= coarse.a_to_b && refined.b_to_a >= coarse.b_to_a);
         assert!(refined.samples_a > coarse.samples_a && refined.samples_b > coarse.samples_b);
         assert!((brute_distance(refined.a_to_b_at, b) - refined.a_to_b).abs() <= 1e-12);
@@ -140,7 +140,7 @@ fn parry_distances_equal_brute_force_on_the_same_samples() {
             "b_to_a_at lies on b"
         );
         // Same input, same result.
-        assert_eq!(refined, sampled_hausdorff_with(a, b, &refined_options));
+        assert_eq!(refined, reference_hausdorff_with(a, b, &refined_options));
     }
 }
 
@@ -159,7 +159,7 @@ fn degenerate_triangles_stay_in_the_target_surface() {
 fn scaled_cube_has_the_analytic_distances() {
     let cube = shapes::cube(1.0, 4).expect("cube");
     let big = scaled(&cube, 1.1);
-    let h = sampled_hausdorff(&cube, &big, 2_000, 5);
+    let h = reference_hausdorff(&cube, &big, 2_000, 5);
     // Every point of the unit cube's surface has max |coordinate| = 0.5, so its distance to
     // the surface of the 1.1 cube (half-size 0.55) is 0.55 − 0.5 = 0.05, everywhere.
     assert!((h.a_to_b - 0.05).abs() <= 1e-12, "{h:?}");
@@ -170,7 +170,7 @@ fn scaled_cube_has_the_analytic_distances() {
     assert!((h.b_to_a_at.abs() - DVec3::splat(0.55)).length() <= 1e-12);
     assert!((h.symmetric() - corner).abs() <= 1e-12);
     // Swapping the meshes swaps the directions.
-    let swapped = sampled_hausdorff(&big, &cube, 2_000, 5);
+    let swapped = reference_hausdorff(&big, &cube, 2_000, 5);
     assert!((swapped.a_to_b - corner).abs() <= 1e-12);
     assert!((swapped.b_to_a - 0.05).abs() <= 1e-12);
 }
@@ -179,7 +179,7 @@ fn scaled_cube_has_the_analytic_distances() {
 fn concentric_spheres_are_the_radius_difference_apart() {
     let inner = shapes::sphere(1.0, 48).expect("sphere");
     let outer = shapes::sphere(1.3, 48).expect("sphere");
-    let h = sampled_hausdorff(&inner, &outer, 5_000, 9);
+    let h = reference_hausdorff(&inner, &outer, 5_000, 9);
     // Polygonal spheres: vertices on the sphere, faces up to the chord sag
     // r (1 − cos(π/48)) ≈ 0.0021 r inside, so both directions are 0.3 within a few 1e-3.
     for d in [h.a_to_b, h.b_to_a] {
@@ -198,16 +198,16 @@ fn bunny_pair_is_within_the_certified_bracket() {
     let bunny = io::load(data.join("stanford-bunny.obj")).expect("the bunny loads");
     let qem = io::load(data.join("stanford-bunny-qem15.obj")).expect("the qem15 bunny loads");
     let start = Instant::now();
-    let h = sampled_hausdorff(&bunny, &qem, 50_000, 2026);
+    let h = reference_hausdorff(&bunny, &qem, 50_000, 2026);
     let elapsed = start.elapsed();
-    let coarse = sampled_hausdorff_with(
+    let coarse = reference_hausdorff_with(
         &bunny,
         &qem,
-        &HausdorffOptions {
+        &ReferenceOptions {
             samples_per_mesh: 50_000,
             seed: 2026,
             refine_top: 0,
-            ..HausdorffOptions::default()
+            ..ReferenceOptions::default()
         },
     );
     // Certified brackets from the data README (`## Benchmark pair for Hausdorff distance`).

@@ -7,7 +7,7 @@
 //!   bound of `sphaera_sweep::hausdorff(…).symmetric()` (a distance measured at a point
 //!   of one surface, so at most the true distance), up to rounding;
 //! - the sampled Hausdorff distance measured with parry3d
-//!   ([`sphaera_tests::sampled_hausdorff`], a lower bound of the true distance that
+//!   ([`sphaera_tests::reference_hausdorff`], a lower bound of the true distance that
 //!   shares no code with the sweep) is never above the certified upper bound: the
 //!   certified bracket `lower ≤ H ≤ upper` contains the true value, and the sampled value
 //!   is at most the true value. (It may lie below the certified lower bound: both are
@@ -176,7 +176,7 @@ fn check(name: &str, mesh: &TriMesh) {
         &HausdorffOptions::default().with_tolerance(Length::Absolute(tolerance)),
     )
     .unwrap_or_else(|e| panic!("{name}: hausdorff: {e}"));
-    let sampled = sphaera_tests::sampled_hausdorff(mesh, &out.mesh, SAMPLES, 1).symmetric();
+    let sampled = sphaera_tests::reference_hausdorff(mesh, &out.mesh, SAMPLES, 1).symmetric();
     eprintln!(
         "{name}: {} -> {} triangles, bound {:.4e}, certified [{:.4e}, {:.4e}]{}, sampled {:.4e}",
         mesh.triangle_count(),

@@ -24,7 +24,7 @@ fn check_both(original: &TriMesh, out: &Simplified, samples: usize, seed: u64) {
     );
     let max = out.vertex_radii.iter().fold(0.0_f64, |m, &r| m.max(r));
     assert_eq!(out.error_bound, max);
-    let measured = sphaera_tests::sampled_hausdorff(original, &out.mesh, 2000, seed).symmetric();
+    let measured = sphaera_tests::reference_hausdorff(original, &out.mesh, 2000, seed).symmetric();
     assert!(
         measured <= out.error_bound + SLACK,
         "bound {} below measured {measured}",

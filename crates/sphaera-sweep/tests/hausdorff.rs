@@ -10,7 +10,7 @@ use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
 use sphaera_sweep::{
     DirectedHausdorff, Direction, HausdorffOptions, SweepError, Sweeper, build_hierarchy, hausdorff,
 };
-use sphaera_tests::hausdorff::sampled_hausdorff;
+use sphaera_tests::hausdorff::reference_hausdorff;
 
 /// Distance from `p` to the nearest triangle of `mesh` (every triangle).
 fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
@@ -343,7 +343,7 @@ fn real_meshes_agree_with_the_parry_sampler() {
             &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-4)),
         )
         .expect("valid");
-        let sampled = sampled_hausdorff(&a, &b, 20_000, 3);
+        let sampled = reference_hausdorff(&a, &b, 20_000, 3);
         let back = result.b_to_a.as_ref().expect("symmetric");
         assert!(
             sampled.a_to_b <= result.a_to_b.upper + 1e-12,

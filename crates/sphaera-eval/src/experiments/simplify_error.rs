@@ -4,7 +4,7 @@
 //!
 //! For each mesh, ratio and method: the triangles reached, the time (minimum of a few runs;
 //! the input conversion for meshopt is not timed), the symmetric Hausdorff distance between
-//! input and output measured by [`sampled_hausdorff`] (parry3d-f64 projections from every
+//! input and output measured by [`reference_hausdorff`] (parry3d-f64 projections from every
 //! vertex, every edge midpoint and [`HAUSDORFF_SAMPLES`] random points per mesh, then a
 //! local refinement; a lower bound of the true distance), and for Sphaera its certified
 //! bound. Distances are relative to the input's bounding-box diagonal. The methods and
@@ -17,7 +17,7 @@ use std::path::Path;
 
 use anyhow::Result;
 use sphaera::mesh::TriMesh;
-use sphaera_tests::sampled_hausdorff;
+use sphaera_tests::reference_hausdorff;
 
 use super::{load_or_skip, min_time};
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
@@ -85,7 +85,7 @@ fn measure_mesh(
         let target = target_triangles(mesh, ratio);
         for &(name, placement) in PLACEMENTS {
             let (seconds, out) = min_time(runs, || sphaera_simplify(mesh, placement, target))?;
-            let measured = sampled_hausdorff(mesh, &out.mesh, HAUSDORFF_SAMPLES, 0).symmetric();
+            let measured = reference_hausdorff(mesh, &out.mesh, HAUSDORFF_SAMPLES, 0).symmetric();
             rows.push(Row {
                 file,
                 method: format!("sphaera {name}"),
@@ -101,7 +101,7 @@ fn measure_mesh(
         }
         let (seconds, indices) = min_time(runs, || meshopt.simplify(target))?;
         let surface = meshopt_surface(mesh, &indices)?;
-        let measured = sampled_hausdorff(mesh, &surface, HAUSDORFF_SAMPLES, 0).symmetric();
+        let measured = reference_hausdorff(mesh, &surface, HAUSDORFF_SAMPLES, 0).symmetric();
         rows.push(Row {
             file,
             method: "meshopt".to_owned(),

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
 use sphaera_mesh::shapes;
-use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, TWELVE_DIRECTIONS};
+use sphaera_tests::pattern_search::{Boundary, PatternSearch, SearchBudget, TWELVE_DIRECTIONS};
 use sphaera_tests::random::SplitMix64;
 
 /// Slack of the brute-force checks (the meshes are of unit size).
@@ -64,7 +64,7 @@ fn min_over_triangle(x: DVec3, p: [DVec3; 3], r: [f64; 3], sign: f64) -> f64 {
         grid: 16,
         directions: &TWELVE_DIRECTIONS,
         min_step: 1e-13,
-        budget: Budget::Rounds(3000),
+        budget: SearchBudget::Rounds(3000),
         boundary: Boundary::ClampNegative,
     }
     .minimise(f)

@@ -6,7 +6,7 @@ use glam::DVec3;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
 use sphaera_simplify::Simplified;
-use sphaera_tests::pattern_search::{Boundary, Budget, PatternSearch, TWELVE_DIRECTIONS};
+use sphaera_tests::pattern_search::{Boundary, PatternSearch, SearchBudget, TWELVE_DIRECTIONS};
 
 /// Slack allowed in the checks (absolute, the shapes are of unit size).
 pub const SLACK: f64 = 1e-9;
@@ -25,7 +25,7 @@ pub fn tolerance_slack(x: DVec3, p: [DVec3; 3], r: [f64; 3]) -> f64 {
         grid: 24,
         directions: &TWELVE_DIRECTIONS,
         min_step: 1e-14,
-        budget: Budget::Rounds(usize::MAX),
+        budget: SearchBudget::Rounds(usize::MAX),
         boundary: Boundary::ClampNegative,
     }
     .minimise(f)
