@@ -187,21 +187,35 @@ impl SplitMix64 {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Lcg64 {
     state: u64,
+    increment: u64,
 }
 
 impl Lcg64 {
+    /// Knuth's MMIX increment.
+    const MMIX_INCREMENT: u64 = 1_442_695_040_888_963_407;
+
     /// A generator starting from `seed` (the first output comes from the state after one
-    /// step).
+    /// step), with Knuth's MMIX increment.
     #[must_use]
     pub const fn new(seed: u64) -> Self {
-        Self { state: seed }
+        Self::with_increment(seed, Self::MMIX_INCREMENT)
+    }
+
+    /// A generator starting from `seed` with another (odd) increment; some older tests
+    /// drew their inputs with increment 1.
+    #[must_use]
+    pub const fn with_increment(seed: u64, increment: u64) -> Self {
+        Self {
+            state: seed,
+            increment,
+        }
     }
 
     fn step(&mut self) -> u64 {
         self.state = self
             .state
             .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
+            .wrapping_add(self.increment);
         self.state
     }
 
@@ -213,5 +227,12 @@ impl Lcg64 {
     /// Uniform in `[0, 1)`: the top 53 bits of the next state over 2⁵³.
     pub fn unit(&mut self) -> f64 {
         (self.step() >> 11) as f64 / (1_u64 << 53) as f64
+    }
+
+    /// A point uniform in the unit cube `[0, 1)³`: the next three values as x, y, z.
+    pub fn unit_cube(&mut self) -> DVec3 {
+        let x = self.unit();
+        let y = self.unit();
+        DVec3::new(x, y, self.unit())
     }
 }

@@ -3,7 +3,7 @@
 //!
 //! The polyline (seeded): a noisy helix of 100 000 points, 20 turns of radius 1 and pitch
 //! 0.25, each point moved by up to 1 % of the radius. Query sets (seeded; the generator
-//! of both is `sphaera_eval::query_sets::Lcg`):
+//! of both is `sphaera_tests::random::Lcg64`):
 //! - `uniform`: points uniform in the bounding box scaled 1.5× about its centre;
 //! - `path`: a smooth path of small steps (about 2 · 10⁻³ each) winding around the helix
 //!   at radius 1.3, the coherent case.
@@ -18,7 +18,7 @@ use std::{hint::black_box, time::Duration};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use parry3d_f64::{query::PointQuery, shape::Polyline as ParryPolyline};
 use sphaera::{mesh::DVec3, sweep::Polyline};
-use sphaera_eval::query_sets::Lcg;
+use sphaera_tests::random::Lcg64;
 
 /// Points of the polyline.
 const POINTS: usize = 100_000;
@@ -28,7 +28,7 @@ const QUERIES: usize = 2_000;
 
 /// The noisy helix of the module docs.
 fn helix() -> Vec<DVec3> {
-    let mut rng = Lcg(3);
+    let mut rng = Lcg64::new(3);
     let turns = 20.0;
     (0..POINTS)
         .map(|i| {
@@ -47,7 +47,7 @@ fn query_sets(points: &[DVec3]) -> Vec<(&'static str, Vec<DVec3>)> {
     );
     let center = 0.5 * (min + max);
     let half = 0.5 * (max - min);
-    let mut rng = Lcg(7);
+    let mut rng = Lcg64::new(7);
     let uniform = (0..QUERIES)
         .map(|_| center + 1.5 * half * (2.0 * rng.unit_cube() - DVec3::ONE))
         .collect();

@@ -12,34 +12,13 @@
 
 use anyhow::{Context, Result};
 use sphaera::mesh::{DVec3, TriMesh, sampling};
+use sphaera_tests::random::Lcg64;
 
 /// Steps of the `path` set per full turn of its curve.
 pub const PATH_STEPS_PER_LOOP: usize = 2_000;
 
 /// The names of the query sets, in the order [`query_sets`] returns them.
 pub const SET_NAMES: [&str; 3] = ["uniform", "near", "path"];
-
-/// A small deterministic generator (Knuth's 64-bit linear congruential generator, the
-/// top 53 bits as a value uniform in `[0, 1)`), seeded by its state. Also the generator of
-/// the `polyline_vs_parry` bench's helix and query sets.
-pub struct Lcg(pub u64);
-
-impl Lcg {
-    /// The next value, uniform in `[0, 1)`.
-    pub fn uniform(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        // The top 53 bits, exactly representable.
-        (self.0 >> 11) as f64 / (1_u64 << 53) as f64
-    }
-
-    /// A point uniform in the unit cube `[0, 1)³`: the next three values as x, y, z.
-    pub fn unit_cube(&mut self) -> DVec3 {
-        DVec3::new(self.uniform(), self.uniform(), self.uniform())
-    }
-}
 
 /// The three query sets of the module docs, `n` points each, named as in [`SET_NAMES`].
 ///
@@ -51,7 +30,7 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
     let center = 0.5 * (bounds.min + bounds.max);
     let half = 0.5 * (bounds.max - bounds.min);
     let diagonal = mesh.bounding_box_diagonal();
-    let mut rng = Lcg(7);
+    let mut rng = Lcg64::new(7);
     let uniform = (0..n)
         .map(|_| {
             let u = rng.unit_cube();
@@ -63,7 +42,7 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
         .iter()
         .map(|s| {
             let d = rng.unit_cube() * 2.0 - DVec3::ONE;
-            s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.uniform())
+            s.position + d.normalize_or_zero() * (0.01 * diagonal * rng.unit())
         })
         .collect();
     let path = (0..n)

@@ -9,7 +9,7 @@ use std::collections::BTreeSet;
 
 use proptest::prelude::*;
 use sphaera_medial::{DVec3, Delaunay, DelaunayError, INFINITE};
-use sphaera_tests::point_sets::integer_sphere;
+use sphaera_tests::point_sets::{integer_sphere, random_in_cube};
 
 fn signed_volume(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     (a - d).dot((b - d).cross(c - d)) / 6.0
@@ -211,28 +211,16 @@ fn the_result_does_not_depend_on_the_input_order() {
 
 #[test]
 fn the_same_input_gives_the_same_output() {
-    let points = random_points(3_000, 11);
+    let points = random_in_cube(3_000, 11);
     let a = Delaunay::new(&points).unwrap();
     let b = Delaunay::new(&points).unwrap();
     let ids = |d: &Delaunay| d.tetrahedra().collect::<Vec<_>>();
     assert_eq!(ids(&a), ids(&b));
 }
 
-fn random_points(n: usize, seed: u64) -> Vec<DVec3> {
-    // A small xorshift: deterministic without extra dependencies.
-    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1_u64 << 53) as f64
-    };
-    (0..n).map(|_| DVec3::new(next(), next(), next())).collect()
-}
-
 #[test]
-fn twenty_thousand_random_points() {
-    let points = random_points(20_000, 3);
+fn twenty_thousand_random_in_cube() {
+    let points = random_in_cube(20_000, 3);
     let delaunay = check(&points);
     assert_eq!(delaunay.fallback_scans(), 0);
     // About 6.5 tetrahedra per point for uniform random points.
@@ -272,7 +260,7 @@ fn insert_reports_what_changed() {
 
 #[test]
 fn voronoi_cells_surround_their_points() {
-    let points = random_points(500, 5);
+    let points = random_in_cube(500, 5);
     let delaunay = check(&points);
     let mut total = 0;
     for v in 0..500 {

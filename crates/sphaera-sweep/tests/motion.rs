@@ -8,37 +8,27 @@ use sphaera_mesh::glam::{DAffine3, DQuat};
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_simplify::Hierarchy;
 use sphaera_sweep::{DeformedShape, Session, SweepError, Sweeper, Tolerance, build_hierarchy};
+use sphaera_tests::random::Lcg64;
 
-/// A small deterministic pseudo-random sequence in `[0, 1)`.
-struct Lcg(u64);
+/// A point of the cube `[−scale, scale]³` (x, y, z drawn in that order).
+fn random_vector(rng: &mut Lcg64, scale: f64) -> DVec3 {
+    DVec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5) * (2.0 * scale)
+}
 
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1_u64 << 53) as f64
-    }
-
-    fn vector(&mut self, scale: f64) -> DVec3 {
-        DVec3::new(self.next() - 0.5, self.next() - 0.5, self.next() - 0.5) * (2.0 * scale)
-    }
-
-    fn rotation(&mut self) -> DQuat {
-        let axis = self.vector(1.0).try_normalize().unwrap_or(DVec3::Z);
-        DQuat::from_axis_angle(axis, std::f64::consts::TAU * self.next())
-    }
+/// A rotation about a random axis by a random angle.
+fn random_rotation(rng: &mut Lcg64) -> DQuat {
+    let axis = random_vector(rng, 1.0).try_normalize().unwrap_or(DVec3::Z);
+    DQuat::from_axis_angle(axis, std::f64::consts::TAU * rng.unit())
 }
 
 /// A sphere with noise (so the hierarchy is not trivially symmetric).
 fn noisy_sphere() -> TriMesh {
     let sphere = shapes::sphere(1.0, 10).expect("a valid sphere");
-    let mut rng = Lcg(5);
+    let mut rng = Lcg64::new(5);
     let positions: Vec<DVec3> = sphere
         .positions()
         .iter()
-        .map(|p| *p * (1.0 + 0.05 * rng.next()))
+        .map(|p| *p * (1.0 + 0.05 * rng.unit()))
         .collect();
     TriMesh::new(positions, sphere.triangles().to_vec()).expect("same triangles")
 }
@@ -90,15 +80,15 @@ fn rigid_poses_coherent_and_jumping() {
     let hierarchy = build_hierarchy(&mesh).expect("a valid mesh");
     let sweeper = Sweeper::new(&hierarchy).expect("triangles");
     let mut session = sweeper.session();
-    let mut rng = Lcg(17);
-    let queries: Vec<DVec3> = (0..6).map(|_| rng.vector(1.6)).collect();
+    let mut rng = Lcg64::new(17);
+    let queries: Vec<DVec3> = (0..6).map(|_| random_vector(&mut rng, 1.6)).collect();
     let mut rotation = DQuat::IDENTITY;
     let mut translation = DVec3::ZERO;
     for step in 0..60 {
         if step % 15 == 14 {
             // A jump.
-            rotation = rng.rotation();
-            translation = rng.vector(3.0);
+            rotation = random_rotation(&mut rng);
+            translation = random_vector(&mut rng, 3.0);
         } else {
             // A small coherent step.
             rotation = (DQuat::from_axis_angle(DVec3::new(0.3, 1.0, 0.2).normalize(), 0.02)
@@ -158,8 +148,8 @@ fn keyframes_interpolated_are_exact() {
         .map(|p| hierarchy.replay(p).expect("same topology"))
         .collect();
     let mut session = sweeper.session();
-    let mut rng = Lcg(23);
-    let queries: Vec<DVec3> = (0..5).map(|_| rng.vector(1.5)).collect();
+    let mut rng = Lcg64::new(23);
+    let queries: Vec<DVec3> = (0..5).map(|_| random_vector(&mut rng, 1.5)).collect();
     for k in 0..2 {
         for step in 0..=8 {
             let t = f64::from(step) / 8.0;
@@ -172,7 +162,8 @@ fn keyframes_interpolated_are_exact() {
         }
     }
     // With a pose on top.
-    let pose = DAffine3::from_rotation_translation(rng.rotation(), DVec3::new(1.0, 2.0, 3.0));
+    let pose =
+        DAffine3::from_rotation_translation(random_rotation(&mut rng), DVec3::new(1.0, 2.0, 3.0));
     session.move_mesh(pose).expect("rigid");
     let world: Vec<DVec3> = keys[2].iter().map(|&x| pose.transform_point3(x)).collect();
     for &q in &queries {
@@ -196,8 +187,8 @@ fn inflated_radii_cover_moves_within_the_bounds() {
     session
         .deform(DeformedShape::inflated(&hierarchy, &bound).expect("valid bounds"))
         .expect("same tables");
-    let mut rng = Lcg(29);
-    let queries: Vec<DVec3> = (0..5).map(|_| rng.vector(1.5)).collect();
+    let mut rng = Lcg64::new(29);
+    let queries: Vec<DVec3> = (0..5).map(|_| random_vector(&mut rng, 1.5)).collect();
     for step in 0..=10 {
         let positions = lerp(mesh.positions(), &end, f64::from(step) / 10.0);
         session

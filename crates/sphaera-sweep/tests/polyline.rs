@@ -11,6 +11,7 @@ use sphaera_sweep::polyline::{
     PolylineSessionOptions,
 };
 use sphaera_sweep::{SweepError, Tolerance};
+use sphaera_tests::random::Lcg64;
 
 /// The closest point of `[a, b]` to `p`, written independently of the library.
 fn brute_segment<P: PolylinePoint>(p: P, a: P, b: P) -> f64 {
@@ -386,13 +387,8 @@ fn the_reset_policy_keeps_answers_exact_and_is_counted() {
             .with_max_front(8)
             .with_jump_factor(f64::INFINITY),
     );
-    let mut state = 3_u64;
-    let mut next = || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1);
-        (state >> 11) as f64 / (1_u64 << 53) as f64 * 4.0 - 2.0
-    };
+    let mut rng = Lcg64::with_increment(3, 1);
+    let mut next = || rng.unit() * 4.0 - 2.0;
     for _ in 0..50 {
         let p = DVec3::new(next(), next(), next() + 2.0);
         check_exact(&polyline, p, &session.closest(p).expect("finite"));

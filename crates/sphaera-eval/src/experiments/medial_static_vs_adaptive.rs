@@ -493,7 +493,7 @@ mod tests {
     use sphaera::medial::SphereKind;
 
     use super::*;
-    use crate::query_sets::Lcg;
+    use sphaera_tests::random::Lcg64;
 
     fn sphere(centre: DVec3, radius: f64) -> MedialSphere {
         MedialSphere {
@@ -508,8 +508,8 @@ mod tests {
 
     /// Deterministic pseudo-random values in `[0, 1)`.
     fn values(seed: u64, n: usize) -> Vec<f64> {
-        let mut rng = Lcg(seed);
-        (0..n).map(|_| rng.uniform()).collect()
+        let mut rng = Lcg64::new(seed);
+        (0..n).map(|_| rng.unit()).collect()
     }
 
     fn brute(spheres: &[MedialSphere], points: &[DVec3]) -> Coverage {

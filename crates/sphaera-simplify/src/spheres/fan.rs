@@ -419,14 +419,7 @@ mod tests {
     use super::*;
     use crate::spheres::{BoundaryPolicy, collapse_radius};
     use sphaera_mesh::{TriMesh, shapes};
-
-    /// A small deterministic pseudo-random sequence in `[0, 1)`.
-    fn uniform(state: &mut u64) -> f64 {
-        *state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (*state >> 11) as f64 / (1_u64 << 53) as f64
-    }
+    use sphaera_tests::random::Lcg64;
 
     /// The original per-target computation of the radius for an interior `u`
     /// (`collapse_radius` before the fan was shared), verbatim in substance.
@@ -540,9 +533,8 @@ mod tests {
 
     #[test]
     fn crossing_with_early_rejection_matches_the_original() {
-        let mut state = 3;
-        let mut point =
-            |scale: f64| DVec2::new(uniform(&mut state) - 0.5, uniform(&mut state) - 0.5) * scale;
+        let mut rng = Lcg64::new(3);
+        let mut point = |scale: f64| DVec2::new(rng.unit() - 0.5, rng.unit() - 0.5) * scale;
         let mut crossings = 0;
         for i in 0..200_000 {
             let scale = [1.0, 1e-3, 1e3, 1e-150][i % 4];
@@ -568,23 +560,19 @@ mod tests {
     /// `mesh` with its vertices jittered by up to `noise`, some random legal collapses
     /// applied (irregular valences) and random radii.
     fn scrambled(mesh: &TriMesh, noise: f64, seed: u64) -> (HalfEdgeMesh, Vec<f64>) {
-        let mut state = seed;
+        let mut rng = Lcg64::new(seed);
         let positions: Vec<DVec3> = mesh
             .positions()
             .iter()
             .map(|&p| {
-                let jitter = DVec3::new(
-                    uniform(&mut state),
-                    uniform(&mut state),
-                    uniform(&mut state),
-                );
+                let jitter = rng.unit_cube();
                 p + noise * (2.0 * jitter - DVec3::ONE)
             })
             .collect();
         let mesh = TriMesh::new(positions, mesh.triangles().to_vec()).unwrap();
         let mut he = HalfEdgeMesh::from_trimesh(&mesh);
         for _ in 0..he.vertex_count() / 4 {
-            let h = HalfEdgeId((uniform(&mut state) * he.halfedge_count() as f64) as u32);
+            let h = HalfEdgeId((rng.unit() * he.halfedge_count() as f64) as u32);
             if he.can_collapse(h) {
                 let p = he.position(he.target(h));
                 he.collapse_edge(h, p).unwrap();
@@ -592,10 +580,10 @@ mod tests {
         }
         let radii = (0..he.vertex_count())
             .map(|_| {
-                if uniform(&mut state) < 0.3 {
+                if rng.unit() < 0.3 {
                     0.0
                 } else {
-                    0.05 * uniform(&mut state)
+                    0.05 * rng.unit()
                 }
             })
             .collect();

@@ -231,6 +231,7 @@ fn inside_triangle(p: DVec3, x: [DVec3; 3]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use sphaera_tests::random::Lcg64;
 
     fn answer(position: DVec3, closest: DVec3) -> CornerAnswer {
         CornerAnswer { position, closest }
@@ -261,11 +262,8 @@ mod tests {
 
     #[test]
     fn bisector_bound_is_the_envelope_maximum() {
-        let mut seed = 7_u64;
-        let mut next = || {
-            seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = Lcg64::with_increment(7, 1);
+        let mut next = || rng.unit() * 2.0 - 1.0;
         for _ in 0..200 {
             let mut point = || DVec3::new(next(), next(), next());
             let corners = [
