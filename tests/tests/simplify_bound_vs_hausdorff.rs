@@ -4,7 +4,7 @@
 //!
 //! - the simplifier's `error_bound` (an upper bound of the symmetric Hausdorff distance
 //!   between input and output, by its error spheres) is never below the certified lower
-//!   bound of `sphaera_sweep::hausdorff(…).symmetric()` (a distance measured at a point
+//!   bound of the symmetric `sphaera_sweep::hausdorff` (a distance measured at a point
 //!   of one surface, so at most the true distance), up to rounding;
 //! - the sampled Hausdorff distance measured with parry3d
 //!   ([`sphaera_tests::reference_hausdorff`], a lower bound of the true distance that
@@ -32,7 +32,8 @@
 //! triangles), which are in the data set and checked here; the test fails if a mesh above
 //! the limit has no variant listed in [`REDUCED_VARIANTS`], or if a listed variant was not
 //! checked, so no data is skipped silently. Files with the same bytes as one already
-//! checked (the robots' URDF folders repeat their meshes) are checked once and named.
+//! checked are checked once and named (the robots' `urdf/` asset copies are not walked
+//! at all: see `sphaera_tests::mesh_files`).
 //!
 //! # Time
 //!

@@ -1,6 +1,6 @@
 //! Sphere-trees of `sphaera-spheretree` checked with `sphaera-sweep`'s exact closest
 //! points (Meshsweeper sessions: a different algorithm from the triangle tree that the
-//! sphere-tree crate itself queries through `sphaera_medial::Surface`) and
+//! sphere-tree crate itself queries through `sphaera_mesh::Surface`) and
 //! `sphaera-mesh`'s independent random surface samples, on a capsule, a torus, the
 //! embedded low-resolution bunny and a Franka Panda link.
 //!
@@ -38,7 +38,7 @@
 //! 1.7–3.1 s wall in the test profile on the shared 2-core machine, the four trees side by
 //! side (alone: capsule 1.0 s, bunny 0.5 s, Franka link 0.3 s, torus 0.25 s).
 
-use sphaera_medial::Surface;
+use sphaera_mesh::Surface;
 use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
 use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 use sphaera_spheretree::{SphereTree, SphereTreeOptions, TreeNode, build};

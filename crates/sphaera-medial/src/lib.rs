@@ -24,6 +24,9 @@
 //! assert!((volume.abs() - 64.0).abs() < 1e-9);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Feature flags
+#![doc = document_features::document_features!()]
 
 pub mod delaunay;
 mod error;

@@ -133,6 +133,9 @@
 //! bound); figures and the same-run comparison are in the repository's
 //! `docs/benchmarks.md`.
 //!
+//! # Feature flags
+#![doc = document_features::document_features!()]
+//!
 //! # See also
 //!
 //! [`sphaera_mesh::topology::HalfEdgeMesh`] (the editable mesh and its collapse records).

@@ -36,7 +36,7 @@ type Piece = [DVec3; 3];
 /// raising each grown node's error to its new eq. 2 value, and records the certificates
 /// in the tree.
 pub(crate) fn certify_tree(
-    surface: &sphaera_medial::Surface,
+    surface: &sphaera_mesh::Surface,
     tree: &mut crate::SphereTree,
     resolution: f64,
 ) {

@@ -41,6 +41,9 @@
 //! assert_eq!(fit.coverage.uncovered, 0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Feature flags
+#![doc = document_features::document_features!()]
 
 mod baseline;
 mod build;

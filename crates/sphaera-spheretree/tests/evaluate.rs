@@ -7,7 +7,7 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use proptest::prelude::*;
-use sphaera_medial::Surface;
+use sphaera_mesh::Surface;
 use sphaera_mesh::{Length, TriMesh, sampling, shapes};
 use sphaera_spheretree::evaluate::{
     EvaluationOptions, coverage, evaluate_set, sphere_error, sphere_errors,

@@ -74,6 +74,9 @@
 //!
 //! The [`polyline`] module answers the same queries on 2D and 3D polylines (paper section
 //! 3) over a Douglas–Peucker hierarchy of capsules; its module docs have a runnable example.
+//!
+//! # Feature flags
+#![doc = document_features::document_features!()]
 
 mod answer;
 mod deformed_shape;

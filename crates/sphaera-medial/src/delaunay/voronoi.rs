@@ -141,7 +141,9 @@ impl Delaunay {
     }
 }
 
-/// The sphere through four points.
+/// The sphere through four points, unchecked: the corners of a Delaunay tetrahedron are
+/// never coplanar, and the radius is the distance to `a`. The checked, covering version
+/// for arbitrary input is `sphaera_mesh::geometry::circumsphere`.
 pub(crate) fn circumsphere(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> (DVec3, f64) {
     let (ab, ac, ad) = (b - a, c - a, d - a);
     let (bc, cd) = (ac.cross(ad), ad.cross(ab));

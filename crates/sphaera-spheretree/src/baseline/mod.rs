@@ -7,7 +7,7 @@ mod hubbard;
 mod octree;
 
 use glam::DVec3;
-use sphaera_medial::Surface;
+use sphaera_mesh::Surface;
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, sampling};
 

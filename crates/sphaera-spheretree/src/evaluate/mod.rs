@@ -10,7 +10,7 @@
 //! # Quick start
 //!
 //! ```
-//! use sphaera_medial::Surface;
+//! use sphaera_mesh::Surface;
 //! use sphaera_mesh::shapes;
 //! use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 //! use sphaera_spheretree::{DVec3, Sphere};
@@ -35,9 +35,9 @@
 //! geodesic triangles; a patch splits into four at its edges' geodesic midpoints, and the
 //! live patches always tile the whole sphere. Each patch is probed at its representative
 //! point `p` (the normalised sum of its corners): the exact closest surface point `q` and
-//! distance `d(p)` (`sphaera-sweep`'s triangle tree, through
-//! [`Surface::closest`](sphaera_medial::Surface::closest)) and the inside test
-//! ([`Surface::is_inside_certified`](sphaera_medial::Surface::is_inside_certified)). With `ρ` the largest
+//! distance `d(p)` (`sphaera-mesh`'s triangle tree, through
+//! [`Surface::closest`](sphaera_mesh::Surface::closest)) and the inside test
+//! ([`Surface::is_inside_certified`](sphaera_mesh::Surface::is_inside_certified)). With `ρ` the largest
 //! distance from `p` to the patch (the chord of the cap through its corners: a cap of at
 //! most 90° is spherically convex, so it contains the geodesic triangle), `f` is bounded
 //! on the patch by the smallest of:
@@ -61,7 +61,7 @@
 //! # What the certificate assumes
 //!
 //! - **The inside test.**
-//!   [`Surface::is_inside_certified`](sphaera_medial::Surface::is_inside_certified) gives
+//!   [`Surface::is_inside_certified`](sphaera_mesh::Surface::is_inside_certified) gives
 //!   the exact generalized winding number's answer (it refines the fast approximation
 //!   until its error bound decides, exactly as a last resort), except within rounding of
 //!   the surface itself. A probe closer to the surface than a **guard band** (a quarter of

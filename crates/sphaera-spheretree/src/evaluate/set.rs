@@ -2,7 +2,7 @@
 
 use std::time::{Duration, Instant};
 
-use sphaera_medial::Surface;
+use sphaera_mesh::Surface;
 
 use super::EvaluationOptions;
 use super::coverage::{Coverage, coverage};
@@ -15,7 +15,7 @@ use crate::{Sphere, SphereTreeError};
 /// # Examples
 ///
 /// ```
-/// use sphaera_medial::Surface;
+/// use sphaera_mesh::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 /// use sphaera_spheretree::{DVec3, Sphere};
@@ -68,7 +68,7 @@ pub struct SetEvaluation {
 /// # Examples
 ///
 /// ```
-/// use sphaera_medial::Surface;
+/// use sphaera_mesh::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 /// use sphaera_spheretree::{DVec3, Sphere};

@@ -3,7 +3,7 @@
 use std::cmp::Reverse;
 
 use glam::DVec3;
-use sphaera_medial::Surface;
+use sphaera_mesh::Surface;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::EvaluationOptions;
@@ -20,7 +20,7 @@ const GUARD_FRACTION: f64 = 0.25;
 /// # Examples
 ///
 /// ```
-/// use sphaera_medial::Surface;
+/// use sphaera_mesh::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
 /// use sphaera_spheretree::{DVec3, Sphere};
@@ -118,7 +118,7 @@ impl Search<'_> {
 /// # Examples
 ///
 /// ```
-/// use sphaera_medial::Surface;
+/// use sphaera_mesh::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
 /// use sphaera_spheretree::{DVec3, Sphere};
@@ -235,7 +235,7 @@ pub(crate) fn fit(
 /// # Examples
 ///
 /// ```
-/// use sphaera_medial::Surface;
+/// use sphaera_mesh::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_errors};
 /// use sphaera_spheretree::{DVec3, Sphere};

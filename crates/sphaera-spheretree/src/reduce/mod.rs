@@ -26,7 +26,7 @@ pub use expand::{ExpandOutcome, Selection, expand_select};
 pub use merge::merge;
 
 use glam::DVec3;
-use sphaera_medial::Surface;
+use sphaera_mesh::Surface;
 use sphaera_mesh::Sphere;
 
 use crate::SphereTreeError;
