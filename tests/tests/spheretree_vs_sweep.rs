@@ -29,19 +29,23 @@
 //!    Fibonacci lattice), so the largest `f` found is a lower bound of `E(S)` below both;
 //! 2. `fit.lower ≤ error`; and `fit.lower` is sweep's exact distance at its witness
 //!    point, which lies on the sphere and outside the object;
-//! 3. coverage: 20,000 area-weighted random surface samples (a seed the construction does
-//!    not use) each lie inside some sphere of every level (the construction certifies
-//!    coverage of the whole surface), and `evaluate_set` finds no uncovered sample.
+//! 3. coverage, for the medial-axis methods: 20,000 area-weighted random surface samples
+//!    (a seed the construction does not use) each lie inside some sphere of every level
+//!    (the construction certifies coverage of the whole surface), and `evaluate_set` finds
+//!    no uncovered sample. The baselines (octree, grid, Hubbard) cover their own samples
+//!    only, so for them 1 and 2 are checked and coverage is not.
+//!
+//! Every method of [`Method::ALL`] is checked on every mesh.
 //!
 //! # Time
 //!
-//! 1.7–3.1 s wall in the test profile on the shared 2-core machine, the four trees side by
-//! side (alone: capsule 1.0 s, bunny 0.5 s, Franka link 0.3 s, torus 0.25 s).
+//! 8.5 s wall in the test profile on the shared 2-core machine, the four meshes side by
+//! side with seven methods each (the default method alone took 1.7–3.1 s).
 
 use sphaera_mesh::Surface;
 use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
 use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
-use sphaera_spheretree::{SphereTree, SphereTreeOptions, TreeNode, build};
+use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions, TreeNode, build};
 use sphaera_sweep::{Session, Sweeper, build_hierarchy};
 
 /// Points per sphere surface where the error is measured.
@@ -76,31 +80,51 @@ fn directions(n: usize) -> Vec<DVec3> {
         .collect()
 }
 
-/// Builds the tree of `mesh` and checks it (see the module documentation).
+/// Builds the tree of `mesh` with every method and checks each (see the module
+/// documentation).
 fn check(name: &str, mesh: &TriMesh) {
     let surface = Surface::new(mesh).unwrap_or_else(|e| panic!("{name}: surface: {e}"));
-    let tree = build(&surface, &options()).unwrap_or_else(|e| panic!("{name}: build: {e}"));
     let hierarchy = build_hierarchy(mesh).unwrap_or_else(|e| panic!("{name}: hierarchy: {e}"));
     let sweeper = Sweeper::new(&hierarchy).unwrap_or_else(|e| panic!("{name}: sweeper: {e}"));
     let mut session = sweeper.session();
+    for method in Method::ALL {
+        let name = format!("{name} ({})", method.name());
+        check_method(&name, mesh, &surface, &mut session, method);
+    }
+}
+
+/// Builds the tree of `mesh` with `method` and checks it.
+fn check_method(
+    name: &str,
+    mesh: &TriMesh,
+    surface: &Surface,
+    session: &mut Session<'_>,
+    method: Method,
+) {
+    let tree = build(surface, &options().with_method(method))
+        .unwrap_or_else(|e| panic!("{name}: build: {e}"));
     let diagonal = mesh.bounding_box_diagonal();
     let slack = 1e-12 * diagonal;
-    check_coverage(name, mesh, &tree, 1e-9 * diagonal);
+    if method.is_medial() {
+        check_coverage(name, mesh, &tree, 1e-9 * diagonal);
+    }
     let options = EvaluationOptions::default().with_coverage_samples(10_000);
     let directions = directions(POINTS_PER_SPHERE);
     let mut measured = 0;
     for level in 0..tree.level_count() {
         let nodes = tree.level(level);
         let spheres = tree.level_spheres(level);
-        let set = evaluate_set(&surface, &spheres, &options)
+        let set = evaluate_set(surface, &spheres, &options)
             .unwrap_or_else(|e| panic!("{name}: evaluate level {level}: {e}"));
-        assert_eq!(
-            set.coverage.uncovered, 0,
-            "{name}: level {level} leaves samples uncovered"
-        );
+        if method.is_medial() {
+            assert_eq!(
+                set.coverage.uncovered, 0,
+                "{name}: level {level} leaves samples uncovered"
+            );
+        }
         for (k, (node, fit)) in nodes.iter().zip(&set.fits).enumerate() {
             let at = format!("{name}: level {level}, sphere {k}");
-            let found = largest_outside_distance(&surface, &mut session, node, &directions);
+            let found = largest_outside_distance(surface, session, node, &directions);
             measured += usize::from(found > 0.0);
             assert!(
                 found <= fit.upper + slack,
@@ -120,7 +144,7 @@ fn check(name: &str, mesh: &TriMesh) {
                 fit.lower,
                 node.error
             );
-            check_witness(&at, &surface, &mut session, node, fit.lower, fit.witness);
+            check_witness(&at, surface, session, node, fit.lower, fit.witness);
         }
     }
     assert!(measured > 0, "{name}: no sphere pokes out of the mesh");

@@ -3,8 +3,8 @@
 
 use sphaera_mesh::{DVec3, Length, Surface, TriMesh, sampling, shapes};
 use sphaera_spheretree::{
-    EvaluationOptions, MAX_BASELINE_DEPTH, Method, SphereTree, SphereTreeError, SphereTreeOptions,
-    build, evaluate_set,
+    EvaluationOptions, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTree,
+    SphereTreeError, SphereTreeOptions, build, evaluate_set,
 };
 
 const METHODS: [Method; 3] = [Method::Octree, Method::Grid, Method::Hubbard];
@@ -154,6 +154,43 @@ fn depth_zero_and_bad_input() {
     }
     // A NaN vertex never makes a mesh.
     assert!(TriMesh::new(vec![DVec3::NAN, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).is_err());
+}
+
+/// The limits' messages name the values of the public constants.
+#[test]
+fn limit_messages_name_the_constants() {
+    let mesh = shapes::sphere(1.0, 8).unwrap();
+    let thousands = |n: usize| {
+        let digits = n.to_string();
+        let mut out = String::new();
+        for (i, c) in digits.chars().enumerate() {
+            if i > 0 && (digits.len() - i).is_multiple_of(3) {
+                out.push(',');
+            }
+            out.push(c);
+        }
+        out
+    };
+    for (options, limit) in [
+        (
+            small().with_depth(MAX_BASELINE_DEPTH + 1),
+            MAX_BASELINE_DEPTH,
+        ),
+        (
+            small().with_samples(MAX_BASELINE_SAMPLES + 1),
+            MAX_BASELINE_SAMPLES,
+        ),
+    ] {
+        let Err(SphereTreeError::InvalidParameter { requirement, .. }) =
+            run(Method::Octree, &mesh, &options)
+        else {
+            panic!("{options:?} accepted");
+        };
+        assert!(
+            requirement.contains(&thousands(limit)),
+            "{requirement:?} does not name {limit}"
+        );
+    }
 }
 
 #[test]

@@ -300,3 +300,30 @@ fn eliminate(candidates: &[SurfaceSample], n: usize, d_max: f64) -> Vec<usize> {
     keep.sort_unstable();
     keep
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The elimination order: the heaviest candidate first, equal weights by the higher
+    /// sample index, and a lowered weight moves a candidate back.
+    #[test]
+    fn candidates_leave_heaviest_first_ties_to_the_higher_index() {
+        let weights = [1.0, 3.0, 2.0, 3.0, 0.5, 2.0];
+        let mut heap = IndexedHeap::from_items(
+            weights.len(),
+            weights.iter().enumerate().map(|(s, &weight)| Candidate {
+                weight,
+                sample: s as u32,
+            }),
+        );
+        let first = heap.pop().map(|c| c.sample);
+        assert_eq!(first, Some(3));
+        heap.set(Candidate {
+            weight: 0.25,
+            sample: 1,
+        });
+        let order: Vec<u32> = std::iter::from_fn(|| heap.pop().map(|c| c.sample)).collect();
+        assert_eq!(order, [5, 2, 0, 4, 1]);
+    }
+}

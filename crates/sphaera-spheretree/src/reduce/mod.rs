@@ -26,8 +26,8 @@ pub use expand::{ExpandOutcome, Selection, expand_select};
 pub use merge::merge;
 
 use glam::DVec3;
-use sphaera_mesh::Surface;
 use sphaera_mesh::Sphere;
+use sphaera_mesh::Surface;
 
 use crate::SphereTreeError;
 
