@@ -9,7 +9,7 @@
 //! | file | what checks what |
 //! |---|---|
 //! | `simplify_bound_vs_hausdorff.rs` | the simplifier's error bound against `sphaera-sweep`'s certified Hausdorff bracket, and the bracket against the parry-sampled distance, on every mesh of the shared data |
-//! | `spheretree_vs_sweep.rs` | sphere-tree coverage against independent surface samples, and the certified and construction errors of every node against sweep's exact distances |
+//! | `spheretree_vs_sweep.rs` | for every method, the certified and construction errors of every node against sweep's exact distances, and (medial methods) coverage against independent surface samples |
 //! | `medial_vs_delaunay.rs` | the medial approximation's Delaunay `validate` after every step, its Voronoi spheres empty by brute force, its sphere errors against sweep's distances |
 //! | `delaunay_fuzz_replay.rs` | the Delaunay fuzz body ([`delaunay_fuzz`]) on proptest's bytes |
 //! | `facade.rs` | the `sphaera` facade used as a user writes it: a broken re-export fails to compile |
@@ -21,7 +21,8 @@
 //! |---|---|---|
 //! | [`data_dir`], [`mesh_files`], [`expected_stats`] | the shared real meshes | tests of every crate, benches, `sphaera-eval` |
 //! | [`hausdorff`] | the sampled Hausdorff distance measured with parry3d-f64 (samples and maxima from `sphaera_mesh::measure`, plus a local refinement), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
-//! | [`random`] | [`SplitMix64`] and the MMIX [`random::Lcg64`], each caller's mapping of words to numbers named | unit tests of mesh (indexed heap), simplify (edge radius, quadric, queue) and sweep (queue, polyline hierarchy); the sweep and sphere-tree integration tests |
+//! | [`brute`] | brute-force point-to-mesh distances and the closeness of exact answers | the closest-point tests of mesh and sweep |
+//! | [`random`] | [`SplitMix64`] and the MMIX [`random::Lcg64`], each caller's mapping of words to numbers named | unit tests of mesh (indexed heap), simplify (edge radius, quadric, queue, shared fan) and sweep (queue, polyline hierarchy, Hausdorff bounds); the sweep and sphere-tree integration tests; `sphaera-eval`'s query sets |
 //! | [`pattern_search`] | the grid-then-pattern search over a triangle | [`hausdorff`]'s refinement; simplify's edge-radius unit tests |
 //! | [`point_sets`] | reproducible and degenerate point sets for Delaunay codes | medial's unit tests (sample grid), integration tests, bench and example; `sphaera-eval`'s Delaunay bench |
 //! | [`delaunay_fuzz`] | the body of the `delaunay` fuzz target | `fuzz/` (by path) and `delaunay_fuzz_replay.rs` |
@@ -36,7 +37,7 @@
 //!
 //! - [`random`], [`pattern_search`] and [`point_sets`] take and return only numbers and
 //!   glam's `DVec3` (one glam for everyone): any unit test may use them;
-//! - [`hausdorff`] takes `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
+//! - [`hausdorff`] and [`brute`] take `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
 //!   `sphaera-medial`: they serve integration tests, benches, experiments and the fuzz
 //!   target only.
 //!
@@ -55,6 +56,7 @@
 
 use std::path::{Path, PathBuf};
 
+pub mod brute;
 pub mod delaunay_fuzz;
 pub mod hausdorff;
 pub mod pattern_search;

@@ -5,19 +5,7 @@ use proptest::prelude::*;
 use sphaera_mesh::closest::{Feature, TriangleTree};
 use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
-
-/// The distance from `p` to the nearest triangle of `mesh`.
-fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
-    mesh.triangle_iter()
-        .map(|t| point_triangle_distance_squared(p, &t))
-        .fold(f64::INFINITY, f64::min)
-        .sqrt()
-}
-
-/// Relative-or-absolute closeness for exact answers.
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1e-3)
-}
+use sphaera_tests::brute;
 
 fn shapes() -> Vec<TriMesh> {
     vec![
@@ -61,9 +49,9 @@ proptest! {
         let mesh = if shape < 4 { shapes().swap_remove(shape) } else { soup };
         let tree = TriangleTree::new(&mesh).expect("non-empty");
         for &p in &points {
-            let expected = brute_distance(&mesh, p);
+            let expected = brute::distance(&mesh, p);
             let answer = tree.closest(p).expect("finite query");
-            prop_assert!(close(answer.distance, expected), "{} vs {expected}", answer.distance);
+            prop_assert!(brute::close(answer.distance, expected), "{} vs {expected}", answer.distance);
             let [a, b, c] = mesh.triangles()[answer.triangle as usize];
             let triangle = mesh.triangle(answer.triangle as usize).expect("in range");
             prop_assert!(point_triangle_distance_squared(answer.point, &triangle).sqrt() <= 1e-9);

@@ -9,23 +9,7 @@ use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_simplify::Hierarchy;
 use sphaera_sweep::{Session, SessionOptions, Sweeper, Tolerance, build_hierarchy};
-
-/// Distance from `p` to every triangle of `mesh`, sorted.
-fn brute_distances(mesh: &TriMesh, p: DVec3) -> Vec<f64> {
-    let mut d: Vec<f64> = (0..mesh.triangle_count())
-        .map(|t| {
-            let triangle = mesh.triangle(t).expect("in range");
-            point_triangle_distance_squared(p, &triangle).sqrt()
-        })
-        .collect();
-    d.sort_by(f64::total_cmp);
-    d
-}
-
-/// Relative-or-absolute closeness for exact answers.
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1e-3)
-}
+use sphaera_tests::brute;
 
 /// A few shapes with their hierarchies (built once).
 fn fixtures() -> &'static [(TriMesh, Hierarchy)] {
@@ -54,14 +38,14 @@ fn point() -> impl Strategy<Value = DVec3> {
 
 /// Checks one exact answer of `session` against brute force.
 fn check_closest(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3) {
-    let expected = brute_distances(mesh, p)[0];
+    let expected = brute::sorted_distances(mesh, p)[0];
     let answer = session.closest(p).expect("finite query");
     assert!(
-        close(answer.distance, expected),
+        brute::close(answer.distance, expected),
         "closest({p}) = {} but brute force says {expected}",
         answer.distance
     );
-    assert!(close((answer.point - p).length(), answer.distance));
+    assert!(brute::close((answer.point - p).length(), answer.distance));
     let triangle = mesh.triangle(answer.triangle as usize).expect("in range");
     let on = point_triangle_distance_squared(answer.point, &triangle).sqrt();
     assert!(on <= 1e-9, "the point is {on} off its triangle");
@@ -102,7 +86,7 @@ proptest! {
         let (mesh, hierarchy) = &fixtures()[shape];
         let sweeper = Sweeper::new(hierarchy).expect("non-empty");
         let mut session = sweeper.session();
-        let truth = brute_distances(mesh, p)[0];
+        let truth = brute::sorted_distances(mesh, p)[0];
         let bounds = session.closest_within(p, Tolerance::Absolute(tolerance)).expect("ok");
         prop_assert!(bounds.lower <= truth + 1e-12 && truth <= bounds.upper + 1e-12,
             "{bounds:?} misses {truth}");
@@ -126,11 +110,11 @@ proptest! {
         let (mesh, hierarchy) = &fixtures()[shape];
         let sweeper = Sweeper::new(hierarchy).expect("non-empty");
         let mut session = sweeper.session();
-        let truth = brute_distances(mesh, p);
+        let truth = brute::sorted_distances(mesh, p);
         let near = session.k_closest(p, k).expect("ok");
         prop_assert_eq!(near.len(), k.min(truth.len()));
         for (answer, expected) in near.iter().zip(&truth) {
-            prop_assert!(close(answer.distance, *expected), "{} vs {}", answer.distance, expected);
+            prop_assert!(brute::close(answer.distance, *expected), "{} vs {}", answer.distance, expected);
         }
         let mut triangles: Vec<u32> = near.iter().map(|a| a.triangle).collect();
         triangles.sort_unstable();

@@ -13,6 +13,7 @@ use sphaera_sweep::{
     ClosestPoint, Feature, Session, SessionOptions, SweepError, Sweeper, Tolerance, build_hierarchy,
 };
 use sphaera_tests::SplitMix64;
+use sphaera_tests::brute;
 
 // ---------------------------------------------------------------------------------------
 // Brute force and checks
@@ -46,23 +47,18 @@ fn brute(mesh: &TriMesh, p: DVec3) -> f64 {
     brute_distances(mesh, p)[0]
 }
 
-/// Relative-or-absolute closeness for exact answers (1e-9 relative).
-fn close(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1e-3)
-}
-
 /// Checks that `answer` is an exact answer for `p` on `mesh`: the brute-force distance,
 /// a point on the reported input triangle at that distance, and a feature made of that
 /// triangle's input vertices.
 fn check_answer(mesh: &TriMesh, p: DVec3, answer: &ClosestPoint) {
     let expected = brute(mesh, p);
     assert!(
-        close(answer.distance, expected),
+        brute::close(answer.distance, expected),
         "closest({p}) = {} but brute force says {expected}",
         answer.distance
     );
     assert!(
-        close((answer.point - p).length(), answer.distance),
+        brute::close((answer.point - p).length(), answer.distance),
         "the point {} is not at the distance {} of {p}",
         answer.point,
         answer.distance
@@ -103,11 +99,11 @@ fn check_k_closest(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3, k: usize
     assert_eq!(near.len(), k.min(truth.len()), "k_closest({p}, {k})");
     for (answer, expected) in near.iter().zip(&truth) {
         assert!(
-            close(answer.distance, *expected),
+            brute::close(answer.distance, *expected),
             "{} vs {expected}",
             answer.distance
         );
-        assert!(close(
+        assert!(brute::close(
             distance_to(mesh, answer.triangle as usize, p),
             answer.distance
         ));
@@ -795,7 +791,7 @@ fn negative_and_nan_parameters_are_errors() {
         .closest_within(p, Tolerance::Absolute(0.0))
         .expect("ok");
     assert_eq!(exact.lower, exact.upper);
-    assert!(close(exact.lower, brute(&cube, p)));
+    assert!(brute::close(exact.lower, brute(&cube, p)));
     assert!(session.within(p, 0.0).expect("ok").is_empty());
 }
 

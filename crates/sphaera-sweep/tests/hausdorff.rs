@@ -5,21 +5,12 @@
 #![allow(clippy::print_stderr)]
 
 use proptest::prelude::*;
-use sphaera_mesh::geometry::point_triangle_distance_squared;
 use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
 use sphaera_sweep::{
     DirectedHausdorff, Direction, HausdorffOptions, SweepError, Sweeper, build_hierarchy, hausdorff,
 };
+use sphaera_tests::brute;
 use sphaera_tests::hausdorff::reference_hausdorff;
-
-/// Distance from `p` to the nearest triangle of `mesh` (every triangle).
-fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
-    (0..mesh.triangle_count())
-        .filter_map(|t| mesh.triangle(t))
-        .map(|t| point_triangle_distance_squared(p, &t))
-        .fold(f64::INFINITY, f64::min)
-        .sqrt()
-}
 
 /// The largest distance to `target` over a barycentric grid of `n` steps per side on
 /// every triangle of `source` (a lower bound of the true one-sided distance).
@@ -31,7 +22,7 @@ fn dense_directed(source: &TriMesh, target: &TriMesh, n: u32) -> f64 {
             for j in 0..=(n - i) {
                 let (u, v) = (f64::from(i) / f64::from(n), f64::from(j) / f64::from(n));
                 let p = u * a + v * b + (1.0 - u - v) * c;
-                best = best.max(brute_distance(target, p));
+                best = best.max(brute::distance(target, p));
             }
         }
     }
@@ -86,7 +77,7 @@ fn check_direction(source: &TriMesh, target: &TriMesh, side: &DirectedHausdorff)
         "a sample at {sampled} exceeds the upper bound {}",
         side.upper
     );
-    let at_farthest = brute_distance(target, side.farthest);
+    let at_farthest = brute::distance(target, side.farthest);
     assert!(
         at_farthest >= side.lower - 1e-9,
         "the lower bound {} is not reached at {} ({at_farthest})",
