@@ -1,5 +1,7 @@
 //! What a medial approximation should reach, and how it completes coverage.
 
+use crate::MedialError;
+
 /// How an uncovered sample chooses its cover sphere among the spheres of its Voronoi
 /// cell (the paper's two criteria, section 4.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -143,4 +145,25 @@ impl RegionOptions {
         self.max_iterations = n;
         self
     }
+}
+
+/// Checks `options` before a build.
+pub(super) fn validate_options(options: &MedialOptions) -> Result<(), MedialError> {
+    if let Some(e) = options.max_error
+        && (e.is_nan() || e < 0.0)
+    {
+        return Err(MedialError::InvalidParameter {
+            name: "max_error",
+            value: e,
+            requirement: "a non-negative number",
+        });
+    }
+    if options.initial_points < 4 {
+        return Err(MedialError::InvalidParameter {
+            name: "initial_points",
+            value: options.initial_points as f64,
+            requirement: "at least 4",
+        });
+    }
+    Ok(())
 }
