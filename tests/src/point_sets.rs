@@ -9,6 +9,29 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use sphaera_mesh::DVec3;
 
+/// `n` nearly uniform unit vectors: the Fibonacci lattice on the sphere (`z` in equal
+/// steps from near 1 to near −1, the azimuth turned by the golden angle each step).
+///
+/// # Examples
+///
+/// ```
+/// let directions = sphaera_tests::point_sets::fibonacci_sphere(300);
+/// assert_eq!(directions.len(), 300);
+/// assert!(directions.iter().all(|d| (d.length() - 1.0).abs() < 1e-12));
+/// ```
+#[must_use]
+pub fn fibonacci_sphere(n: usize) -> Vec<DVec3> {
+    let golden_angle = std::f64::consts::PI * (3.0 - 5.0_f64.sqrt());
+    (0..n)
+        .map(|i| {
+            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
+            let r = (1.0 - z * z).sqrt();
+            let phi = golden_angle * i as f64;
+            DVec3::new(r * phi.cos(), r * phi.sin(), z)
+        })
+        .collect()
+}
+
 /// `n` points uniform in the unit cube, from `seed`.
 ///
 /// # Examples

@@ -26,7 +26,8 @@
 //! Checked, for every node of every level, up to rounding (`1e-12` of the diagonal):
 //!
 //! 1. `f(x) ≤ fit.upper` and `f(x) ≤ error` at 300 points of the sphere's surface (a
-//!    Fibonacci lattice), so the largest `f` found is a lower bound of `E(S)` below both;
+//!    Fibonacci lattice, [`fibonacci_sphere`]), so the largest `f` found is a lower bound
+//!    of `E(S)` below both;
 //! 2. `fit.lower ≤ error`; and `fit.lower` is sweep's exact distance at its witness
 //!    point, which lies on the sphere and outside the object;
 //! 3. coverage, for the medial-axis methods: 20,000 area-weighted random surface samples
@@ -47,6 +48,7 @@ use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
 use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions, TreeNode, build};
 use sphaera_sweep::{Session, Sweeper, build_hierarchy};
+use sphaera_tests::point_sets::fibonacci_sphere;
 
 /// Points per sphere surface where the error is measured.
 const POINTS_PER_SPHERE: usize = 300;
@@ -65,19 +67,6 @@ fn options() -> SphereTreeOptions {
         .with_samples(1_500)
         .with_initial_spheres(100)
         .with_min_spheres_per_node(30)
-}
-
-/// `n` nearly uniform unit directions (a Fibonacci lattice).
-fn directions(n: usize) -> Vec<DVec3> {
-    let golden = std::f64::consts::PI * (3.0 - 5.0_f64.sqrt());
-    (0..n)
-        .map(|i| {
-            let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-            let r = (1.0 - z * z).sqrt();
-            let phi = golden * i as f64;
-            DVec3::new(r * phi.cos(), r * phi.sin(), z)
-        })
-        .collect()
 }
 
 /// Builds the tree of `mesh` with every method and checks each (see the module
@@ -109,7 +98,7 @@ fn check_method(
         check_coverage(name, mesh, &tree, 1e-9 * diagonal);
     }
     let options = EvaluationOptions::default().with_coverage_samples(10_000);
-    let directions = directions(POINTS_PER_SPHERE);
+    let directions = fibonacci_sphere(POINTS_PER_SPHERE);
     let mut measured = 0;
     for level in 0..tree.level_count() {
         let nodes = tree.level(level);

@@ -315,16 +315,10 @@ mod tests {
     #[test]
     fn many_cospherical_points() {
         // A Fibonacci sphere of 2,000 points, radius 7 around (1, -2, 3).
-        let n = 2000;
-        let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
         let center = DVec3::new(1.0, -2.0, 3.0);
-        let points: Vec<DVec3> = (0..n)
-            .map(|i| {
-                let z = 1.0 - 2.0 * (f64::from(i) + 0.5) / f64::from(n);
-                let r = (1.0 - z * z).sqrt();
-                let phi = golden * f64::from(i);
-                center + 7.0 * DVec3::new(r * phi.cos(), r * phi.sin(), z)
-            })
+        let points: Vec<DVec3> = sphaera_tests::point_sets::fibonacci_sphere(2000)
+            .into_iter()
+            .map(|d| center + 7.0 * d)
             .collect();
         let s = minimum_enclosing_ball(&points).unwrap();
         assert!(s.center.distance(center) < 1e-9);

@@ -163,18 +163,7 @@ pub(crate) fn icosahedron() -> Vec<Patch> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn fibonacci(n: usize) -> Vec<DVec3> {
-        let golden = std::f64::consts::PI * (3.0 - 5.0_f64.sqrt());
-        (0..n)
-            .map(|i| {
-                let z = 1.0 - (2.0 * i as f64 + 1.0) / n as f64;
-                let r = (1.0 - z * z).sqrt();
-                let a = golden * i as f64;
-                DVec3::new(r * a.cos(), r * a.sin(), z)
-            })
-            .collect()
-    }
+    use sphaera_tests::point_sets::fibonacci_sphere;
 
     /// Whether `u` lies in the geodesic triangle (on the positive side of the three great
     /// circles through its edges).
@@ -191,7 +180,7 @@ mod tests {
     fn icosahedron_has_twenty_faces_covering_the_sphere() {
         let faces = icosahedron();
         assert_eq!(faces.len(), 20);
-        for u in fibonacci(2000) {
+        for u in fibonacci_sphere(2000) {
             assert!(faces.iter().any(|f| in_patch(f, u)), "{u} uncovered");
         }
         for f in &faces {
@@ -207,7 +196,7 @@ mod tests {
     fn children_tile_the_parent() {
         let parent = icosahedron()[3];
         let children = parent.split();
-        for u in fibonacci(20_000) {
+        for u in fibonacci_sphere(20_000) {
             if in_patch(&parent, u) {
                 assert!(children.iter().any(|c| in_patch(c, u)));
             }
@@ -227,7 +216,7 @@ mod tests {
         for _ in 0..2 {
             patches = patches.iter().flat_map(Patch::split).collect();
         }
-        let dirs = fibonacci(30_000);
+        let dirs = fibonacci_sphere(30_000);
         for q in [
             DVec3::ZERO,
             DVec3::new(3.0, 1.0, -2.0),
