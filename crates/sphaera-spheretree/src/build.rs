@@ -109,11 +109,10 @@ fn medial_tree(
 ) -> Result<SphereTree, SphereTreeError> {
     let mesh = surface.mesh();
 
-    let samples: Vec<DVec3> = sampling::poisson_disk(mesh, options.samples, options.seed)?
-        .samples
-        .iter()
-        .map(|s| s.position)
-        .collect();
+    let sampled = sampling::poisson_disk(mesh, options.samples, options.seed)?;
+    let samples: Vec<DVec3> = sampled.samples.iter().map(|s| s.position).collect();
+    // Each sample stands for the surface within half the sample spacing of it.
+    let owned = 0.5 * sampled.ideal_spacing;
     let root_ball = minimum_enclosing_ball(mesh.positions())?;
     let (depth, inside) = centre_depth(surface, root_ball.center);
     let mut nodes = vec![TreeNode {
@@ -177,20 +176,17 @@ fn medial_tree(
         for ((parent, fitted), groups) in parents.clone().zip(reduced).zip(divisions) {
             let first = nodes.len() as u32;
             let region = regions[parent].clone();
-            for (f, group) in fitted.iter().zip(groups) {
-                // A child left without points is redundant: its siblings cover its part.
-                if group.is_empty() {
-                    continue;
-                }
+            let children = children_of(surface, &samples, &region, &fitted, groups, owned);
+            for (sphere, error, group) in children {
                 nodes.push(TreeNode {
-                    sphere: f.sphere,
-                    error: f.error,
+                    sphere,
+                    error,
                     level: level as u32,
                     parent: Some(parent as u32),
                     children: 0..0,
                     region_samples: group.len() as u32,
                 });
-                regions.push(group.iter().map(|&g| region[g as usize]).collect());
+                regions.push(group);
             }
             nodes[parent].children = first..nodes.len() as u32;
         }
@@ -217,6 +213,62 @@ fn finish(surface: &Surface, options: &SphereTreeOptions, mut tree: SphereTree) 
         crate::cover::certify_tree(surface, &mut tree, resolution);
     }
     tree
+}
+
+/// The children of one parent: per reduced sphere with a non-empty group, its sphere,
+/// eq. 2 error and region (sample ids, ascending).
+///
+/// Two rules keep every child worth its sphere:
+/// - a child whose sphere lies inside a sibling's has nothing left to cover: its samples
+///   go to that sibling (the first such, in order) and it spends no sphere;
+/// - a sphere smaller than the surface its samples stand for (a one-sample region gets a
+///   sphere of radius 0 from the reducers, which only see points) is replaced by the
+///   smallest ball around its samples grown by `owned`, the surface each sample stands
+///   for, so that it has a positive radius covering its part of the surface.
+fn children_of(
+    surface: &Surface,
+    samples: &[DVec3],
+    region: &[u32],
+    fitted: &[FittedSphere],
+    mut groups: Vec<Vec<u32>>,
+    owned: f64,
+) -> Vec<(sphaera_mesh::Sphere, f64, Vec<u32>)> {
+    let inside = |a: &sphaera_mesh::Sphere, b: &sphaera_mesh::Sphere| {
+        a.center.distance(b.center) + a.radius <= b.radius
+    };
+    let mut spent = vec![true; fitted.len()];
+    for i in 0..fitted.len() {
+        if groups[i].is_empty() {
+            spent[i] = false;
+            continue;
+        }
+        let host = (0..fitted.len())
+            .find(|&j| j != i && spent[j] && inside(&fitted[i].sphere, &fitted[j].sphere));
+        if let Some(j) = host {
+            let moved = std::mem::take(&mut groups[i]);
+            groups[j].extend(moved);
+            groups[j].sort_unstable();
+            spent[i] = false;
+        }
+    }
+    fitted
+        .iter()
+        .zip(groups)
+        .zip(spent)
+        .filter(|&(_, spent)| spent)
+        .map(|((f, group), _)| {
+            let ids: Vec<u32> = group.iter().map(|&g| region[g as usize]).collect();
+            if f.sphere.radius >= owned {
+                return (f.sphere, f.error, ids);
+            }
+            let points: Vec<DVec3> = ids.iter().map(|&i| samples[i as usize]).collect();
+            let sphere = minimum_enclosing_ball(&points).map_or(f.sphere, |ball| {
+                sphaera_mesh::Sphere::new(ball.center, ball.radius + owned)
+            });
+            let (depth, inside) = centre_depth(surface, sphere.center);
+            (sphere, eq2_error(sphere.radius, depth, inside), ids)
+        })
+        .collect()
 }
 
 /// The medial spheres of a region as reducer candidates, their covers restricted to the

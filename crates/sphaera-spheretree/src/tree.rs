@@ -79,7 +79,7 @@ impl SphereTree {
     ///
     /// - [`SphereTreeError::InvalidTree`] naming what is wrong (and the node, by index): a
     ///   branching factor of 0, no nodes, a first level that is not a single root, an
-    ///   empty level, a non-finite error, a `level` field other than the level the node is
+    ///   empty level, a sphere of radius 0, a non-finite error, a `level` field other than the level the node is
     ///   stored in, a parent outside the level above or that does not list the node among
     ///   its children, a root with a parent or another node without one, more children
     ///   than `branch`, a decreasing `children` range, children outside the next level or
@@ -137,6 +137,9 @@ impl SphereTree {
         };
         if !node.sphere.is_valid() {
             return Err(SphereTreeError::InvalidSphere { index });
+        }
+        if node.sphere.radius == 0.0 {
+            return bad(TreeDefect::ZeroRadius { node: index });
         }
         if !node.error.is_finite() {
             return bad(TreeDefect::NonFiniteError {
@@ -293,6 +296,13 @@ pub enum TreeDefect {
     /// A node is missing.
     #[error("node {node}: missing")]
     MissingNode {
+        /// The node.
+        node: usize,
+    },
+    /// A node's sphere has radius 0: a node stands for part of a surface, which a point
+    /// cannot bound.
+    #[error("node {node}: its sphere has radius 0, but a node stands for part of a surface")]
+    ZeroRadius {
         /// The node.
         node: usize,
     },

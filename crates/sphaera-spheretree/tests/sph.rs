@@ -182,12 +182,19 @@ fn writer_rejects_what_the_format_cannot_hold() {
     let zero = Some((Sphere::new(DVec3::ZERO, 0.0), 1.0));
     assert!(matches!(
         write_sph(&tree(2, 1, vec![good, zero]), DVec3::ZERO),
-        Err(SphereTreeError::InvalidSphere { index: 1 })
+        Err(SphereTreeError::SphLayout(SphDefect::NonPositiveRadius {
+            node: 1,
+            level: 1,
+            radius: 0.0
+        }))
     ));
     let nan = Some((Sphere::new(DVec3::new(f64::NAN, 0.0, 0.0), 1.0), 1.0));
     assert!(matches!(
         write_sph(&tree(1, 1, vec![nan]), DVec3::ZERO),
-        Err(SphereTreeError::InvalidSphere { index: 0 })
+        Err(SphereTreeError::SphLayout(SphDefect::NonFiniteSphere {
+            node: 0,
+            level: 0
+        }))
     ));
     let bad_importance = Some((Sphere::new(DVec3::ZERO, 1.0), f64::INFINITY));
     assert!(matches!(

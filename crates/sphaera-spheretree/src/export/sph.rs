@@ -149,6 +149,27 @@ pub enum SphDefect {
         /// The node count given.
         found: usize,
     },
+    /// A sphere to be written has a NaN or infinite centre or radius.
+    #[error("node {node} (level {level}) has a non-finite centre or radius")]
+    NonFiniteSphere {
+        /// The node's slot.
+        node: usize,
+        /// Its level (the root is level 0).
+        level: usize,
+    },
+    /// A sphere to be written has a radius that is not positive, which the format reads
+    /// as an unused slot.
+    #[error(
+        "node {node} (level {level}) has radius {radius}, which the .sph format reads as an unused slot"
+    )]
+    NonPositiveRadius {
+        /// The node's slot.
+        node: usize,
+        /// Its level (the root is level 0).
+        level: usize,
+        /// The radius given.
+        radius: f64,
+    },
     /// A node to be written has a NaN or infinite importance.
     #[error("node {node} has a non-finite importance {importance}")]
     NonFiniteImportance {
@@ -276,6 +297,13 @@ impl SphFile {
         let start = Self::node_count(level, self.branch).unwrap_or(usize::MAX);
         let end = Self::node_count(level + 1, self.branch).unwrap_or(usize::MAX);
         start.min(self.nodes.len())..end.min(self.nodes.len())
+    }
+
+    /// The level of slot `node` (0 is the root; `levels` beyond the last level).
+    fn level_of(&self, node: usize) -> usize {
+        (0..self.levels)
+            .find(|&level| self.level_range(level).end > node)
+            .unwrap_or(self.levels)
     }
 
     /// The used spheres of `level` (0 is the root), in slot order.
@@ -410,10 +438,9 @@ pub fn read_sph(text: &str, offset: DVec3) -> Result<SphFile, SphereTreeError> {
 /// # Errors
 ///
 /// [`SphereTreeError::SphLayout`] for zero levels or branching factor, a node count other
-/// than [`SphFile::node_count`], or a NaN or infinite importance;
-/// [`SphereTreeError::InvalidSphere`] (with the node index) for a sphere with a
+/// than [`SphFile::node_count`], a NaN or infinite importance, a sphere with a
 /// non-finite centre or radius, or a radius that is not positive (the format reads it as
-/// an unused slot).
+/// an unused slot), naming the node's slot and level.
 ///
 /// # Panics
 ///
@@ -441,8 +468,19 @@ pub fn write_sph(file: &SphFile, offset: DVec3) -> Result<String, SphereTreeErro
         match node {
             Some((sphere, importance)) => {
                 let center = sphere.center - offset;
-                if !(center.is_finite() && sphere.radius.is_finite() && sphere.radius > 0.0) {
-                    return Err(SphereTreeError::InvalidSphere { index });
+                let level = file.level_of(index);
+                if !(center.is_finite() && sphere.radius.is_finite()) {
+                    return Err(SphereTreeError::SphLayout(SphDefect::NonFiniteSphere {
+                        node: index,
+                        level,
+                    }));
+                }
+                if sphere.radius <= 0.0 {
+                    return Err(SphereTreeError::SphLayout(SphDefect::NonPositiveRadius {
+                        node: index,
+                        level,
+                        radius: sphere.radius,
+                    }));
                 }
                 if !importance.is_finite() {
                     return Err(SphereTreeError::SphLayout(SphDefect::NonFiniteImportance {
