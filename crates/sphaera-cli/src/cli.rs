@@ -44,7 +44,9 @@ pub enum Command {
     /// Adaptive medial-axis approximation (Bradshaw and O'Sullivan 2004, section 4):
     /// spheres on the internal Voronoi vertices of surface samples, plus cover spheres, so
     /// that every sample is covered, improved by replacing the worst sphere until the
-    /// target count or error is reached.
+    /// target count or error is reached. The set is then certified to cover the whole
+    /// surface, not only the samples, growing the few spheres that must grow (as every
+    /// sphere-tree level is); `--samples-only` skips that.
     Medial(MedialArgs),
     /// Sphere-tree for collision detection (Bradshaw and O'Sullivan 2004): the root is the
     /// mesh's minimum enclosing ball; each level refines the adaptive medial
@@ -168,7 +170,9 @@ pub struct MedialArgs {
     pub spheres: Option<usize>,
 
     /// Improve until no sphere reaches farther than this beyond the surface: an absolute
-    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`1%`).
+    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`1%`). It bounds
+    /// the medial spheres; the surface certificate's growth can add to a few of them (the
+    /// report gives the error before and after; more `--samples` shrink the growth).
     #[arg(long, value_parser = parse_length)]
     pub max_error: Option<Length>,
 
@@ -181,15 +185,27 @@ pub struct MedialArgs {
     pub cover: CoverArg,
 
     /// Hubbard's static baseline instead: the Voronoi diagram of this many samples, no
-    /// improvement, coverage not completed.
+    /// improvement, coverage of the samples not completed (the surface certificate still
+    /// grows spheres to cover the whole surface, unless `--samples-only`).
     #[arg(long, conflicts_with_all = ["spheres", "max_error"])]
     pub static_points: Option<usize>,
+
+    /// Skip the surface certificate: the spheres then cover the surface samples only, and
+    /// parts of the surface between samples may lie outside every sphere. By default every
+    /// point of every triangle is certified to lie in some sphere: each triangle is split
+    /// until every piece lies in one sphere, and where a piece 1/1000 of the bounding-box
+    /// diagonal long lies in none, the sphere needing the least growth grows to contain
+    /// it (raising that sphere's error, which can take the worst error past
+    /// `--max-error`).
+    #[arg(long)]
+    pub samples_only: bool,
 
     /// Seed of the surface sampling.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
 
-    /// Write the spheres as JSON (centre, radius, error, kind, covered sample count),
+    /// Write the spheres as JSON (the coverage guarantee and certificate; per sphere its
+    /// centre, radius, error, kind, covered sample count and certificate growth),
     /// atomically.
     #[arg(long, short)]
     pub output: Option<PathBuf>,
