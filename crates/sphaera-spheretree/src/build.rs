@@ -4,9 +4,11 @@ use glam::DVec3;
 use sphaera_medial::{MedialApproximation, MedialOptions, RegionOptions, Surface};
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::sampling;
+use sphaera_mesh::Sphere;
 
 use crate::SphereTreeError;
 use crate::baseline;
+use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::options::{Method, SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{
     Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
@@ -173,10 +175,20 @@ fn medial_tree(
             options.branch,
         )?;
         let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, options);
-        for ((parent, fitted), groups) in parents.clone().zip(reduced).zip(divisions) {
+        let limits = certified_lower_bounds(surface, &nodes[parents.clone()], &reduced)?;
+        for (((parent, fitted), groups), limit) in
+            parents.clone().zip(reduced).zip(divisions).zip(limits)
+        {
             let first = nodes.len() as u32;
             let region = regions[parent].clone();
-            let children = children_of(surface, &samples, &region, &fitted, groups, owned);
+            let family = Family {
+                region: &region,
+                fitted: &fitted,
+                owned,
+                parent: (nodes[parent].sphere, nodes[parent].error),
+                limit,
+            };
+            let children = children_of(surface, &samples, &family, groups);
             for (sphere, error, group) in children {
                 nodes.push(TreeNode {
                     sphere,
@@ -215,27 +227,47 @@ fn finish(surface: &Surface, options: &SphereTreeOptions, mut tree: SphereTree) 
     tree
 }
 
+/// One parent's reduction, as [`children_of`] turns it into children.
+struct Family<'a> {
+    /// The parent's region (sample ids, ascending).
+    region: &'a [u32],
+    /// The reduced spheres.
+    fitted: &'a [FittedSphere],
+    /// The surface each sample stands for (half the sample spacing).
+    owned: f64,
+    /// The parent's sphere and eq. 2 error.
+    parent: (Sphere, f64),
+    /// A lower bound on the parent's certified error: a child whose eq. 2 error (an
+    /// upper bound on its certified error) is at most this is no looser than the parent.
+    limit: f64,
+}
+
 /// The children of one parent: per reduced sphere with a non-empty group, its sphere,
 /// eq. 2 error and region (sample ids, ascending).
 ///
-/// Two rules keep every child worth its sphere:
+/// Three rules keep every child worth its sphere:
 /// - a child whose sphere lies inside a sibling's has nothing left to cover: its samples
 ///   go to that sibling (the first such, in order) and it spends no sphere;
 /// - a sphere smaller than the surface its samples stand for (a one-sample region gets a
 ///   sphere of radius 0 from the reducers, which only see points) is replaced by the
-///   smallest ball around its samples grown by `owned`, the surface each sample stands
-///   for, so that it has a positive radius covering its part of the surface.
+///   smallest ball around its samples grown by `owned`, so that it has a positive radius
+///   covering its part of the surface;
+/// - a child must be no looser than its parent. Its eq. 2 error bounds its certified
+///   error from above (for a centre inside, the segment from the centre to a point of the
+///   sphere outside the object crosses the surface at least the centre's depth from the
+///   centre; outside, the triangle inequality). When it exceeds `limit`, the tightest of
+///   the sphere shrunk to its samples and their smallest enclosing ball is taken if it
+///   fits under `limit`, else the parent's own sphere (each such child keeps its own
+///   samples, so the next level still refines them apart): refining a region never makes
+///   it looser.
 fn children_of(
     surface: &Surface,
     samples: &[DVec3],
-    region: &[u32],
-    fitted: &[FittedSphere],
+    family: &Family<'_>,
     mut groups: Vec<Vec<u32>>,
-    owned: f64,
-) -> Vec<(sphaera_mesh::Sphere, f64, Vec<u32>)> {
-    let inside = |a: &sphaera_mesh::Sphere, b: &sphaera_mesh::Sphere| {
-        a.center.distance(b.center) + a.radius <= b.radius
-    };
+) -> Vec<(Sphere, f64, Vec<u32>)> {
+    let fitted = family.fitted;
+    let inside = |a: &Sphere, b: &Sphere| a.center.distance(b.center) + a.radius <= b.radius;
     let mut spent = vec![true; fitted.len()];
     for i in 0..fitted.len() {
         if groups[i].is_empty() {
@@ -251,24 +283,98 @@ fn children_of(
             spent[i] = false;
         }
     }
-    fitted
+    let eq2 = |sphere: Sphere| {
+        let (depth, inside) = centre_depth(surface, sphere.center);
+        (sphere, eq2_error(sphere.radius, depth, inside))
+    };
+    let children: Vec<(Sphere, f64, Vec<u32>)> = fitted
         .iter()
         .zip(groups)
         .zip(spent)
         .filter(|&(_, spent)| spent)
         .map(|((f, group), _)| {
-            let ids: Vec<u32> = group.iter().map(|&g| region[g as usize]).collect();
-            if f.sphere.radius >= owned {
-                return (f.sphere, f.error, ids);
-            }
+            let ids: Vec<u32> = group.iter().map(|&g| family.region[g as usize]).collect();
             let points: Vec<DVec3> = ids.iter().map(|&i| samples[i as usize]).collect();
-            let sphere = minimum_enclosing_ball(&points).map_or(f.sphere, |ball| {
-                sphaera_mesh::Sphere::new(ball.center, ball.radius + owned)
-            });
-            let (depth, inside) = centre_depth(surface, sphere.center);
-            (sphere, eq2_error(sphere.radius, depth, inside), ids)
+            let mut best = (f.sphere, f.error);
+            if f.sphere.radius < family.owned {
+                best = minimum_enclosing_ball(&points).map_or(best, |ball| {
+                    eq2(Sphere::new(ball.center, ball.radius + family.owned))
+                });
+            }
+            if best.1 <= family.limit {
+                return (best.0, best.1, ids);
+            }
+            let reach = points
+                .iter()
+                .map(|p| p.distance(best.0.center))
+                .fold(family.owned, f64::max);
+            let shrunk = eq2(Sphere::new(best.0.center, reach.min(best.0.radius)));
+            let ball = minimum_enclosing_ball(&points)
+                .map(|b| eq2(Sphere::new(b.center, b.radius.max(family.owned))));
+            for candidate in [Some(shrunk), ball.ok()].into_iter().flatten() {
+                if candidate.1 < best.1 {
+                    best = candidate;
+                }
+            }
+            if best.1 > family.limit {
+                best = family.parent;
+            }
+            (best.0, best.1, ids)
         })
-        .collect()
+        .collect();
+    children
+}
+
+/// Per parent node, a lower bound on its certified error, tight enough to judge its
+/// reduced children: the error at one probe point of its sphere (the point farthest out
+/// past the surface point nearest the centre) when every child's eq. 2 error is below
+/// it, else the certified evaluation's lower bound (in parallel with the `parallel`
+/// feature).
+fn certified_lower_bounds(
+    surface: &Surface,
+    parents: &[TreeNode],
+    reduced: &[Vec<FittedSphere>],
+) -> Result<Vec<f64>, SphereTreeError> {
+    let one = |(parent, fitted): (&TreeNode, &Vec<FittedSphere>)| {
+        let quick = probe_error(surface, &parent.sphere);
+        if crate::reduce::worst(fitted) <= quick {
+            return Ok(quick);
+        }
+        let fit = sphere_error(surface, &parent.sphere, &EvaluationOptions::default())?;
+        Ok(fit.lower.max(quick))
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        parents.par_iter().zip(reduced.par_iter()).map(one).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        parents.iter().zip(reduced.iter()).map(one).collect()
+    }
+}
+
+/// The error of `sphere` at one point (a true value, so a lower bound on its certified
+/// error): the point of the sphere farthest out past the surface point nearest its centre,
+/// its distance to the surface when it lies outside the object, else 0.
+fn probe_error(surface: &Surface, sphere: &Sphere) -> f64 {
+    let Ok(nearest) = surface.closest(sphere.center) else {
+        return 0.0;
+    };
+    let inside = surface.is_inside(sphere.center);
+    let towards = if inside {
+        nearest.point - sphere.center
+    } else {
+        sphere.center - nearest.point
+    };
+    let Some(direction) = towards.try_normalize() else {
+        return 0.0;
+    };
+    let probe = sphere.center + direction * sphere.radius;
+    if surface.is_inside(probe) {
+        return 0.0;
+    }
+    surface.closest(probe).map_or(0.0, |c| c.distance)
 }
 
 /// The medial spheres of a region as reducer candidates, their covers restricted to the
@@ -279,7 +385,7 @@ fn candidates(region: &[u32], spheres: &[sphaera_medial::MedialSphere]) -> Vec<C
     spheres
         .iter()
         .map(|m| Candidate {
-            sphere: sphaera_mesh::Sphere::new(m.centre, m.radius),
+            sphere: Sphere::new(m.centre, m.radius),
             covers: m.covers.iter().filter_map(|&s| local(s)).collect(),
         })
         .filter(|c| !c.covers.is_empty())

@@ -8,7 +8,9 @@ use sphaera_spheretree::export::{
     CollisionLink, SphFile, collision_spheres_yaml, read_sph, tree_from_json, tree_to_json,
     write_sph,
 };
-use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions, Surface, build};
+use sphaera_spheretree::{
+    EvaluationOptions, Method, SphereTree, SphereTreeOptions, Surface, build, evaluate_set,
+};
 use sphaera_tests::awkward;
 
 /// Small settings, so that 7 methods × 7 meshes stay fast.
@@ -118,5 +120,39 @@ fn pinched_tori_merge_gives_no_zero_radius_sphere() {
             .with_min_spheres_per_node(30);
         let tree = build(&surface, &options).expect("the pinched tori build");
         check_tree_and_formats("pinched tori", method, &tree);
+    }
+}
+
+/// Expand gave a level looser than its parent level on an animal with thin legs and
+/// horns; on a star of thin spikes every method's level 1 was looser than the root.
+/// Each level's certified worst error must not exceed its parent level's.
+#[test]
+fn a_deeper_level_is_never_looser_than_its_parent_on_thin_parts() {
+    let options = EvaluationOptions::default();
+    for (name, mesh) in [
+        ("capsule with horns", awkward::capsule_with_horns()),
+        ("star of spikes", awkward::star_of_spikes(12)),
+        ("long thin rod", awkward::long_thin_rod()),
+    ] {
+        let surface = Surface::new(&mesh).expect("closed parts");
+        for method in Method::ALL.into_iter().filter(|m| m.is_medial()) {
+            let tree = build(&surface, &small(method).with_depth(3)).expect("builds");
+            let worst: Vec<(f64, f64)> = (0..tree.level_count())
+                .map(|level| {
+                    let fit = evaluate_set(&surface, &tree.level_spheres(level), &options)
+                        .expect("evaluates");
+                    (fit.worst_lower, fit.worst_upper)
+                })
+                .collect();
+            for level in 1..worst.len() {
+                assert!(
+                    worst[level].0 <= worst[level - 1].1,
+                    "{name}, {method:?}: level {level} worst {:?} is looser than level {} worst {:?}",
+                    worst[level],
+                    level - 1,
+                    worst[level - 1]
+                );
+            }
+        }
     }
 }
