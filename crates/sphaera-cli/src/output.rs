@@ -1,12 +1,51 @@
 //! Printing results as text or JSON.
 
-use anyhow::{Context, Result};
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
 use serde::Serialize;
 
 /// Prints `value` as pretty JSON on stdout.
 pub fn print_json(value: &impl Serialize) -> Result<()> {
     let text = serde_json::to_string_pretty(value).context("cannot encode the result as JSON")?;
     println!("{text}");
+    Ok(())
+}
+
+/// Fails before any work when `path` cannot take an output: its folder is missing, is not
+/// a folder or refuses a new file; the path is a folder; or the file is read-only (an
+/// atomic write would replace it regardless, which a read-only file says not to do).
+pub fn check_target(path: &Path) -> Result<()> {
+    let shown = path.display();
+    let folder = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    match std::fs::metadata(folder) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => bail!("cannot write {shown}: {} is not a folder", folder.display()),
+        Err(_) => bail!(
+            "cannot write {shown}: the folder {} does not exist",
+            folder.display()
+        ),
+    }
+    if let Ok(m) = std::fs::metadata(path) {
+        if m.is_dir() {
+            bail!("cannot write {shown}: it is a folder");
+        }
+        if m.permissions().readonly() {
+            bail!("cannot write {shown}: the file is read-only");
+        }
+    }
+    // The atomic write puts a temporary file beside the target: try one now.
+    let probe = folder.join(format!(".sphaera-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"").with_context(|| {
+        format!(
+            "cannot write {shown}: the folder {} refuses new files",
+            folder.display()
+        )
+    })?;
+    let _ = std::fs::remove_file(&probe);
     Ok(())
 }
 

@@ -107,3 +107,38 @@ fn spheretree_bad_input_is_a_clear_error() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("unknown output format"));
 }
+
+/// A missing folder, a folder in the file's place or a read-only file: a clear error
+/// before any work, and nothing written or left behind.
+#[test]
+fn spheretree_refuses_a_bad_output_path_before_building() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let missing = dir.path().join("no such folder").join("tree.json");
+    let folder = dir.path().join("tree.sph");
+    std::fs::create_dir(&folder).expect("created");
+    let read_only = dir.path().join("spheres.yaml");
+    std::fs::write(&read_only, "keep me").expect("written");
+    let mut permissions = std::fs::metadata(&read_only).expect("exists").permissions();
+    permissions.set_readonly(true);
+    std::fs::set_permissions(&read_only, permissions).expect("made read-only");
+    for (path, expected) in [
+        (&missing, "does not exist"),
+        (&folder, "it is a folder"),
+        (&read_only, "read-only"),
+    ] {
+        let output = sphaera(&["spheretree", "-o", path.to_str().expect("utf-8")]);
+        assert!(!output.status.success());
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(message.contains(expected), "{message}");
+        assert!(
+            !message.contains("build"),
+            "failed only after building: {message}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(&read_only).expect("kept"),
+        "keep me"
+    );
+    // Nothing else appeared: the folder, the read-only file.
+    assert_eq!(std::fs::read_dir(dir.path()).expect("listed").count(), 2);
+}

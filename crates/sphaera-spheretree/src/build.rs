@@ -2,9 +2,9 @@
 
 use glam::DVec3;
 use sphaera_medial::{MedialApproximation, MedialOptions, RegionOptions, Surface};
+use sphaera_mesh::Sphere;
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::sampling;
-use sphaera_mesh::Sphere;
 
 use crate::SphereTreeError;
 use crate::baseline;
@@ -346,7 +346,11 @@ fn certified_lower_bounds(
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
-        parents.par_iter().zip(reduced.par_iter()).map(one).collect()
+        parents
+            .par_iter()
+            .zip(reduced.par_iter())
+            .map(one)
+            .collect()
     }
     #[cfg(not(feature = "parallel"))]
     {

@@ -24,7 +24,7 @@ use sphaera::{
 use crate::{
     cli::{CoverArg, MedialArgs},
     input::read_mesh,
-    output::{print_json, thousands},
+    output::{check_target, print_json, thousands},
     progress,
 };
 
@@ -151,6 +151,9 @@ struct FinalSphere {
 }
 
 pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
+    if let Some(path) = &args.output {
+        check_target(path)?;
+    }
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
     let mesh = &input.loaded.mesh;
     anyhow::ensure!(

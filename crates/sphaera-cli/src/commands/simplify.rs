@@ -13,7 +13,7 @@ use crate::{
     cli::SimplifyArgs,
     input::read_mesh,
     measure,
-    output::{print_json, thousands},
+    output::{check_target, print_json, thousands},
     progress,
 };
 
@@ -56,6 +56,7 @@ struct Seconds {
 pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     if let Some(path) = &args.output {
         check_writable_format(path)?;
+        check_target(path)?;
     }
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
     let mesh = &input.loaded.mesh;

@@ -20,7 +20,7 @@ use sphaera::spheretree::{
 use crate::{
     cli::SpheretreeArgs,
     input::read_mesh,
-    output::{print_json, thousands},
+    output::{check_target, print_json, thousands},
     progress,
 };
 
@@ -93,6 +93,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         .with_seed(args.seed);
     if let Some(path) = &args.output {
         output_format(path)?;
+        check_target(path)?;
     }
 
     let bar = progress::bar(quiet, "sampling, initial spheres", 1);
