@@ -58,6 +58,17 @@ struct Queued {
     upper: f64,
     order: usize,
     patch: Patch,
+    /// What its evaluation found, for its children.
+    found: Side,
+}
+
+/// A probe whose side of the surface is known: its point, its distance to the surface
+/// and whether it is inside.
+#[derive(Clone, Copy)]
+struct Side {
+    point: DVec3,
+    distance: f64,
+    inside: Option<bool>,
 }
 
 impl Priority for Queued {
@@ -82,17 +93,42 @@ struct Search<'a> {
 
 impl Search<'_> {
     /// Evaluates the representative point of `patch`, raises the lower bound and returns
-    /// the patch's upper bound.
-    fn evaluate(&mut self, patch: &Patch) -> Result<f64, SphereTreeError> {
+    /// the patch's upper bound and what the probe found.
+    ///
+    /// The inside test is skipped when the parent's probe (`parent`) is known to lie on
+    /// one side and the new probe lies in the ball about it that holds no surface (closer
+    /// to it than its distance to the surface, by more than the guard band): the segment
+    /// between them crosses no surface, so both lie on the same side.
+    fn evaluate(
+        &mut self,
+        patch: &Patch,
+        parent: Option<&Side>,
+    ) -> Result<(f64, Side), SphereTreeError> {
         self.patches += 1;
         let point = self.center + self.radius * patch.direction;
-        let closest = self.surface.closest(point)?;
+        // The parent's probe bounds the distance (the distance is 1-Lipschitz), which
+        // prunes the descent from the start; the answer is the same.
+        let bound = parent.map(|p| (p.distance + point.distance(p.point)) * (1.0 + 1e-9));
+        let closest = match bound {
+            Some(bound) => match self.surface.tree().closest_within(point, bound)? {
+                Some(found) => found,
+                None => self.surface.closest(point)?,
+            },
+            None => self.surface.closest(point)?,
+        };
         let distance = closest.distance;
-        let (trusted_outside, trusted_inside) = if distance > self.guard {
-            let inside = self.surface.is_inside_certified(point);
-            (!inside, inside)
+        let inherited = parent.and_then(|p| {
+            let clear = p.distance - self.guard;
+            p.inside.filter(|_| point.distance(p.point) < clear)
+        });
+        let inside = if distance > self.guard {
+            Some(inherited.unwrap_or_else(|| self.surface.is_inside_certified(point)))
         } else {
-            (false, false)
+            None
+        };
+        let (trusted_outside, trusted_inside) = match inside {
+            Some(inside) => (!inside, inside),
+            None => (false, false),
         };
         if trusted_outside && distance > self.lower {
             self.lower = distance;
@@ -103,7 +139,12 @@ impl Search<'_> {
             closest: closest.point,
             trusted_inside,
         };
-        Ok(upper_bound(patch, self.center, self.radius, &probe))
+        let found = Side {
+            point,
+            distance,
+            inside,
+        };
+        Ok((upper_bound(patch, self.center, self.radius, &probe), found))
     }
 }
 
@@ -182,11 +223,12 @@ pub(crate) fn fit(
     let mut dropped = 0.0_f64;
     let mut order = 0_usize;
     for patch in icosahedron() {
-        let upper = search.evaluate(&patch)?;
+        let (upper, found) = search.evaluate(&patch, None)?;
         queue.push(Queued {
             upper,
             order,
             patch,
+            found,
         });
         order += 1;
     }
@@ -205,7 +247,8 @@ pub(crate) fn fit(
         for child in top.patch.split() {
             // A child's bound may exceed its parent's (each is computed independently);
             // the parent's also holds on the child, so keep the smaller.
-            let upper = search.evaluate(&child)?.min(top.upper);
+            let (upper, found) = search.evaluate(&child, Some(&top.found))?;
+            let upper = upper.min(top.upper);
             if upper - search.lower <= tolerance {
                 dropped = dropped.max(upper);
             } else {
@@ -213,6 +256,7 @@ pub(crate) fn fit(
                     upper,
                     order,
                     patch: child,
+                    found,
                 });
             }
             order += 1;
