@@ -115,7 +115,8 @@ pub fn certify_coverage(
     let corners = |t: &[u32; 3]| t.map(|i| positions[i as usize]);
     let triangles: Vec<Piece> = mesh.triangles().iter().map(corners).collect();
     let frozen: &[Sphere] = spheres;
-    let one = |triangle: &Piece| uncovered_pieces(triangle, frozen, resolution);
+    let grid = SphereGrid::new(mesh.bounding_box(), frozen);
+    let one = |triangle: &Piece| uncovered_pieces(triangle, frozen, &grid, resolution);
     #[cfg(feature = "parallel")]
     let found: Vec<(usize, Vec<Piece>)> = {
         use rayon::prelude::*;
@@ -169,12 +170,29 @@ fn least_growth(spheres: &[Sphere], piece: &Piece) -> (usize, f64) {
 
 /// Splits `triangle` against `spheres`: the number of pieces found inside a sphere, and
 /// the pieces no sphere contains whose longest edge is at most `resolution`.
-fn uncovered_pieces(triangle: &Piece, spheres: &[Sphere], resolution: f64) -> (usize, Vec<Piece>) {
-    // The spheres that can contain part of the triangle: those meeting its bounding box.
+fn uncovered_pieces(
+    triangle: &Piece,
+    spheres: &[Sphere],
+    grid: &SphereGrid,
+    resolution: f64,
+) -> (usize, Vec<Piece>) {
+    // Most triangles lie whole in a sphere, which is among those of a corner's cell.
+    let whole = grid
+        .at(triangle[0])
+        .iter()
+        .filter_map(|&i| spheres.get(i as usize))
+        .any(|s| contains_piece(s, triangle));
+    if whole {
+        return (1, Vec::new());
+    }
+    // The spheres that can contain part of the triangle: those meeting its bounding box
+    // (found through the grid, in ascending order).
     let lo = triangle[0].min(triangle[1]).min(triangle[2]);
     let hi = triangle[0].max(triangle[1]).max(triangle[2]);
-    let near: Vec<&Sphere> = spheres
-        .iter()
+    let near: Vec<&Sphere> = grid
+        .meeting(lo, hi)
+        .into_iter()
+        .filter_map(|i| spheres.get(i as usize))
         .filter(|s| s.center.clamp(lo, hi).distance(s.center) <= s.radius)
         .collect();
     let mut covered = 0;
@@ -209,12 +227,145 @@ fn uncovered_pieces(triangle: &Piece, spheres: &[Sphere], resolution: f64) -> (u
     (covered, left)
 }
 
+/// Cells along the longest side of the grid.
+const GRID_CELLS: f64 = 16.0;
+
+/// Which spheres can meet a box: per cell of a uniform grid over the mesh's bounding box,
+/// the spheres meeting the cell (points outside the box fall in the nearest cell).
+struct SphereGrid {
+    origin: DVec3,
+    cell: f64,
+    dims: [usize; 3],
+    /// Cell `i`'s spheres are `members[starts[i]..starts[i + 1]]`, ascending.
+    starts: Vec<usize>,
+    members: Vec<u32>,
+}
+
+impl SphereGrid {
+    fn new(bounds: sphaera_mesh::Aabb, spheres: &[Sphere]) -> Self {
+        let extent = bounds.max - bounds.min;
+        let cell = (extent.max_element() / GRID_CELLS).max(f64::MIN_POSITIVE);
+        let most = GRID_CELLS as usize;
+        let dims =
+            [extent.x, extent.y, extent.z].map(|e| ((e / cell).ceil() as usize).clamp(1, most));
+        let mut grid = Self {
+            origin: bounds.min,
+            cell,
+            dims,
+            starts: Vec::new(),
+            members: Vec::new(),
+        };
+        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
+        for (index, sphere) in spheres.iter().enumerate() {
+            let reach = DVec3::splat(sphere.radius);
+            let (lo, hi) = (
+                grid.coordinates(sphere.center - reach),
+                grid.coordinates(sphere.center + reach),
+            );
+            for z in lo[2]..=hi[2] {
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        // The border cells reach out to infinity: keep every sphere there.
+                        cells[grid.index([x, y, z])].push(index as u32);
+                    }
+                }
+            }
+        }
+        grid.starts.push(0);
+        for list in cells {
+            grid.members.extend(list);
+            grid.starts.push(grid.members.len());
+        }
+        grid
+    }
+
+    /// The cell coordinates of `p`, clamped to the grid (NaN to the first cell).
+    fn coordinates(&self, p: DVec3) -> [usize; 3] {
+        let q = (p - self.origin) / self.cell;
+        let clamp = |v: f64, n: usize| {
+            if v.is_nan() {
+                0
+            } else {
+                (v.max(0.0) as usize).min(n - 1)
+            }
+        };
+        [
+            clamp(q.x, self.dims[0]),
+            clamp(q.y, self.dims[1]),
+            clamp(q.z, self.dims[2]),
+        ]
+    }
+
+    fn index(&self, [x, y, z]: [usize; 3]) -> usize {
+        (z * self.dims[1] + y) * self.dims[0] + x
+    }
+
+    /// The spheres listed in the cell of `p`: every sphere containing `p` is among them.
+    fn at(&self, p: DVec3) -> &[u32] {
+        let i = self.index(self.coordinates(p));
+        &self.members[self.starts[i]..self.starts[i + 1]]
+    }
+
+    /// The spheres listed in the cells the box `[lo, hi]` meets, ascending and once each:
+    /// every sphere meeting the box is among them.
+    fn meeting(&self, lo: DVec3, hi: DVec3) -> Vec<u32> {
+        let (a, b) = (self.coordinates(lo), self.coordinates(hi));
+        let mut out = Vec::new();
+        for z in a[2]..=b[2] {
+            for y in a[1]..=b[1] {
+                for x in a[0]..=b[0] {
+                    let i = self.index([x, y, z]);
+                    out.extend_from_slice(&self.members[self.starts[i]..self.starts[i + 1]]);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn one_triangle() -> TriMesh {
         TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap_or_default()
+    }
+
+    /// The grid lists every sphere meeting a box (against a scan of all spheres), for
+    /// boxes inside and outside the grid.
+    #[test]
+    fn the_grid_lists_every_sphere_meeting_a_box() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut unit = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut point = || DVec3::new(unit(), unit(), unit()) * 3.0 - DVec3::splat(1.0);
+        let bounds = sphaera_mesh::Aabb::new(DVec3::ZERO, DVec3::new(1.0, 0.5, 0.25));
+        let spheres: Vec<Sphere> = (0..200)
+            .map(|i| Sphere::new(point(), 0.002 + 0.4 * f64::from(i % 7) / 7.0))
+            .collect();
+        let grid = SphereGrid::new(bounds, &spheres);
+        for _ in 0..500 {
+            let (a, b) = (point(), point());
+            let (lo, hi) = (a.min(b) * 0.3, a.min(b) * 0.3 + (b - a).abs() * 0.1);
+            let listed = grid.meeting(lo, hi);
+            for (i, s) in spheres.iter().enumerate() {
+                if s.center.clamp(lo, hi).distance(s.center) <= s.radius {
+                    assert!(listed.binary_search(&(i as u32)).is_ok(), "sphere {i}");
+                }
+            }
+            let p = lo;
+            for (i, s) in spheres.iter().enumerate() {
+                if s.center.distance(p) <= s.radius {
+                    assert!(grid.at(p).contains(&(i as u32)), "sphere {i} at {p}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -6,8 +6,6 @@
 //! samples are grown, and their errors and covered samples are measured again.
 //! `--samples-only` skips that and keeps the samples guarantee.
 
-mod certify;
-
 use std::io::Write;
 use std::time::Instant;
 
@@ -18,7 +16,7 @@ use sphaera::{
         CoverCriterion, MedialApproximation, MedialOptions, MedialProgress, SphereKind, Surface,
     },
     mesh::{DVec3, Sphere, io::write_atomic, sampling},
-    spheretree::{CoverageCertificate, SphereTreeOptions},
+    spheretree::{CoverageCertificate, SphereTreeOptions, cover::certify_coverage},
 };
 
 use crate::{
@@ -369,7 +367,7 @@ fn certify(
         .iter()
         .map(|s| Sphere::new(s.centre, s.radius))
         .collect();
-    let (certificate, growth) = certify::certify_surface(surface, &mut balls, resolution);
+    let (certificate, growth) = certify_coverage(surface.mesh(), &mut balls, resolution);
     let tolerance = COVER_TOLERANCE * surface.diagonal();
     for ((sphere, ball), g) in spheres.iter_mut().zip(&balls).zip(growth) {
         if g <= 0.0 {
