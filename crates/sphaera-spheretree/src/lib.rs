@@ -42,6 +42,19 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # What every medial tree guarantees
+//!
+//! - Every level covers the whole surface, certified piece by piece ([`cover`]).
+//! - Every node has a positive radius covering its samples: a one-sample region gets
+//!   the ball of half the sample spacing around its sample, not a point.
+//! - No child is looser than its parent: its eq. 2 error, an upper bound on its certified
+//!   error, never exceeds a lower bound on the parent's certified error.
+//! - The same input, options and seed give the same tree, with or without `parallel`.
+//!
+//! The default [`Method::Auto`] runs expand-select per node and merge only where
+//! expand-select's children are looser than their parent, at an error fraction of ⅛
+//! ([`SphereTreeOptions::error_fraction`]); the paper's reducers stay available by name.
+//!
 //! # Feature flags
 #![doc = document_features::document_features!()]
 
