@@ -50,9 +50,10 @@ struct Expandable {
     centre: glam::DVec3,
     depth: f64,
     inside: bool,
-    /// Every point's distance from the centre and index, nearest first: the points
-    /// within radius `r` are a prefix.
-    by_distance: Vec<(f64, u32)>,
+    /// Every point's distance from the centre, in point order.
+    distances: Vec<f64>,
+    /// The largest of them.
+    farthest: f64,
 }
 
 impl Expandable {
@@ -125,19 +126,18 @@ pub fn expand_select(
         .iter()
         .map(|c| {
             let (depth, inside) = centre_depth(input.surface, c.sphere.center);
-            let mut by_distance: Vec<(f64, u32)> = input
+            let distances: Vec<f64> = input
                 .points
                 .iter()
-                .enumerate()
-                .map(|(i, p)| (p.distance(c.sphere.center), i as u32))
+                .map(|p| p.distance(c.sphere.center))
                 .collect();
-            // Distances are not negative, so their bits order as they do (ties: index).
-            by_distance.sort_unstable_by_key(|&(d, i)| (d.to_bits(), i));
+            let farthest = distances.iter().copied().fold(0.0, f64::max);
             Expandable {
                 centre: c.sphere.center,
                 depth,
                 inside,
-                by_distance,
+                distances,
+                farthest,
             }
         })
         .collect();
@@ -145,8 +145,7 @@ pub fn expand_select(
     // them all. Both from the sorted distances: no distance is computed twice.
     let mut cheapest = vec![f64::INFINITY; input.points.len()];
     for x in &expandable {
-        for &(d, i) in &x.by_distance {
-            let slot = &mut cheapest[i as usize];
+        for (slot, &d) in cheapest.iter_mut().zip(&x.distances) {
             *slot = slot.min(x.standoff_at(d));
         }
     }
@@ -156,10 +155,7 @@ pub fn expand_select(
     let (single, high) = expandable
         .iter()
         .enumerate()
-        .map(|(i, x)| {
-            let farthest = x.by_distance.last().map_or(0.0, |&(d, _)| d);
-            (i, x.standoff_at(farthest).max(0.0))
-        })
+        .map(|(i, x)| (i, x.standoff_at(x.farthest).max(0.0)))
         .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
         .map_or((0, low), |(i, e)| (i, e.max(low)));
     let positions = morton_positions(input.points);
@@ -226,12 +222,14 @@ fn select(
         .iter()
         .map(|x| {
             let reach = x.radius(e)? * (1.0 + 1e-12);
-            let within = x.by_distance.partition_point(|&(d, _)| d <= reach);
-            let members: Vec<u32> = x.by_distance[..within]
+            let members: Vec<u32> = x
+                .distances
                 .iter()
-                .map(|&(_, i)| positions[i as usize])
+                .zip(positions)
+                .filter(|&(&d, _)| d <= reach)
+                .map(|(_, &p)| p)
                 .collect();
-            (within > 0).then(|| WindowBits::new(&members))
+            (!members.is_empty()).then(|| WindowBits::new(&members))
         })
         .collect();
     let mut uncovered = all_of(n);
