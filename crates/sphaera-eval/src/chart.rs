@@ -6,6 +6,7 @@ use anyhow::{Context, Result};
 /// Where a panel's legend goes.
 pub use plotters::prelude::SeriesLabelPosition;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// One named set of `(x, y)` points.
 pub struct Series {
@@ -250,6 +251,37 @@ pub struct StyledSeries {
     pub series: Series,
     /// How it is drawn.
     pub style: Style,
+    /// Text written beside each point, in the order of the points (fewer labels than
+    /// points leave the last points unlabelled; an empty label writes nothing).
+    pub labels: Vec<String>,
+}
+
+impl StyledSeries {
+    /// `series` drawn in `style`, without labels.
+    pub fn new(series: Series, style: Style) -> Self {
+        Self {
+            series,
+            style,
+            labels: Vec::new(),
+        }
+    }
+
+    /// With `labels` written beside the points (see [`StyledSeries::labels`]).
+    #[must_use]
+    pub fn with_labels(mut self, labels: Vec<String>) -> Self {
+        self.labels = labels;
+        self
+    }
+}
+
+/// A text of a [`StyledPanel`] placed in data coordinates: centred above `(x, y)`.
+pub struct Note {
+    /// Where the text's bottom centre goes.
+    pub at: (f64, f64),
+    /// The text.
+    pub text: String,
+    /// Its colour.
+    pub color: RGBColor,
 }
 
 /// The x axis of a [`StyledPanel`].
@@ -269,6 +301,9 @@ pub struct StyledPanel<'a> {
     pub x_axis: XAxis,
     /// The series.
     pub series: &'a [StyledSeries],
+    /// Texts in data coordinates (e.g. a statistic written above each group of points);
+    /// the y axis's range includes them.
+    pub notes: &'a [Note],
 }
 
 /// One line of the figure-wide legend of [`styled_panels`].
@@ -282,6 +317,9 @@ pub struct LegendEntry {
 /// Width of the legend column of [`styled_panels`], in pixels.
 const LEGEND_WIDTH: u32 = 230;
 
+/// Height of the figure-wide title of [`titled_panels`], in pixels.
+const TITLE_HEIGHT: u32 = 40;
+
 /// Draws `panels` side by side (each 600 × 520, log y axis) with one legend in a column
 /// to their right, never over the data, into `path` (SVG, written atomically).
 /// Non-positive or non-finite values are dropped (log axes).
@@ -290,70 +328,94 @@ pub fn styled_panels(
     panels: &[StyledPanel<'_>],
     legend: &[LegendEntry],
 ) -> Result<()> {
+    titled_panels(path, "", panels, legend)
+}
+
+/// [`styled_panels`] with `title` written above the whole figure (none if empty).
+pub fn titled_panels(
+    path: &Path,
+    title: &str,
+    panels: &[StyledPanel<'_>],
+    legend: &[LegendEntry],
+) -> Result<()> {
     let count = u32::try_from(panels.len().max(1)).unwrap_or(1);
-    write_svg(path, (600 * count + LEGEND_WIDTH, 520), |root| {
-        let (plots, legend_area) = root.split_horizontally(600 * count);
-        let areas = plots.split_evenly((1, panels.len().max(1)));
-        for (panel, area) in panels.iter().zip(&areas) {
-            let all: Vec<(f64, f64)> = panel
-                .series
-                .iter()
-                .flat_map(|s| s.series.points.iter().copied())
-                .filter(|&(x, y)| x.is_finite() && y > 0.0 && y.is_finite())
-                .collect();
-            let (_, y_range) = log_range(&all);
-            // From a power of ten: plotters labels a log axis from the first power of ten
-            // in range, so a range starting at 1.5 would have no labels below 10.
-            let y_range = 10f64.powf(y_range.start.log10().floor())..y_range.end;
-            match &panel.x_axis {
-                XAxis::Integers(range) => {
-                    let x = plotters::coord::types::RangedCoordf64::from(range.clone());
-                    // One tick per integer of the range.
-                    let ticks = (range.end.floor() - range.start.ceil()).max(0.0) as usize + 1;
-                    draw_styled(area, panel, x, y_range.log_scale().into(), ticks)?;
-                }
-                XAxis::Log => {
-                    let positive: Vec<(f64, f64)> =
-                        all.into_iter().filter(|&(x, _)| x > 0.0).collect();
-                    let (x_range, _) = log_range(&positive);
-                    draw_styled(
-                        area,
-                        panel,
-                        LogCoord::from(x_range.log_scale()),
-                        y_range.log_scale().into(),
-                        10,
-                    )?;
-                }
-            }
-        }
-        let mut y = 40;
-        for entry in legend {
-            if entry.style.line {
-                legend_area.draw(&PathElement::new(
-                    [(6, y), (30, y)],
-                    entry.style.color.mix(0.5),
+    let title_height = if title.is_empty() { 0 } else { TITLE_HEIGHT };
+    write_svg(
+        path,
+        (600 * count + LEGEND_WIDTH, 520 + title_height),
+        |root| {
+            let (header, body) = root.split_vertically(title_height);
+            if !title.is_empty() {
+                header.draw(&Text::new(
+                    title.to_owned(),
+                    (16, 12),
+                    ("sans-serif", 20).into_font(),
                 ))?;
             }
-            let shape = shape_style(entry.style);
-            let at = EmptyElement::at((18, y));
-            match entry.style.marker {
-                Marker::Circle => legend_area.draw(&(at + Circle::new((0, 0), 4, shape)))?,
-                Marker::Square => {
-                    legend_area.draw(&(at + Rectangle::new([(-4, -4), (4, 4)], shape)))?;
-                }
-                Marker::Triangle => {
-                    legend_area.draw(&(at + TriangleMarker::new((0, 0), 5, shape)))?;
+            let (plots, legend_area) = body.split_horizontally(600 * count);
+            let areas = plots.split_evenly((1, panels.len().max(1)));
+            for (panel, area) in panels.iter().zip(&areas) {
+                let all: Vec<(f64, f64)> = panel
+                    .series
+                    .iter()
+                    .flat_map(|s| s.series.points.iter().copied())
+                    .chain(panel.notes.iter().map(|n| n.at))
+                    .filter(|&(x, y)| x.is_finite() && y > 0.0 && y.is_finite())
+                    .collect();
+                let (_, y_range) = log_range(&all);
+                // From a power of ten: plotters labels a log axis from the first power of ten
+                // in range, so a range starting at 1.5 would have no labels below 10.
+                let y_range = 10f64.powf(y_range.start.log10().floor())..y_range.end;
+                match &panel.x_axis {
+                    XAxis::Integers(range) => {
+                        let x = plotters::coord::types::RangedCoordf64::from(range.clone());
+                        // One tick per integer of the range.
+                        let ticks = (range.end.floor() - range.start.ceil()).max(0.0) as usize + 1;
+                        draw_styled(area, panel, x, y_range.log_scale().into(), ticks)?;
+                    }
+                    XAxis::Log => {
+                        let positive: Vec<(f64, f64)> =
+                            all.into_iter().filter(|&(x, _)| x > 0.0).collect();
+                        let (x_range, _) = log_range(&positive);
+                        draw_styled(
+                            area,
+                            panel,
+                            LogCoord::from(x_range.log_scale()),
+                            y_range.log_scale().into(),
+                            10,
+                        )?;
+                    }
                 }
             }
-            legend_area.draw(&Text::new(
-                entry.label.clone(),
-                (38, y - 7),
-                ("sans-serif", 14).into_font(),
-            ))?;
-            y += 22;
-        }
-        Ok(())
-    })
+            let mut y = 40;
+            for entry in legend {
+                if entry.style.line {
+                    legend_area.draw(&PathElement::new(
+                        [(6, y), (30, y)],
+                        entry.style.color.mix(0.5),
+                    ))?;
+                }
+                let shape = shape_style(entry.style);
+                let at = EmptyElement::at((18, y));
+                match entry.style.marker {
+                    Marker::Circle => legend_area.draw(&(at + Circle::new((0, 0), 4, shape)))?,
+                    Marker::Square => {
+                        legend_area.draw(&(at + Rectangle::new([(-4, -4), (4, 4)], shape)))?;
+                    }
+                    Marker::Triangle => {
+                        legend_area.draw(&(at + TriangleMarker::new((0, 0), 5, shape)))?;
+                    }
+                }
+                legend_area.draw(&Text::new(
+                    entry.label.clone(),
+                    (38, y - 7),
+                    ("sans-serif", 14).into_font(),
+                ))?;
+                y += 22;
+            }
+            Ok(())
+        },
+    )
 }
 
 /// Draws one [`StyledPanel`] on `area` with the x coordinate `x` and log y `y`.
@@ -391,14 +453,24 @@ where
         })
         .y_label_formatter(&|v| tick_label(*v))
         .draw()?;
+    let drawable =
+        |&(x, y): &(f64, f64)| x.is_finite() && y > 0.0 && y.is_finite() && (integers || x > 0.0);
     for s in panel.series {
-        let points: Vec<(f64, f64)> = s
+        let points: Vec<(f64, f64)> = s.series.points.iter().copied().filter(drawable).collect();
+        let labelled = s
             .series
             .points
             .iter()
-            .copied()
-            .filter(|&(x, y)| x.is_finite() && y > 0.0 && y.is_finite() && (integers || x > 0.0))
-            .collect();
+            .zip(&s.labels)
+            .filter(|(p, text)| drawable(p) && !text.is_empty());
+        chart.draw_series(labelled.map(|(&p, text)| {
+            EmptyElement::at(p)
+                + Text::new(
+                    text.clone(),
+                    (7, -18),
+                    ("sans-serif", 13).into_font().color(&s.style.color),
+                )
+        }))?;
         if s.style.line && points.len() > 1 {
             chart.draw_series(LineSeries::new(
                 points.iter().copied(),
@@ -417,6 +489,14 @@ where
             }
         };
     }
+    let centred = Pos::new(HPos::Center, VPos::Bottom);
+    chart.draw_series(panel.notes.iter().filter(|n| drawable(&n.at)).map(|n| {
+        Text::new(
+            n.text.clone(),
+            n.at,
+            ("sans-serif", 13).into_font().color(&n.color).pos(centred),
+        )
+    }))?;
     Ok(())
 }
 
@@ -518,43 +598,62 @@ mod tests {
         ];
         let mut b = Series::new("b");
         b.points = vec![(0.01, 3.0), (10.0, 1.5), (-1.0, 2.0)];
-        let levels = [StyledSeries {
-            series: a,
-            style: style(Marker::Circle, true),
-        }];
-        let times = [StyledSeries {
-            series: b,
-            style: style(Marker::Triangle, false),
+        let levels = [StyledSeries::new(a, style(Marker::Circle, true))];
+        // Labels stay with their points when points are dropped (the third is not drawn).
+        let times = [
+            StyledSeries::new(b, style(Marker::Triangle, false)).with_labels(vec![
+                "first label".to_owned(),
+                String::new(),
+                "dropped label".to_owned(),
+            ]),
+        ];
+        let notes = [Note {
+            at: (2.0, 30.0),
+            text: "a note".to_owned(),
+            color: palette(0),
         }];
         let spec = |title| ChartSpec {
             title,
             x_label: "x units",
             y_label: "y units",
         };
-        styled_panels(
-            &path,
-            &[
-                StyledPanel {
-                    spec: spec("levels"),
-                    x_axis: XAxis::Integers(0.5..3.5),
-                    series: &levels,
-                },
-                StyledPanel {
-                    spec: spec("times"),
-                    x_axis: XAxis::Log,
-                    series: &times,
-                },
-            ],
-            &[LegendEntry {
-                label: "square entry".to_owned(),
-                style: style(Marker::Square, false),
-            }],
-        )?;
+        let panels = [
+            StyledPanel {
+                spec: spec("levels"),
+                x_axis: XAxis::Integers(0.5..3.5),
+                series: &levels,
+                notes: &notes,
+            },
+            StyledPanel {
+                spec: spec("times"),
+                x_axis: XAxis::Log,
+                series: &times,
+                notes: &[],
+            },
+        ];
+        let legend = [LegendEntry {
+            label: "square entry".to_owned(),
+            style: style(Marker::Square, false),
+        }];
+        styled_panels(&path, &panels, &legend)?;
         let svg = std::fs::read_to_string(&path)?;
-        std::fs::remove_file(&path)?;
-        for text in ["levels", "times", "x units", "y units", "square entry"] {
+        for text in [
+            "levels",
+            "times",
+            "x units",
+            "y units",
+            "square entry",
+            "first label",
+            "a note",
+        ] {
             assert!(svg.contains(text), "{text}");
         }
+        assert!(!svg.contains("dropped label"));
+        assert!(!svg.contains("figure title"));
+        titled_panels(&path, "figure title", &panels, &legend)?;
+        let titled = std::fs::read_to_string(&path)?;
+        std::fs::remove_file(&path)?;
+        assert!(titled.contains("figure title"));
         Ok(())
     }
 }

@@ -8,7 +8,9 @@
 //!   [`crate::brute`]);
 //! - `hausdorff_gap_vs_time`: `hausdorff_gap.rs` (the naive estimate of [`crate::brute`]);
 //! - `medial_static_vs_adaptive`: `medial_static_vs_adaptive.rs`;
-//! - `spheretree`: `spheretree/mod.rs`, its tables and charts in `spheretree/charts.rs`.
+//! - `spheretree`: `spheretree/mod.rs`, its tables and charts in `spheretree/charts.rs`;
+//! - `spheretree_similarity`: `spheretree/similarity.rs` (the default tree under random
+//!   similarity transforms).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -27,7 +29,7 @@ use sphaera::mesh::{TriMesh, io};
 
 /// Names of the experiments, in the order `cargo xtask charts` runs them. Each writes
 /// its charts as `CHART.svg` with the data in `CHART.csv` (`spheretree` writes two,
-/// from one set of trees).
+/// from one set of trees; `spheretree_similarity` writes its own name's).
 pub const NAMES: &[&str] = &[
     load_topology::NAME,
     simplify_error::NAME,
@@ -35,6 +37,7 @@ pub const NAMES: &[&str] = &[
     hausdorff_gap::NAME,
     medial_static_vs_adaptive::NAME,
     spheretree::NAME,
+    spheretree::similarity::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -46,6 +49,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         hausdorff_gap::NAME => hausdorff_gap::run(data, out),
         medial_static_vs_adaptive::NAME => medial_static_vs_adaptive::run(data, out),
         spheretree::NAME => spheretree::run(data, out),
+        spheretree::similarity::NAME => spheretree::similarity::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }

@@ -5,14 +5,22 @@ use std::path::Path;
 
 use anyhow::Result;
 
+use plotters::style::RGBColor;
+
 use super::{
-    BRANCH, DEPTH, LEVEL_CHART, MESHES, METHODS, Measured, Method, TIME_CHART, TOOLKIT,
-    TOOLKIT_MESH, method_index,
+    BRANCH, DEPTH, ERROR_FRACTIONS, LEVEL_CHART, MESHES, METHODS, Measured, Method, SWEEP_METHOD,
+    TIME_CHART, TOOLKIT, TOOLKIT_MESH, Variant, method_index,
 };
 use crate::chart::{
     ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
     styled_panels, write_csv,
 };
+
+/// The colour of the library's default in the time chart (no method has it).
+const DEFAULT_COLOR: RGBColor = RGBColor(0, 0, 0);
+
+/// The colour of the legend's mesh markers in the time chart (no method has it).
+const SHAPE_COLOR: RGBColor = RGBColor(70, 70, 70);
 
 /// One row per mesh, method and level; then the toolkit's rows.
 pub(super) fn write_level_table(out: &Path, measured: &[Measured]) -> Result<()> {
@@ -77,8 +85,18 @@ pub(super) fn write_level_table(out: &Path, measured: &[Measured]) -> Result<()>
     )
 }
 
-/// One row per mesh and method: build time, worst error at levels 2 and 3; then the
-/// toolkit's rows that have a time.
+/// The `series` column of the time table for a measured tree.
+fn series_name(variant: Variant) -> &'static str {
+    match variant {
+        Variant::Method => "method",
+        Variant::ErrorFraction(_) => "error_fraction_sweep",
+        Variant::LibraryDefault => "default",
+    }
+}
+
+/// One row per mesh and tree (every method, expand's error-fraction sweep, the library's
+/// default): build time, worst error at levels 2 and 3, the error fraction (medial
+/// methods only) and the series; then the toolkit's rows that have a time.
 pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> {
     let pct = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
     let mut table: Vec<Vec<String>> = measured
@@ -91,6 +109,12 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
                 format!("{:.4}", m.seconds),
                 pct(m.upper_pct(2)),
                 pct(m.upper_pct(3)),
+                if m.method.is_medial() {
+                    format!("{}", m.error_fraction)
+                } else {
+                    String::new()
+                },
+                series_name(m.variant).to_owned(),
             ]
         })
         .collect();
@@ -103,6 +127,8 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
                 format!("{s}"),
                 format!("{}", errors[1]),
                 format!("{}", errors[2]),
+                String::new(),
+                "toolkit".to_owned(),
             ]);
         }
     }
@@ -115,6 +141,8 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
             "build_seconds",
             "level2_worst_error_upper_pct_diag",
             "level3_worst_error_upper_pct_diag",
+            "error_fraction",
+            "series",
         ],
         &table,
     )
@@ -184,10 +212,7 @@ pub(super) fn draw_levels(
                     .iter()
                     .map(|l| (dodge(l.level, m.method), 100.0 * l.worst_upper))
                     .collect();
-                StyledSeries {
-                    series: s,
-                    style: method_style(m.method, Marker::Circle, true),
-                }
+                StyledSeries::new(s, method_style(m.method, Marker::Circle, true))
             })
             .collect();
         if *file == TOOLKIT_MESH {
@@ -198,10 +223,10 @@ pub(super) fn draw_levels(
                     .map(|l| dodge(l, method))
                     .zip(errors.iter().copied())
                     .collect();
-                series.push(StyledSeries {
-                    series: s,
-                    style: toolkit_style(name, Marker::Square, true),
-                });
+                series.push(StyledSeries::new(
+                    s,
+                    toolkit_style(name, Marker::Square, true),
+                ));
             }
         }
         per_mesh.push(series);
@@ -221,6 +246,7 @@ pub(super) fn draw_levels(
             },
             x_axis: XAxis::Integers(0.75..DEPTH as f64 + 0.25),
             series,
+            notes: &[],
         })
         .collect();
     let mut legend = method_legend(true);
@@ -241,38 +267,13 @@ fn mesh_marker(file: &str) -> Marker {
 }
 
 /// Levels 2 and 3: certified worst error against build time, one point per mesh and
-/// method (colour: method, marker: mesh); the toolkit's timed figures hollow.
+/// method (colour: method, marker: mesh); per mesh, expand's error-fraction sweep as a
+/// line with each point labelled by its fraction, and the library's default as a black
+/// hollow marker labelled "default"; the toolkit's timed figures (bunny only) hollow.
 pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
     let per_level: Vec<Vec<StyledSeries>> = [2, 3]
         .iter()
-        .map(|&level| {
-            let mut series: Vec<StyledSeries> = measured
-                .iter()
-                .map(|m| {
-                    let mut s = Series::new(m.method.name());
-                    s.points = m
-                        .upper_pct(level)
-                        .map(|e| (m.seconds, e))
-                        .into_iter()
-                        .collect();
-                    StyledSeries {
-                        series: s,
-                        style: method_style(m.method, mesh_marker(m.file), false),
-                    }
-                })
-                .collect();
-            for &(name, seconds, errors) in TOOLKIT {
-                if let Some(s) = seconds {
-                    let mut t = Series::new(name);
-                    t.points = vec![(s, errors[level - 1])];
-                    series.push(StyledSeries {
-                        series: t,
-                        style: toolkit_style(name, mesh_marker(TOOLKIT_MESH), false),
-                    });
-                }
-            }
-            series
-        })
+        .map(|&level| time_series(measured, level))
         .collect();
     let titles = ["Level 2 (≤ 64 spheres)", "Level 3 (≤ 512 spheres)"];
     let panels: Vec<StyledPanel<'_>> = titles
@@ -286,10 +287,19 @@ pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
             },
             x_axis: XAxis::Log,
             series,
+            notes: &[],
         })
         .collect();
-    let grey = palette(7);
+    let grey = SHAPE_COLOR;
     let mut legend = method_legend(false);
+    legend.push(LegendEntry {
+        label: format!("{} by error fraction", SWEEP_METHOD.name()),
+        style: method_style(SWEEP_METHOD, Marker::Circle, true),
+    });
+    legend.push(LegendEntry {
+        label: format!("default ({})", Method::default().name()),
+        style: default_style(Marker::Circle),
+    });
     legend.extend(MESHES.iter().map(|&(file, label)| LegendEntry {
         label: label.to_owned(),
         style: Style {
@@ -300,7 +310,7 @@ pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
         },
     }));
     legend.push(LegendEntry {
-        label: "toolkit (issue), bunny".to_owned(),
+        label: "toolkit (issue), bunny only".to_owned(),
         style: Style {
             color: grey,
             marker: mesh_marker(TOOLKIT_MESH),
@@ -309,6 +319,79 @@ pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
         },
     });
     styled_panels(&out.join(format!("{TIME_CHART}.svg")), &panels, &legend)
+}
+
+/// The style of the library's default: black, hollow (the method it is drawn over
+/// stays visible inside), never joined.
+fn default_style(marker: Marker) -> Style {
+    Style {
+        color: DEFAULT_COLOR,
+        marker,
+        filled: false,
+        line: false,
+    }
+}
+
+/// The series of one panel of the time chart (`level`): see [`draw_times`].
+fn time_series(measured: &[Measured], level: usize) -> Vec<StyledSeries> {
+    let point = |m: &Measured| m.upper_pct(level).map(|e| (m.seconds, e));
+    let mut series: Vec<StyledSeries> = measured
+        .iter()
+        .filter(|m| m.variant == Variant::Method)
+        .map(|m| {
+            let mut s = Series::new(m.method.name());
+            s.points = point(m).into_iter().collect();
+            StyledSeries::new(s, method_style(m.method, mesh_marker(m.file), false))
+        })
+        .collect();
+    let mut files: Vec<&str> = measured.iter().map(|m| m.file).collect();
+    files.dedup();
+    for file in files {
+        // The sweep, largest fraction first (the order of ERROR_FRACTIONS).
+        let mut sweep: Vec<(usize, &Measured)> = measured
+            .iter()
+            .filter(|m| m.file == file)
+            .filter_map(|m| match m.variant {
+                Variant::ErrorFraction(i) => Some((i, m)),
+                _ => None,
+            })
+            .collect();
+        sweep.sort_by_key(|&(i, _)| i);
+        let mut s = Series::new(&format!("{} by error fraction", SWEEP_METHOD.name()));
+        let mut labels = Vec::new();
+        for (i, m) in sweep {
+            if let (Some(p), Some(&(_, label))) = (point(m), ERROR_FRACTIONS.get(i)) {
+                s.points.push(p);
+                labels.push(label.to_owned());
+            }
+        }
+        series.push(
+            StyledSeries::new(s, method_style(SWEEP_METHOD, mesh_marker(file), true))
+                .with_labels(labels),
+        );
+        for m in measured
+            .iter()
+            .filter(|m| m.file == file && m.variant == Variant::LibraryDefault)
+        {
+            let mut s = Series::new("default");
+            s.points = point(m).into_iter().collect();
+            series.push(
+                StyledSeries::new(s, default_style(mesh_marker(file)))
+                    .with_labels(vec!["default".to_owned()]),
+            );
+        }
+    }
+    for &(name, seconds, errors) in TOOLKIT {
+        if let Some(s) = seconds {
+            let mut t = Series::new(name);
+            t.points = vec![(s, errors[level - 1])];
+            series.push(StyledSeries::new(
+                t,
+                toolkit_style(name, mesh_marker(TOOLKIT_MESH), false),
+            ));
+        }
+    }
+    series
 }
 
 #[cfg(test)]
@@ -323,16 +406,32 @@ mod tests {
             measured(Method::Merge, [0.10, 0.05, 0.02]),
             measured(Method::Octree, [0.40, 0.25, 0.13]),
         ];
+        let sweep = |i: usize, uppers| Measured {
+            variant: Variant::ErrorFraction(i),
+            error_fraction: ERROR_FRACTIONS[i].0,
+            seconds: 1.0 + i as f64,
+            ..measured(SWEEP_METHOD, uppers)
+        };
+        let default = Measured {
+            variant: Variant::LibraryDefault,
+            ..measured(Method::default(), [0.09, 0.045, 0.021])
+        };
+        let mut trees = rows.to_vec();
+        trees.extend([
+            sweep(0, [0.10, 0.05, 0.03]),
+            sweep(1, [0.10, 0.04, 0.02]),
+            default,
+        ]);
         write_level_table(&dir, &rows)?;
-        write_time_table(&dir, &rows)?;
+        write_time_table(&dir, &trees)?;
         let labels = [(TOOLKIT_MESH, "bunny".to_owned())];
         draw_levels(&dir, &rows, &labels)?;
-        draw_times(&dir, &rows)?;
+        draw_times(&dir, &trees)?;
         let levels = std::fs::read_to_string(dir.join(format!("{LEVEL_CHART}.csv")))?;
         let times = std::fs::read_to_string(dir.join(format!("{TIME_CHART}.csv")))?;
-        // 2 trees × 3 levels measured, 4 × 3 from the issue; 2 trees, 2 timed from the issue.
+        // 2 trees × 3 levels measured, 4 × 3 from the issue; 5 trees, 2 timed from the issue.
         assert_eq!(levels.lines().count(), 1 + 6 + 12);
-        assert_eq!(times.lines().count(), 1 + 2 + 2);
+        assert_eq!(times.lines().count(), 1 + 5 + 2);
         for table in [&levels, &times] {
             let columns = table.lines().next().map(|h| h.split(',').count());
             for line in table.lines().skip(1) {
@@ -342,10 +441,29 @@ mod tests {
         }
         assert!(levels.contains("toolkit-merge,issue,3,,,2.13,"));
         assert!(levels.contains("merge,measured,3,512,1.9000,2.0000,"));
-        assert!(times.contains("toolkit-expand,issue,103,3.73,2.09"));
+        assert!(times.contains("toolkit-expand,issue,103,3.73,2.09,,toolkit"));
+        assert!(times.contains("merge,measured,1.0000,5.0000,2.0000,0.5,method"));
+        assert!(times.contains("octree,measured,1.0000,25.0000,13.0000,,method"));
+        assert!(times.contains("expand,measured,2.0000,4.0000,2.0000,0.25,error_fraction_sweep"));
+        let default_row = format!(
+            "{},measured,1.0000,4.5000,2.1000,",
+            Method::default().name()
+        );
+        assert!(times.contains(&default_row), "{times}");
+        assert!(times.contains(",default\n"));
         let svg = std::fs::read_to_string(dir.join(format!("{LEVEL_CHART}.svg")))?;
         assert!(svg.contains("toolkit merge (issue, bunny)"));
         assert!(svg.contains("certified worst error, % of diagonal"));
+        let svg = std::fs::read_to_string(dir.join(format!("{TIME_CHART}.svg")))?;
+        for text in [
+            "½",
+            "¼",
+            "\ndefault\n",
+            "expand by error fraction",
+            "bunny only",
+        ] {
+            assert!(svg.contains(text), "{text}");
+        }
         std::fs::remove_dir_all(&dir)?;
         Ok(())
     }
@@ -359,9 +477,16 @@ mod tests {
             // The issue's errors shrink from level 1 to 2 (level 3 of Hubbard does not).
             assert!(errors[1] < errors[0], "{name}");
         }
-        assert_eq!(METHODS.len(), 7);
+        // One colour per method, none of them the default's or the mesh legend's.
+        assert!(METHODS.len() <= 10);
         for (i, &m) in METHODS.iter().enumerate() {
             assert_eq!(method_index(m), i);
+            let color = method_style(m, Marker::Circle, false).color;
+            assert!(
+                color != DEFAULT_COLOR && color != SHAPE_COLOR,
+                "{}",
+                m.name()
+            );
         }
     }
 

@@ -8,8 +8,10 @@
 //!
 //! `sphaera::spheretree::build` with `SphereTreeOptions::default().with_method(..)`:
 //!
-//! - **merge, burst, expand, combined**: the paper's settings (10,000 surface samples, an
-//!   initial medial approximation of 500 spheres refined to at least 100 per node);
+//! - **the medial methods** (merge, burst, expand, combined and any other for which
+//!   `Method::is_medial` holds): the library's default settings (10,000 surface samples,
+//!   an initial medial approximation of 500 spheres refined to at least 100 per node, the
+//!   default error fraction);
 //! - **octree, grid, hubbard**: the baselines, at the same depth, branch and seed.
 //!
 //! Measured per tree: the **build time**, the best of [`RUNS`] runs of the surface's
@@ -26,16 +28,38 @@
 //! 100,000 independent surface samples outside every sphere. Errors are in % of the
 //! mesh's bounding-box diagonal.
 //!
-//! The peer: the original toolkit's figures on `bunny_lowres.obj` as issue 6 gives them
-//! ([`TOOLKIT`]: worst error per level, and CPU seconds where the issue has them, measured
-//! by the issue's author with the toolkit single-threaded), drawn as hollow markers on the
-//! bunny and written to the CSVs with `source` = `issue` (measured rows say `measured`).
-//! They are the only numbers not computed here.
+//! The time chart has two more series on every mesh, measured the same way:
+//!
+//! - **expand's error-fraction sweep**: [`Method::Expand`] with
+//!   `SphereTreeOptions::with_error_fraction` at each fraction of [`ERROR_FRACTIONS`]
+//!   (½, ¼, ⅛, 1/16: a node's medial spheres refined to that fraction of the parent's
+//!   error before reduction), drawn as one line per mesh with each point labelled by its
+//!   fraction: how much time buys how much accuracy;
+//! - **the library's default**: `Method::default()` with `SphereTreeOptions::default()`
+//!   (depth, branch and seed pinned to the experiment's, as for every tree here), drawn
+//!   as a black hollow marker labelled "default", so the chart shows where a user who
+//!   changes nothing lands.
+//!
+//! A tree whose options equal those of a tree already measured on the mesh (expand at
+//! the default fraction, the default method at the default options) is the same tree
+//! (builds are deterministic): it is measured once and charted in both roles.
+//!
+//! The peer: the original toolkit's figures as issue 6 gives them ([`TOOLKIT`]: worst
+//! error per level, and CPU seconds where the issue has them, measured by the issue's
+//! author with the toolkit single-threaded). **They exist for `bunny_lowres.obj` only**
+//! (the toolkit cannot be run here, for licence reasons, so no other mesh has them):
+//! drawn as hollow markers on the bunny and written to the CSVs with `source` = `issue`
+//! (measured rows say `measured`). They are the only numbers not computed here.
 //!
 //! Files: `spheretree_error_vs_level.{svg,csv}` (one panel per mesh, one row per mesh,
-//! method and level) and `spheretree_error_vs_time.{svg,csv}` (two panels, levels 2 and
-//! 3; one row per mesh and method). By design they cover only [`MESHES`]; `cargo xtask
-//! charts --check` checks them.
+//! method and level; the methods of [`METHODS`] only) and
+//! `spheretree_error_vs_time.{svg,csv}` (two panels, levels 2 and 3; one row per mesh and
+//! tree: every method, the error-fraction sweep and the default, with the error fraction
+//! of the medial trees and the series each row belongs to). By design they cover only
+//! [`MESHES`]; `cargo xtask charts --check` checks them.
+//!
+//! The module [`similarity`] is a separate experiment (`--only spheretree_similarity`):
+//! the default tree's stability under similarity transforms.
 
 use std::path::Path;
 
@@ -48,6 +72,7 @@ use sphaera::{
 use super::{load_or_skip, min_time};
 
 mod charts;
+pub mod similarity;
 
 /// The experiment's name (`--only spheretree`); it writes the two charts below.
 pub const NAME: &str = "spheretree";
@@ -93,8 +118,16 @@ pub const TOOLKIT: &[(&str, Option<f64>, [f64; 3])] = &[
     ("toolkit-octree", None, [42.0, 25.0, 13.0]),
 ];
 
-/// The mesh the toolkit's figures are for.
+/// The only mesh the toolkit's figures exist for.
 const TOOLKIT_MESH: &str = "bunny_lowres.obj";
+
+/// The error fractions of expand's sweep in the time chart, largest first, with the
+/// label written beside each point.
+pub const ERROR_FRACTIONS: &[(f64, &str)] =
+    &[(0.5, "½"), (0.25, "¼"), (0.125, "⅛"), (0.0625, "1/16")];
+
+/// The method of the error-fraction sweep.
+const SWEEP_METHOD: Method = Method::Expand;
 
 /// The methods, in the order of the charts' colours: every method of the library.
 const METHODS: &[Method] = &Method::ALL;
@@ -104,20 +137,60 @@ fn method_index(method: Method) -> usize {
     METHODS.iter().position(|&m| m == method).unwrap_or(0)
 }
 
-/// The tree of `mesh` by `method`, as a user builds it: the surface prepared, then built.
-fn build_tree(method: Method, mesh: &TriMesh) -> Result<SphereTree> {
-    let options = SphereTreeOptions::default()
+/// The options of every tree here: `SphereTreeOptions::default()` with `method`, at
+/// [`DEPTH`], [`BRANCH`] and [`SEED`].
+pub(super) fn tree_options(method: Method) -> SphereTreeOptions {
+    SphereTreeOptions::default()
         .with_method(method)
         .with_depth(DEPTH)
         .with_branch(BRANCH)
-        .with_seed(SEED);
+        .with_seed(SEED)
+}
+
+/// The tree of `mesh` with `options`, as a user builds it: the surface prepared, then
+/// built.
+fn build_tree(options: &SphereTreeOptions, mesh: &TriMesh) -> Result<SphereTree> {
     Surface::new(mesh)
         .map_err(anyhow::Error::from)
-        .and_then(|surface| Ok(build(&surface, &options)?))
-        .with_context(|| format!("{} tree failed", method.name()))
+        .and_then(|surface| Ok(build(&surface, options)?))
+        .with_context(|| format!("{} tree failed", options.method.name()))
+}
+
+/// Which series a measured tree belongs to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Variant {
+    /// A method of [`METHODS`] at [`tree_options`]: both charts.
+    Method,
+    /// [`SWEEP_METHOD`] at the error fraction of [`ERROR_FRACTIONS`] with this index:
+    /// the time chart's labelled line.
+    ErrorFraction(usize),
+    /// `Method::default()` at [`tree_options`]: the time chart's "default".
+    LibraryDefault,
+}
+
+/// Every tree measured on a mesh, with its options, in the order measured.
+fn variants() -> Vec<(Variant, SphereTreeOptions)> {
+    let mut trees: Vec<(Variant, SphereTreeOptions)> = METHODS
+        .iter()
+        .map(|&m| (Variant::Method, tree_options(m)))
+        .collect();
+    trees.extend(
+        ERROR_FRACTIONS
+            .iter()
+            .enumerate()
+            .map(|(i, &(fraction, _))| {
+                (
+                    Variant::ErrorFraction(i),
+                    tree_options(SWEEP_METHOD).with_error_fraction(fraction),
+                )
+            }),
+    );
+    trees.push((Variant::LibraryDefault, tree_options(Method::default())));
+    trees
 }
 
 /// One evaluated level of a tree; errors relative to the diagonal.
+#[derive(Clone)]
 struct Level {
     level: usize,
     spheres: usize,
@@ -131,14 +204,31 @@ struct Level {
 }
 
 /// One tree: its build time and levels 1 to [`DEPTH`].
+#[derive(Clone)]
 struct Measured {
     file: &'static str,
     method: Method,
+    variant: Variant,
+    /// The options' error fraction (used by the medial methods only).
+    error_fraction: f64,
     seconds: f64,
     levels: Vec<Level>,
 }
 
 impl Measured {
+    /// How the terminal names the tree.
+    fn label(&self) -> String {
+        match self.variant {
+            Variant::Method => self.method.name().to_owned(),
+            Variant::ErrorFraction(i) => format!(
+                "{} F={}",
+                self.method.name(),
+                ERROR_FRACTIONS.get(i).map_or("?", |f| f.1)
+            ),
+            Variant::LibraryDefault => format!("default ({})", self.method.name()),
+        }
+    }
+
     /// The worst error (upper end) of `level`, in % of the diagonal.
     fn upper_pct(&self, level: usize) -> Option<f64> {
         self.levels
@@ -167,13 +257,19 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
     for line in oddities(&measured) {
         eprintln!("note: {line}");
     }
-    charts::write_level_table(out, &measured)?;
+    let methods: Vec<Measured> = measured
+        .iter()
+        .filter(|m| m.variant == Variant::Method)
+        .cloned()
+        .collect();
+    charts::write_level_table(out, &methods)?;
     charts::write_time_table(out, &measured)?;
-    charts::draw_levels(out, &measured, &labels)?;
+    charts::draw_levels(out, &methods, &labels)?;
     charts::draw_times(out, &measured)
 }
 
-/// Every method on one mesh: build (timed), then evaluate levels 1 to [`DEPTH`].
+/// Every tree of [`variants`] on one mesh: build (timed), then evaluate levels 1 to
+/// [`DEPTH`]; a tree with the options of one already measured is not built again.
 fn measure_mesh(
     file: &'static str,
     label: &str,
@@ -184,8 +280,23 @@ fn measure_mesh(
     let diagonal = surface.diagonal();
     let options = EvaluationOptions::default()
         .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE));
-    for &method in METHODS {
-        let (seconds, tree) = min_time(RUNS, || build_tree(method, mesh))?;
+    let mut built: Vec<(SphereTreeOptions, Measured)> = Vec::new();
+    for (variant, tree_options) in variants() {
+        if let Some((_, same)) = built.iter().find(|(o, _)| *o == tree_options) {
+            let row = Measured {
+                variant,
+                ..same.clone()
+            };
+            eprintln!(
+                "{label:<14} {:<13} = {} (same options)",
+                row.label(),
+                same.label()
+            );
+            measured.push(row);
+            continue;
+        }
+        let method = tree_options.method;
+        let (seconds, tree) = min_time(RUNS, || build_tree(&tree_options, mesh))?;
         let mut levels = Vec::new();
         for level in 1..tree.level_count().min(DEPTH + 1) {
             let nodes = tree.level(level);
@@ -210,10 +321,13 @@ fn measure_mesh(
         let row = Measured {
             file,
             method,
+            variant,
+            error_fraction: tree_options.error_fraction,
             seconds,
             levels,
         };
         report(label, &row);
+        built.push((tree_options, row.clone()));
         measured.push(row);
     }
     Ok(())
@@ -236,23 +350,24 @@ fn report(label: &str, row: &Measured) {
         })
         .collect();
     eprintln!(
-        "{label:<14} {:<9} build {:8.3} s  {}",
-        row.method.name(),
+        "{label:<14} {:<13} build {:8.3} s  {}",
+        row.label(),
         row.seconds,
         levels.join("  ")
     );
 }
 
-/// What a reader should notice: a level worse than its parent level, combined worse
-/// than merge or expand, a medial method worse than Hubbard's.
+/// What a reader should notice among the trees of [`METHODS`]: a level worse than its
+/// parent level, combined worse than merge or expand, a medial method worse than
+/// Hubbard's.
 fn oddities(measured: &[Measured]) -> Vec<String> {
     let mut notes = Vec::new();
     let find = |file: &str, method: Method| {
         measured
             .iter()
-            .find(|m| m.file == file && m.method == method)
+            .find(|m| m.file == file && m.method == method && m.variant == Variant::Method)
     };
-    for m in measured {
+    for m in measured.iter().filter(|m| m.variant == Variant::Method) {
         for pair in m.levels.windows(2) {
             if pair[1].worst_lower > pair[0].worst_upper {
                 notes.push(format!(
@@ -314,6 +429,8 @@ mod tests {
         Measured {
             file: TOOLKIT_MESH,
             method,
+            variant: Variant::Method,
+            error_fraction: 0.5,
             seconds: 1.0,
             levels: uppers
                 .iter()
@@ -328,6 +445,36 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("sphaera-eval-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         dir
+    }
+
+    #[test]
+    fn variants_are_the_methods_the_sweep_and_the_default() {
+        let trees = variants();
+        assert_eq!(trees.len(), METHODS.len() + ERROR_FRACTIONS.len() + 1);
+        for (variant, options) in &trees {
+            assert_eq!(
+                (options.depth, options.branch, options.seed),
+                (DEPTH, BRANCH, SEED)
+            );
+            match *variant {
+                Variant::Method => {}
+                Variant::ErrorFraction(i) => {
+                    assert_eq!(options.method, SWEEP_METHOD);
+                    assert!((options.error_fraction - ERROR_FRACTIONS[i].0).abs() < 1e-15);
+                }
+                Variant::LibraryDefault => assert_eq!(options.method, Method::default()),
+            }
+        }
+        let methods: Vec<Method> = trees
+            .iter()
+            .filter(|(v, _)| *v == Variant::Method)
+            .map(|(_, o)| o.method)
+            .collect();
+        assert_eq!(methods, METHODS);
+        // Largest fraction first, each half the one before.
+        for pair in ERROR_FRACTIONS.windows(2) {
+            assert!((pair[1].0 - pair[0].0 / 2.0).abs() < 1e-15);
+        }
     }
 
     #[test]
