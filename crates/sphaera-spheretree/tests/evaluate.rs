@@ -239,6 +239,35 @@ fn results_are_deterministic() {
     assert_eq!(a.fits, one_by_one);
 }
 
+/// Screening keeps the worst error's interval as tight as the full evaluation (the same
+/// worst sphere, an interval within the tolerance and overlapping the full one), and
+/// every sphere's interval stays valid (it contains the full evaluation's).
+#[test]
+fn screening_keeps_the_worst_interval() {
+    let s = shape(2);
+    let spheres: Vec<Sphere> = (0..24)
+        .map(|i| {
+            let t = f64::from(i);
+            Sphere::new(
+                DVec3::new(0.3 * t.sin(), 0.3 * t.cos(), 0.07 * t - 0.8),
+                0.25 + 0.015 * t,
+            )
+        })
+        .collect();
+    let options = EvaluationOptions::default().with_coverage_samples(2_000);
+    let full = evaluate_set(&s.surface, &spheres, &options).unwrap();
+    let screened = evaluate_set(&s.surface, &spheres, &options.with_screening(true)).unwrap();
+    assert!(screened.worst_upper - screened.worst_lower <= screened.tolerance);
+    assert!(screened.worst_lower <= full.worst_upper && full.worst_lower <= screened.worst_upper);
+    for (a, b) in full.fits.iter().zip(&screened.fits) {
+        assert!(b.lower <= a.upper && a.lower <= b.upper, "{a:?} {b:?}");
+    }
+    assert!(screened.mean_error >= full.mean_error - full.tolerance);
+    let patches =
+        |e: &sphaera_spheretree::SetEvaluation| e.fits.iter().map(|f| f.patches).sum::<usize>();
+    assert!(patches(&screened) <= patches(&full), "screening costs more");
+}
+
 #[test]
 fn set_statistics_follow_the_fits() {
     let s = shape(0);

@@ -113,7 +113,7 @@ mod sphere_fit;
 pub use coverage::{Coverage, coverage};
 pub use options::{
     DEFAULT_COVERAGE_SAMPLES, DEFAULT_COVERAGE_SEED, DEFAULT_MAX_PATCHES,
-    DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions,
+    DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions, SCREENING_FACTOR,
 };
 pub use set::{SetEvaluation, evaluate_set};
 pub use sphere_fit::{SphereFit, sphere_error, sphere_errors};

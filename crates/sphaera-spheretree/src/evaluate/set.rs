@@ -2,11 +2,11 @@
 
 use std::time::{Duration, Instant};
 
-use sphaera_mesh::Surface;
+use sphaera_mesh::{Length, Surface};
 
-use super::EvaluationOptions;
 use super::coverage::{Coverage, coverage};
 use super::sphere_fit::{SphereFit, check_spheres, sphere_errors};
+use super::{EvaluationOptions, SCREENING_FACTOR};
 use crate::{Sphere, SphereTreeError};
 
 /// The fit of a sphere set (a sphere-tree level, or any flat set) to an object: the
@@ -61,6 +61,30 @@ pub struct SetEvaluation {
     pub elapsed: Duration,
 }
 
+/// Every sphere to [`SCREENING_FACTOR`] times the tolerance, then again to the tolerance
+/// those whose upper bound is above the largest lower bound.
+fn screened_errors(
+    surface: &Surface,
+    spheres: &[Sphere],
+    options: &EvaluationOptions,
+) -> Result<Vec<SphereFit>, SphereTreeError> {
+    let tolerance = options.checked_tolerance(surface.diagonal())?;
+    let coarse = options.with_tolerance(Length::Absolute(SCREENING_FACTOR * tolerance));
+    let mut fits = sphere_errors(surface, spheres, &coarse)?;
+    let floor = fits.iter().map(|f| f.lower).fold(0.0, f64::max);
+    let open: Vec<usize> = (0..fits.len())
+        .filter(|&i| fits[i].upper - fits[i].lower > tolerance && fits[i].upper > floor)
+        .collect();
+    let again: Vec<Sphere> = open.iter().map(|&i| spheres[i]).collect();
+    for (i, fit) in open
+        .into_iter()
+        .zip(sphere_errors(surface, &again, options)?)
+    {
+        fits[i] = fit;
+    }
+    Ok(fits)
+}
+
 /// Evaluates `spheres` against the object of `surface`: per-sphere
 /// certified errors ([`sphere_errors`](super::sphere_errors)), their worst, mean and
 /// variance, and the surface coverage ([`coverage`](super::coverage)).
@@ -110,7 +134,11 @@ pub fn evaluate_set(
         return Err(SphereTreeError::EmptySphereSet);
     }
     check_spheres(spheres)?;
-    let fits = sphere_errors(surface, spheres, options)?;
+    let fits = if options.screening {
+        screened_errors(surface, spheres, options)?
+    } else {
+        sphere_errors(surface, spheres, options)?
+    };
     let coverage = coverage(surface.mesh(), spheres, options)?;
     let n = fits.len() as f64;
     let mut worst_index = 0;
