@@ -185,16 +185,14 @@ fn medial_tree(
                 if crate::reduce::worst(&reduced[k]) <= limits[k] {
                     continue;
                 }
-                let points: Vec<DVec3> = regions[parent]
-                    .iter()
-                    .map(|&i| samples[i as usize])
-                    .collect();
-                let input = ReductionInput {
+                let region = &regions[parent];
+                let merged = reduce_region(
                     surface,
-                    points: &points,
+                    &samples_of(&samples, region),
                     candidates,
-                };
-                let merged = reduce(Reducer::Merge, &input, options.branch)?;
+                    Reducer::Merge,
+                    options.branch,
+                )?;
                 if crate::reduce::worst(&merged) < crate::reduce::worst(&reduced[k]) {
                     reduced[k] = merged;
                 }
@@ -319,7 +317,7 @@ fn children_of(
         .filter(|&(_, spent)| spent)
         .map(|((f, group), _)| {
             let ids: Vec<u32> = group.iter().map(|&g| family.region[g as usize]).collect();
-            let points: Vec<DVec3> = ids.iter().map(|&i| samples[i as usize]).collect();
+            let points = samples_of(samples, &ids);
             let mut best = (f.sphere, f.error);
             if f.sphere.radius < family.owned {
                 best = minimum_enclosing_ball(&points).map_or(best, |ball| {
@@ -432,10 +430,7 @@ fn divide_all(
     options: &SphereTreeOptions,
 ) -> Vec<Vec<Vec<u32>>> {
     let one = |(parent, fitted): (usize, &Vec<FittedSphere>)| {
-        let points: Vec<DVec3> = regions[parent]
-            .iter()
-            .map(|&i| samples[i as usize])
-            .collect();
+        let points = samples_of(samples, &regions[parent]);
         let spheres: Vec<_> = fitted.iter().map(|f| f.sphere).collect();
         divide(&points, &spheres, options.balance_regions)
     };
@@ -454,6 +449,27 @@ fn divide_all(
     }
 }
 
+/// The positions of the samples `region` names.
+fn samples_of(samples: &[DVec3], region: &[u32]) -> Vec<DVec3> {
+    region.iter().map(|&i| samples[i as usize]).collect()
+}
+
+/// Reduces one region's candidates to at most `branch` spheres with `reducer`.
+fn reduce_region(
+    surface: &Surface,
+    points: &[DVec3],
+    candidates: &[Candidate],
+    reducer: Reducer,
+    branch: usize,
+) -> Result<Vec<FittedSphere>, SphereTreeError> {
+    let input = ReductionInput {
+        surface,
+        points,
+        candidates,
+    };
+    reduce(reducer, &input, branch)
+}
+
 /// Reduces every parent's candidates (in parallel with the `parallel` feature; each
 /// reduction is independent, so the result is the same).
 fn reduce_all(
@@ -465,20 +481,15 @@ fn reduce_all(
     reducer: Reducer,
     branch: usize,
 ) -> Result<Vec<Vec<FittedSphere>>, SphereTreeError> {
-    let one = |(parent, problem): (usize, &Option<Vec<Candidate>>)| {
-        let Some(candidates) = problem else {
-            return Ok(Vec::new());
-        };
-        let points: Vec<DVec3> = regions[parent]
-            .iter()
-            .map(|&i| samples[i as usize])
-            .collect();
-        let input = ReductionInput {
+    let one = |(parent, problem): (usize, &Option<Vec<Candidate>>)| match problem {
+        Some(candidates) => reduce_region(
             surface,
-            points: &points,
+            &samples_of(samples, &regions[parent]),
             candidates,
-        };
-        reduce(reducer, &input, branch)
+            reducer,
+            branch,
+        ),
+        None => Ok(Vec::new()),
     };
     #[cfg(feature = "parallel")]
     {
