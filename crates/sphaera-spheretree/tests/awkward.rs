@@ -159,3 +159,22 @@ fn a_deeper_level_is_never_looser_than_its_parent_on_thin_parts() {
         }
     }
 }
+
+/// Every mesh of the shared data (closed, open, non-manifold, robot links of a few dozen
+/// triangles, the 871k dragon) builds with the default method and writes every format.
+#[test]
+fn every_shared_mesh_builds_and_writes_every_format() {
+    let Some(data) = sphaera_tests::data_dir("every_shared_mesh_builds_and_writes_every_format")
+    else {
+        return;
+    };
+    let options = small(Method::default()).with_samples(600);
+    for relative in sphaera_tests::mesh_files(&data) {
+        let name = relative.display().to_string();
+        let mesh =
+            sphaera_mesh::io::load(data.join(&relative)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let surface = Surface::new(&mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let tree = build(&surface, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_tree_and_formats(&name, Method::default(), &tree);
+    }
+}
