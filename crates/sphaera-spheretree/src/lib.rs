@@ -47,8 +47,12 @@
 //! - Every level covers the whole surface, certified piece by piece ([`cover`]).
 //! - Every node has a positive radius covering its samples: a one-sample region gets
 //!   the ball of half the sample spacing around its sample, not a point.
-//! - No child is looser than its parent: its eq. 2 error, an upper bound on its certified
-//!   error, never exceeds a lower bound on the parent's certified error.
+//! - No child is built looser than its parent: its eq. 2 error, an upper bound on its
+//!   certified error, never exceeds a lower bound on the parent's certified error. The
+//!   coverage certificate may then grow spheres: by about the resolution where spheres
+//!   barely overlap, by a gap's size where there was a gap (with few samples per node, a
+//!   level can end up looser than its parent; at the default 10,000 samples every
+//!   shared mesh is monotone).
 //! - The same input, options and seed give the same tree, with or without `parallel`.
 //!
 //! The default [`Method::Auto`] runs expand-select per node and merge only where
