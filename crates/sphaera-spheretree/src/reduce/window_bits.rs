@@ -36,14 +36,6 @@ impl WindowBits {
         }
     }
 
-    /// The word `w` of the set (0 outside its window).
-    fn word(&self, w: usize) -> u64 {
-        w.checked_sub(self.first)
-            .and_then(|k| self.words.get(k))
-            .copied()
-            .unwrap_or(0)
-    }
-
     /// The window's words with their indices.
     fn indexed(&self) -> impl Iterator<Item = (usize, u64)> + '_ {
         self.words
@@ -55,15 +47,12 @@ impl WindowBits {
     /// The members also in `full` (a full-length set), the window trimmed to them; `None`
     /// when there are none.
     pub fn masked(&self, full: &[u64]) -> Option<Self> {
-        let words: Vec<u64> = self
-            .indexed()
-            .map(|(w, bits)| bits & full.get(w).copied().unwrap_or(0))
-            .collect();
-        let start = words.iter().position(|&w| w != 0)?;
-        let end = words.iter().rposition(|&w| w != 0)? + 1;
+        let word = |k: usize| self.words[k] & full.get(self.first + k).copied().unwrap_or(0);
+        let start = (0..self.words.len()).position(|k| word(k) != 0)?;
+        let end = (start..self.words.len()).rev().find(|&k| word(k) != 0)? + 1;
         Some(Self {
             first: self.first + start,
-            words: words[start..end].to_vec(),
+            words: (start..end).map(word).collect(),
         })
     }
 
@@ -76,9 +65,13 @@ impl WindowBits {
     /// members ([`Self::new`] and [`Self::masked`] leave them so), so a window reaching
     /// outside `other`'s has a member outside it.
     pub fn is_subset_of(&self, other: &Self) -> bool {
-        let inside = self.first >= other.first
-            && self.first + self.words.len() <= other.first + other.words.len();
-        inside && self.indexed().all(|(w, bits)| bits & !other.word(w) == 0)
+        let Some(offset) = self.first.checked_sub(other.first) else {
+            return false;
+        };
+        let Some(theirs) = other.words.get(offset..offset + self.words.len()) else {
+            return false;
+        };
+        self.words.iter().zip(theirs).all(|(mine, their)| mine & !their == 0)
     }
 
     /// Removes the set's members from `full`.
