@@ -71,7 +71,10 @@ impl WindowBits {
         let Some(theirs) = other.words.get(offset..offset + self.words.len()) else {
             return false;
         };
-        self.words.iter().zip(theirs).all(|(mine, their)| mine & !their == 0)
+        self.words
+            .iter()
+            .zip(theirs)
+            .all(|(mine, their)| mine & !their == 0)
     }
 
     /// Removes the set's members from `full`.
