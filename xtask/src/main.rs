@@ -90,7 +90,7 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 /// sphere-tree crates again without their default `parallel` feature, whose results must
 /// be identical (the medial and sphere-tree tests compare digests of their spheres with
 /// the same recorded values both ways),
-/// and the sphere-tree's export tests with its optional `parry` feature.
+/// and the sphere-tree's export and awkward-mesh tests with its optional `parry` feature.
 fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
     for crate_name in ["sphaera-mesh", "sphaera-medial", "sphaera-spheretree"] {
@@ -104,7 +104,8 @@ fn test() -> Result<()> {
             "--tests",
         ])?;
     }
-    // The sphere-tree's parry3d export, behind its optional feature.
+    // The sphere-tree's parry3d export, behind its optional feature (the awkward meshes
+    // write it too).
     cargo(&[
         "test",
         "--locked",
@@ -114,6 +115,8 @@ fn test() -> Result<()> {
         "parry",
         "--test",
         "export",
+        "--test",
+        "awkward",
     ])?;
     Ok(())
 }
