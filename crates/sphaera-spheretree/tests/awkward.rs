@@ -1,9 +1,11 @@
 //! Every method on the meshes users bring (`sphaera_tests::awkward`: a pinched vertex,
-//! slivers, a tiny detached component, far-apart components, a thin rod, horns, spikes),
-//! and every output format written from each tree. Regression tests are named after what
-//! broke.
+//! slivers, a tiny detached component, far-apart components, a thin rod, horns, spikes;
+//! and every shared mesh), every output format written from each tree, and the same tree
+//! for a mesh scaled by a power of two. Regression tests are named after what broke.
+//! (Other similarities move the rounding; the spread they cause is measured by
+//! `sphaera-eval`'s `spheretree_similarity` chart.)
 
-use sphaera_mesh::{DVec3, TriMesh, sampling};
+use sphaera_mesh::{DVec3, TriMesh, sampling, shapes};
 use sphaera_spheretree::export::{
     CollisionLink, SphFile, collision_spheres_yaml, read_sph, tree_from_json, tree_to_json,
     write_sph,
@@ -176,5 +178,71 @@ fn every_shared_mesh_builds_and_writes_every_format() {
         let surface = Surface::new(&mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
         let tree = build(&surface, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_tree_and_formats(&name, Method::default(), &tree);
+    }
+}
+
+/// A mesh scaled by `factor`.
+fn scaled(mesh: &TriMesh, factor: f64) -> TriMesh {
+    awkward::mapped(mesh, |p| p * factor, false)
+}
+
+/// The same tree, every number of `b` exactly `factor` times `a`'s.
+fn assert_scaled(a: &SphereTree, b: &SphereTree, factor: f64, what: &str) {
+    assert_eq!(a.nodes().len(), b.nodes().len(), "{what}: node count");
+    // Bit for bit: the same tree, every number scaled.
+    let bits = |v: DVec3| [v.x, v.y, v.z].map(f64::to_bits);
+    for (i, (x, y)) in a.nodes().iter().zip(b.nodes()).enumerate() {
+        assert_eq!(
+            bits(x.sphere.center * factor),
+            bits(y.sphere.center),
+            "{what}: node {i} centre"
+        );
+        assert_eq!(
+            (x.sphere.radius * factor).to_bits(),
+            y.sphere.radius.to_bits(),
+            "{what}: node {i} radius"
+        );
+        assert_eq!(
+            (x.error * factor).to_bits(),
+            y.error.to_bits(),
+            "{what}: node {i} error"
+        );
+        assert_eq!(
+            (x.parent, x.children.clone(), x.region_samples),
+            (y.parent, y.children.clone(), y.region_samples),
+            "{what}: node {i} structure"
+        );
+    }
+}
+
+#[test]
+fn scaling_by_a_power_of_two_gives_the_same_tree_scaled() {
+    let meshes = [
+        ("L-block", shapes::l_block(2.0, 1.0, 0.5, 4).expect("valid")),
+        ("pinched tori", awkward::tori_touching_at_a_vertex(16)),
+        (
+            "moved cube",
+            awkward::mapped(
+                &shapes::cube(1.0, 4).expect("valid"),
+                |p| p + DVec3::new(3.0, -2.0, 0.5),
+                false,
+            ),
+        ),
+    ];
+    for (name, mesh) in &meshes {
+        for method in [Method::Auto, Method::Merge, Method::Octree] {
+            let base = build(&Surface::new(mesh).expect("solid"), &small(method)).expect("builds");
+            for factor in [4.0, 0.125] {
+                let other = scaled(mesh, factor);
+                let tree =
+                    build(&Surface::new(&other).expect("solid"), &small(method)).expect("builds");
+                assert_scaled(
+                    &base,
+                    &tree,
+                    factor,
+                    &format!("{name}, {method:?}, ×{factor}"),
+                );
+            }
+        }
     }
 }
