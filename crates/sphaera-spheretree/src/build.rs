@@ -316,6 +316,7 @@ fn children_of(
         .zip(spent)
         .filter(|&(_, spent)| spent)
         .map(|((f, group), _)| {
+            // A group holds local indices into the parent's region (the division's output).
             let ids: Vec<u32> = group.iter().map(|&g| family.region[g as usize]).collect();
             let points = samples_of(samples, &ids);
             let mut best = (f.sphere, f.error);
@@ -451,6 +452,8 @@ fn divide_all(
 
 /// The positions of the samples `region` names.
 fn samples_of(samples: &[DVec3], region: &[u32]) -> Vec<DVec3> {
+    // Regions hold ids of `samples` only: the root's are `0..samples.len()`, and every
+    // child's are a subset of its parent's.
     region.iter().map(|&i| samples[i as usize]).collect()
 }
 

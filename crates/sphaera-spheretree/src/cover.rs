@@ -296,6 +296,9 @@ impl SphereGrid {
         ]
     }
 
+    /// The flat index of a cell; coordinates come from [`Self::coordinates`], which
+    /// clamps them into the grid, so the index is always a cell's (and `starts` has one
+    /// more entry than there are cells).
     fn index(&self, [x, y, z]: [usize; 3]) -> usize {
         (z * self.dims[1] + y) * self.dims[0] + x
     }

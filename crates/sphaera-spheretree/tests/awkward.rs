@@ -232,7 +232,7 @@ fn scaling_by_a_power_of_two_gives_the_same_tree_scaled() {
     for (name, mesh) in &meshes {
         for method in [Method::Auto, Method::Merge, Method::Octree] {
             let base = build(&Surface::new(mesh).expect("solid"), &small(method)).expect("builds");
-            for factor in [4.0, 0.125] {
+            for factor in [4.0, 0.125, 2f64.powi(40), 2f64.powi(-40)] {
                 let other = scaled(mesh, factor);
                 let tree =
                     build(&Surface::new(&other).expect("solid"), &small(method)).expect("builds");
