@@ -112,42 +112,26 @@ impl BoxTree {
     /// `O(n log n)` for `n` items; 64 bytes per node (about `2n / leaf_size` nodes) and
     /// 4 bytes per item.
     pub fn build(items: &[(Aabb, DVec3)], leaf_size: usize) -> Result<Self, MeshError> {
-        Self::build_visiting(items, leaf_size, |_| {})
-    }
-
-    /// [`BoxTree::build`], calling `on_node` with each node's items as the node is made
-    /// (depth first, so in the order of [`BoxTree::nodes`]), before it is split: a caller
-    /// that sums over a node's items gets the same sums, in the same order, whatever
-    /// happens to the node's descendants.
-    ///
-    /// # Errors
-    ///
-    /// As [`BoxTree::build`].
-    pub fn build_visiting(
-        items: &[(Aabb, DVec3)],
-        leaf_size: usize,
-        mut on_node: impl FnMut(&[u32]),
-    ) -> Result<Self, MeshError> {
         let Ok(count) = u32::try_from(items.len()) else {
             return Err(MeshError::TooManyItems {
                 operation: "box tree",
                 count: items.len(),
             });
         };
-        let mut builder = Builder {
-            items,
-            leaf_size: leaf_size.max(1),
-            nodes: Vec::with_capacity(2 * items.len() / leaf_size.max(1) + 1),
-            on_node: &mut on_node,
-        };
+        let leaf_size = leaf_size.max(1);
         let mut order: Vec<u32> = (0..count).collect();
+        let placeholder = BoxNode {
+            bounds: Aabb::EMPTY,
+            start: 0,
+            end: 0,
+            right: 0,
+        };
+        let mut nodes = vec![placeholder; node_count(items.len(), leaf_size)];
         if !order.is_empty() {
-            builder.node(&mut order, 0);
+            let builder = Builder { items, leaf_size };
+            builder.node(&mut order, 0, &mut nodes, 0);
         }
-        Ok(Self {
-            nodes: builder.nodes,
-            order,
-        })
+        Ok(Self { nodes, order })
     }
 
     /// The nodes, depth first (the root first; empty for no items).
@@ -232,35 +216,53 @@ impl BoxTree {
     }
 }
 
-/// The state of a build.
+/// Nodes of the subtree over `count` items (the median split makes it a function of the
+/// count alone, so each subtree's slots are known before it is built).
+fn node_count(count: usize, leaf_size: usize) -> usize {
+    if count == 0 {
+        0
+    } else if count <= leaf_size {
+        1
+    } else {
+        let middle = count / 2;
+        1 + node_count(middle, leaf_size) + node_count(count - middle, leaf_size)
+    }
+}
+
+/// Subtrees over at least this many items build their two halves side by side with
+/// `parallel`; smaller ones are not worth a task.
+#[cfg(feature = "parallel")]
+const PARALLEL_ITEMS: usize = 4096;
+
+/// What every node of a build reads.
+#[derive(Clone, Copy)]
 struct Builder<'a> {
     items: &'a [(Aabb, DVec3)],
     leaf_size: usize,
-    nodes: Vec<BoxNode>,
-    on_node: &'a mut dyn FnMut(&[u32]),
 }
 
 impl Builder<'_> {
-    /// Appends the subtree over `order` (whose first item sits at `offset` of the final
-    /// order) depth first.
+    /// Builds the subtree over `order` (whose first item sits at `offset` of the final
+    /// order) into `slots` (exactly its node count, depth first; the first slot is node
+    /// `index` of the tree). The two halves touch disjoint items and slots, so they can be
+    /// built in any order, or at once, with the same result.
     ///
     /// The recursion depth is `log2(n / leaf_size) + 1`: the median split halves every
     /// range.
-    fn node(&mut self, order: &mut [u32], offset: usize) {
-        let index = self.nodes.len();
-        (self.on_node)(order);
+    fn node(self, order: &mut [u32], offset: usize, slots: &mut [BoxNode], index: usize) {
         let items = self.items;
         let bounds = order
             .iter()
             .fold(Aabb::EMPTY, |b, &i| b.union(items[i as usize].0));
         // Lossless: the build checked that the item count fits a u32.
         let start = offset as u32;
-        self.nodes.push(BoxNode {
+        let (slot, below) = slots.split_at_mut(1);
+        slot[0] = BoxNode {
             bounds,
             start,
             end: start + order.len() as u32,
             right: 0,
-        });
+        };
         if order.len() <= self.leaf_size {
             return;
         }
@@ -271,11 +273,21 @@ impl Builder<'_> {
                 .total_cmp(&items[b as usize].1[axis])
                 .then(a.cmp(&b))
         });
+        #[cfg(feature = "parallel")]
+        let count = order.len();
         let (left, right) = order.split_at_mut(middle);
-        self.node(left, offset);
-        let right_index = self.nodes.len() as u32;
-        self.node(right, offset + middle);
-        self.nodes[index].right = right_index;
+        let (left_slots, right_slots) = below.split_at_mut(node_count(middle, self.leaf_size));
+        let right_index = index + 1 + left_slots.len();
+        slot[0].right = right_index as u32;
+        let mut build_left = || self.node(left, offset, left_slots, index + 1);
+        let mut build_right = || self.node(right, offset + middle, right_slots, right_index);
+        #[cfg(feature = "parallel")]
+        if count >= PARALLEL_ITEMS {
+            rayon::join(build_left, build_right);
+            return;
+        }
+        build_left();
+        build_right();
     }
 }
 

@@ -82,8 +82,13 @@ impl Surface {
     /// closest-point tree) and 512 winding-number probes: about 0.15 s for the
     /// 69k-triangle bunny.
     pub fn from_mesh(mesh: TriMesh) -> Result<Self, MeshError> {
-        let winding = WindingNumber::new(&mesh)?;
-        let tree = TriangleTree::new(&mesh)?;
+        // The two trees are independent: built side by side with `parallel`.
+        #[cfg(feature = "parallel")]
+        let (winding, tree) =
+            rayon::join(|| WindingNumber::new(&mesh), || TriangleTree::new(&mesh));
+        #[cfg(not(feature = "parallel"))]
+        let (winding, tree) = (WindingNumber::new(&mesh), TriangleTree::new(&mesh));
+        let (winding, tree) = (winding?, tree?);
         let diagonal = mesh.bounding_box_diagonal();
         let surface = Self {
             mesh,

@@ -3,7 +3,7 @@
 use glam::DVec3;
 use sphaera_medial::{MedialApproximation, MedialOptions, RegionOptions, Surface};
 use sphaera_mesh::Sphere;
-use sphaera_mesh::geometry::minimum_enclosing_ball;
+use sphaera_mesh::geometry::{CanonicalPose, minimum_enclosing_ball};
 use sphaera_mesh::sampling;
 
 use crate::SphereTreeError;
@@ -20,6 +20,12 @@ use crate::tree::{SphereTree, TreeNode};
 const REFINE_STEPS_PER_SPHERE: usize = 4;
 
 /// Builds the sphere-tree of `surface` with `options.method`.
+///
+/// The medial methods work in the mesh's canonical pose
+/// ([`CanonicalPose`]), so that the tree of a turned, rescaled or moved mesh is the same
+/// tree, mapped; relative lengths in the options refer to the diagonal of the mesh's
+/// bounding box in that pose. The baselines work in the mesh's own axes, as their papers
+/// define them.
 ///
 /// The surface is prepared once by the caller ([`Surface::new`]) and can be used again
 /// to evaluate the tree ([`evaluate_set`](crate::evaluate_set)) or to build with other
@@ -90,7 +96,7 @@ pub fn build_with_progress(
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     options.validate()?;
-    let medial = |reducer| medial_tree(surface, options, reducer, progress);
+    let medial = |reducer| posed_medial_tree(surface, options, reducer, progress);
     match options.method {
         Method::Merge => medial(Reducer::Merge),
         Method::Burst => medial(Reducer::Burst),
@@ -103,7 +109,47 @@ pub fn build_with_progress(
     }
 }
 
-/// The adaptive medial construction (Algorithm 1 of the paper) with `reducer`.
+/// The adaptive medial construction, run in the mesh's canonical pose and brought back:
+/// a tree that moves, turns and scales with the mesh.
+///
+/// Sampling, the medial axis and the reducers decide by comparing numbers, and on
+/// degenerate input (flat faces, cospherical samples, symmetric parts) rounding noise
+/// decides; that noise changes when the mesh is moved, turned or rescaled. In the
+/// canonical pose ([`CanonicalPose`]: a frame built from the mesh's own vertices, the
+/// coordinates snapped to a grid far coarser than rounding and far finer than any
+/// triangle) a mesh and any similarity transform of it are almost always the same
+/// numbers, so the same tree comes out, mapped. Every relative length (the medial
+/// tolerances, the coverage resolution) is taken relative to the canonical mesh's
+/// diagonal, which does not turn with the mesh.
+///
+/// Each node's eq. 2 error is brought back with the snapping's displacement added (the
+/// distance from a sphere to the surface changes by at most that much), and the coverage
+/// certificate is computed on the mesh itself.
+fn posed_medial_tree(
+    surface: &Surface,
+    options: &SphereTreeOptions,
+    reducer: Reducer,
+    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
+) -> Result<SphereTree, SphereTreeError> {
+    let mesh = surface.mesh();
+    let pose = CanonicalPose::of(mesh);
+    let canonical = Surface::new(&pose.canonical_mesh(mesh)?)?;
+    let mut tree = medial_tree(&canonical, options, reducer, progress)?;
+    let slack = pose.displacement(mesh);
+    for node in &mut tree.nodes {
+        node.sphere = pose.sphere_from_canonical(&node.sphere);
+        node.error = pose.length_from_canonical(node.error) + slack;
+    }
+    if options.certify_coverage {
+        let diagonal = pose.length_from_canonical(canonical.diagonal());
+        let resolution = options.coverage_resolution.resolve(diagonal);
+        crate::cover::certify_tree(surface, &mut tree, resolution);
+    }
+    Ok(tree)
+}
+
+/// The adaptive medial construction (Algorithm 1 of the paper) with `reducer`, in the
+/// surface's own coordinates, without the coverage certificate.
 fn medial_tree(
     surface: &Surface,
     options: &SphereTreeOptions,
@@ -129,16 +175,12 @@ fn medial_tree(
     let mut regions: Vec<Vec<u32>> = vec![(0..samples.len() as u32).collect()];
     let mut level_starts = vec![0, 1];
     if options.depth == 0 {
-        return Ok(finish(
-            surface,
-            options,
-            SphereTree {
-                branch: options.branch,
-                nodes,
-                level_starts,
-                coverage: Vec::new(),
-            },
-        ));
+        return Ok(SphereTree {
+            branch: options.branch,
+            nodes,
+            level_starts,
+            coverage: Vec::new(),
+        });
     }
     let medial_params = MedialOptions::default().with_target_spheres(options.initial_spheres);
     let mut medial = MedialApproximation::build(surface, &samples, &medial_params)?;
@@ -227,27 +269,12 @@ fn medial_tree(
         }
         level_starts.push(nodes.len());
     }
-    Ok(finish(
-        surface,
-        options,
-        SphereTree {
-            branch: options.branch,
-            nodes,
-            level_starts,
-            coverage: Vec::new(),
-        },
-    ))
-}
-
-/// Certifies the tree's coverage of the surface when asked to.
-fn finish(surface: &Surface, options: &SphereTreeOptions, mut tree: SphereTree) -> SphereTree {
-    if options.certify_coverage {
-        let resolution = options
-            .coverage_resolution
-            .resolve(surface.mesh().bounding_box_diagonal());
-        crate::cover::certify_tree(surface, &mut tree, resolution);
-    }
-    tree
+    Ok(SphereTree {
+        branch: options.branch,
+        nodes,
+        level_starts,
+        coverage: Vec::new(),
+    })
 }
 
 /// One parent's reduction, as [`children_of`] turns it into children.

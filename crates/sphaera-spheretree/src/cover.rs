@@ -33,7 +33,7 @@ pub struct CoverageCertificate {
 type Piece = [DVec3; 3];
 
 /// Certifies every level of `tree` ([`certify_coverage`] per level, at `resolution`),
-/// raising each grown node's error to its new eq. 2 value, and records the certificates
+/// raising each grown node's error bound by its growth, and records the certificates
 /// in the tree.
 pub(crate) fn certify_tree(
     surface: &sphaera_mesh::Surface,
@@ -53,8 +53,9 @@ pub(crate) fn certify_tree(
         let (certificate, growth) = certify_coverage(surface.mesh(), &mut spheres, resolution);
         for ((node, sphere), g) in nodes.iter_mut().zip(spheres).zip(growth) {
             if g > 0.0 {
-                let (depth, inside) = crate::reduce::centre_depth(surface, sphere.center);
-                node.error = crate::reduce::eq2_error(sphere.radius, depth, inside);
+                // Eq. 2 is the radius plus a term of the centre alone, and the centre
+                // did not move: the bound grows by exactly the growth.
+                node.error += g;
                 node.sphere = sphere;
             }
         }

@@ -54,6 +54,13 @@
 //!   level can end up looser than its parent; at the default 10,000 samples every
 //!   shared mesh is monotone).
 //! - The same input, options and seed give the same tree, with or without `parallel`.
+//! - The tree moves with the mesh: it is built in the mesh's canonical pose
+//!   ([`sphaera_mesh::geometry::CanonicalPose`]: a frame taken from the mesh's own
+//!   vertices, coordinates snapped to a grid far coarser than rounding), so a mesh
+//!   turned, rescaled or moved by any similarity gives the same tree mapped, to rounding
+//!   (unless the transform's own rounding crosses the grid: a mesh moved 10⁶ of its sizes
+//!   away has lost 20 bits to the move). Scaling by a power of two gives every number
+//!   scaled, bit for bit.
 //!
 //! The default [`Method::Auto`] runs expand-select per node and merge only where
 //! expand-select's children are looser than their parent, at an error fraction of ⅛

@@ -189,7 +189,8 @@ pub struct SphereTreeOptions {
     /// samples, growing spheres where needed ([`crate::cover`]; default on).
     pub certify_coverage: bool,
     /// Medial methods: the certification's resolution (default 10⁻³ of the mesh's
-    /// bounding-box diagonal): triangle pieces are split down to this size before a
+    /// bounding-box diagonal, taken in the mesh's canonical pose so that it does not
+    /// change when the mesh is turned; see [`crate::build`]): triangle pieces are split down to this size before a
     /// sphere is grown to contain one, so a sphere grows by about this much at most where
     /// two spheres barely overlap, and by the gap's size where a gap was.
     pub coverage_resolution: Length,

@@ -12,7 +12,10 @@ pub struct TreeNode {
     /// The sphere.
     pub sphere: Sphere,
     /// Its construction error: the paper's eq. 2 (for a centre inside the object, radius
-    /// minus the centre's distance to the surface; for one outside, radius plus it).
+    /// minus the centre's distance to the surface; for one outside, radius plus it), an
+    /// upper bound on the sphere's certified error. The medial methods compute it in the
+    /// mesh's canonical pose and add what can separate it from the value on the mesh
+    /// itself: the pose's snapping displacement and any growth of the coverage certificate.
     pub error: f64,
     /// The depth of the node (0 for the root).
     pub level: u32,

@@ -8,6 +8,7 @@
 //! | balls through given points | [`ball_through_two_points`], [`circumball_of_triangle`], [`circumsphere`] |
 //! | minimum enclosing balls | [`minimum_enclosing_ball`] (points), [`minimum_enclosing_ball_of_balls`], with the support: [`minimum_enclosing_ball_with_support`], [`minimum_enclosing_ball_of_balls_with_support`] |
 //! | ray casting | [`ray_triangle_intersection`] |
+//! | a frame that moves with the mesh (for answers independent of placement) | [`CanonicalPose`] |
 //! | placing a mesh or spheres in a scene | [`Similarity`] (rotation or mirror, uniform scale, translation; [`Similarity::rigid`] for rigid motions) |
 //!
 //! Everything works in `f64` and is robust for degenerate input: zero-area, needle and
@@ -41,6 +42,7 @@ mod closest_point;
 mod enclosing_ball;
 mod enclosing_ball_core;
 mod enclosing_ball_of_balls;
+mod pose;
 mod ray;
 mod segment_segment;
 mod similarity;
@@ -56,6 +58,9 @@ pub use enclosing_ball::{
 };
 pub use enclosing_ball_of_balls::{
     minimum_enclosing_ball_of_balls, minimum_enclosing_ball_of_balls_with_support,
+};
+pub use pose::{
+    COARSEST_GRID_BITS, CanonicalPose, FINEST_GRID_BITS, GRID_MARGIN_BITS, TIE_TOLERANCE,
 };
 pub use ray::{RayTriangleHit, ray_triangle_intersection};
 pub use segment_segment::{SegmentPairClosestPoints, closest_points_between_segments};

@@ -61,8 +61,8 @@ struct Item {
 
 impl Tree {
     /// Builds the tree: the workspace's [`BoxTree`] over the triangles (median splits of
-    /// the centroids, at most [`LEAF_SIZE`] per leaf), with each node's expansion computed
-    /// over its triangles as the node is made. `mesh` must have at least one triangle and
+    /// the centroids, at most [`LEAF_SIZE`] per leaf), then each node's expansion over its
+    /// triangles in tree order. `mesh` must have at least one triangle and
     /// fewer than `u32::MAX` (the caller checks both).
     pub(crate) fn build(mesh: &TriMesh) -> Result<Self, MeshError> {
         let items: Vec<Item> = mesh
@@ -89,17 +89,25 @@ impl Tree {
             .iter()
             .map(|i| (Aabb::from_points(i.corners), i.centroid))
             .collect();
-        let mut nodes = Vec::with_capacity(2 * items.len() / LEAF_SIZE + 1);
-        let boxes = BoxTree::build_visiting(&boxed, LEAF_SIZE, |order| {
-            nodes.push(expansion_of(&items, order));
-        })?;
-        for (node, shape) in nodes.iter_mut().zip(boxes.nodes()) {
+        let boxes = BoxTree::build(&boxed, LEAF_SIZE)?;
+        // Each node's expansion sums over its triangles in tree order: independent per
+        // node, so computed side by side with `parallel`, with the same sums either way.
+        let expand = |shape: &crate::bvh::BoxNode| {
+            let mut node = expansion_of(&items, &boxes.order()[shape.items()]);
             // Lossless: the caller checked that the triangle count fits a u32.
             (node.first, node.count) = match shape.right() {
                 Some(right) => (right as u32, 0),
                 None => (shape.items().start as u32, shape.items().len() as u32),
             };
-        }
+            node
+        };
+        #[cfg(feature = "parallel")]
+        let nodes: Vec<Node> = {
+            use rayon::prelude::*;
+            boxes.nodes().par_iter().map(expand).collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let nodes: Vec<Node> = boxes.nodes().iter().map(expand).collect();
         let corners = boxes
             .order()
             .iter()

@@ -20,10 +20,12 @@
 //! The transform maps the positions and keeps the triangles ([`transformed`]). Measured
 //! per tree: the build time (one run: the surface's preparation and the build, wall-clock
 //! with the `parallel` feature), and per level 1 to [`DEPTH`] the certified worst error,
-//! `evaluate_set` with `EvaluationOptions::default().with_tolerance(
-//! Length::RelativeToDiagonal(`[`EVALUATION_TOLERANCE`]`))`, in % of that (transformed)
-//! mesh's bounding-box diagonal. The **spread** of a mesh and level is the largest upper
-//! bound over the trees divided by the smallest.
+//! `evaluate_set` at a tolerance of [`EVALUATION_TOLERANCE`] of the size, in % of the
+//! **size**: the untransformed mesh's bounding-box diagonal times the transform's scale.
+//! (Not the transformed mesh's own diagonal: its bounding box turns with it, and a turned
+//! cube's box is up to √3 times larger, which alone would swing the figures by that much.)
+//! The **spread** of a mesh and level is the largest upper bound over the trees divided
+//! by the smallest.
 //!
 //! Files: `spheretree_similarity.csv` (one row per mesh, transform and level: the scale,
 //! the translation in the transformed mesh's diagonals, the spheres, the worst error's
@@ -136,7 +138,7 @@ pub fn transformed(mesh: &TriMesh, map: &Similarity) -> Result<TriMesh> {
     TriMesh::new(positions, mesh.triangles().to_vec()).context("cannot transform the mesh")
 }
 
-/// One evaluated level; errors in % of the transformed mesh's diagonal.
+/// One evaluated level; errors in % of the untransformed mesh's diagonal times the scale.
 #[derive(Debug, Clone, PartialEq)]
 struct Level {
     level: usize,
@@ -238,7 +240,11 @@ fn measure_mesh(name: &'static str, mesh: &TriMesh, trees: &mut Vec<Tree>) -> Re
             levels: Vec::new(),
             failure: None,
         };
-        if let Err(e) = measure_tree(&moved, &mut tree) {
+        // The size every error is relative to: the untransformed diagonal, scaled. (The
+        // transformed mesh's own bounding box turns with it: a turned cube's box is up
+        // to √3 times larger, which would swing the figures by itself.)
+        let size = diagonal * map.scale();
+        if let Err(e) = measure_tree(&moved, size, &mut tree) {
             tree.failure = Some(format!("{e:#}"));
         }
         report(&tree);
@@ -247,15 +253,15 @@ fn measure_mesh(name: &'static str, mesh: &TriMesh, trees: &mut Vec<Tree>) -> Re
     Ok(())
 }
 
-/// Builds the default tree of `mesh` (timed) and evaluates its levels into `tree`.
-fn measure_tree(mesh: &TriMesh, tree: &mut Tree) -> Result<()> {
+/// Builds the default tree of `mesh` (timed) and evaluates its levels into `tree`, at a
+/// tolerance of [`EVALUATION_TOLERANCE`] times `size`, errors in % of `size`.
+fn measure_tree(mesh: &TriMesh, size: f64, tree: &mut Tree) -> Result<()> {
     let options = tree_options(Method::default());
     let (seconds, built) = min_time(1, || build_tree(&options, mesh))?;
     tree.seconds = seconds;
     let surface = Surface::new(mesh).context("cannot prepare the surface")?;
-    let diagonal = surface.diagonal();
-    let evaluation = EvaluationOptions::default()
-        .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE));
+    let evaluation =
+        EvaluationOptions::default().with_tolerance(Length::Absolute(EVALUATION_TOLERANCE * size));
     for level in 1..built.level_count().min(DEPTH + 1) {
         let spheres = built.level_spheres(level);
         let result = evaluate_set(&surface, &spheres, &evaluation)
@@ -263,8 +269,8 @@ fn measure_tree(mesh: &TriMesh, tree: &mut Tree) -> Result<()> {
         tree.levels.push(Level {
             level,
             spheres: spheres.len(),
-            lower_pct: 100.0 * result.worst_lower / diagonal,
-            upper_pct: 100.0 * result.worst_upper / diagonal,
+            lower_pct: 100.0 * result.worst_lower / size,
+            upper_pct: 100.0 * result.worst_upper / size,
         });
     }
     Ok(())
@@ -486,7 +492,7 @@ fn draw(out: &Path, trees: &[Tree], charted: &[Charted], spreads: &[Spread]) -> 
             spec: ChartSpec {
                 title: &c.title,
                 x_label: &x_label,
-                y_label: "certified worst error, % of diagonal",
+                y_label: "certified worst error, % of diagonal × scale",
             },
             x_axis: XAxis::Integers(0.5..DEPTH as f64 + 0.5),
             series,
