@@ -1,0 +1,68 @@
+//! # sphaera-hal
+//!
+//! HAL trees — *hierarchical approximation and localization* — after Veltkamp
+//! (*Hierarchical approximation and localization*, The Visual Computer, 1998): an outline
+//! kept as a binary tree whose every level is an approximation by a subset of its own
+//! vertices, and whose every node bounds its part of the outline by the intersection of
+//! two discs through the part's ends.
+//!
+//! Status: the 2D half of the paper (section 3 and point inclusion of section 5.1). The
+//! 3D half (genus-0 meshes), intersection detection and the CLI are issue 17's next
+//! steps.
+//!
+//! # Quick start
+//!
+//! ```
+//! use glam::DVec2;
+//! use sphaera_hal::{HalTree2, Location, Polyline2};
+//!
+//! // A star: ten vertices alternating between radius 1 and 0.4.
+//! let points: Vec<DVec2> = (0..10)
+//!     .map(|i| {
+//!         let angle = std::f64::consts::TAU * f64::from(i) / 10.0;
+//!         DVec2::from_angle(angle) * if i % 2 == 0 { 1.0 } else { 0.4 }
+//!     })
+//!     .collect();
+//! let star = HalTree2::build(&Polyline2::polygon(points)?)?;
+//! // Level 0 is a chord between two tips; the full depth gives every vertex back.
+//! assert_eq!(star.level(0).len(), 2);
+//! assert_eq!(star.level(star.depth()).len(), 10);
+//! // Refine only where a part's bounding area is wider than 0.5.
+//! let coarse = star.approximate(0.5);
+//! assert!(coarse.width <= 0.5 && coarse.vertices.len() < 10);
+//! assert_eq!(star.contains(DVec2::ZERO)?, Location::Inside);
+//! # Ok::<(), sphaera_hal::HalError>(())
+//! ```
+//!
+//! # The method in brief
+//!
+//! - **Bounding areas** ([`Lens`]): for a polyline from `v_p` to `v_s`, the vertices left
+//!   of the chord lie in a smallest disc through `v_p` and `v_s` (through the vertex
+//!   `v_q` that sees the chord under the smallest angle), those on the right in another
+//!   (through `v_r`); the bounding area is their intersection, or a disc and a half-plane
+//!   when one side is empty (Definitions 1–3). Half-planes are represented exactly.
+//! - **The tree** ([`HalTree2`]): the root is the smallest disc around all vertices and
+//!   the chord between the two vertices on it farthest apart; each polyline is split at
+//!   whichever of `v_q`, `v_r` has the larger signed radius (Algorithm 1). One node per
+//!   vertex (Theorem 3).
+//! - **Approximation**: a level, or adaptively only where a part's widths `w₁, w₂`
+//!   (Definition 4) exceed a tolerance.
+//! - **Point inclusion**: the crossing number, with every part whose bounding area does not
+//!   contain the point replaced by its chord.
+//!
+//! # Errors
+//!
+//! [`HalError`]: too few vertices, NaN or infinite coordinates, point inclusion asked of
+//! an open polyline, unreadable or malformed polygon files.
+
+mod error;
+mod lens;
+mod polyline;
+mod query2;
+mod tree2;
+
+pub use error::HalError;
+pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
+pub use polyline::Polyline2;
+pub use query2::{Location, contains_brute};
+pub use tree2::{Approximation, Chain, HalTree2, Node2};
