@@ -6,8 +6,8 @@
 //! vertices, and whose every node bounds its part of the outline by the intersection of
 //! two discs through the part's ends.
 //!
-//! Status: the 2D half of the paper (section 3 and point inclusion of section 5.1). The
-//! 3D half (genus-0 meshes), intersection detection and the CLI are issue 17's next
+//! Status: the 2D half of the paper (section 3, and section 5's point inclusion and
+//! intersection detection). The 3D half (genus-0 meshes) and the CLI are issue 17's next
 //! steps.
 //!
 //! # Quick start
@@ -49,6 +49,8 @@
 //!   (Definition 4) exceed a tolerance.
 //! - **Point inclusion**: the crossing number, with every part whose bounding area does not
 //!   contain the point replaced by its chord.
+//! - **Intersection detection**: pairs of parts whose bounding areas may meet are refined
+//!   down to pairs of edges, tested exactly.
 //!
 //! # Errors
 //!
@@ -64,5 +66,5 @@ mod tree2;
 pub use error::HalError;
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
 pub use polyline::Polyline2;
-pub use query2::{Location, contains_brute};
+pub use query2::{Location, contains_brute, intersects_brute, segments_intersect};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};
