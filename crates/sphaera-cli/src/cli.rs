@@ -54,6 +54,46 @@ pub enum Command {
     /// Every level is certified to cover the whole surface. The main job: with no
     /// arguments it builds the embedded bunny's tree.
     Spheretree(SpheretreeArgs),
+    /// HAL tree (Veltkamp): a polygon kept as a binary tree of approximations by its own
+    /// vertices, each part bounded by the intersection of two discs through its ends.
+    /// Reports vertices and covering width per level, an adaptive approximation to
+    /// `--tolerance`, point inclusion for a file of points; draws the approximation with
+    /// its bounding areas as SVG. 2D polygons for now (genus-0 meshes: issue 17).
+    Hal(HalArgs),
+}
+
+/// Arguments of `sphaera hal`.
+#[derive(Debug, Args)]
+pub struct HalArgs {
+    /// The polygon: a text file of `x y` lines (`#` comments allowed), closed implicitly.
+    pub polygon: PathBuf,
+
+    /// Read the file as an open polyline (no closing edge, no inside).
+    #[arg(long)]
+    pub open: bool,
+
+    /// Adaptive approximation: refine only parts whose bounding area is wider than this,
+    /// an absolute width (`0.01`) or a percentage of the bounding-box diagonal (`0.5%`).
+    #[arg(long, value_parser = parse_length)]
+    pub tolerance: Option<Length>,
+
+    /// The approximation of this level (without `--tolerance`; the full outline at the
+    /// tree's depth).
+    #[arg(long)]
+    pub level: Option<usize>,
+
+    /// Write the approximation, atomically: `.txt` (`x y` lines) or `.svg` (the outline,
+    /// the approximation and its bounding areas).
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    /// Locate every point of this file (`x y` lines): inside, outside or boundary, in
+    /// file order.
+    #[arg(long)]
+    pub contains: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
 }
 
 /// Arguments of `sphaera spheretree`.

@@ -65,6 +65,6 @@ mod tree2;
 
 pub use error::HalError;
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
-pub use polyline::Polyline2;
+pub use polyline::{Polyline2, parse_points};
 pub use query2::{Location, contains_brute, intersects_brute, segments_intersect};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};

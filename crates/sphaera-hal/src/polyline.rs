@@ -72,28 +72,7 @@ impl Polyline2 {
     ///
     /// [`HalError::Parse`] naming the first bad line, then as [`Polyline2::polygon`].
     pub fn parse(text: &str, closed: bool) -> Result<Self, HalError> {
-        let mut points = Vec::new();
-        for (number, line) in text.lines().enumerate() {
-            let trimmed = line.trim();
-            if trimmed.is_empty() || trimmed.starts_with('#') {
-                continue;
-            }
-            let bad = || HalError::Parse {
-                line: number + 1,
-                text: trimmed.chars().take(80).collect(),
-            };
-            let mut fields = trimmed
-                .split(|c: char| c.is_whitespace() || c == ',')
-                .filter(|f| !f.is_empty());
-            let (Some(x), Some(y), None) = (fields.next(), fields.next(), fields.next()) else {
-                return Err(bad());
-            };
-            let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>()) else {
-                return Err(bad());
-            };
-            points.push(DVec2::new(x, y));
-        }
-        Self::new(points, closed)
+        Self::new(parse_points(text)?, closed)
     }
 
     /// Reads a polygon file (as [`Polyline2::parse`], closed).
@@ -142,4 +121,35 @@ impl Polyline2 {
         let n = self.points.len();
         (self.points[i], self.points[(i + 1) % n])
     }
+}
+
+/// The points of a text: `#` comment lines and blank lines are skipped, every other line is
+/// `x y` (whitespace or a comma between). Any number of points, none included.
+///
+/// # Errors
+///
+/// [`HalError::Parse`] naming the first line that is not two numbers.
+pub fn parse_points(text: &str) -> Result<Vec<DVec2>, HalError> {
+    let mut points = Vec::new();
+    for (number, line) in text.lines().enumerate() {
+        let trimmed = line.trim();
+        if trimmed.is_empty() || trimmed.starts_with('#') {
+            continue;
+        }
+        let bad = || HalError::Parse {
+            line: number + 1,
+            text: trimmed.chars().take(80).collect(),
+        };
+        let mut fields = trimmed
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|f| !f.is_empty());
+        let (Some(x), Some(y), None) = (fields.next(), fields.next(), fields.next()) else {
+            return Err(bad());
+        };
+        let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>()) else {
+            return Err(bad());
+        };
+        points.push(DVec2::new(x, y));
+    }
+    Ok(points)
 }

@@ -345,8 +345,9 @@ impl HalTree2 {
         largest
     }
 
-    /// Position → point, for the queries.
-    pub(crate) fn point_at(&self, position: u32) -> DVec2 {
+    /// The point at `position` along the outline (see [`HalTree2::vertex_at`]).
+    #[must_use]
+    pub fn point_at(&self, position: u32) -> DVec2 {
         self.at(position)
     }
 }

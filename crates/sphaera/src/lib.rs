@@ -16,8 +16,9 @@
 //! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
 //! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection through one entry point (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), with coverage of the whole surface certified at every level, certified fit evaluation, traversal and exports |
 //!
-//! Later capabilities (HAL trees,
-//! silhouette labels) join this table as their crates land; see `docs/architecture.md` in
+//! | `hal` (feature `hal`) | `sphaera-hal` | HAL trees: hierarchical approximation and localization of polygons and polylines by signed discs, adaptive approximation by widths, hierarchical point inclusion and intersection detection (2D; genus-0 meshes to come) |
+//!
+//! Later capabilities (silhouette labels) join this table as their crates land; see `docs/architecture.md` in
 //! the repository.
 //!
 //! # Quick start
@@ -36,6 +37,8 @@
 //! # Feature flags
 #![doc = document_features::document_features!()]
 
+#[cfg(feature = "hal")]
+pub use sphaera_hal as hal;
 #[cfg(feature = "medial")]
 pub use sphaera_medial as medial;
 pub use sphaera_mesh as mesh;

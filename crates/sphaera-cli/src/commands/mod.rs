@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod distance;
+mod hal;
 mod hausdorff;
 mod info;
 mod medial;
@@ -20,5 +21,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Hausdorff(args) => hausdorff::run(args, cli.quiet),
         Command::Medial(args) => medial::run(args, cli.quiet),
         Command::Spheretree(args) => spheretree::run(args, cli.quiet),
+        Command::Hal(args) => hal::run(args),
     }
 }

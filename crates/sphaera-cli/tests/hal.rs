@@ -1,0 +1,137 @@
+//! End-to-end tests of `sphaera hal`.
+
+mod common;
+
+use common::{json, sphaera};
+use sphaera::hal::{HalTree2, Location, Polyline2, contains_brute};
+use sphaera::mesh::glam::DVec2;
+
+/// An L-shaped polygon with a notch, as a file.
+fn write_polygon(dir: &std::path::Path) -> std::path::PathBuf {
+    let path = dir.join("l.txt");
+    std::fs::write(
+        &path,
+        "# an L\n0 0\n4 0\n4 1\n2 1\n2 1.5\n1 1.5\n1 4\n0 4\n",
+    )
+    .unwrap();
+    path
+}
+
+#[test]
+fn levels_tolerance_contains_and_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let polygon = write_polygon(dir.path());
+    let points = dir.path().join("points.txt");
+    std::fs::write(&points, "0.5 0.5\n3 3\n2 1.25\n0 2\n").unwrap();
+    let svg = dir.path().join("l.svg");
+    let report = json(&sphaera(&[
+        "hal",
+        polygon.to_str().unwrap(),
+        "--tolerance",
+        "10%",
+        "--contains",
+        points.to_str().unwrap(),
+        "-o",
+        svg.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(report["vertices"], 8);
+    assert_eq!(report["nodes"], 6);
+    let levels = report["levels"].as_array().unwrap();
+    assert_eq!(levels[0]["vertices"], 2);
+    assert_eq!(levels.last().unwrap()["vertices"], 8);
+    let approximation = &report["approximation"];
+    let diagonal = report["diagonal"].as_f64().unwrap();
+    assert!(approximation["width"].as_f64().unwrap() <= 0.1 * diagonal);
+    let answers: Vec<&str> = report["contains"]["answers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_str().unwrap())
+        .collect();
+    assert_eq!(answers, ["inside", "outside", "boundary", "boundary"]);
+    let drawing = std::fs::read_to_string(&svg).unwrap();
+    assert!(drawing.starts_with("<svg") && drawing.contains("<path"));
+
+    // The answers agree with the library's brute force.
+    let outline = Polyline2::read_polygon(&polygon).unwrap();
+    let tree = HalTree2::build(&outline).unwrap();
+    for (p, answer) in [(0.5, 0.5), (3.0, 3.0), (2.0, 1.25), (0.0, 2.0)]
+        .iter()
+        .zip(&answers)
+    {
+        let x = DVec2::new(p.0, p.1);
+        let expected = match contains_brute(&outline, x).unwrap() {
+            Location::Inside => "inside",
+            Location::Outside => "outside",
+            Location::Boundary => "boundary",
+        };
+        assert_eq!(*answer, expected);
+        assert_eq!(
+            tree.contains(x).unwrap(),
+            contains_brute(&outline, x).unwrap()
+        );
+    }
+
+    // A level as text.
+    let text = dir.path().join("level1.txt");
+    let report = json(&sphaera(&[
+        "hal",
+        polygon.to_str().unwrap(),
+        "--level",
+        "1",
+        "-o",
+        text.to_str().unwrap(),
+        "--json",
+    ]));
+    let written = std::fs::read_to_string(&text).unwrap();
+    assert_eq!(
+        written.lines().count(),
+        report["approximation"]["vertices"].as_u64().unwrap() as usize
+    );
+}
+
+#[test]
+fn bad_input_gives_a_clear_error_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.txt");
+    std::fs::write(&bad, "0 0\n1 0\n1 one\n").unwrap();
+    let output = sphaera(&["hal", bad.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("line 3"), "{message}");
+
+    let polygon = write_polygon(dir.path());
+    let missing = dir.path().join("no/such/folder/out.svg");
+    let output = sphaera(&[
+        "hal",
+        polygon.to_str().unwrap(),
+        "-o",
+        missing.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("does not exist"));
+
+    let wrong = dir.path().join("out.obj");
+    let output = sphaera(&[
+        "hal",
+        polygon.to_str().unwrap(),
+        "-o",
+        wrong.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(!wrong.exists());
+
+    // An open polyline has no inside.
+    let points = dir.path().join("p.txt");
+    std::fs::write(&points, "0 0\n").unwrap();
+    let output = sphaera(&[
+        "hal",
+        polygon.to_str().unwrap(),
+        "--open",
+        "--contains",
+        points.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("no inside"));
+}
