@@ -253,6 +253,30 @@ const CHARTS: &[(&str, Coverage)] = &[
             "robots/franka_panda/collision/link3.obj",
         ]),
     ),
+    (
+        "hal_width_vs_size",
+        Coverage::Only(&[
+            "polygons/netherlands.txt",
+            "polygons/norway.txt",
+            "polygons/americas.txt",
+        ]),
+    ),
+    (
+        "hal_query_speed",
+        Coverage::Only(&[
+            "polygons/luxembourg.txt",
+            "polygons/netherlands.txt",
+            "polygons/belgium.txt",
+            "polygons/united-kingdom.txt",
+            "polygons/norway.txt",
+            "polygons/afro-eurasia.txt",
+            "polygons/americas.txt",
+        ]),
+    ),
+    (
+        "hal_vs_strip_tree",
+        Coverage::Only(&["polygons/netherlands.txt", "polygons/norway.txt"]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

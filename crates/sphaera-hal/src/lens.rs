@@ -106,6 +106,32 @@ impl Lens {
         w1.max(w2)
     }
 
+    /// The area of the bounding area for the chord `a → b`: the left disc's cap on the
+    /// left of the chord plus the right disc's cap on the right (a side without vertices
+    /// adds nothing). Infinite for a half-plane on a vertex's side, `None` for a union.
+    #[must_use]
+    pub fn area(&self, a: DVec2, b: DVec2) -> Option<f64> {
+        if self.kind() == LensKind::Union {
+            return None;
+        }
+        let h = 0.5 * a.distance(b);
+        let cap = |k: f64| {
+            if k == f64::NEG_INFINITY || h == 0.0 {
+                return 0.0;
+            }
+            if k == f64::INFINITY {
+                return f64::INFINITY;
+            }
+            let r = h * (1.0 + k * k).sqrt();
+            let w = bulge_width(k, h);
+            // The cap of height w of a circle of radius r.
+            let below = r - w;
+            r * r * (below / r).clamp(-1.0, 1.0).acos()
+                - below * (2.0 * r * w - w * w).max(0.0).sqrt()
+        };
+        Some(cap(self.left) + cap(-self.right))
+    }
+
     /// The left and right discs in absolute terms, for the chord `a → b`.
     #[must_use]
     pub fn discs(&self, a: DVec2, b: DVec2) -> [SignedDisc; 2] {

@@ -18,12 +18,15 @@ pub enum Location {
     Boundary,
 }
 
-/// What one edge says about a point: on it, or whether the horizontal ray from the point
-/// to `+x` crosses it. The half-open rule (an edge counts when exactly one end lies
-/// strictly above the point) makes every closed loop cross an even number of times when
-/// the point is not on it, so replacing a part of the outline by its chord keeps the
-/// parity whenever the point is outside the part's bounding area.
-fn edge_test(a: DVec2, b: DVec2, x: DVec2) -> Result<bool, ()> {
+/// What one edge says about a point `x`: `None` when `x` lies on the edge (exactly),
+/// else whether the horizontal ray from `x` to `+x` crosses it.
+///
+/// The half-open rule (an edge counts when exactly one end lies strictly above `x`) makes
+/// every closed loop cross an even number of times when `x` is not on it, so replacing a
+/// part of the outline by its chord keeps the parity whenever `x` is outside the part's
+/// bounding area. Orientations are exact (`robust`).
+#[must_use]
+pub fn ray_crossing(a: DVec2, b: DVec2, x: DVec2) -> Option<bool> {
     let orientation = robust::orient2d(coord(a), coord(b), coord(x));
     if orientation == 0.0
         && x.x >= a.x.min(b.x)
@@ -31,13 +34,13 @@ fn edge_test(a: DVec2, b: DVec2, x: DVec2) -> Result<bool, ()> {
         && x.y >= a.y.min(b.y)
         && x.y <= a.y.max(b.y)
     {
-        return Err(());
+        return None;
     }
     if (a.y > x.y) == (b.y > x.y) {
-        return Ok(false);
+        return Some(false);
     }
     // Upward edges cross when the point is on their left, downward ones on their right.
-    Ok(if b.y > a.y {
+    Some(if b.y > a.y {
         orientation > 0.0
     } else {
         orientation < 0.0
@@ -56,9 +59,9 @@ pub fn contains_brute(polygon: &Polyline2, x: DVec2) -> Result<Location, HalErro
     let mut inside = false;
     for i in 0..polygon.edge_count() {
         let (a, b) = polygon.edge(i);
-        match edge_test(a, b, x) {
-            Err(()) => return Ok(Location::Boundary),
-            Ok(crossed) => inside ^= crossed,
+        match ray_crossing(a, b, x) {
+            None => return Ok(Location::Boundary),
+            Some(crossed) => inside ^= crossed,
         }
     }
     Ok(if inside {
@@ -100,9 +103,9 @@ impl HalTree2 {
                 let (a, b) = (self.point_at(p), self.point_at(s));
                 let Some(id) = node else {
                     // One original edge.
-                    match edge_test(a, b, x) {
-                        Err(()) => return Ok(Location::Boundary),
-                        Ok(crossed) => inside ^= crossed,
+                    match ray_crossing(a, b, x) {
+                        None => return Ok(Location::Boundary),
+                        Some(crossed) => inside ^= crossed,
                     }
                     continue;
                 };
@@ -111,7 +114,7 @@ impl HalTree2 {
                     let [left, right] = n.children();
                     stack.push((n.split, s, right));
                     stack.push((p, n.split, left));
-                } else if let Ok(crossed) = edge_test(a, b, x) {
+                } else if let Some(crossed) = ray_crossing(a, b, x) {
                     inside ^= crossed;
                 }
             }

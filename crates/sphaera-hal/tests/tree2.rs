@@ -361,3 +361,44 @@ fn adaptivity_pays_on_the_fjords() {
         );
     }
 }
+
+#[test]
+fn lens_areas_are_the_caps_of_their_discs() {
+    use sphaera_hal::Lens;
+    let (a, b) = (DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0));
+    // Bulge 0 on both sides: the diametral disc, area π.
+    let disc = Lens {
+        left: 0.0,
+        right: 0.0,
+    };
+    assert!((disc.area(a, b).unwrap() - std::f64::consts::PI).abs() < 1e-12);
+    // One side only: a half disc.
+    let half = Lens {
+        left: 0.0,
+        right: f64::INFINITY,
+    };
+    assert!((half.area(a, b).unwrap() - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
+    assert_eq!(Lens::EMPTY.area(a, b), Some(0.0));
+    assert_eq!(
+        Lens {
+            left: f64::INFINITY,
+            right: 0.0
+        }
+        .area(a, b),
+        None
+    );
+    // A shallow lens against a Monte-Carlo count of its points.
+    let lens = Lens {
+        left: -1.5,
+        right: 0.7,
+    };
+    let mut rng = SplitMix64::new(9);
+    let inside = (0..200_000)
+        .filter(|_| lens.may_contain(a, b, DVec2::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0))))
+        .count();
+    let estimate = 4.0 * inside as f64 / 200_000.0;
+    assert!(
+        (lens.area(a, b).unwrap() - estimate).abs() < 0.02,
+        "{estimate}"
+    );
+}

@@ -10,11 +10,14 @@
 //! - `medial_static_vs_adaptive`: `medial_static_vs_adaptive.rs`;
 //! - `spheretree`: `spheretree/mod.rs`, its tables and charts in `spheretree/charts.rs`;
 //! - `spheretree_similarity`: `spheretree/similarity.rs` (the default tree under random
-//!   similarity transforms).
+//!   similarity transforms);
+//! - `hal`: `hal/mod.rs` (three charts: widths, query speed, against strip and box trees;
+//!   the peers in `hal/peers.rs`).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
 
+mod hal;
 mod hausdorff_gap;
 mod load_topology;
 mod medial_static_vs_adaptive;
@@ -38,6 +41,7 @@ pub const NAMES: &[&str] = &[
     medial_static_vs_adaptive::NAME,
     spheretree::NAME,
     spheretree::similarity::NAME,
+    hal::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -50,6 +54,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         medial_static_vs_adaptive::NAME => medial_static_vs_adaptive::run(data, out),
         spheretree::NAME => spheretree::run(data, out),
         spheretree::similarity::NAME => spheretree::similarity::run(data, out),
+        hal::NAME => hal::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }

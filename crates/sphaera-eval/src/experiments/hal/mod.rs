@@ -1,0 +1,509 @@
+//! `hal`: HAL trees (Veltkamp) on the real outlines of `shared/data/polygons`, three
+//! charts from one run.
+//!
+//! - **`hal_width_vs_size`**: the covering error (eq. 1: the largest width of the
+//!   bounding areas of an approximation's non-original edges, in % of the bounding-box
+//!   diagonal) against the approximation's vertices, for every uniform level and for the
+//!   adaptive approximation at tolerances `diagonal · 2⁻ᵏ`, `k = 1..=20` (the paper's
+//!   Figs. 6, 13, 14), on the Netherlands, Norway and the Americas.
+//! - **`hal_query_speed`**: microseconds per point-in-polygon query against the vertex
+//!   count, for the HAL tree, Ballard's strip tree and an axis-aligned box tree over the
+//!   edges ([`peers`]), the brute-force crossing test and `geo`'s `Contains`, on every
+//!   outline and on the Americas refined to about a million vertices (every edge cut into
+//!   16, each inserted point moved across the edge by up to 2 % of its length, seeded: a
+//!   coastline-like outline, not necessarily simple, which the even–odd rule handles).
+//!   [`QUERIES`] random points in the bounding box (seed [`SEED`]); the linear-time
+//!   methods answer a prefix of them (at most [`LINEAR_WORK`] vertex visits in all). Every
+//!   structure's answers are checked against brute force on that prefix (geo's only off
+//!   the boundary, where it says "not contained"), and against the HAL tree's on all.
+//! - **`hal_vs_strip_tree`**: the total area of the bounding areas per depth (HAL lenses,
+//!   strips, boxes), in % of the outline's bounding-box area, on the Netherlands and
+//!   Norway: how tightly each structure localizes the outline, the comparison the paper
+//!   leaves as future work. Depth 1 is the two halves of the outline in all three (HAL
+//!   node level, strip depth + 1, box-tree depth); an unbounded HAL area (a half-plane on a
+//!   vertex's side, which only a collinear back-track makes) is left out of the sum and
+//!   counted in the CSV.
+//!
+//! Times are single-threaded (the structures have no parallel query path), the best of
+//! [`RUNS`] runs.
+
+mod peers;
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use geo::{Contains, LineString, Point, Polygon};
+use sphaera::hal::{HalTree2, Location, Polyline2, contains_brute};
+use sphaera::mesh::glam::DVec2;
+use sphaera_tests::random::SplitMix64;
+
+use crate::chart::{
+    ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
+    titled_panels, write_csv,
+};
+use peers::{EdgeBoxTree, StripTree};
+
+/// The experiment's name (`--only hal`).
+pub const NAME: &str = "hal";
+
+/// The outlines, smallest first.
+pub const OUTLINES: &[&str] = &[
+    "luxembourg.txt",
+    "netherlands.txt",
+    "belgium.txt",
+    "united-kingdom.txt",
+    "norway.txt",
+    "afro-eurasia.txt",
+    "americas.txt",
+];
+
+/// Random query points per outline.
+pub const QUERIES: usize = 10_000;
+
+/// Seed of the query points and of the refinement.
+pub const SEED: u64 = 17;
+
+/// Vertex visits the linear-time methods (brute force, geo) may spend per outline.
+pub const LINEAR_WORK: usize = 400_000_000;
+
+/// Timing runs per measurement (the best is kept).
+pub const RUNS: usize = 3;
+
+/// The deepest level charted in `hal_vs_strip_tree`.
+pub const DEPTHS: u32 = 14;
+
+pub fn run(data: &Path, out: &Path) -> Result<()> {
+    let folder = data.join("polygons");
+    let mut outlines: Vec<(String, Polyline2)> = Vec::new();
+    for file in OUTLINES {
+        let path = folder.join(file);
+        if !path.is_file() {
+            eprintln!("{file}: not in {}, skipped", folder.display());
+            continue;
+        }
+        outlines.push((format!("polygons/{file}"), Polyline2::read_polygon(&path)?));
+    }
+    if let Some((_, americas)) = outlines.iter().find(|(n, _)| n == "polygons/americas.txt") {
+        let refined = refine(americas, 16)?;
+        outlines.push(("polygons/americas.txt refined ×16".to_owned(), refined));
+    }
+    width_vs_size(&outlines, out)?;
+    query_speed(&outlines, out)?;
+    strip_tree(&outlines, out)
+}
+
+/// `polygon` with every edge cut into `pieces`, each inserted point moved across the edge
+/// by up to 2 % of its length (seeded).
+fn refine(polygon: &Polyline2, pieces: u32) -> Result<Polyline2> {
+    let mut rng = SplitMix64::new(SEED);
+    let mut points = Vec::with_capacity(polygon.edge_count() * pieces as usize);
+    for i in 0..polygon.edge_count() {
+        let (a, b) = polygon.edge(i);
+        points.push(a);
+        let across = (b - a).perp();
+        for k in 1..pieces {
+            let t = f64::from(k) / f64::from(pieces);
+            points.push(a.lerp(b, t) + across * rng.range(-0.02, 0.02));
+        }
+    }
+    Ok(Polyline2::polygon(points)?)
+}
+
+fn diagonal(points: &[DVec2]) -> (DVec2, DVec2) {
+    points.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    )
+}
+
+fn style(i: usize, marker: Marker, line: bool) -> Style {
+    Style {
+        color: palette(i),
+        marker,
+        filled: true,
+        line,
+    }
+}
+
+/// `hal_width_vs_size`.
+fn width_vs_size(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
+    let chosen = [
+        "polygons/netherlands.txt",
+        "polygons/norway.txt",
+        "polygons/americas.txt",
+    ];
+    let mut rows = Vec::new();
+    let mut panels_data = Vec::new();
+    for (name, polygon) in outlines
+        .iter()
+        .filter(|(n, _)| chosen.contains(&n.as_str()))
+    {
+        let tree = HalTree2::build(polygon)?;
+        let (lo, hi) = diagonal(polygon.points());
+        let diagonal = lo.distance(hi);
+        let mut uniform = Series::new("uniform levels");
+        for level in 0..=tree.depth() {
+            let vertices = tree.level(level).len();
+            let width = 100.0 * tree.level_width(level) / diagonal;
+            uniform.points.push((vertices as f64, width));
+            rows.push(vec![
+                name.clone(),
+                "uniform".into(),
+                level.to_string(),
+                vertices.to_string(),
+                format!("{width:.6}"),
+            ]);
+        }
+        let mut adaptive = Series::new("adaptive");
+        for k in 1..=20 {
+            let tolerance = diagonal * (-f64::from(k)).exp2();
+            let approximation = tree.approximate(tolerance);
+            let width = 100.0 * approximation.width / diagonal;
+            adaptive
+                .points
+                .push((approximation.vertices.len() as f64, width));
+            rows.push(vec![
+                name.clone(),
+                "adaptive".into(),
+                format!("2^-{k}"),
+                approximation.vertices.len().to_string(),
+                format!("{width:.6}"),
+            ]);
+        }
+        eprintln!(
+            "{name}: depth {}, adaptive at 2^-10 of the diagonal: {} vertices",
+            tree.depth(),
+            tree.approximate(diagonal / 1024.0).vertices.len()
+        );
+        panels_data.push((
+            format!("{name} ({} vertices)", polygon.points().len()),
+            vec![
+                StyledSeries::new(uniform, style(0, Marker::Circle, true)),
+                StyledSeries::new(adaptive, style(1, Marker::Square, true)),
+            ],
+        ));
+    }
+    if panels_data.is_empty() {
+        bail!("no outline found for hal_width_vs_size");
+    }
+    write_csv(
+        &out.join("hal_width_vs_size.csv"),
+        &[
+            "polygon",
+            "approximation",
+            "level_or_tolerance",
+            "vertices",
+            "width_pct_diagonal",
+        ],
+        &rows,
+    )?;
+    let panels: Vec<StyledPanel<'_>> = panels_data
+        .iter()
+        .map(|(title, series)| StyledPanel {
+            spec: ChartSpec {
+                title,
+                x_label: "vertices of the approximation",
+                y_label: "covering width, % of diagonal",
+            },
+            x_axis: XAxis::Log,
+            series,
+            notes: &[],
+        })
+        .collect();
+    let legend = [
+        LegendEntry {
+            label: "uniform level".into(),
+            style: style(0, Marker::Circle, true),
+        },
+        LegendEntry {
+            label: "adaptive (tolerance 2^-k diag)".into(),
+            style: style(1, Marker::Square, true),
+        },
+    ];
+    titled_panels(
+        &out.join("hal_width_vs_size.svg"),
+        "HAL trees: covering width (eq. 1) against size, uniform levels and adaptive refinement",
+        &panels,
+        &legend,
+    )
+}
+
+/// The best of [`RUNS`] timings of `f` over `points`, in microseconds per point, with the
+/// answers.
+fn time_queries<T>(points: &[DVec2], mut f: impl FnMut(DVec2) -> T) -> (f64, Vec<T>) {
+    let mut best = f64::INFINITY;
+    let mut answers = Vec::new();
+    for _ in 0..RUNS {
+        let started = Instant::now();
+        answers = points.iter().map(|&p| f(p)).collect();
+        best = best.min(started.elapsed().as_secs_f64());
+    }
+    (1e6 * best / points.len().max(1) as f64, answers)
+}
+
+/// `hal_query_speed`.
+fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
+    let methods = [
+        "HAL tree",
+        "strip tree",
+        "box tree",
+        "brute force",
+        "geo contains",
+    ];
+    let mut series: Vec<Series> = methods.iter().map(|m| Series::new(m)).collect();
+    let mut rows = Vec::new();
+    for (name, polygon) in outlines {
+        let n = polygon.points().len();
+        let (lo, hi) = diagonal(polygon.points());
+        let mut rng = SplitMix64::new(SEED);
+        let points: Vec<DVec2> = (0..QUERIES)
+            .map(|_| DVec2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y)))
+            .collect();
+        let linear = (LINEAR_WORK / n).clamp(50, QUERIES);
+        let started = Instant::now();
+        let hal = HalTree2::build(polygon)?;
+        let hal_build = started.elapsed().as_secs_f64();
+        let started = Instant::now();
+        let strip = StripTree::build(&hal);
+        let strip_build = started.elapsed().as_secs_f64();
+        let started = Instant::now();
+        let boxes = EdgeBoxTree::build(polygon)?;
+        let box_build = started.elapsed().as_secs_f64();
+        let geo_polygon = Polygon::new(
+            LineString::from(
+                polygon
+                    .points()
+                    .iter()
+                    .map(|p| (p.x, p.y))
+                    .collect::<Vec<_>>(),
+            ),
+            vec![],
+        );
+
+        let (hal_us, hal_answers) = time_queries(&points, |p| hal.contains(p));
+        let hal_answers: Vec<Location> = hal_answers.into_iter().collect::<Result<_, _>>()?;
+        let as_option = |l: &Location| match l {
+            Location::Inside => Some(true),
+            Location::Outside => Some(false),
+            Location::Boundary => None,
+        };
+        let (strip_us, strip_answers) = time_queries(&points, |p| strip.contains(p));
+        let (box_us, box_answers) = time_queries(&points, |p| boxes.contains(p));
+        let prefix = &points[..linear];
+        let (brute_us, brute_answers) = time_queries(prefix, |p| contains_brute(polygon, p));
+        let (geo_us, geo_answers) =
+            time_queries(prefix, |p| geo_polygon.contains(&Point::new(p.x, p.y)));
+        for (k, brute) in brute_answers.iter().enumerate() {
+            let brute = brute.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
+            if *brute != hal_answers[k] {
+                bail!(
+                    "{name}: HAL says {:?}, brute force {brute:?} at {}",
+                    hal_answers[k],
+                    points[k]
+                );
+            }
+            if *brute != Location::Boundary && geo_answers[k] != (*brute == Location::Inside) {
+                bail!("{name}: geo disagrees with brute force at {}", points[k]);
+            }
+        }
+        for (k, hal_answer) in hal_answers.iter().enumerate() {
+            let expected = as_option(hal_answer);
+            if strip_answers[k] != expected || box_answers[k] != expected {
+                bail!(
+                    "{name}: strip or box tree disagrees with HAL at {}",
+                    points[k]
+                );
+            }
+        }
+        let measured = [
+            (hal_us, QUERIES, hal_build),
+            (strip_us, QUERIES, strip_build),
+            (box_us, QUERIES, box_build),
+            (brute_us, linear, 0.0),
+            (geo_us, linear, 0.0),
+        ];
+        for (i, &(us, queries, build)) in measured.iter().enumerate() {
+            series[i].points.push((n as f64, us));
+            rows.push(vec![
+                name.clone(),
+                n.to_string(),
+                methods[i].into(),
+                format!("{build:.6}"),
+                queries.to_string(),
+                format!("{us:.4}"),
+            ]);
+        }
+        eprintln!(
+            "{name:<28} {n:>9} vertices  µs/query: HAL {hal_us:.3} (build {hal_build:.3} s), strip {strip_us:.3}, box {box_us:.3}, brute {brute_us:.2}, geo {geo_us:.2}; brute/HAL {:.0}×",
+            brute_us / hal_us
+        );
+    }
+    write_csv(
+        &out.join("hal_query_speed.csv"),
+        &[
+            "polygon",
+            "vertices",
+            "method",
+            "build_seconds",
+            "queries",
+            "microseconds_per_query",
+        ],
+        &rows,
+    )?;
+    let markers = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Triangle,
+        Marker::Circle,
+        Marker::Square,
+    ];
+    let styled: Vec<StyledSeries> = series
+        .into_iter()
+        .enumerate()
+        .map(|(i, s)| StyledSeries::new(s, style(i, markers[i], true)))
+        .collect();
+    let legend: Vec<LegendEntry> = methods
+        .iter()
+        .enumerate()
+        .map(|(i, m)| LegendEntry {
+            label: (*m).to_owned(),
+            style: style(i, markers[i], true),
+        })
+        .collect();
+    let panel = StyledPanel {
+        spec: ChartSpec {
+            title: "point in polygon, random points in the bounding box",
+            x_label: "polygon vertices",
+            y_label: "microseconds per query (one thread)",
+        },
+        x_axis: XAxis::Log,
+        series: &styled,
+        notes: &[],
+    };
+    titled_panels(
+        &out.join("hal_query_speed.svg"),
+        "Point inclusion: HAL tree against a strip tree, a box tree, brute force and geo (same run)",
+        &[panel],
+        &legend,
+    )
+}
+
+/// `hal_vs_strip_tree`.
+fn strip_tree(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
+    let chosen = ["polygons/netherlands.txt", "polygons/norway.txt"];
+    let names = ["HAL lenses", "strips (Ballard)", "boxes"];
+    let mut rows = Vec::new();
+    let mut panels_data = Vec::new();
+    for (name, polygon) in outlines
+        .iter()
+        .filter(|(n, _)| chosen.contains(&n.as_str()))
+    {
+        let hal = HalTree2::build(polygon)?;
+        let strip = StripTree::build(&hal);
+        let boxes = EdgeBoxTree::build(polygon).context("box tree")?;
+        let (lo, hi) = diagonal(polygon.points());
+        let box_area = (hi - lo).x * (hi - lo).y;
+        let mut series: Vec<Series> = names.iter().map(|n| Series::new(n)).collect();
+        for depth in 1..=DEPTHS {
+            let mut hal_area = 0.0;
+            let mut unbounded = 0;
+            let mut hal_count = 0;
+            for node in hal.nodes().iter().filter(|n| n.level == depth) {
+                hal_count += 1;
+                match node
+                    .lens
+                    .area(hal.point_at(node.first), hal.point_at(node.last))
+                {
+                    Some(a) if a.is_finite() => hal_area += a,
+                    _ => unbounded += 1,
+                }
+            }
+            let strips: Vec<_> = strip
+                .strips()
+                .iter()
+                .filter(|s| s.depth + 1 == depth)
+                .collect();
+            let strip_area: f64 = strips.iter().map(|s| StripTree::area(s)).sum();
+            let level_boxes = boxes.boxes_at(depth as usize);
+            let boxes_area: f64 = level_boxes
+                .iter()
+                .map(|b| (b.max.x - b.min.x) * (b.max.y - b.min.y))
+                .sum();
+            let values = [
+                (hal_area, hal_count),
+                (strip_area, strips.len()),
+                (boxes_area, level_boxes.len()),
+            ];
+            for (i, &(area, count)) in values.iter().enumerate() {
+                if count == 0 {
+                    continue;
+                }
+                let pct = 100.0 * area / box_area;
+                series[i].points.push((f64::from(depth), pct));
+                rows.push(vec![
+                    name.clone(),
+                    names[i].into(),
+                    depth.to_string(),
+                    count.to_string(),
+                    format!("{pct:.6}"),
+                    if i == 0 {
+                        unbounded.to_string()
+                    } else {
+                        "0".into()
+                    },
+                ]);
+            }
+        }
+        panels_data.push((
+            format!("{name} ({} vertices)", polygon.points().len()),
+            series
+                .into_iter()
+                .enumerate()
+                .map(|(i, s)| StyledSeries::new(s, style(i, Marker::Circle, true)))
+                .collect::<Vec<_>>(),
+        ));
+    }
+    if panels_data.is_empty() {
+        bail!("no outline found for hal_vs_strip_tree");
+    }
+    write_csv(
+        &out.join("hal_vs_strip_tree.csv"),
+        &[
+            "polygon",
+            "structure",
+            "depth",
+            "volumes",
+            "area_pct_bbox",
+            "unbounded",
+        ],
+        &rows,
+    )?;
+    let panels: Vec<StyledPanel<'_>> = panels_data
+        .iter()
+        .map(|(title, series)| StyledPanel {
+            spec: ChartSpec {
+                title,
+                x_label: "depth",
+                y_label: "total area of the bounding volumes, % of the bounding box",
+            },
+            x_axis: XAxis::Integers(0.5..f64::from(DEPTHS) + 0.5),
+            series,
+            notes: &[],
+        })
+        .collect();
+    let legend: Vec<LegendEntry> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| LegendEntry {
+            label: (*n).to_owned(),
+            style: style(i, Marker::Circle, true),
+        })
+        .collect();
+    titled_panels(
+        &out.join("hal_vs_strip_tree.svg"),
+        "Localization per depth: HAL lenses against Ballard's strips and axis-aligned boxes",
+        &panels,
+        &legend,
+    )
+}
