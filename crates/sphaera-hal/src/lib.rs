@@ -1,7 +1,7 @@
 //! # sphaera-hal
 //!
 //! HAL trees — *hierarchical approximation and localization* — after Veltkamp
-//! (*Hierarchical approximation and localization*, The Visual Computer, 1998): an outline
+//! (*Hierarchical approximation and localization*, `shared/papers/hal-trees-veltkamp.md`): an outline
 //! kept as a binary tree whose every level is an approximation by a subset of its own
 //! vertices, and whose every node bounds its part of the outline by the intersection of
 //! two discs through the part's ends.
@@ -74,7 +74,7 @@
 //!
 //! [`sphaera-spheretree`](https://docs.rs/sphaera-spheretree) for 3D bounding-sphere
 //! hierarchies; the paper: R. C. Veltkamp, *Hierarchical approximation and
-//! localization*, The Visual Computer 14 (1998).
+//! localization* (Utrecht University).
 
 mod error;
 mod lens;
