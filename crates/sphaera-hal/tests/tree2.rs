@@ -402,3 +402,91 @@ fn lens_areas_are_the_caps_of_their_discs() {
         "{estimate}"
     );
 }
+
+/// Scaling by a power of two gives the same tree, every width scaled exactly; a turn by a
+/// quarter and a translation by a power of two (both exact in floating point) give the
+/// same tree too.
+#[test]
+// Exact equality is the point: these transforms are exact in floating point.
+#[allow(clippy::float_cmp)]
+fn exact_similarities_give_the_same_tree() {
+    let mut rng = SplitMix64::new(23);
+    let points: Vec<DVec2> = (0..300)
+        .map(|i| {
+            let a = std::f64::consts::TAU * f64::from(i) / 300.0;
+            DVec2::from_angle(a) * (1.0 + 0.3 * rng.range(-1.0, 1.0))
+        })
+        .collect();
+    let base = HalTree2::build(&Polyline2::polygon(points.clone()).unwrap()).unwrap();
+    let transforms: [(&str, Box<dyn Fn(DVec2) -> DVec2>, f64); 4] = [
+        ("×8", Box::new(|p| p * 8.0), 8.0),
+        ("×2⁻³⁰", Box::new(|p| p * 2f64.powi(-30)), 2f64.powi(-30)),
+        ("quarter turn", Box::new(|p: DVec2| p.perp()), 1.0),
+        (
+            "moved by 1024",
+            Box::new(|p| p + DVec2::new(1024.0, -512.0)),
+            1.0,
+        ),
+    ];
+    for (name, map, scale) in transforms {
+        let moved = Polyline2::polygon(points.iter().map(|&p| map(p)).collect()).unwrap();
+        let tree = HalTree2::build(&moved).unwrap();
+        assert_eq!(
+            tree.vertex_at(0),
+            base.vertex_at(0),
+            "{name}: level-0 chord"
+        );
+        assert_eq!(tree.nodes().len(), base.nodes().len());
+        for (a, b) in base.nodes().iter().zip(tree.nodes()) {
+            assert_eq!(
+                (a.first, a.last, a.split, a.level),
+                (b.first, b.last, b.split, b.level),
+                "{name}"
+            );
+            if scale != 1.0 {
+                // Bulges are scale free; widths scale exactly.
+                assert_eq!(a.lens, b.lens, "{name}");
+                assert_eq!(a.width * scale, b.width, "{name}");
+            } else {
+                // The move costs the coordinates 10 bits; widths move by that rounding.
+                assert!(
+                    (a.width - b.width).abs() <= 1e-9 * (1.0 + a.width),
+                    "{name}: {} against {}",
+                    a.width,
+                    b.width
+                );
+            }
+        }
+    }
+}
+
+/// Theorem 2's worst case: a half-circle arc whose radius shrinks slightly toward its end,
+/// so that every split peels one vertex; the tree is as deep as the arc is long, and still
+/// answers as brute force (the work stack, not recursion, carries the depth).
+#[test]
+fn the_worst_case_makes_a_tree_as_deep_as_the_outline() {
+    let n = 2_000;
+    let last = (n - 1) as f64;
+    let points: Vec<DVec2> = (0..n)
+        .map(|i| {
+            let t = f64::from(i) / last;
+            DVec2::from_angle(std::f64::consts::PI * t) * (1.0 + 1e-3 * (1.0 - t))
+        })
+        .collect();
+    let tree = HalTree2::build(&Polyline2::open(points.clone()).unwrap()).unwrap();
+    assert_eq!(tree.depth(), n as usize - 2);
+    check_structure(&tree);
+    // Closed, the same arc still builds and locates.
+    let closed = Polyline2::polygon(points).unwrap();
+    let tree = HalTree2::build(&closed).unwrap();
+    for x in [
+        DVec2::new(0.0, 0.5),
+        DVec2::new(0.0, 1.0005),
+        DVec2::new(0.3, -0.1),
+    ] {
+        assert_eq!(
+            tree.contains(x).unwrap(),
+            contains_brute(&closed, x).unwrap()
+        );
+    }
+}
