@@ -418,7 +418,8 @@ fn exact_similarities_give_the_same_tree() {
         })
         .collect();
     let base = HalTree2::build(&Polyline2::polygon(points.clone()).unwrap()).unwrap();
-    let transforms: [(&str, Box<dyn Fn(DVec2) -> DVec2>, f64); 4] = [
+    type Map = Box<dyn Fn(DVec2) -> DVec2>;
+    let transforms: [(&str, Map, f64); 4] = [
         ("×8", Box::new(|p| p * 8.0), 8.0),
         ("×2⁻³⁰", Box::new(|p| p * 2f64.powi(-30)), 2f64.powi(-30)),
         ("quarter turn", Box::new(|p: DVec2| p.perp()), 1.0),
@@ -465,8 +466,8 @@ fn exact_similarities_give_the_same_tree() {
 /// answers as brute force (the work stack, not recursion, carries the depth).
 #[test]
 fn the_worst_case_makes_a_tree_as_deep_as_the_outline() {
-    let n = 2_000;
-    let last = (n - 1) as f64;
+    let n: u32 = 2_000;
+    let last = f64::from(n - 1);
     let points: Vec<DVec2> = (0..n)
         .map(|i| {
             let t = f64::from(i) / last;
