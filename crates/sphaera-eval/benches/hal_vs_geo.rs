@@ -39,10 +39,7 @@ fn bench(c: &mut Criterion) {
     };
     let americas =
         Polyline2::read_polygon(data.join("polygons/americas.txt")).expect("the Americas");
-    let (lo, hi) = americas.points().iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    );
+    let (lo, hi) = americas.bounds();
     let mut rng = SplitMix64::new(17);
     let queries: Vec<DVec2> = (0..QUERIES)
         .map(|_| DVec2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y)))

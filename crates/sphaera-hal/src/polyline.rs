@@ -101,6 +101,15 @@ impl Polyline2 {
         self.closed
     }
 
+    /// The bounding box of the vertices: `(min, max)` per axis.
+    #[must_use]
+    pub fn bounds(&self) -> (DVec2, DVec2) {
+        self.points.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        )
+    }
+
     /// The number of edges (vertices for a polygon, one fewer for a polyline).
     #[must_use]
     pub fn edge_count(&self) -> usize {

@@ -318,10 +318,7 @@ fn real_outlines_answer_as_brute_force() {
         let n = outline.points().len();
         assert_eq!(tree.level(tree.depth()).len(), n);
         assert_eq!(tree.nodes().len(), n - 2);
-        let (lo, hi) = outline.points().iter().fold(
-            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), &p| (lo.min(p), hi.max(p)),
-        );
+        let (lo, hi) = outline.bounds();
         let queries = if n > 20_000 { 200 } else { 1_000 };
         for k in 0..queries {
             let x = if k % 10 == 0 {

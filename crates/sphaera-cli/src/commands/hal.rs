@@ -113,7 +113,8 @@ pub fn run(args: &HalArgs) -> Result<()> {
     let tree = HalTree2::build(&polyline)?;
     let build = started.elapsed().as_secs_f64();
 
-    let diagonal = diagonal(polyline.points());
+    let (lo, hi) = polyline.bounds();
+    let diagonal = lo.distance(hi);
     let refine = match (args.tolerance, args.level) {
         (Some(tolerance), _) => Refine::Width(tolerance.resolve(diagonal)),
         (None, Some(level)) => Refine::Level(level),
@@ -179,15 +180,6 @@ fn extension(path: &Path) -> String {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase()
-}
-
-/// The bounding-box diagonal of `points`.
-fn diagonal(points: &[DVec2]) -> f64 {
-    let (lo, hi) = points.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    );
-    lo.distance(hi)
 }
 
 /// Vertices and width per level, from one pass over the nodes: the level-`k`
@@ -346,10 +338,7 @@ fn print_text(report: &Report) {
 /// up.
 fn svg(tree: &HalTree2, kept: &[usize], frontier: &[usize]) -> Vec<u8> {
     let points = tree.polyline().points();
-    let (lo, hi) = points.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    );
+    let (lo, hi) = tree.polyline().bounds();
     let size = (hi - lo).max_element().max(f64::MIN_POSITIVE);
     let margin = 0.05 * size;
     let scale = 1000.0 / (size + 2.0 * margin);

@@ -110,13 +110,6 @@ fn refine(polygon: &Polyline2, pieces: u32) -> Result<Polyline2> {
     Ok(Polyline2::polygon(points)?)
 }
 
-fn diagonal(points: &[DVec2]) -> (DVec2, DVec2) {
-    points.iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    )
-}
-
 fn style(i: usize, marker: Marker, line: bool) -> Style {
     Style {
         color: palette(i),
@@ -124,6 +117,27 @@ fn style(i: usize, marker: Marker, line: bool) -> Style {
         filled: true,
         line,
     }
+}
+
+/// One panel per `(title, series)`, with the same axes.
+fn panels<'a>(
+    data: &'a [(String, Vec<StyledSeries>)],
+    x_label: &'a str,
+    y_label: &'a str,
+    x_axis: &XAxis,
+) -> Vec<StyledPanel<'a>> {
+    data.iter()
+        .map(|(title, series)| StyledPanel {
+            spec: ChartSpec {
+                title,
+                x_label,
+                y_label,
+            },
+            x_axis: x_axis.clone(),
+            series,
+            notes: &[],
+        })
+        .collect()
 }
 
 /// `hal_width_vs_size`.
@@ -140,7 +154,7 @@ fn width_vs_size(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
         .filter(|(n, _)| chosen.contains(&n.as_str()))
     {
         let tree = HalTree2::build(polygon)?;
-        let (lo, hi) = diagonal(polygon.points());
+        let (lo, hi) = polygon.bounds();
         let diagonal = lo.distance(hi);
         let mut uniform = Series::new("uniform levels");
         for level in 0..=tree.depth() {
@@ -198,19 +212,12 @@ fn width_vs_size(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
         ],
         &rows,
     )?;
-    let panels: Vec<StyledPanel<'_>> = panels_data
-        .iter()
-        .map(|(title, series)| StyledPanel {
-            spec: ChartSpec {
-                title,
-                x_label: "vertices of the approximation",
-                y_label: "covering width, % of diagonal",
-            },
-            x_axis: XAxis::Log,
-            series,
-            notes: &[],
-        })
-        .collect();
+    let panels = panels(
+        &panels_data,
+        "vertices of the approximation",
+        "covering width, % of diagonal",
+        &XAxis::Log,
+    );
     let legend = [
         LegendEntry {
             label: "uniform level".into(),
@@ -255,7 +262,7 @@ fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
     let mut rows = Vec::new();
     for (name, polygon) in outlines {
         let n = polygon.points().len();
-        let (lo, hi) = diagonal(polygon.points());
+        let (lo, hi) = polygon.bounds();
         let mut rng = SplitMix64::new(SEED);
         let points: Vec<DVec2> = (0..QUERIES)
             .map(|_| DVec2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y)))
@@ -402,7 +409,7 @@ fn strip_tree(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
         let hal = HalTree2::build(polygon)?;
         let strip = StripTree::build(&hal);
         let boxes = EdgeBoxTree::build(polygon).context("box tree")?;
-        let (lo, hi) = diagonal(polygon.points());
+        let (lo, hi) = polygon.bounds();
         let box_area = (hi - lo).x * (hi - lo).y;
         let mut series: Vec<Series> = names.iter().map(|n| Series::new(n)).collect();
         for depth in 1..=DEPTHS {
@@ -479,19 +486,12 @@ fn strip_tree(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
         ],
         &rows,
     )?;
-    let panels: Vec<StyledPanel<'_>> = panels_data
-        .iter()
-        .map(|(title, series)| StyledPanel {
-            spec: ChartSpec {
-                title,
-                x_label: "depth",
-                y_label: "total area of the bounding volumes, % of the bounding box",
-            },
-            x_axis: XAxis::Integers(0.5..f64::from(DEPTHS) + 0.5),
-            series,
-            notes: &[],
-        })
-        .collect();
+    let panels = panels(
+        &panels_data,
+        "depth",
+        "total area of the bounding volumes, % of the bounding box",
+        &XAxis::Integers(0.5..f64::from(DEPTHS) + 0.5),
+    );
     let legend: Vec<LegendEntry> = names
         .iter()
         .enumerate()
