@@ -51,7 +51,52 @@ pub enum HalError {
         /// The line's text.
         text: String,
     },
-    /// An error of the mesh crate (the smallest bounding disc).
+    /// A 3D HAL tree needs a closed surface.
+    #[error(
+        "the mesh is not closed ({boundary_edges} boundary edges): a HAL tree needs a closed surface of genus 0; close the holes first (sphaera-mesh's repair), or use a sphere-tree, which takes open meshes"
+    )]
+    NotClosed {
+        /// Edges with one triangle.
+        boundary_edges: usize,
+    },
+    /// A 3D HAL tree needs a manifold surface.
+    #[error(
+        "the mesh is not manifold ({edges} edges with more than two triangles, {vertices} pinched vertices): a HAL tree needs a closed manifold surface of genus 0"
+    )]
+    NonManifold {
+        /// Edges shared by more than two triangles.
+        edges: usize,
+        /// Vertices whose triangles do not form one fan.
+        vertices: usize,
+    },
+    /// A 3D HAL tree needs consistently oriented triangles.
+    #[error(
+        "the mesh's triangles are not consistently oriented ({edges} edges traversed the same way by both triangles): orient them first (sphaera-mesh's repair)"
+    )]
+    NotOriented {
+        /// Edges whose two triangles traverse them the same way.
+        edges: usize,
+    },
+    /// A 3D HAL tree represents one closed surface.
+    #[error(
+        "the mesh has {count} components: a HAL tree represents one closed surface; build one tree per component"
+    )]
+    Components {
+        /// The connected components.
+        count: usize,
+    },
+    /// The paper: "it works only for objects of genus zero".
+    #[error(
+        "the surface has genus {genus} ({genus} handle(s), like a torus): HAL trees work only for genus 0 (the paper's own limit); for collision or distance use a sphere-tree (`sphaera spheretree`) or Meshsweeper (`sphaera distance`), which take any genus"
+    )]
+    NotGenusZero {
+        /// The genus found.
+        genus: u64,
+    },
+    /// Every vertex lies on one line: no ball touches three of them.
+    #[error("every vertex of the mesh lies on one line: no ball touches three of them")]
+    Degenerate,
+    /// An error of the mesh crate (the smallest bounding disc or ball).
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
 }

@@ -7,8 +7,10 @@
 //! two discs through the part's ends.
 //!
 //! Status: the 2D half of the paper (section 3, and section 5's point inclusion and
-//! intersection detection). The 3D half (genus-0 meshes) and the CLI are issue 17's next
-//! steps.
+//! intersection detection), with `sphaera hal` for polygons. Of the 3D half, the ground
+//! work is here ([`GenusZeroSurface`]: validation, the root ball touching three vertices,
+//! deterministic shortest edge paths, the patches they cut); the 3D tree itself is issue
+//! 17's next step.
 //!
 //! # Quick start
 //!
@@ -80,10 +82,12 @@ mod error;
 mod lens;
 mod polyline;
 mod query2;
+mod surface3;
 mod tree2;
 
 pub use error::HalError;
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
 pub use polyline::{Polyline2, parse_points};
 pub use query2::{Location, contains_brute, intersects_brute, ray_crossing, segments_intersect};
+pub use surface3::{GenusZeroSurface, RootBall};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};
