@@ -93,6 +93,14 @@ pub enum HalError {
         /// The genus found.
         genus: u64,
     },
+    /// A placement that is not a proper similarity.
+    #[error(
+        "the placement is not a rotation with a uniform scale and a translation (linear part {matrix:?}, column-major): shears, uneven scales and mirrors do not map discs to discs of the same bulge"
+    )]
+    InvalidPlacement {
+        /// The linear part, column-major.
+        matrix: [f64; 4],
+    },
     /// Every vertex lies on one line: no ball touches three of them.
     #[error("every vertex of the mesh lies on one line: no ball touches three of them")]
     Degenerate,

@@ -1,7 +1,7 @@
 //! Hierarchical operations on 2D HAL trees (section 5 of the paper): point inclusion and
 //! intersection detection, with their brute-force references.
 
-use glam::DVec2;
+use glam::{DAffine2, DVec2};
 
 use crate::lens::{CONTAINMENT_SLACK, coord};
 use crate::tree2::Node2;
@@ -220,10 +220,23 @@ struct Part {
     regions: [Region; 2],
 }
 
-impl HalTree2 {
-    /// The part over positions `first..=last` with node `node`.
+/// A tree seen through a placement (a proper similarity) into another tree's coordinates.
+#[derive(Clone, Copy)]
+struct Placed<'a> {
+    tree: &'a HalTree2,
+    map: DAffine2,
+}
+
+impl Placed<'_> {
+    fn point(&self, position: u32) -> DVec2 {
+        self.map.transform_point2(self.tree.point_at(position))
+    }
+
+    /// The part over positions `first..=last` with node `node`. A proper similarity maps
+    /// a disc through the chord's ends to the disc of the same bulge through the mapped
+    /// ends, so the lens is rebuilt from the mapped chord.
     fn part(&self, first: u32, last: u32, node: Option<usize>) -> Part {
-        let (a, b) = (self.point_at(first), self.point_at(last));
+        let (a, b) = (self.point(first), self.point(last));
         let regions = match node {
             // An edge lies in its diametral disc.
             None => {
@@ -231,7 +244,7 @@ impl HalTree2 {
                 [disc, disc]
             }
             Some(id) => {
-                let lens = self.nodes()[id].lens;
+                let lens = self.tree.nodes()[id].lens;
                 if lens.kind() == crate::LensKind::Union {
                     [Region::Everything, Region::Everything]
                 } else {
@@ -256,7 +269,7 @@ impl HalTree2 {
 
     /// The two parts a node's part splits into.
     fn halves(&self, part: &Part) -> [Part; 2] {
-        let node = &self.nodes()[part.node.unwrap_or_default()];
+        let node = &self.tree.nodes()[part.node.unwrap_or_default()];
         let [left, right] = node.children();
         [
             self.part(part.first, node.split, left),
@@ -264,33 +277,89 @@ impl HalTree2 {
         ]
     }
 
+    /// The size used to pick which part of a pair to refine.
+    fn size(&self, part: &Part, id: usize) -> f64 {
+        self.point(part.first).distance(self.point(part.last))
+            + self.tree.nodes()[id].width.min(f64::MAX)
+    }
+
+    /// The largest coordinate of the placed outline.
+    fn reach(&self) -> f64 {
+        self.tree.polyline().points().iter().fold(0.0_f64, |m, &p| {
+            m.max(self.map.transform_point2(p).abs().max_element())
+        })
+    }
+}
+
+/// Why an affine map cannot place one outline against another.
+fn check_placement(placement: &DAffine2) -> Result<f64, HalError> {
+    let m = placement.matrix2;
+    let finite = m.is_finite() && placement.translation.is_finite();
+    let (x, y) = (m.x_axis, m.y_axis);
+    let scale = m.determinant();
+    let tolerance = 1e-9 * x.length_squared().max(y.length_squared());
+    if !finite
+        || scale <= 0.0
+        || (x.length_squared() - y.length_squared()).abs() > tolerance
+        || x.dot(y).abs() > tolerance
+    {
+        return Err(HalError::InvalidPlacement {
+            matrix: m.to_cols_array(),
+        });
+    }
+    Ok(scale.sqrt())
+}
+
+impl HalTree2 {
     /// Intersection detection (section 5.2): pairs of parts whose bounding areas may meet
     /// are refined, the larger part first, down to pairs of original edges, which are
     /// tested exactly; two closed polygons whose boundaries are apart then intersect when
     /// one holds a vertex of the other. Equal to [`intersects_brute`] on every input.
     ///
-    /// Both outlines are in the same coordinates.
+    /// Both outlines are in the same coordinates ([`HalTree2::intersects_placed`] places
+    /// one against the other).
     #[must_use]
     pub fn intersects(&self, other: &Self) -> bool {
+        // The identity is a proper similarity: the check cannot fail.
+        self.intersects_placed(other, DAffine2::IDENTITY)
+            .unwrap_or(false)
+    }
+
+    /// [`HalTree2::intersects`] with `other` placed by `placement` (a rotation, a uniform
+    /// scale and a translation, mapping `other`'s coordinates into this tree's): the same
+    /// answer as [`intersects_brute`] on `other`'s vertices mapped by `placement`, without
+    /// building anything.
+    ///
+    /// # Errors
+    ///
+    /// [`HalError::InvalidPlacement`] for a map that is not a proper similarity (a shear,
+    /// an uneven scale, a mirror, a singular or non-finite matrix).
+    pub fn intersects_placed(&self, other: &Self, placement: DAffine2) -> Result<bool, HalError> {
+        let scale = check_placement(&placement)?;
+        let (mine, theirs) = (
+            Placed {
+                tree: self,
+                map: DAffine2::IDENTITY,
+            },
+            Placed {
+                tree: other,
+                map: placement,
+            },
+        );
         if let (Some((c, r)), Some((d, s))) = (self.root_disc(), other.root_disc()) {
+            let (d, s) = (placement.transform_point2(d), s * scale);
             let slack = CONTAINMENT_SLACK * (r + s + c.abs().max_element() + d.abs().max_element());
             if c.distance(d) > r + s + slack {
-                return false;
+                return Ok(false);
             }
         }
-        let scale = |tree: &Self| {
-            tree.polyline()
-                .points()
-                .iter()
-                .fold(0.0_f64, |m, p| m.max(p.abs().max_element()))
-        };
-        let slack = CONTAINMENT_SLACK * (scale(self) + scale(other)).max(f64::MIN_POSITIVE);
+        let slack = CONTAINMENT_SLACK * (mine.reach() + theirs.reach()).max(f64::MIN_POSITIVE);
         let mut stack: Vec<(Part, Part)> = Vec::new();
         for a in self.chains() {
             for b in other.chains() {
                 stack.push((
-                    self.part(a.first, a.last, a.node),
-                    other.part(b.first, b.last, b.node),
+                    mine.part(a.first, a.last, a.node),
+                    theirs.part(b.first, b.last, b.node),
                 ));
             }
         }
@@ -304,37 +373,33 @@ impl HalTree2 {
             }
             match (a.node, b.node) {
                 (None, None) => {
-                    let (p, q) = (self.point_at(a.first), self.point_at(a.last));
-                    let (r, s) = (other.point_at(b.first), other.point_at(b.last));
+                    let (p, q) = (mine.point(a.first), mine.point(a.last));
+                    let (r, s) = (theirs.point(b.first), theirs.point(b.last));
                     if segments_intersect(p, q, r, s) {
-                        return true;
+                        return Ok(true);
                     }
                 }
-                (Some(_), None) => {
-                    stack.extend(self.halves(&a).map(|h| (h, b)));
-                }
-                (None, Some(_)) => {
-                    stack.extend(other.halves(&b).map(|h| (a, h)));
-                }
+                (Some(_), None) => stack.extend(mine.halves(&a).map(|h| (h, b))),
+                (None, Some(_)) => stack.extend(theirs.halves(&b).map(|h| (a, h))),
                 (Some(i), Some(j)) => {
-                    let size = |tree: &Self, part: &Part, id: usize| {
-                        tree.point_at(part.first).distance(tree.point_at(part.last))
-                            + tree.nodes()[id].width.min(f64::MAX)
-                    };
-                    if size(self, &a, i) >= size(other, &b, j) {
-                        stack.extend(self.halves(&a).map(|h| (h, b)));
+                    if mine.size(&a, i) >= theirs.size(&b, j) {
+                        stack.extend(mine.halves(&a).map(|h| (h, b)));
                     } else {
-                        stack.extend(other.halves(&b).map(|h| (a, h)));
+                        stack.extend(theirs.halves(&b).map(|h| (a, h)));
                     }
                 }
             }
         }
-        one_inside_the_other(self.polyline(), other.polyline(), |polygon, x| {
-            if std::ptr::eq(polygon, self.polyline()) {
-                self.contains(x)
-            } else {
-                other.contains(x)
-            }
-        })
+        if !(self.polyline().is_closed() && other.polyline().is_closed()) {
+            return Ok(false);
+        }
+        // Boundaries apart: one inside the other, decided by one vertex each way.
+        let inside =
+            |l: Result<Location, HalError>| matches!(l, Ok(Location::Inside | Location::Boundary));
+        let theirs_first = placement.transform_point2(other.polyline().points()[0]);
+        let mine_first = placement
+            .inverse()
+            .transform_point2(self.polyline().points()[0]);
+        Ok(inside(self.contains(theirs_first)) || inside(other.contains(mine_first)))
     }
 }

@@ -127,3 +127,60 @@ fn belgium_meets_the_netherlands_and_not_norway() {
     assert!(!both(&belgium, &norway));
     assert!(!both(&netherlands, &luxembourg));
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A placed outline answers as brute force on its mapped vertices.
+    #[test]
+    fn placed_intersection_equals_brute_force_on_the_mapped_outline(
+        a in prop::collection::vec((0i32..10, 0i32..10), 3..20),
+        b in prop::collection::vec((0i32..10, 0i32..10), 3..20),
+        angle in 0.0f64..std::f64::consts::TAU,
+        scale in 0.3f64..3.0,
+        shift in (-12.0f64..12.0, -12.0f64..12.0),
+    ) {
+        use glam::DAffine2;
+        let a: Vec<(f64, f64)> = a.iter().map(|&(x, y)| (f64::from(x), f64::from(y))).collect();
+        let b: Vec<(f64, f64)> = b.iter().map(|&(x, y)| (f64::from(x), f64::from(y))).collect();
+        let (first, second) = (outline(&a, true), outline(&b, true));
+        let placement = DAffine2::from_scale_angle_translation(
+            DVec2::splat(scale),
+            angle,
+            DVec2::new(shift.0, shift.1),
+        );
+        let mapped = Polyline2::polygon(
+            second.points().iter().map(|&p| placement.transform_point2(p)).collect(),
+        ).unwrap();
+        let (ta, tb) = (HalTree2::build(&first).unwrap(), HalTree2::build(&second).unwrap());
+        prop_assert_eq!(
+            ta.intersects_placed(&tb, placement).unwrap(),
+            intersects_brute(&first, &mapped)
+        );
+    }
+}
+
+#[test]
+fn a_placement_must_be_a_proper_similarity() {
+    use glam::{DAffine2, DMat2};
+    use sphaera_hal::HalError;
+    let square = outline(&[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)], true);
+    let tree = HalTree2::build(&square).unwrap();
+    for matrix in [
+        DMat2::from_cols_array(&[-1.0, 0.0, 0.0, 1.0]),
+        DMat2::from_cols_array(&[1.0, 0.0, 0.5, 1.0]),
+        DMat2::from_cols_array(&[2.0, 0.0, 0.0, 1.0]),
+        DMat2::ZERO,
+        DMat2::from_cols_array(&[f64::NAN, 0.0, 0.0, 1.0]),
+    ] {
+        let placement = DAffine2::from_mat2(matrix);
+        assert!(matches!(
+            tree.intersects_placed(&tree, placement),
+            Err(HalError::InvalidPlacement { .. })
+        ));
+    }
+    let moved = DAffine2::from_translation(DVec2::new(0.5, 0.5));
+    assert!(tree.intersects_placed(&tree, moved).unwrap());
+    let far = DAffine2::from_translation(DVec2::new(5.0, 0.0));
+    assert!(!tree.intersects_placed(&tree, far).unwrap());
+}
