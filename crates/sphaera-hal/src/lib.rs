@@ -7,10 +7,12 @@
 //! two discs through the part's ends.
 //!
 //! Status: the 2D half of the paper (section 3, and section 5's point inclusion and
-//! intersection detection), with `sphaera hal` for polygons. Of the 3D half, the ground
-//! work is here ([`GenusZeroSurface`]: validation, the root ball touching three vertices,
-//! deterministic shortest edge paths, the patches they cut); the 3D tree itself is issue
-//! 17's next step.
+//! intersection detection), with `sphaera hal` for polygons. The 3D half is in progress:
+//! [`GenusZeroSurface`] (validation, the root ball touching three vertices, deterministic
+//! shortest edge paths, the patches they cut) and [`HalTree3`] (Algorithm 2: splits at
+//! `v_q`/`v_r` or at sides below π/4 propagated to the neighbours, Definition 5's balls,
+//! levels and adaptive approximation). Not yet: crack-free extraction where coalesced
+//! triangles are discarded, 3D point inclusion and intersection, the 3D CLI.
 //!
 //! # Quick start
 //!
@@ -84,6 +86,7 @@ mod polyline;
 mod query2;
 mod surface3;
 mod tree2;
+mod tree3;
 
 pub use error::HalError;
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
@@ -91,3 +94,4 @@ pub use polyline::{Polyline2, parse_points};
 pub use query2::{Location, contains_brute, intersects_brute, ray_crossing, segments_intersect};
 pub use surface3::{GenusZeroSurface, RootBall};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};
+pub use tree3::{Bound3, HalTree3, Node3, SMALLEST_SPLIT_ANGLE};

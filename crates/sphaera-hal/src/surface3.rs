@@ -196,6 +196,27 @@ impl GenusZeroSurface {
     /// If `a` or `b` is not a vertex of the mesh.
     #[must_use]
     pub fn shortest_path(&self, a: u32, b: u32) -> Vec<u32> {
+        self.dijkstra(a, b, |_, _| true)
+    }
+
+    /// [`GenusZeroSurface::shortest_path`] along the edges of the triangles `faces` only
+    /// (a patch): the path stays in the patch. `[a]` when `b` cannot be reached.
+    #[must_use]
+    pub fn shortest_path_within(&self, faces: &[u32], a: u32, b: u32) -> Vec<u32> {
+        let triangles = self.mesh.triangles();
+        let mut edges = std::collections::HashSet::new();
+        for &f in faces {
+            let [x, y, z] = triangles[f as usize];
+            for (u, v) in [(x, y), (y, z), (z, x)] {
+                edges.insert((u.min(v), u.max(v)));
+            }
+        }
+        self.dijkstra(a, b, |u, v| edges.contains(&(u.min(v), u.max(v))))
+    }
+
+    /// Dijkstra from the lower of `a`, `b` over the edges `usable` accepts, as the path
+    /// from `a` to `b`.
+    fn dijkstra(&self, a: u32, b: u32, usable: impl Fn(u32, u32) -> bool) -> Vec<u32> {
         let (from, to) = (a.min(b), a.max(b));
         let n = self.neighbours.len();
         let mut distance = vec![f64::INFINITY; n];
@@ -211,6 +232,9 @@ impl GenusZeroSurface {
                 break;
             }
             for &(w, length) in &self.neighbours[v as usize] {
+                if !usable(v, w) {
+                    continue;
+                }
                 let next = d + length;
                 if next < distance[w as usize] {
                     distance[w as usize] = next;
