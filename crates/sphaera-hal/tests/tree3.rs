@@ -159,7 +159,10 @@ fn adaptive_approximations_shrink_with_the_tolerance_and_torus_is_refused() {
     // At tolerance 0 a flat patch (width 0) stays one triangle; below 0 every node is
     // refined down to the faces.
     assert!(previous <= mesh.triangle_count());
-    assert_eq!(tree.approximate(-1.0).unwrap().triangle_count(), mesh.triangle_count());
+    assert_eq!(
+        tree.approximate(-1.0).unwrap().triangle_count(),
+        mesh.triangle_count()
+    );
     let torus = shapes::torus(1.0, 0.3, 12).unwrap();
     assert!(matches!(
         HalTree3::build(&torus),
