@@ -58,14 +58,17 @@ pub enum Command {
     /// vertices, each part bounded by the intersection of two discs through its ends.
     /// Reports vertices and covering width per level, an adaptive approximation to
     /// `--tolerance`, point inclusion for a file of points; draws the approximation with
-    /// its bounding areas as SVG. 2D polygons for now (genus-0 meshes: issue 17).
+    /// its bounding areas as SVG. A mesh file (OBJ, PLY, STL, OFF; closed, genus 0) gets
+    /// the 3D tree: triangles and width per level, an adaptive approximation written as a
+    /// mesh.
     Hal(HalArgs),
 }
 
 /// Arguments of `sphaera hal`.
 #[derive(Debug, Args)]
 pub struct HalArgs {
-    /// The polygon: a text file of `x y` lines (`#` comments allowed), closed implicitly.
+    /// The polygon: a text file of `x y` lines (`#` comments allowed), closed implicitly;
+    /// or a closed genus-0 mesh (`.obj`, `.ply`, `.stl`, `.off`) for the 3D tree.
     pub polygon: PathBuf,
 
     /// Read the file as an open polyline (no closing edge, no inside).
@@ -83,7 +86,7 @@ pub struct HalArgs {
     pub level: Option<usize>,
 
     /// Write the approximation, atomically: `.txt` (`x y` lines) or `.svg` (the outline,
-    /// the approximation and its bounding areas).
+    /// the approximation and its bounding areas) for a polygon; a mesh file for a mesh.
     #[arg(long, short)]
     pub output: Option<PathBuf>,
 

@@ -135,3 +135,53 @@ fn bad_input_gives_a_clear_error_and_writes_nothing() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("no inside"));
 }
+
+#[test]
+fn a_genus_zero_mesh_gets_a_3d_tree_and_a_torus_a_clear_error() {
+    use sphaera::mesh::{io, shapes};
+    let dir = tempfile::tempdir().unwrap();
+    let sphere = dir.path().join("sphere.obj");
+    io::save(&sphere, &shapes::sphere(1.0, 12).unwrap()).unwrap();
+    let out = dir.path().join("approx.obj");
+    let report = json(&sphaera(&[
+        "hal",
+        sphere.to_str().unwrap(),
+        "--tolerance",
+        "5%",
+        "-o",
+        out.to_str().unwrap(),
+        "--json",
+    ]));
+    let triangles = report["triangles"].as_u64().unwrap();
+    let kept = report["approximation"]["triangles"].as_u64().unwrap();
+    assert!(kept <= triangles);
+    let diagonal = report["diagonal"].as_f64().unwrap();
+    assert!(report["approximation"]["width"].as_f64().unwrap() <= 0.05 * diagonal);
+    let written = io::load(&out).unwrap();
+    assert_eq!(written.triangle_count() as u64, kept);
+    let levels = report["levels"].as_array().unwrap();
+    assert_eq!(
+        levels.last().unwrap()["triangles"].as_u64().unwrap(),
+        triangles
+    );
+
+    let torus = dir.path().join("torus.obj");
+    io::save(&torus, &shapes::torus(1.0, 0.3, 12).unwrap()).unwrap();
+    let output = sphaera(&["hal", torus.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("genus 1") && message.contains("sphere-tree"),
+        "{message}"
+    );
+
+    let points = dir.path().join("p.txt");
+    std::fs::write(&points, "0 0\n").unwrap();
+    let output = sphaera(&[
+        "hal",
+        sphere.to_str().unwrap(),
+        "--contains",
+        points.to_str().unwrap(),
+    ]);
+    assert!(!output.status.success());
+}

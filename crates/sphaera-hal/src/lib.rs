@@ -12,7 +12,7 @@
 //! shortest edge paths, the patches they cut) and [`HalTree3`] (Algorithm 2: splits at
 //! `v_q`/`v_r` or at sides below π/4 propagated to the neighbours, Definition 5's balls,
 //! levels and adaptive approximation). Not yet: crack-free extraction where coalesced
-//! triangles are discarded, 3D point inclusion and intersection, the 3D CLI.
+//! triangles are discarded, 3D point inclusion and intersection.
 //!
 //! # Quick start
 //!

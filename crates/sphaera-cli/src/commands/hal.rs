@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
-use sphaera::hal::{HalTree2, Location, Node2, Polyline2, parse_points};
+use sphaera::hal::{HalTree2, HalTree3, Location, Node2, Polyline2, parse_points};
 use sphaera::mesh::glam::DVec2;
 use sphaera::mesh::io::write_atomic;
 
@@ -92,7 +92,13 @@ impl Refine {
     }
 }
 
+/// Mesh extensions: a 3D HAL tree; anything else is read as a polygon.
+const MESH_EXTENSIONS: &[&str] = &["obj", "ply", "stl", "off"];
+
 pub fn run(args: &HalArgs) -> Result<()> {
+    if MESH_EXTENSIONS.contains(&extension(&args.polygon).as_str()) {
+        return run_mesh(args);
+    }
     if let Some(path) = &args.output {
         let extension = extension(path);
         if extension != "txt" && extension != "svg" {
@@ -440,4 +446,169 @@ fn circumcentre(a: DVec2, b: DVec2, c: DVec2) -> Option<DVec2> {
     }
     let (lb, lc) = (ab.length_squared(), ac.length_squared());
     Some(a + DVec2::new(ac.y * lb - ab.y * lc, ab.x * lc - ac.x * lb) / d)
+}
+
+/// What `sphaera hal MESH` reports; also its JSON schema.
+#[derive(Debug, Serialize)]
+struct MeshReport {
+    mesh: String,
+    triangles: usize,
+    nodes: usize,
+    /// Root triangles (one or two: the root's three paths may leave one patch).
+    roots: usize,
+    depth: u32,
+    diagonal: f64,
+    /// Per level: the approximation's triangles and the largest width of its triangles'
+    /// bounding volumes (Definition 6).
+    levels: Vec<MeshLevel>,
+    approximation: Option<MeshApproximation>,
+    output: Option<String>,
+    seconds: Seconds,
+}
+
+#[derive(Debug, Serialize)]
+struct MeshApproximation {
+    /// `tolerance` or `level`.
+    kind: &'static str,
+    /// The absolute tolerance, or the level.
+    value: f64,
+    triangles: usize,
+    /// The largest width of its triangles' bounding volumes (0 for original faces).
+    width: f64,
+}
+
+/// The largest width among the triangles an approximation keeps: the nodes reached from
+/// the roots through refined parents and not refined themselves.
+fn kept_width(tree: &HalTree3, refine: impl Fn(&sphaera::hal::Node3) -> bool) -> f64 {
+    let nodes = tree.nodes();
+    let mut stack: Vec<u32> = tree.roots().to_vec();
+    let mut largest: f64 = 0.0;
+    while let Some(n) = stack.pop() {
+        let node = &nodes[n as usize];
+        if node.children.is_empty() || !refine(node) {
+            largest = largest.max(node.width);
+        } else {
+            stack.extend(node.children.iter().copied());
+        }
+    }
+    largest
+}
+
+#[derive(Debug, Serialize)]
+struct MeshLevel {
+    level: u32,
+    triangles: usize,
+    width: f64,
+}
+
+/// `sphaera hal MESH`: the 3D HAL tree of a closed genus-0 mesh.
+fn run_mesh(args: &HalArgs) -> Result<()> {
+    if args.open {
+        bail!("--open is for polylines; a mesh must be closed");
+    }
+    if args.contains.is_some() {
+        bail!("3D point inclusion is not implemented yet (issue 17); --contains takes a polygon");
+    }
+    if let Some(path) = &args.output {
+        if !MESH_EXTENSIONS.contains(&extension(path).as_str()) {
+            bail!(
+                "cannot write {}: a 3D approximation is written as .obj, .ply, .stl or .off",
+                path.display()
+            );
+        }
+        check_target(path)?;
+    }
+    let started = Instant::now();
+    let loaded = sphaera::mesh::io::read(&args.polygon)?;
+    let mesh = loaded.mesh;
+    let load = started.elapsed().as_secs_f64();
+    let started = Instant::now();
+    let tree = HalTree3::build(&mesh)
+        .with_context(|| format!("no HAL tree for {}", args.polygon.display()))?;
+    let build = started.elapsed().as_secs_f64();
+    let diagonal = mesh.bounding_box_diagonal();
+    let mut levels = Vec::new();
+    for level in 0..=tree.depth() {
+        let width = kept_width(&tree, |n| n.level < level);
+        levels.push(MeshLevel {
+            level,
+            triangles: tree.level(level)?.triangle_count(),
+            width,
+        });
+    }
+    let chosen = match (args.tolerance, args.level) {
+        (Some(tolerance), _) => {
+            let value = tolerance.resolve(diagonal);
+            Some(("tolerance", value, tree.approximate(value)?))
+        }
+        (None, Some(level)) => {
+            let level = u32::try_from(level).unwrap_or(u32::MAX);
+            Some(("level", f64::from(level), tree.level(level)?))
+        }
+        (None, None) => None,
+    };
+    if let Some(path) = &args.output {
+        let approximation = match &chosen {
+            Some((_, _, mesh)) => mesh.clone(),
+            None => tree.level(tree.depth())?,
+        };
+        sphaera::mesh::io::save(path, &approximation)
+            .with_context(|| format!("cannot write {}", path.display()))?;
+    }
+    let approximation = chosen.map(|(kind, value, approximation)| MeshApproximation {
+        kind,
+        value,
+        triangles: approximation.triangle_count(),
+        width: if kind == "tolerance" {
+            kept_width(&tree, |n| n.width > value)
+        } else {
+            kept_width(&tree, |n| f64::from(n.level) < value)
+        },
+    });
+    let report = MeshReport {
+        mesh: args.polygon.display().to_string(),
+        triangles: mesh.triangle_count(),
+        nodes: tree.nodes().len(),
+        roots: tree.roots().len(),
+        depth: tree.depth(),
+        diagonal,
+        levels,
+        approximation,
+        output: args.output.as_ref().map(|p| p.display().to_string()),
+        seconds: Seconds { load, build },
+    };
+    if args.print.json {
+        return print_json(&report);
+    }
+    println!(
+        "{}: {} triangles, {} nodes, {} root triangle(s), depth {}",
+        report.mesh,
+        thousands(report.triangles),
+        thousands(report.nodes),
+        report.roots,
+        report.depth
+    );
+    println!("built in {build:.3} s (read in {load:.3} s)");
+    println!("level  triangles  width (% of diagonal)");
+    for level in &report.levels {
+        println!(
+            "{:>5}  {:>9}  {:.4}",
+            level.level,
+            thousands(level.triangles),
+            100.0 * level.width / diagonal
+        );
+    }
+    if let Some(a) = &report.approximation {
+        println!(
+            "approximation ({} {}): {} triangles, width {:.4} % of the diagonal",
+            a.kind,
+            a.value,
+            thousands(a.triangles),
+            100.0 * a.width / diagonal
+        );
+    }
+    if let Some(output) = &report.output {
+        println!("wrote {output}");
+    }
+    Ok(())
 }
