@@ -171,9 +171,10 @@ fn in_disc(k: f64, power: f64, area: f64, slack: f64) -> bool {
     }
 }
 
-/// Width of the disc of bulge `k` on the side it bulges toward, `h` half the chord:
-/// `t + √(h² + t²)` with `t = k·h`, in a form without cancellation for negative `t`.
-fn bulge_width(k: f64, h: f64) -> f64 {
+/// Width of the disc (or ball) of bulge `k` on the side it bulges toward, `h` half the
+/// chord (or the circumradius): `t + √(h² + t²)` with `t = k·h`, in a form without
+/// cancellation for negative `t`.
+pub(crate) fn bulge_width(k: f64, h: f64) -> f64 {
     if k == f64::INFINITY {
         return f64::INFINITY;
     }

@@ -2,7 +2,7 @@
 //! validated; the root ball touching three vertices; shortest edge paths; and the patches
 //! paths cut the surface into.
 
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashMap, HashSet};
 
 use glam::DVec3;
 use sphaera_mesh::geometry::minimum_enclosing_ball_with_support;
@@ -204,7 +204,7 @@ impl GenusZeroSurface {
     #[must_use]
     pub fn shortest_path_within(&self, faces: &[u32], a: u32, b: u32) -> Vec<u32> {
         let triangles = self.mesh.triangles();
-        let mut edges = std::collections::HashSet::new();
+        let mut edges = HashSet::new();
         for &f in faces {
             let [x, y, z] = triangles[f as usize];
             for (u, v) in [(x, y), (y, z), (z, x)] {
@@ -261,34 +261,44 @@ impl GenusZeroSurface {
     /// first face.
     #[must_use]
     pub fn patches(&self, paths: &[&[u32]]) -> Vec<Vec<u32>> {
-        let mut cut = std::collections::HashSet::new();
+        let mut cut = HashSet::new();
         for path in paths {
             for pair in path.windows(2) {
                 cut.insert((pair[0].min(pair[1]), pair[0].max(pair[1])));
             }
         }
+        let all: Vec<u32> = (0..self.mesh.triangle_count() as u32).collect();
+        self.regions(&all, &cut).0
+    }
+
+    /// The regions of `faces` connected across edges not in `cut` (undirected, lower index
+    /// first): each region's faces ascending, regions ordered by their first face, and
+    /// each face's region.
+    pub(crate) fn regions(
+        &self,
+        faces: &[u32],
+        cut: &HashSet<(u32, u32)>,
+    ) -> (Vec<Vec<u32>>, HashMap<u32, u32>) {
         let triangles = self.mesh.triangles();
-        // Faces by undirected edge, to walk across uncut edges.
-        let mut by_edge: std::collections::HashMap<(u32, u32), Vec<u32>> =
-            std::collections::HashMap::new();
-        for (f, &[a, b, c]) in triangles.iter().enumerate() {
+        let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
+        for &f in faces {
+            let [a, b, c] = triangles[f as usize];
             for (u, v) in [(a, b), (b, c), (c, a)] {
-                by_edge
-                    .entry((u.min(v), u.max(v)))
-                    .or_default()
-                    .push(f as u32);
+                by_edge.entry((u.min(v), u.max(v))).or_default().push(f);
             }
         }
-        let mut patch_of = vec![u32::MAX; triangles.len()];
-        let mut patches = Vec::new();
-        for start in 0..triangles.len() {
-            if patch_of[start] != u32::MAX {
+        let mut sorted = faces.to_vec();
+        sorted.sort_unstable();
+        let mut region_of: HashMap<u32, u32> = HashMap::new();
+        let mut regions = Vec::new();
+        for start in sorted {
+            if region_of.contains_key(&start) {
                 continue;
             }
-            let id = patches.len() as u32;
-            let mut faces = vec![start as u32];
-            patch_of[start] = id;
-            let mut stack = vec![start as u32];
+            let id = regions.len() as u32;
+            region_of.insert(start, id);
+            let mut members = vec![start];
+            let mut stack = vec![start];
             while let Some(f) = stack.pop() {
                 let [a, b, c] = triangles[f as usize];
                 for (u, v) in [(a, b), (b, c), (c, a)] {
@@ -297,17 +307,17 @@ impl GenusZeroSurface {
                         continue;
                     }
                     for &g in &by_edge[&key] {
-                        if patch_of[g as usize] == u32::MAX {
-                            patch_of[g as usize] = id;
-                            faces.push(g);
+                        if let std::collections::hash_map::Entry::Vacant(e) = region_of.entry(g) {
+                            e.insert(id);
+                            members.push(g);
                             stack.push(g);
                         }
                     }
                 }
             }
-            faces.sort_unstable();
-            patches.push(faces);
+            members.sort_unstable();
+            regions.push(members);
         }
-        patches
+        (regions, region_of)
     }
 }

@@ -8,6 +8,7 @@ use glam::DVec3;
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::HalError;
+use crate::lens::bulge_width;
 use crate::surface3::{GenusZeroSurface, RootBall};
 
 /// Angles below this are not split: such a triangle is split at its sides instead (the
@@ -45,22 +46,6 @@ impl Bound3 {
             bulge_width(self.above, radius),
             bulge_width(-self.below, radius),
         )
-    }
-}
-
-/// Width of the ball of bulge `k` on the side it bulges toward, `r` the circumradius.
-fn bulge_width(k: f64, r: f64) -> f64 {
-    if k == f64::INFINITY {
-        return f64::INFINITY;
-    }
-    if k == f64::NEG_INFINITY || r == 0.0 {
-        return 0.0;
-    }
-    let root = (1.0 + k * k).sqrt();
-    if k >= 0.0 {
-        r * (k + root)
-    } else {
-        r / (root - k)
     }
 }
 
@@ -183,7 +168,7 @@ impl HalTree3 {
                 }
             }
         }
-        // Regions: faces connected across uncut edges, within `faces`.
+        let (regions, region_of) = self.surface.regions(faces, &cut);
         let mut by_edge: HashMap<(u32, u32), Vec<u32>> = HashMap::new();
         let mut by_directed: HashMap<(u32, u32), u32> = HashMap::new();
         for &f in faces {
@@ -192,35 +177,6 @@ impl HalTree3 {
                 by_edge.entry((u.min(v), u.max(v))).or_default().push(f);
                 by_directed.insert((u, v), f);
             }
-        }
-        let mut region_of: HashMap<u32, u32> = HashMap::new();
-        let mut regions: Vec<Vec<u32>> = Vec::new();
-        for &start in faces {
-            if region_of.contains_key(&start) {
-                continue;
-            }
-            let id = regions.len() as u32;
-            region_of.insert(start, id);
-            let mut members = vec![start];
-            let mut stack = vec![start];
-            while let Some(f) = stack.pop() {
-                let [a, b, c] = triangles[f as usize];
-                for (u, v) in [(a, b), (b, c), (c, a)] {
-                    let key = (u.min(v), u.max(v));
-                    if cut.contains(&key) {
-                        continue;
-                    }
-                    for &g in &by_edge[&key] {
-                        if let std::collections::hash_map::Entry::Vacant(e) = region_of.entry(g) {
-                            e.insert(id);
-                            members.push(g);
-                            stack.push(g);
-                        }
-                    }
-                }
-            }
-            members.sort_unstable();
-            regions.push(members);
         }
         // Every edge of a candidate's side paths votes for the region to its left (the
         // face holding the directed edge); each region goes to the candidate with the most
