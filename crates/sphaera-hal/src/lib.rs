@@ -11,8 +11,10 @@
 //! [`GenusZeroSurface`] (validation, the root ball touching three vertices, deterministic
 //! shortest edge paths, the patches they cut) and [`HalTree3`] (Algorithm 2: splits at
 //! `v_q`/`v_r` or at sides below π/4 propagated to the neighbours, Definition 5's balls,
-//! levels and adaptive approximation). Not yet: crack-free extraction where coalesced
-//! triangles are discarded, 3D point inclusion and intersection.
+//! levels and adaptive approximation, point inclusion with the bounds culling a segment's
+//! crossing count). Not yet: crack-free extraction where coalesced triangles are
+//! discarded (so point inclusion does not yet replace patches by their triangles, as the
+//! paper's section 5.1 does), and 3D intersection.
 //!
 //! # Quick start
 //!
@@ -84,6 +86,7 @@ mod error;
 mod lens;
 mod polyline;
 mod query2;
+mod query3;
 mod surface3;
 mod tree2;
 mod tree3;
@@ -92,6 +95,7 @@ pub use error::HalError;
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
 pub use polyline::{Polyline2, parse_points};
 pub use query2::{Location, contains_brute, intersects_brute, ray_crossing, segments_intersect};
+pub use query3::contains3_brute;
 pub use surface3::{GenusZeroSurface, RootBall};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};
 pub use tree3::{Bound3, HalTree3, Node3, SMALLEST_SPLIT_ANGLE};

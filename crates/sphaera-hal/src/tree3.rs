@@ -50,7 +50,7 @@ impl Bound3 {
 }
 
 /// Circumcentre, circumradius and unit normal of a triangle (`None` when degenerate).
-fn circle([a, b, c]: [DVec3; 3]) -> Option<(DVec3, f64, DVec3)> {
+pub(crate) fn circle([a, b, c]: [DVec3; 3]) -> Option<(DVec3, f64, DVec3)> {
     let (ab, ac) = (b - a, c - a);
     let normal = ab.cross(ac);
     let area2 = normal.length_squared();
@@ -664,6 +664,12 @@ impl HalTree3 {
     /// The shortest edge path from `a` to `b` through the vertices of the patch `faces`.
     fn patch_path(&self, faces: &[u32], a: u32, b: u32) -> Vec<u32> {
         self.surface.shortest_path_within(faces, a, b)
+    }
+
+    /// The mesh the tree was built on.
+    #[must_use]
+    pub fn mesh(&self) -> &TriMesh {
+        self.surface.mesh()
     }
 
     /// The nodes.

@@ -169,3 +169,52 @@ fn adaptive_approximations_shrink_with_the_tolerance_and_torus_is_refused() {
         Err(sphaera_hal::HalError::NotGenusZero { genus: 1 })
     ));
 }
+
+/// Point inclusion equals brute force (the same segments, exact predicates) and, away
+/// from the surface, the winding number; vertices and face centres are on the boundary.
+#[test]
+fn point_inclusion_equals_brute_force_and_the_winding_number() {
+    use sphaera_hal::{Location, contains3_brute};
+    use sphaera_tests::random::SplitMix64;
+    let mut rng = SplitMix64::new(31);
+    for (name, mesh) in meshes() {
+        let tree = HalTree3::build(&mesh).unwrap();
+        let surface = sphaera_mesh::Surface::new(&mesh).unwrap();
+        let (lo, hi) = mesh
+            .positions()
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
+                (lo.min(p), hi.max(p))
+            });
+        let mut queries: Vec<DVec3> = (0..300)
+            .map(|_| {
+                let t = DVec3::new(rng.unit(), rng.unit(), rng.unit());
+                lo + (hi - lo) * (t * 1.4 - DVec3::splat(0.2))
+            })
+            .collect();
+        queries.extend(mesh.positions().iter().take(20));
+        for t in mesh.triangles().iter().take(20) {
+            let [a, b, c] = t.map(|v| mesh.positions()[v as usize]);
+            queries.push((a + b + c) / 3.0);
+        }
+        for (k, &x) in queries.iter().enumerate() {
+            let answer = tree.contains(x);
+            assert_eq!(answer, contains3_brute(&mesh, x), "{name}: {x}");
+            if k < 300 {
+                let near = surface.closest(x).unwrap().distance < 1e-6;
+                if !near {
+                    let inside = surface.is_inside_certified(x);
+                    assert_eq!(
+                        answer == Location::Inside,
+                        inside,
+                        "{name}: {x} against the winding number"
+                    );
+                }
+            }
+        }
+        // Vertices lie on the surface.
+        for &v in mesh.positions().iter().take(20) {
+            assert_eq!(tree.contains(v), Location::Boundary, "{name}: vertex {v}");
+        }
+    }
+}
