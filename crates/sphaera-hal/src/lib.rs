@@ -12,9 +12,10 @@
 //! shortest edge paths, the patches they cut) and [`HalTree3`] (Algorithm 2: splits at
 //! `v_q`/`v_r` or at sides below π/4 propagated to the neighbours, Definition 5's balls,
 //! levels and adaptive approximation, point inclusion with the bounds culling a segment's
-//! crossing count). Not yet: crack-free extraction where coalesced triangles are
+//! crossing count, intersection detection under a similarity with the paper's three
+//! ball-pair cases). Not yet: crack-free extraction where coalesced triangles are
 //! discarded (so point inclusion does not yet replace patches by their triangles, as the
-//! paper's section 5.1 does), and 3D intersection.
+//! paper's section 5.1 does).
 //!
 //! # Quick start
 //!
@@ -83,6 +84,7 @@
 //! localization* (Utrecht University).
 
 mod error;
+mod intersect3;
 mod lens;
 mod polyline;
 mod query2;
@@ -92,6 +94,7 @@ mod tree2;
 mod tree3;
 
 pub use error::HalError;
+pub use intersect3::{intersects3_brute, triangles_meet};
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
 pub use polyline::{Polyline2, parse_points};
 pub use query2::{Location, contains_brute, intersects_brute, ray_crossing, segments_intersect};

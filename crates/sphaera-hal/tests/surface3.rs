@@ -195,3 +195,52 @@ fn the_root_paths_cut_the_surface_into_one_or_two_patches() {
         assert_eq!(all, (0..mesh.triangle_count() as u32).collect::<Vec<_>>());
     }
 }
+
+#[test]
+fn triangles_meet_exactly() {
+    use sphaera_hal::triangles_meet;
+    let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+    // Crossing through the interior.
+    assert!(triangles_meet(
+        t,
+        [
+            DVec3::new(0.2, 0.2, -1.0),
+            DVec3::new(0.2, 0.2, 1.0),
+            DVec3::new(0.3, 0.1, 1.0)
+        ]
+    ));
+    // Touching at a vertex, at an edge point, coplanar overlap, coplanar apart, parallel.
+    assert!(triangles_meet(
+        t,
+        [
+            DVec3::X,
+            DVec3::new(2.0, 0.0, 1.0),
+            DVec3::new(2.0, 1.0, 0.0)
+        ]
+    ));
+    assert!(triangles_meet(
+        t,
+        [
+            DVec3::new(0.5, 0.0, 0.0),
+            DVec3::new(0.5, -1.0, 1.0),
+            DVec3::new(0.5, -1.0, -1.0)
+        ]
+    ));
+    assert!(triangles_meet(
+        t,
+        [
+            DVec3::new(0.1, 0.1, 0.0),
+            DVec3::new(2.0, 0.1, 0.0),
+            DVec3::new(0.1, 2.0, 0.0)
+        ]
+    ));
+    assert!(!triangles_meet(
+        t,
+        [
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.0),
+            DVec3::new(1.0, 2.0, 0.0)
+        ]
+    ));
+    assert!(!triangles_meet(t, t.map(|p| p + DVec3::Z)));
+}

@@ -218,3 +218,57 @@ fn point_inclusion_equals_brute_force_and_the_winding_number() {
         }
     }
 }
+
+/// Intersection of two placed trees equals brute force on the mapped mesh: apart,
+/// overlapping, nested (one solid inside the other), and touching exactly.
+#[test]
+fn placed_intersection_equals_brute_force() {
+    use sphaera_hal::intersects3_brute;
+    use sphaera_mesh::geometry::Similarity;
+    use sphaera_mesh::glam::{DAffine3, DQuat, EulerRot};
+    use sphaera_tests::random::SplitMix64;
+    let a = shapes::sphere(1.0, 8).unwrap();
+    let b = shapes::cube(1.0, 2).unwrap();
+    let (ta, tb) = (HalTree3::build(&a).unwrap(), HalTree3::build(&b).unwrap());
+    let mut rng = SplitMix64::new(41);
+    let mut outcomes = [0_usize; 2];
+    for k in 0..40 {
+        let rotation = DQuat::from_euler(
+            EulerRot::XYZ,
+            rng.range(0.0, 6.3),
+            rng.range(0.0, 6.3),
+            rng.range(0.0, 6.3),
+        );
+        let reach = if k < 30 { 2.5 } else { 0.3 };
+        let shift = DVec3::new(
+            rng.range(-reach, reach),
+            rng.range(-reach, reach),
+            rng.range(-reach, reach),
+        );
+        let scale = if k % 5 == 0 { 0.2 } else { 1.0 };
+        let placement = Similarity::new(DAffine3::from_scale_rotation_translation(
+            DVec3::splat(scale),
+            rotation,
+            shift,
+        ))
+        .unwrap();
+        let mapped = TriMesh::new(
+            b.positions().iter().map(|&p| placement.point(p)).collect(),
+            b.triangles().to_vec(),
+        )
+        .unwrap();
+        let expected = intersects3_brute(&a, &mapped);
+        assert_eq!(ta.intersects(&tb, &placement), expected, "placement {k}");
+        outcomes[usize::from(expected)] += 1;
+    }
+    assert!(outcomes[0] > 0 && outcomes[1] > 0, "{outcomes:?}");
+    // Touching: the cube face against a copy moved by its size.
+    let touching = Similarity::from_translation(DVec3::X).unwrap();
+    let moved = TriMesh::new(
+        b.positions().iter().map(|&p| p + DVec3::X).collect(),
+        b.triangles().to_vec(),
+    )
+    .unwrap();
+    assert!(intersects3_brute(&b, &moved));
+    assert!(tb.intersects(&tb, &touching));
+}

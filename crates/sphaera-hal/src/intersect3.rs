@@ -1,0 +1,285 @@
+//! Intersection detection of two 3D HAL trees (section 5.2 of the paper), one placed
+//! against the other by a similarity, with exact triangle tests at the leaves; and its
+//! brute-force reference.
+
+use glam::DVec3;
+use sphaera_mesh::TriMesh;
+use sphaera_mesh::geometry::Similarity;
+
+use crate::tree3::circle;
+use crate::{HalTree3, Location, Node3};
+
+fn coord(p: DVec3) -> robust::Coord3D<f64> {
+    robust::Coord3D {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    }
+}
+
+fn o3(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+    robust::orient3d(coord(a), coord(b), coord(c), coord(d))
+}
+
+/// The 2D coordinates of `p` with the axis `drop` removed.
+fn flat(p: DVec3, drop: usize) -> robust::Coord<f64> {
+    let (x, y) = match drop {
+        0 => (p.y, p.z),
+        1 => (p.z, p.x),
+        _ => (p.x, p.y),
+    };
+    robust::Coord { x, y }
+}
+
+/// The axis along which the normal of `t` is largest (dropped to project it).
+fn dominant_axis(t: [DVec3; 3]) -> usize {
+    let n = (t[1] - t[0]).cross(t[2] - t[0]).abs();
+    if n.x >= n.y && n.x >= n.z {
+        0
+    } else if n.y >= n.z {
+        1
+    } else {
+        2
+    }
+}
+
+/// Whether two coplanar triangles share a point (exact, in their common projection).
+fn coplanar_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
+    let drop = dominant_axis(t);
+    let a = t.map(|p| flat(p, drop));
+    let b = u.map(|p| flat(p, drop));
+    let o = robust::orient2d;
+    let segments = |p: robust::Coord<f64>,
+                    q: robust::Coord<f64>,
+                    r: robust::Coord<f64>,
+                    s: robust::Coord<f64>| {
+        let within = |p: robust::Coord<f64>, q: robust::Coord<f64>, r: robust::Coord<f64>| {
+            r.x >= p.x.min(q.x) && r.x <= p.x.max(q.x) && r.y >= p.y.min(q.y) && r.y <= p.y.max(q.y)
+        };
+        let (d1, d2, d3, d4) = (o(p, q, r), o(p, q, s), o(r, s, p), o(r, s, q));
+        (((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+            && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)))
+            || (d1 == 0.0 && within(p, q, r))
+            || (d2 == 0.0 && within(p, q, s))
+            || (d3 == 0.0 && within(r, s, p))
+            || (d4 == 0.0 && within(r, s, q))
+    };
+    let inside = |t: [robust::Coord<f64>; 3], q: robust::Coord<f64>| {
+        let d = [o(t[0], t[1], q), o(t[1], t[2], q), o(t[2], t[0], q)];
+        d.iter().all(|&v| v >= 0.0) || d.iter().all(|&v| v <= 0.0)
+    };
+    for i in 0..3 {
+        for j in 0..3 {
+            if segments(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]) {
+                return true;
+            }
+        }
+    }
+    inside(a, b[0]) || inside(b, a[0])
+}
+
+/// Whether the closed segment `p q` meets the closed triangle `t` (exact).
+fn segment_meets_triangle(p: DVec3, q: DVec3, t: [DVec3; 3]) -> bool {
+    let [a, b, c] = t;
+    let (sp, sq) = (o3(a, b, c, p), o3(a, b, c, q));
+    if (sp > 0.0 && sq > 0.0) || (sp < 0.0 && sq < 0.0) {
+        return false;
+    }
+    if sp == 0.0 && sq == 0.0 {
+        // In the plane: a degenerate triangle on the segment.
+        return coplanar_meet(t, [p, q, q]);
+    }
+    let e = [o3(p, q, a, b), o3(p, q, b, c), o3(p, q, c, a)];
+    e.iter().all(|&v| v >= 0.0) || e.iter().all(|&v| v <= 0.0)
+}
+
+/// Whether two closed triangles share a point (exact orientation tests): coplanar ones in
+/// their plane, others when an edge of one meets the other.
+#[must_use]
+pub fn triangles_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
+    let side = |t: [DVec3; 3], p: DVec3| o3(t[0], t[1], t[2], p);
+    let su = u.map(|p| side(t, p));
+    if su.iter().all(|&v| v > 0.0) || su.iter().all(|&v| v < 0.0) {
+        return false;
+    }
+    let st = t.map(|p| side(u, p));
+    if st.iter().all(|&v| v > 0.0) || st.iter().all(|&v| v < 0.0) {
+        return false;
+    }
+    if su.iter().all(|&v| v == 0.0) {
+        return coplanar_meet(t, u);
+    }
+    (0..3).any(|i| segment_meets_triangle(t[i], t[(i + 1) % 3], u))
+        || (0..3).any(|i| segment_meets_triangle(u[i], u[(i + 1) % 3], t))
+}
+
+/// Whether two closed meshes intersect, by brute force: the reference for
+/// [`HalTree3::intersects`]. Their surfaces share a point, or one holds a vertex of the
+/// other (by [`crate::contains3_brute`]).
+#[must_use]
+pub fn intersects3_brute(first: &TriMesh, second: &TriMesh) -> bool {
+    let corners = |m: &TriMesh, t: [u32; 3]| t.map(|v| m.positions()[v as usize]);
+    for &t in first.triangles() {
+        for &u in second.triangles() {
+            if triangles_meet(corners(first, t), corners(second, u)) {
+                return true;
+            }
+        }
+    }
+    let within = |m: &TriMesh, p: DVec3| crate::contains3_brute(m, p) != Location::Outside;
+    within(second, first.positions()[first.triangles()[0][0] as usize])
+        || within(first, second.positions()[second.triangles()[0][0] as usize])
+}
+
+/// A region of space bounding part of a surface: a ball, a closed half-space
+/// `(z − point)·normal ≥ 0`, or everything.
+#[derive(Clone, Copy, Debug)]
+enum Region {
+    Ball(DVec3, f64),
+    HalfSpace(DVec3, DVec3),
+    Everything,
+}
+
+impl Region {
+    /// Whether the two regions may meet (false only when certainly apart).
+    fn meets(self, other: Self, slack: f64) -> bool {
+        match (self, other) {
+            (Self::Everything, _) | (_, Self::Everything) => true,
+            (Self::Ball(c, r), Self::Ball(d, s)) => c.distance(d) <= r + s + slack,
+            (Self::Ball(c, r), Self::HalfSpace(p, n))
+            | (Self::HalfSpace(p, n), Self::Ball(c, r)) => (c - p).dot(n) >= -r - slack,
+            (Self::HalfSpace(p, n), Self::HalfSpace(q, m)) => {
+                (n + m).length() > 1e-12 || (q - p).dot(n) >= -slack
+            }
+        }
+    }
+}
+
+/// A node's bounding volume in placed coordinates: the two regions, and whether it is
+/// their union (else their intersection).
+#[derive(Clone, Copy, Debug)]
+struct Volume {
+    regions: [Region; 2],
+    union: bool,
+}
+
+impl Volume {
+    /// Whether two volumes may meet (the paper's three cases: ∩/∩, ∪/∪, ∩/∪).
+    fn meets(&self, other: &Self, slack: f64) -> bool {
+        let pair = |i: usize, j: usize| self.regions[i].meets(other.regions[j], slack);
+        match (self.union, other.union) {
+            (false, false) => pair(0, 0) && pair(0, 1) && pair(1, 0) && pair(1, 1),
+            (true, true) => pair(0, 0) || pair(0, 1) || pair(1, 0) || pair(1, 1),
+            (true, false) => (pair(0, 0) && pair(0, 1)) || (pair(1, 0) && pair(1, 1)),
+            (false, true) => (pair(0, 0) && pair(1, 0)) || (pair(0, 1) && pair(1, 1)),
+        }
+    }
+}
+
+/// The volume of `node` with its corners mapped by `map`.
+fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
+    let corners = node
+        .corners
+        .map(|v| map.point(mesh.positions()[v as usize]));
+    let Some(bound) = node.bound else {
+        // A leaf: the ball around its face.
+        let centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+        let radius = corners
+            .iter()
+            .map(|c| c.distance(centre))
+            .fold(0.0, f64::max);
+        let ball = Region::Ball(centre, radius);
+        return Volume {
+            regions: [ball, ball],
+            union: false,
+        };
+    };
+    let Some((centre, radius, normal)) = circle(corners) else {
+        return Volume {
+            regions: [Region::Everything, Region::Everything],
+            union: false,
+        };
+    };
+    let region = |k: f64| {
+        if k == f64::INFINITY {
+            Region::HalfSpace(centre, normal)
+        } else if k == f64::NEG_INFINITY {
+            Region::HalfSpace(centre, -normal)
+        } else {
+            Region::Ball(
+                centre + normal * (k * radius),
+                radius * (1.0 + k * k).sqrt(),
+            )
+        }
+    };
+    Volume {
+        regions: [region(bound.above), region(bound.below)],
+        union: !bound.is_intersection(),
+    }
+}
+
+impl HalTree3 {
+    /// Intersection detection (section 5.2) with `other` placed by `placement` (mapping
+    /// `other`'s coordinates into this tree's): pairs of nodes whose bounding volumes may
+    /// meet are refined, the wider first, down to pairs of original faces tested exactly;
+    /// when the surfaces are apart, the solids still intersect if one holds a vertex of the
+    /// other. Equal to [`intersects3_brute`] on `other`'s mesh mapped by `placement`.
+    #[must_use]
+    pub fn intersects(&self, other: &Self, placement: &Similarity) -> bool {
+        let (mine, theirs) = (self.mesh(), other.mesh());
+        let identity = Similarity::IDENTITY;
+        let reach = |m: &TriMesh, s: &Similarity| {
+            m.positions()
+                .iter()
+                .fold(0.0_f64, |r, &p| r.max(s.point(p).abs().max_element()))
+        };
+        let slack =
+            1e-9 * (reach(mine, &identity) + reach(theirs, placement)).max(f64::MIN_POSITIVE);
+        let mut stack: Vec<(u32, u32)> = Vec::new();
+        for &a in self.roots() {
+            for &b in other.roots() {
+                stack.push((a, b));
+            }
+        }
+        while let Some((a, b)) = stack.pop() {
+            let (na, nb) = (&self.nodes()[a as usize], &other.nodes()[b as usize]);
+            let (va, vb) = (volume(na, mine, &identity), volume(nb, theirs, placement));
+            if !va.meets(&vb, slack) {
+                continue;
+            }
+            match (na.children.is_empty(), nb.children.is_empty()) {
+                (true, true) => {
+                    for &f in &nb.faces {
+                        let u = theirs.triangles()[f as usize]
+                            .map(|v| placement.point(theirs.positions()[v as usize]));
+                        for &g in &na.faces {
+                            let t =
+                                mine.triangles()[g as usize].map(|v| mine.positions()[v as usize]);
+                            if triangles_meet(t, u) {
+                                return true;
+                            }
+                        }
+                    }
+                }
+                (false, true) => stack.extend(na.children.iter().map(|&c| (c, b))),
+                (true, false) => stack.extend(nb.children.iter().map(|&c| (a, c))),
+                (false, false) => {
+                    if na.width >= nb.width * placement.scale() {
+                        stack.extend(na.children.iter().map(|&c| (c, b)));
+                    } else {
+                        stack.extend(nb.children.iter().map(|&c| (a, c)));
+                    }
+                }
+            }
+        }
+        // Surfaces apart: one solid inside the other?
+        let first = mine.positions()[mine.triangles()[0][0] as usize];
+        let second = placement.point(theirs.positions()[theirs.triangles()[0][0] as usize]);
+        if self.contains(second) != Location::Outside {
+            return true;
+        }
+        let back = Similarity::new(placement.affine().inverse())
+            .map_or(first, |inverse| inverse.point(first));
+        other.contains(back) != Location::Outside
+    }
+}
