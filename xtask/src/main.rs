@@ -259,6 +259,9 @@ const CHARTS: &[(&str, Coverage)] = &[
             "polygons/netherlands.txt",
             "polygons/norway.txt",
             "polygons/americas.txt",
+            "spot.obj",
+            "bunny_lowres.obj",
+            "fandisk.obj",
         ]),
     ),
     (

@@ -5,7 +5,8 @@
 //!   bounding areas of an approximation's non-original edges, in % of the bounding-box
 //!   diagonal) against the approximation's vertices, for every uniform level and for the
 //!   adaptive approximation at tolerances `diagonal · 2⁻ᵏ`, `k = 1..=20` (the paper's
-//!   Figs. 6, 13, 14), on the Netherlands, Norway and the Americas.
+//!   Figs. 6, 13, 14), on the Netherlands, Norway and the Americas, and in 3D (triangles,
+//!   Definition 6's widths) on the genus-0 meshes of [`MESHES_3D`].
 //! - **`hal_query_speed`**: microseconds per point-in-polygon query against the vertex
 //!   count, for the HAL tree, Ballard's strip tree and an axis-aligned box tree over the
 //!   edges ([`peers`]), the brute-force crossing test and `geo`'s `Contains`, on every
@@ -34,7 +35,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use geo::{Contains, LineString, Point, Polygon};
-use sphaera::hal::{HalTree2, Location, Polyline2, contains_brute};
+use sphaera::hal::{HalTree2, HalTree3, Location, Polyline2, contains_brute};
 use sphaera::mesh::glam::DVec2;
 use sphaera_tests::random::SplitMix64;
 
@@ -67,6 +68,9 @@ pub const SEED: u64 = 17;
 /// Vertex visits the linear-time methods (brute force, geo) may spend per outline.
 pub const LINEAR_WORK: usize = 400_000_000;
 
+/// The genus-0 meshes of `hal_width_vs_size`'s 3D panels (the paper's Figs. 13 and 14).
+pub const MESHES_3D: &[&str] = &["spot.obj", "bunny_lowres.obj", "fandisk.obj"];
+
 /// Timing runs per measurement (the best is kept).
 pub const RUNS: usize = 3;
 
@@ -88,7 +92,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
         let refined = refine(americas, 16)?;
         outlines.push(("polygons/americas.txt refined ×16".to_owned(), refined));
     }
-    width_vs_size(&outlines, out)?;
+    width_vs_size(data, &outlines, out)?;
     query_speed(&outlines, out)?;
     strip_tree(&outlines, out)
 }
@@ -119,6 +123,22 @@ fn style(i: usize, marker: Marker, line: bool) -> Style {
     }
 }
 
+/// The largest width among the triangles a 3D approximation keeps (reached through refined
+/// parents, not refined themselves).
+fn kept_width3(tree: &HalTree3, refine: impl Fn(&sphaera::hal::Node3) -> bool) -> f64 {
+    let mut stack: Vec<u32> = tree.roots().to_vec();
+    let mut largest: f64 = 0.0;
+    while let Some(n) = stack.pop() {
+        let node = &tree.nodes()[n as usize];
+        if node.children.is_empty() || !refine(node) {
+            largest = largest.max(node.width);
+        } else {
+            stack.extend(node.children.iter().copied());
+        }
+    }
+    largest
+}
+
 /// One panel per `(title, series)`, with the same axes.
 fn panels<'a>(
     data: &'a [(String, Vec<StyledSeries>)],
@@ -141,7 +161,7 @@ fn panels<'a>(
 }
 
 /// `hal_width_vs_size`.
-fn width_vs_size(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
+fn width_vs_size(data: &Path, outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
     let chosen = [
         "polygons/netherlands.txt",
         "polygons/norway.txt",
@@ -198,6 +218,48 @@ fn width_vs_size(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
             ],
         ));
     }
+    // 3D (the paper's Figs. 13 and 14): triangles instead of vertices.
+    for file in MESHES_3D {
+        let Some(mesh) = crate::experiments::load_or_skip(data, file)? else {
+            continue;
+        };
+        let tree = HalTree3::build(&mesh).with_context(|| format!("no HAL tree for {file}"))?;
+        let diagonal = mesh.bounding_box_diagonal();
+        let mut uniform = Series::new("uniform levels");
+        for level in 0..=tree.depth() {
+            let triangles = tree.level(level)?.triangle_count();
+            let width = 100.0 * kept_width3(&tree, |n| n.level < level) / diagonal;
+            uniform.points.push((triangles as f64, width));
+            rows.push(vec![
+                (*file).to_owned(),
+                "uniform".into(),
+                level.to_string(),
+                triangles.to_string(),
+                format!("{width:.6}"),
+            ]);
+        }
+        let mut adaptive = Series::new("adaptive");
+        for k in 1..=20 {
+            let tolerance = diagonal * (-f64::from(k)).exp2();
+            let triangles = tree.approximate(tolerance)?.triangle_count();
+            let width = 100.0 * kept_width3(&tree, |n| n.width > tolerance) / diagonal;
+            adaptive.points.push((triangles as f64, width));
+            rows.push(vec![
+                (*file).to_owned(),
+                "adaptive".into(),
+                format!("2^-{k}"),
+                triangles.to_string(),
+                format!("{width:.6}"),
+            ]);
+        }
+        panels_data.push((
+            format!("{file} ({} triangles)", mesh.triangle_count()),
+            vec![
+                StyledSeries::new(uniform, style(0, Marker::Circle, true)),
+                StyledSeries::new(adaptive, style(1, Marker::Square, true)),
+            ],
+        ));
+    }
     if panels_data.is_empty() {
         bail!("no outline found for hal_width_vs_size");
     }
@@ -214,7 +276,7 @@ fn width_vs_size(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
     )?;
     let panels = panels(
         &panels_data,
-        "vertices of the approximation",
+        "vertices (2D) or triangles (3D) of the approximation",
         "covering width, % of diagonal",
         &XAxis::Log,
     );
