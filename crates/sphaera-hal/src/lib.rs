@@ -67,7 +67,7 @@
 //! # Performance, and where the scheme is weak
 //!
 //! Measured on the Natural Earth outlines (one thread; `docs/benchmarks.md`, "HAL trees
-//! in 2D"): point inclusion takes 0.5 µs on the 66k-vertex Americas, 870 times faster
+//! in 2D"): point inclusion takes 0.5 µs on the 66k-vertex Americas, 850 times faster
 //! than the brute-force crossing test and 100 times faster than `geo`'s `contains`. The
 //! 1M-vertex outline builds in 0.57 s. Ballard's strip tree, measured in the same run, is
 //! faster still (0.2 µs), and its strips are far tighter per depth. A lens must pass
