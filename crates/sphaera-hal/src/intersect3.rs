@@ -115,9 +115,14 @@ pub fn triangles_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
 
 /// Whether two closed meshes intersect, by brute force: the reference for
 /// [`HalTree3::intersects`]. Their surfaces share a point, or one holds a vertex of the
-/// other (by [`crate::contains3_brute`]).
+/// other (by [`crate::contains3_brute`]). A mesh without triangles meets nothing.
 #[must_use]
 pub fn intersects3_brute(first: &TriMesh, second: &TriMesh) -> bool {
+    let (Some(&[f, _, _]), Some(&[g, _, _])) =
+        (first.triangles().first(), second.triangles().first())
+    else {
+        return false;
+    };
     let corners = |m: &TriMesh, t: [u32; 3]| t.map(|v| m.positions()[v as usize]);
     for &t in first.triangles() {
         for &u in second.triangles() {
@@ -127,8 +132,7 @@ pub fn intersects3_brute(first: &TriMesh, second: &TriMesh) -> bool {
         }
     }
     let within = |m: &TriMesh, p: DVec3| crate::contains3_brute(m, p) != Location::Outside;
-    within(second, first.positions()[first.triangles()[0][0] as usize])
-        || within(first, second.positions()[second.triangles()[0][0] as usize])
+    within(second, first.positions()[f as usize]) || within(first, second.positions()[g as usize])
 }
 
 /// A region of space bounding part of a surface: a ball, a closed half-space
@@ -272,7 +276,8 @@ impl HalTree3 {
                 }
             }
         }
-        // Surfaces apart: one solid inside the other?
+        // Surfaces apart: one solid inside the other? (A tree's mesh was checked closed,
+        // so it has a triangle.)
         let first = mine.positions()[mine.triangles()[0][0] as usize];
         let second = placement.point(theirs.positions()[theirs.triangles()[0][0] as usize]);
         if self.contains(second) != Location::Outside {

@@ -95,6 +95,14 @@ fn on_triangle(t: [DVec3; 3], x: DVec3) -> bool {
     (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0)
 }
 
+/// The ball the segments start from and reach beyond: the mesh's bounding box's centre
+/// and half diagonal (the same for the tree and the brute force, so both shoot the same
+/// segments).
+fn segment_frame(mesh: &TriMesh) -> (DVec3, f64) {
+    let bounds = mesh.bounding_box();
+    (bounds.center(), 0.5 * bounds.diagonal())
+}
+
 /// The far end of the segment along `direction`: beyond a ball around the mesh.
 fn far_end(x: DVec3, direction: [f64; 3], centre: DVec3, radius: f64) -> DVec3 {
     let reach = 2.0 * (radius + x.distance(centre)) + 1.0;
@@ -105,13 +113,7 @@ fn far_end(x: DVec3, direction: [f64; 3], centre: DVec3, radius: f64) -> DVec3 {
 /// (the same segments and exact predicates). `mesh` must be closed.
 #[must_use]
 pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Location {
-    let (lo, hi) = mesh
-        .positions()
-        .iter()
-        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
-    let (centre, radius) = ((lo + hi) * 0.5, 0.5 * lo.distance(hi));
+    let (centre, radius) = segment_frame(mesh);
     'directions: for direction in DIRECTIONS {
         let y = far_end(x, direction, centre, radius);
         let mut inside = false;
@@ -175,12 +177,7 @@ impl HalTree3 {
         }
         let mesh = self.mesh();
         let positions = mesh.positions();
-        let (lo, hi) = positions
-            .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
-                (lo.min(p), hi.max(p))
-            });
-        let (centre, radius) = ((lo + hi) * 0.5, 0.5 * lo.distance(hi));
+        let (centre, radius) = segment_frame(mesh);
         'directions: for direction in DIRECTIONS {
             let y = far_end(x, direction, centre, radius);
             let mut inside = false;

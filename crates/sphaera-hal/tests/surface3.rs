@@ -244,3 +244,21 @@ fn triangles_meet_exactly() {
     ));
     assert!(!triangles_meet(t, t.map(|p| p + DVec3::Z)));
 }
+
+#[test]
+fn brute_references_take_empty_meshes() {
+    use sphaera_hal::{Location, contains3_brute, intersects3_brute};
+    let empty = TriMesh::default();
+    assert!(!intersects3_brute(&empty, &tetrahedron()));
+    assert_eq!(contains3_brute(&empty, DVec3::ZERO), Location::Outside);
+    assert!(matches!(
+        sphaera_hal::HalTree3::build(&empty),
+        Err(HalError::NotClosed { .. })
+    ));
+    // One triangle: open.
+    let one = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
+    assert!(matches!(
+        sphaera_hal::HalTree3::build(&one),
+        Err(HalError::NotClosed { boundary_edges: 3 })
+    ));
+}
