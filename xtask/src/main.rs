@@ -280,6 +280,10 @@ const CHARTS: &[(&str, Coverage)] = &[
         "hal_vs_strip_tree",
         Coverage::Only(&["polygons/netherlands.txt", "polygons/norway.txt"]),
     ),
+    (
+        "hal_vs_simplify",
+        Coverage::Only(&["spot.obj", "bunny_lowres.obj", "fandisk.obj"]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

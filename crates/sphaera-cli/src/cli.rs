@@ -90,8 +90,8 @@ pub struct HalArgs {
     #[arg(long, short)]
     pub output: Option<PathBuf>,
 
-    /// Locate every point of this file (`x y` lines): inside, outside or boundary, in
-    /// file order.
+    /// Locate every point of this file (`x y` lines for a polygon, `x y z` for a mesh):
+    /// inside, outside or boundary, in file order.
     #[arg(long)]
     pub contains: Option<PathBuf>,
 

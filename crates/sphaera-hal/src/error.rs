@@ -43,11 +43,13 @@ pub enum HalError {
         /// The operating system's reason.
         source: std::io::Error,
     },
-    /// A line of a polygon file is not two numbers.
-    #[error("line {line}: expected `x y` (two numbers), found `{text}`")]
+    /// A line of a points file is not two (2D) or three (3D) finite numbers.
+    #[error("line {line}: expected {columns} finite numbers (`x y` or `x y z`), found `{text}`")]
     Parse {
         /// The line number (from 1).
         line: usize,
+        /// How many numbers a line needs.
+        columns: usize,
         /// The line's text.
         text: String,
     },

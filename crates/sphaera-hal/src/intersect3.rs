@@ -159,26 +159,53 @@ impl Region {
     }
 }
 
-/// A node's bounding volume in placed coordinates: the two regions, and whether it is
-/// their union (else their intersection).
+/// A node's bounding volume in placed coordinates: the intersection of two regions.
+///
+/// The paper's section 5.2 also pairs *unions* of two balls (its cases 2 and 3). Those
+/// are not used: a union of two balls through one circle is not convex, so it holds the
+/// patch's vertices but not necessarily the faces between them (the test
+/// `volumes_hold_their_patch_faces` finds a cube patch whose face leaves its union). A
+/// union bound is replaced by the smallest ball holding both balls, which is convex and
+/// holds the faces.
 #[derive(Clone, Copy, Debug)]
 struct Volume {
     regions: [Region; 2],
-    union: bool,
 }
 
 impl Volume {
-    /// Whether two volumes may meet (the paper's three cases: ∩/∩, ∪/∪, ∩/∪).
+    /// Whether two volumes may meet: each region of one meets each of the other (the
+    /// paper's case 1, necessary for two intersections to meet).
     fn meets(&self, other: &Self, slack: f64) -> bool {
-        let pair = |i: usize, j: usize| self.regions[i].meets(other.regions[j], slack);
-        match (self.union, other.union) {
-            (false, false) => pair(0, 0) && pair(0, 1) && pair(1, 0) && pair(1, 1),
-            (true, true) => pair(0, 0) || pair(0, 1) || pair(1, 0) || pair(1, 1),
-            (true, false) => (pair(0, 0) && pair(0, 1)) || (pair(1, 0) && pair(1, 1)),
-            (false, true) => (pair(0, 0) && pair(1, 0)) || (pair(0, 1) && pair(1, 1)),
-        }
+        self.regions
+            .iter()
+            .all(|a| other.regions.iter().all(|&b| a.meets(b, slack)))
     }
 }
+
+/// The smallest region holding two regions (a ball around two balls; everything when a
+/// half-space is involved).
+fn hull(a: Region, b: Region) -> Region {
+    match (a, b) {
+        (Region::Ball(c, r), Region::Ball(d, s)) => {
+            let gap = c.distance(d);
+            if gap + s <= r {
+                a
+            } else if gap + r <= s {
+                b
+            } else {
+                let radius = 0.5 * (gap + r + s);
+                let centre = c + (d - c) * ((radius - r) / gap);
+                // A relative margin for the rounding of the centre.
+                Region::Ball(centre, radius * (1.0 + 1e-12))
+            }
+        }
+        _ => Region::Everything,
+    }
+}
+
+/// Bulges beyond this (balls over a million times wider than their circle) are taken as
+/// the half-space holding them.
+const FLAT_BULGE: f64 = 1e6;
 
 /// The volume of `node` with its corners mapped by `map`.
 fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
@@ -195,13 +222,11 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
         let ball = Region::Ball(centre, radius);
         return Volume {
             regions: [ball, ball],
-            union: false,
         };
     };
     let Some((centre, radius, normal)) = circle(corners) else {
         return Volume {
             regions: [Region::Everything, Region::Everything],
-            union: false,
         };
     };
     let region = |k: f64| {
@@ -209,6 +234,16 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
             Region::HalfSpace(centre, normal)
         } else if k == f64::NEG_INFINITY {
             Region::HalfSpace(centre, -normal)
+        } else if k.abs() > FLAT_BULGE {
+            // A ball this flat has a radius too large to compare distances with; the
+            // half-space just beyond its cap holds it (twice the cap's depth below the
+            // plane, `R / (√(1 + k²) + |k|)`).
+            let depth = 2.0 * radius / ((1.0 + k * k).sqrt() + k.abs());
+            if k > 0.0 {
+                Region::HalfSpace(centre - normal * depth, normal)
+            } else {
+                Region::HalfSpace(centre + normal * depth, -normal)
+            }
         } else {
             Region::Ball(
                 centre + normal * (k * radius),
@@ -216,16 +251,23 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
             )
         }
     };
-    Volume {
-        regions: [region(bound.above), region(bound.below)],
-        union: !bound.is_intersection(),
+    let (above, below) = (region(bound.above), region(bound.below));
+    if bound.is_intersection() {
+        Volume {
+            regions: [above, below],
+        }
+    } else {
+        let ball = hull(above, below);
+        Volume {
+            regions: [ball, ball],
+        }
     }
 }
 
 impl HalTree3 {
     /// Intersection detection (section 5.2) with `other` placed by `placement` (mapping
     /// `other`'s coordinates into this tree's): pairs of nodes whose bounding volumes may
-    /// meet are refined, the wider first, down to pairs of original faces tested exactly;
+    /// meet (a union bound taken as the ball around its two balls, see below) are refined, the wider first, down to pairs of original faces tested exactly;
     /// when the surfaces are apart, the solids still intersect if one holds a vertex of the
     /// other. Equal to [`intersects3_brute`] on `other`'s mesh mapped by `placement`.
     #[must_use]
@@ -286,5 +328,62 @@ impl HalTree3 {
         let back = Similarity::new(placement.affine().inverse())
             .map_or(first, |inverse| inverse.point(first));
         other.contains(back) != Location::Outside
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sphaera_mesh::shapes;
+
+    impl Region {
+        fn holds(self, x: DVec3, slack: f64) -> bool {
+            match self {
+                Self::Everything => true,
+                Self::Ball(c, r) => c.distance(x) <= r + slack,
+                Self::HalfSpace(p, n) => (x - p).dot(n) >= -slack,
+            }
+        }
+    }
+
+    /// Every point of every face of a patch lies in the node's volume as the
+    /// intersection test uses it (vertices, edge midpoints, centroids): a union of two
+    /// balls through a circle is not convex, so it need not hold the faces between its
+    /// vertices.
+    #[test]
+    fn volumes_hold_their_patch_faces() {
+        let mut meshes = vec![
+            shapes::sphere(1.0, 12).unwrap(),
+            shapes::cube(1.0, 3).unwrap(),
+            shapes::capsule(0.3, 2.0, 10).unwrap(),
+            shapes::ellipsoid(DVec3::new(2.0, 1.0, 0.5), 10).unwrap(),
+        ];
+        if let Some(data) = sphaera_tests::data_dir("volumes_hold_their_patch_faces") {
+            // Coplanar-rich: flat bulges and half-spaces.
+            meshes.push(sphaera_mesh::io::load(data.join("fandisk.obj")).unwrap());
+        }
+        for mesh in &meshes {
+            let tree = HalTree3::build(mesh).unwrap();
+            for node in tree.nodes() {
+                let v = volume(node, mesh, &Similarity::IDENTITY);
+                for &f in &node.faces {
+                    let [a, b, c] =
+                        mesh.triangles()[f as usize].map(|i| mesh.positions()[i as usize]);
+                    for x in [
+                        a,
+                        b,
+                        c,
+                        (a + b) / 2.0,
+                        (b + c) / 2.0,
+                        (c + a) / 2.0,
+                        (a + b + c) / 3.0,
+                    ] {
+                        let inside = |r: Region| r.holds(x, 1e-9);
+                        let held = inside(v.regions[0]) && inside(v.regions[1]);
+                        assert!(held, "{x} outside the volume of {:?} ({v:?})", node.corners);
+                    }
+                }
+            }
+        }
     }
 }

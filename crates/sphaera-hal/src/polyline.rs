@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
 use crate::HalError;
 
@@ -137,9 +137,29 @@ impl Polyline2 {
 ///
 /// # Errors
 ///
-/// [`HalError::Parse`] naming the first line that is not two numbers.
+/// [`HalError::Parse`] naming the first line that is not two finite numbers.
 pub fn parse_points(text: &str) -> Result<Vec<DVec2>, HalError> {
-    let mut points = Vec::new();
+    Ok(parse_rows::<2>(text)?
+        .into_iter()
+        .map(DVec2::from_array)
+        .collect())
+}
+
+/// [`parse_points`] for 3D points: every line `x y z`.
+///
+/// # Errors
+///
+/// [`HalError::Parse`] naming the first line that is not three finite numbers.
+pub fn parse_points3(text: &str) -> Result<Vec<DVec3>, HalError> {
+    Ok(parse_rows::<3>(text)?
+        .into_iter()
+        .map(DVec3::from_array)
+        .collect())
+}
+
+/// Rows of `N` finite numbers, as [`parse_points`] reads them.
+fn parse_rows<const N: usize>(text: &str) -> Result<Vec<[f64; N]>, HalError> {
+    let mut rows = Vec::new();
     for (number, line) in text.lines().enumerate() {
         let trimmed = line.trim();
         if trimmed.is_empty() || trimmed.starts_with('#') {
@@ -147,18 +167,25 @@ pub fn parse_points(text: &str) -> Result<Vec<DVec2>, HalError> {
         }
         let bad = || HalError::Parse {
             line: number + 1,
+            columns: N,
             text: trimmed.chars().take(80).collect(),
         };
-        let mut fields = trimmed
+        let fields: Vec<&str> = trimmed
             .split(|c: char| c.is_whitespace() || c == ',')
-            .filter(|f| !f.is_empty());
-        let (Some(x), Some(y), None) = (fields.next(), fields.next(), fields.next()) else {
+            .filter(|f| !f.is_empty())
+            .collect();
+        if fields.len() != N {
             return Err(bad());
-        };
-        let (Ok(x), Ok(y)) = (x.parse::<f64>(), y.parse::<f64>()) else {
-            return Err(bad());
-        };
-        points.push(DVec2::new(x, y));
+        }
+        let mut row = [0.0; N];
+        for (value, field) in row.iter_mut().zip(&fields) {
+            *value = field
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(bad)?;
+        }
+        rows.push(row);
     }
-    Ok(points)
+    Ok(rows)
 }

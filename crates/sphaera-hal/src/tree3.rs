@@ -696,11 +696,18 @@ impl HalTree3 {
         self.nodes.iter().map(|n| n.level).max().unwrap_or(0)
     }
 
-    /// The approximation at `level`: the triangles of that level, and the leaves above it,
-    /// as a mesh on the input's vertices. A side split at a level is split in both
-    /// triangles beside it, but a triangle whose paths coalesce is discarded (as the paper
-    /// does), which can leave a gap at intermediate levels: crack-free extraction is not
-    /// done yet. The deepest level is the input mesh.
+    /// The approximation at `level`: the triangles of that level, and the leaves above
+    /// it, as a watertight mesh on the input's vertices: every edge is used as often in
+    /// one direction as in the other (where a filled gap meets the level, an edge can
+    /// carry four triangles). The deepest level is the input mesh.
+    ///
+    /// Two things open gaps in a level, both from the paper's construction: a triangle
+    /// whose paths coalesce is discarded (it approximates no face), and a patch that cannot
+    /// be split as the paper says is split at its most central vertex, or into its faces,
+    /// without the side splits its neighbours made. Each gap's boundary is a loop of the
+    /// level's edges; it is closed by a fan of triangles on the loop's vertices (for a
+    /// discarded triangle, that triangle itself), so that every edge has as many
+    /// triangles on one side as on the other.
     ///
     /// # Errors
     ///
@@ -710,7 +717,9 @@ impl HalTree3 {
     }
 
     /// The adaptive approximation (section 4.3): a triangle is refined only when its own
-    /// width (Definition 6) exceeds `tolerance`. Gaps as for [`HalTree3::level`].
+    /// width (Definition 6) exceeds `tolerance`. Where a neighbour refined past a shared
+    /// side (a T-junction) and where a level has gaps, the gap is closed as in
+    /// [`HalTree3::level`]: the mesh is watertight.
     ///
     /// # Errors
     ///
@@ -719,7 +728,8 @@ impl HalTree3 {
         self.extract(|node| node.width > tolerance)
     }
 
-    /// The triangles reached from the roots, descending where `refine` says so.
+    /// The triangles reached from the roots, descending where `refine` says so, with the
+    /// gaps closed.
     fn extract(&self, refine: impl Fn(&Node3) -> bool) -> Result<TriMesh, HalError> {
         let mut triangles = Vec::new();
         let mut stack: Vec<u32> = self.roots.clone();
@@ -731,10 +741,67 @@ impl HalTree3 {
                 stack.extend(node.children.iter().copied());
             }
         }
+        triangles.sort_unstable();
+        close_gaps(&mut triangles);
         Ok(TriMesh::new(
             self.surface.mesh().positions().to_vec(),
             triangles,
         )?)
+    }
+}
+
+/// Closes the gaps of a triangle set: the directed edges without an opposite partner
+/// (counted with multiplicity) are chained into loops, and each loop is filled by a fan
+/// from its first vertex, oriented to balance them. Deterministic: loops start at the
+/// lowest unmatched edge and turn to the lowest next vertex.
+fn close_gaps(triangles: &mut Vec<[u32; 3]>) {
+    // Net count per undirected edge: + for (low, high), − for (high, low).
+    let mut net: HashMap<(u32, u32), i64> = HashMap::new();
+    for &[a, b, c] in triangles.iter() {
+        for (u, v) in [(a, b), (b, c), (c, a)] {
+            if u == v {
+                continue;
+            }
+            *net.entry((u.min(v), u.max(v))).or_default() += if u < v { 1 } else { -1 };
+        }
+    }
+    // The edges the filling must provide, as outgoing lists per vertex.
+    let mut needed: std::collections::BTreeMap<u32, Vec<u32>> = std::collections::BTreeMap::new();
+    let mut pending = 0_usize;
+    for (&(low, high), &count) in &net {
+        // count > 0: the set has (low, high) too often, so the fill needs (high, low).
+        let (from, to) = if count > 0 { (high, low) } else { (low, high) };
+        for _ in 0..count.unsigned_abs() {
+            needed.entry(from).or_default().push(to);
+            pending += 1;
+        }
+    }
+    for list in needed.values_mut() {
+        list.sort_unstable_by(|a, b| b.cmp(a));
+    }
+    while pending > 0 {
+        let Some((&start, _)) = needed.iter().find(|(_, list)| !list.is_empty()) else {
+            break;
+        };
+        let mut lasso = vec![start];
+        let mut at = start;
+        while let Some(next) = needed.get_mut(&at).and_then(Vec::pop) {
+            pending -= 1;
+            if let Some(position) = lasso.iter().position(|&v| v == next) {
+                // A loop closed: fill it and keep walking from where it began.
+                let ring: Vec<u32> = lasso.split_off(position);
+                for k in 1..ring.len().saturating_sub(1) {
+                    triangles.push([ring[0], ring[k], ring[k + 1]]);
+                }
+                lasso.push(next);
+                if lasso.len() == 1 && needed.get(&next).is_none_or(Vec::is_empty) {
+                    break;
+                }
+            } else {
+                lasso.push(next);
+            }
+            at = next;
+        }
     }
 }
 

@@ -23,7 +23,27 @@ fn meshes() -> Vec<(&'static str, TriMesh)> {
             "ellipsoid",
             shapes::ellipsoid(DVec3::new(2.0, 1.0, 0.5), 10).unwrap(),
         ),
+        // Very long thin triangles.
+        (
+            "needle",
+            shapes::ellipsoid(DVec3::new(100.0, 0.5, 0.5), 8).unwrap(),
+        ),
+        // Tiny and huge coordinates, far from the origin.
+        ("tiny", moved(&shapes::sphere(1.0, 10).unwrap(), 1e-7, 3e-6)),
+        ("huge", moved(&shapes::cube(1.0, 2).unwrap(), 1e7, -4e9)),
     ]
+}
+
+/// `mesh` scaled by `scale` and moved by `offset` along every axis.
+fn moved(mesh: &TriMesh, scale: f64, offset: f64) -> TriMesh {
+    TriMesh::new(
+        mesh.positions()
+            .iter()
+            .map(|&p| p * scale + DVec3::splat(offset))
+            .collect(),
+        mesh.triangles().to_vec(),
+    )
+    .unwrap()
 }
 
 fn check(name: &str, mesh: &TriMesh, tree: &HalTree3) {
@@ -71,8 +91,15 @@ fn check(name: &str, mesh: &TriMesh, tree: &HalTree3) {
         (0..mesh.triangle_count() as u32).collect::<Vec<_>>(),
         "{name}: leaves"
     );
-    // The deepest level is the mesh itself, closed. (Intermediate levels are not yet
-    // crack-free where a triangle whose paths coalesce was discarded: issue 17.)
+    // Every level and adaptive approximation is closed; the deepest level is the mesh.
+    for level in 0..=tree.depth() {
+        assert_closed(name, &format!("level {level}"), &tree.level(level).unwrap());
+    }
+    let diagonal = mesh.bounding_box().diagonal();
+    for tolerance in [0.3, 0.1, 0.03, 0.01, 0.0] {
+        let approximation = tree.approximate(tolerance * diagonal).unwrap();
+        assert_closed(name, &format!("tolerance {tolerance}"), &approximation);
+    }
     let deepest = tree.level(tree.depth()).unwrap();
     assert!(
         analyze(&deepest).is_closed,
@@ -82,6 +109,21 @@ fn check(name: &str, mesh: &TriMesh, tree: &HalTree3) {
         tree.level(tree.depth()).unwrap().triangle_count(),
         mesh.triangle_count()
     );
+}
+
+/// Every edge of `mesh` has as many triangles along it one way as the other (no crack, no
+/// hole): the approximations are closed oriented surfaces.
+fn assert_closed(name: &str, what: &str, mesh: &TriMesh) {
+    let mut net: std::collections::HashMap<(u32, u32), i64> = std::collections::HashMap::new();
+    for t in mesh.triangles() {
+        for (u, v) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            if u != v {
+                *net.entry((u.min(v), u.max(v))).or_default() += if u < v { 1 } else { -1 };
+            }
+        }
+    }
+    let open: Vec<_> = net.iter().filter(|&(_, &c)| c != 0).collect();
+    assert!(open.is_empty(), "{name}, {what}: open edges {open:?}");
 }
 
 /// Every vertex of the node's patch lies in its bounding volume (up to rounding).
@@ -150,15 +192,31 @@ fn real_genus_zero_meshes_build() {
 fn adaptive_approximations_shrink_with_the_tolerance_and_torus_is_refused() {
     let mesh = shapes::sphere(1.0, 16).unwrap();
     let tree = HalTree3::build(&mesh).unwrap();
+    // The tree's own triangles kept (before the gaps are closed) grow as the tolerance
+    // shrinks, and none kept but the faces is wider than the tolerance.
+    let kept = |tolerance: f64| {
+        let nodes = tree.nodes();
+        let mut stack = tree.roots().to_vec();
+        let mut count = 0;
+        while let Some(n) = stack.pop() {
+            let node = &nodes[n as usize];
+            if node.children.is_empty() || node.width <= tolerance {
+                assert!(node.width <= tolerance.max(0.0) || node.children.is_empty());
+                count += 1;
+            } else {
+                stack.extend(node.children.iter().copied());
+            }
+        }
+        count
+    };
     let mut previous = 0;
     for tolerance in [1.0, 0.3, 0.1, 0.03, 0.0] {
-        let approximation = tree.approximate(tolerance).unwrap();
-        assert!(approximation.triangle_count() >= previous);
-        previous = approximation.triangle_count();
+        let count = kept(tolerance);
+        assert!(count >= previous, "{tolerance}: {count} < {previous}");
+        previous = count;
+        assert!(tree.approximate(tolerance).unwrap().triangle_count() >= count.min(2));
     }
-    // At tolerance 0 a flat patch (width 0) stays one triangle; below 0 every node is
-    // refined down to the faces.
-    assert!(previous <= mesh.triangle_count());
+    // Below 0 every node is refined down to the faces: the mesh itself.
     assert_eq!(
         tree.approximate(-1.0).unwrap().triangle_count(),
         mesh.triangle_count()

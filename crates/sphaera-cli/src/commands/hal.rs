@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
-use sphaera::hal::{HalTree2, HalTree3, Location, Node2, Polyline2, parse_points};
+use sphaera::hal::{HalTree2, HalTree3, Location, Node2, Polyline2, parse_points, parse_points3};
 use sphaera::mesh::glam::DVec2;
 use sphaera::mesh::io::write_atomic;
 
@@ -249,18 +249,40 @@ fn approximation(tree: &HalTree2, refine: Refine) -> (Vec<usize>, Vec<usize>) {
 
 /// Point inclusion for every point of `path`.
 fn locate(tree: &HalTree2, path: &Path) -> Result<Contains> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))?;
-    let points = parse_points(&text)
-        .with_context(|| format!("{} is not a file of points", path.display()))?;
+    let points = parse_points(&read_points(path)?)
+        .with_context(|| format!("{} is not a file of 2D points", path.display()))?;
     let started = Instant::now();
     let answers: Vec<Location> = points
         .iter()
         .map(|&p| tree.contains(p))
         .collect::<Result<_, _>>()?;
-    let seconds = started.elapsed().as_secs_f64();
+    Ok(contains_report(
+        path,
+        &answers,
+        started.elapsed().as_secs_f64(),
+    ))
+}
+
+/// Point inclusion in a closed genus-0 mesh for every point of `path`.
+fn locate3(tree: &HalTree3, path: &Path) -> Result<Contains> {
+    let points = parse_points3(&read_points(path)?)
+        .with_context(|| format!("{} is not a file of 3D points", path.display()))?;
+    let started = Instant::now();
+    let answers: Vec<Location> = points.iter().map(|&p| tree.contains(p)).collect();
+    Ok(contains_report(
+        path,
+        &answers,
+        started.elapsed().as_secs_f64(),
+    ))
+}
+
+fn read_points(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+fn contains_report(path: &Path, answers: &[Location], seconds: f64) -> Contains {
     let count = |l: Location| answers.iter().filter(|&&a| a == l).count();
-    Ok(Contains {
+    Contains {
         file: path.display().to_string(),
         points: answers.len(),
         inside: count(Location::Inside),
@@ -275,7 +297,22 @@ fn locate(tree: &HalTree2, path: &Path) -> Result<Contains> {
             })
             .collect(),
         seconds,
-    })
+    }
+}
+
+fn print_contains(c: &Contains) {
+    println!(
+        "{}: {} points, {} inside, {} outside, {} on the boundary, in {:.4} s",
+        c.file,
+        thousands(c.points),
+        thousands(c.inside),
+        thousands(c.outside),
+        thousands(c.boundary),
+        c.seconds
+    );
+    for answer in &c.answers {
+        println!("{answer}");
+    }
 }
 
 fn print_text(report: &Report) {
@@ -321,18 +358,7 @@ fn print_text(report: &Report) {
         );
     }
     if let Some(c) = &report.contains {
-        println!(
-            "{}: {} points, {} inside, {} outside, {} on the boundary, in {:.4} s",
-            c.file,
-            thousands(c.points),
-            thousands(c.inside),
-            thousands(c.outside),
-            thousands(c.boundary),
-            c.seconds
-        );
-        for answer in &c.answers {
-            println!("{answer}");
-        }
+        print_contains(c);
     }
     if let Some(output) = &report.output {
         println!("wrote {output}");
@@ -462,6 +488,8 @@ struct MeshReport {
     /// bounding volumes (Definition 6).
     levels: Vec<MeshLevel>,
     approximation: Option<MeshApproximation>,
+    /// Point inclusion of `--contains`, if given.
+    contains: Option<Contains>,
     output: Option<String>,
     seconds: Seconds,
 }
@@ -505,9 +533,6 @@ struct MeshLevel {
 fn run_mesh(args: &HalArgs) -> Result<()> {
     if args.open {
         bail!("--open is for polylines; a mesh must be closed");
-    }
-    if args.contains.is_some() {
-        bail!("3D point inclusion is not implemented yet (issue 17); --contains takes a polygon");
     }
     if let Some(path) = &args.output {
         if !MESH_EXTENSIONS.contains(&extension(path).as_str()) {
@@ -565,6 +590,10 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
             kept_width(&tree, |n| f64::from(n.level) < value)
         },
     });
+    let contains = match &args.contains {
+        Some(path) => Some(locate3(&tree, path)?),
+        None => None,
+    };
     let report = MeshReport {
         mesh: args.polygon.display().to_string(),
         triangles: mesh.triangle_count(),
@@ -574,6 +603,7 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
         diagonal,
         levels,
         approximation,
+        contains,
         output: args.output.as_ref().map(|p| p.display().to_string()),
         seconds: Seconds { load, build },
     };
@@ -606,6 +636,9 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
             thousands(a.triangles),
             100.0 * a.width / diagonal
         );
+    }
+    if let Some(c) = &report.contains {
+        print_contains(c);
     }
     if let Some(output) = &report.output {
         println!("wrote {output}");

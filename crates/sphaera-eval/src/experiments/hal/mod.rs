@@ -24,11 +24,15 @@
 //!   node level, strip depth + 1, box-tree depth); an unbounded HAL area (a half-plane on a
 //!   vertex's side, which only a collinear back-track makes) is left out of the sum and
 //!   counted in the CSV.
+//! - **`hal_vs_simplify`** ([`quality`]): the certified Hausdorff distance of 3D HAL
+//!   approximations to the original, against their largest width and against
+//!   `sphaera-simplify` at equal triangle counts.
 //!
 //! Times are single-threaded (the structures have no parallel query path), the best of
 //! [`RUNS`] runs.
 
 mod peers;
+mod quality;
 
 use std::path::Path;
 use std::time::Instant;
@@ -94,7 +98,8 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
     }
     width_vs_size(data, &outlines, out)?;
     query_speed(&outlines, out)?;
-    strip_tree(&outlines, out)
+    strip_tree(&outlines, out)?;
+    quality::versus_simplify(data, out)
 }
 
 /// `polygon` with every edge cut into `pieces`, each inserted point moved across the edge
