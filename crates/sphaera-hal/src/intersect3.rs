@@ -6,7 +6,7 @@ use glam::DVec3;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::Similarity;
 
-use crate::tree3::circle;
+use crate::tree3::{Bound3, circle};
 use crate::{HalTree3, Location, Node3};
 
 fn coord(p: DVec3) -> robust::Coord3D<f64> {
@@ -138,13 +138,55 @@ pub fn intersects3_brute(first: &TriMesh, second: &TriMesh) -> bool {
 /// A region of space bounding part of a surface: a ball, a closed half-space
 /// `(z − point)·normal ≥ 0`, or everything.
 #[derive(Clone, Copy, Debug)]
-enum Region {
+pub(crate) enum Region {
     Ball(DVec3, f64),
     HalfSpace(DVec3, DVec3),
     Everything,
 }
 
 impl Region {
+    /// The part `[t0, t1]` of `interval` over which the segment `x + t·d` may be in the
+    /// region (conservative by `slack`, a length), or `None` when it certainly is not.
+    pub(crate) fn clip(
+        self,
+        x: DVec3,
+        d: DVec3,
+        (t0, t1): (f64, f64),
+        slack: f64,
+    ) -> Option<(f64, f64)> {
+        let (lo, hi) = match self {
+            Self::Everything => return Some((t0, t1)),
+            Self::Ball(c, r) => {
+                // |x + t·d − c|² ≤ (r + slack)²: a·t² + 2b·t + e ≤ 0.
+                let (a, f) = (d.length_squared(), x - c);
+                let (b, e) = (d.dot(f), f.length_squared() - (r + slack) * (r + slack));
+                let discriminant = b * b - a * e;
+                if discriminant < 0.0 || a == 0.0 {
+                    return (a == 0.0 && e <= 0.0).then_some((t0, t1));
+                }
+                let root = discriminant.sqrt();
+                ((-b - root) / a, (-b + root) / a)
+            }
+            Self::HalfSpace(p, n) => {
+                // (x + t·d − p)·n ≥ −slack.
+                let (start, rate) = ((x - p).dot(n) + slack, d.dot(n));
+                if rate == 0.0 {
+                    return (start >= 0.0).then_some((t0, t1));
+                }
+                let t = -start / rate;
+                if rate > 0.0 {
+                    (t, f64::INFINITY)
+                } else {
+                    (f64::NEG_INFINITY, t)
+                }
+            }
+        };
+        // A relative margin on the parameters for their rounding.
+        let margin = 1e-9;
+        let (lo, hi) = (lo.max(t0) - margin, hi.min(t1) + margin);
+        (lo <= hi).then_some((lo.max(t0), hi.min(t1)))
+    }
+
     /// Whether the two regions may meet (false only when certainly apart).
     fn meets(self, other: Self, slack: f64) -> bool {
         match (self, other) {
@@ -224,10 +266,18 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
             regions: [ball, ball],
         };
     };
+    Volume {
+        regions: bound_regions(&bound, corners),
+    }
+}
+
+/// The two convex regions whose intersection holds the patch of a node with bound `bound`
+/// over the triangle `corners`: its two balls (or half-spaces) for an intersection; the
+/// ball around both, twice, for a union (which is not convex); everything for a
+/// degenerate triangle.
+pub(crate) fn bound_regions(bound: &Bound3, corners: [DVec3; 3]) -> [Region; 2] {
     let Some((centre, radius, normal)) = circle(corners) else {
-        return Volume {
-            regions: [Region::Everything, Region::Everything],
-        };
+        return [Region::Everything, Region::Everything];
     };
     let region = |k: f64| {
         if k == f64::INFINITY {
@@ -253,14 +303,10 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
     };
     let (above, below) = (region(bound.above), region(bound.below));
     if bound.is_intersection() {
-        Volume {
-            regions: [above, below],
-        }
+        [above, below]
     } else {
         let ball = hull(above, below);
-        Volume {
-            regions: [ball, ball],
-        }
+        [ball, ball]
     }
 }
 

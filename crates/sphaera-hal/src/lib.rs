@@ -83,8 +83,8 @@
 //! better.
 //!
 //! In 3D (`cargo bench -p sphaera-eval --bench hal3_vs_parry`): a 100k-triangle mesh
-//! builds in 2.4 s; point inclusion is exact but 40–130× slower than parry3d-f64's
-//! (35 µs against 0.9 µs on `spot.obj`), because balls through a thin triangle's corners
+//! builds in 2.4 s; point inclusion is exact but 10–44× slower than parry3d-f64's
+//! (15 µs against 0.9 µs on `spot.obj`), because balls through a thin triangle's corners
 //! are huge and cull little. As a simplification a HAL approximation is 10–800× farther
 //! from the surface than `sphaera-simplify`'s at the same triangle count.
 //!

@@ -15,13 +15,13 @@
 //! the exact one.
 
 use glam::DVec3;
-use sphaera_mesh::TriMesh;
+use sphaera_mesh::{Aabb, TriMesh};
 
-use crate::tree3::{Bound3, circle};
 use crate::{HalTree3, Location};
 
-/// Directions tried in turn: a segment through an edge or a vertex (a zero orientation)
-/// is shot again along the next one. Irrational-looking, far from the axes.
+/// Directions (and their opposites) tried from the shortest way out of the bounding box:
+/// a segment through an edge or a vertex (a zero orientation) is shot again along the
+/// next. Irrational-looking, far from the axes.
 const DIRECTIONS: [[f64; 3]; 4] = [
     [0.573_849_2, 0.618_033_9, 0.537_617_1],
     [-0.414_213_6, 0.732_050_8, 0.541_381_3],
@@ -103,27 +103,48 @@ fn on_triangle(t: [DVec3; 3], x: DVec3) -> bool {
     (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0)
 }
 
-/// The ball the segments start from and reach beyond: the mesh's bounding box's centre
-/// and half diagonal (the same for the tree and the brute force, so both shoot the same
-/// segments).
-fn segment_frame(mesh: &TriMesh) -> (DVec3, f64) {
-    let bounds = mesh.bounding_box();
-    (bounds.center(), 0.5 * bounds.diagonal())
+/// The far ends of the segments shot from `x`, a point in the closed box `bounds` (the
+/// mesh's bounding box): along each of the eight directions ([`DIRECTIONS`] and their
+/// opposites), just beyond where the direction leaves the box, the shortest first (the
+/// lowest index on ties). The tree and the brute force shoot the same segments.
+fn far_ends(bounds: &Aabb, x: DVec3) -> [DVec3; 8] {
+    let margin = 1e-9 * bounds.diagonal();
+    let mut ends: [(f64, usize, DVec3); 8] = [(0.0, 0, DVec3::ZERO); 8];
+    for (i, slot) in ends.iter_mut().enumerate() {
+        let sign = if i < 4 { 1.0 } else { -1.0 };
+        let d = DVec3::from_array(DIRECTIONS[i % 4]) * sign;
+        let exit = (0..3)
+            .filter(|&axis| d[axis] != 0.0)
+            .map(|axis| {
+                let wall = if d[axis] > 0.0 {
+                    bounds.max[axis]
+                } else {
+                    bounds.min[axis]
+                };
+                ((wall - x[axis]) / d[axis]).max(0.0)
+            })
+            .fold(f64::INFINITY, f64::min);
+        let reach = exit * (1.0 + 1e-6) + margin;
+        *slot = (reach, i, x + d * reach);
+    }
+    ends.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    ends.map(|(_, _, y)| y)
 }
 
-/// The far end of the segment along `direction`: beyond a ball around the mesh.
-fn far_end(x: DVec3, direction: [f64; 3], centre: DVec3, radius: f64) -> DVec3 {
-    let reach = 2.0 * (radius + x.distance(centre)) + 1.0;
-    x + DVec3::from_array(direction) * reach
+/// Whether `x` lies outside the closed box (so outside the mesh it bounds).
+fn outside_box(bounds: &Aabb, x: DVec3) -> bool {
+    x.cmplt(bounds.min).any() || x.cmpgt(bounds.max).any()
 }
 
 /// The crossing-number answer over every face: the reference for [`HalTree3::contains`]
 /// (the same segments and exact predicates). `mesh` must be closed.
 #[must_use]
 pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Location {
-    let (centre, radius) = segment_frame(mesh);
-    'directions: for direction in DIRECTIONS {
-        let y = far_end(x, direction, centre, radius);
+    let bounds = mesh.bounding_box();
+    if outside_box(&bounds, x) {
+        return Location::Outside;
+    }
+    'directions: for y in far_ends(&bounds, x) {
         let mut inside = false;
         for t in mesh.triangles() {
             let corners = t.map(|v| mesh.positions()[v as usize]);
@@ -142,37 +163,10 @@ pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Location {
     Location::Boundary
 }
 
-/// Whether the segment `x → y` may meet the ball or half-space of bulge `k` over the
-/// circle `(centre, radius, normal)` (conservative: a relative slack on the side of yes).
-fn may_meet(k: f64, (centre, radius, normal): (DVec3, f64, DVec3), x: DVec3, y: DVec3) -> bool {
-    let slack = 1e-9 * (radius + x.distance(centre));
-    if k == f64::INFINITY {
-        return (x - centre).dot(normal) >= -slack || (y - centre).dot(normal) >= -slack;
-    }
-    if k == f64::NEG_INFINITY {
-        return (x - centre).dot(normal) <= slack || (y - centre).dot(normal) <= slack;
-    }
-    let ball = centre + normal * (k * radius);
-    let r = radius * (1.0 + k * k).sqrt();
-    let d = y - x;
-    let t = ((ball - x).dot(d) / d.length_squared()).clamp(0.0, 1.0);
-    ball.distance(x + d * t) <= r + slack * (1.0 + k.abs())
-}
-
-/// Whether the segment may meet a node's bounding volume.
-fn may_meet_bound(bound: &Bound3, corners: [DVec3; 3], x: DVec3, y: DVec3) -> bool {
-    if !bound.is_intersection() {
-        return true;
-    }
-    let Some(circle) = circle(corners) else {
-        return true;
-    };
-    may_meet(bound.above, circle, x, y) && may_meet(bound.below, circle, x, y)
-}
-
 impl HalTree3 {
-    /// Point inclusion: the crossing number of a segment from `x` to beyond the root ball,
-    /// visiting only the patches whose bounding volume the segment may meet, with exact
+    /// Point inclusion: the crossing number of the shortest of eight fixed segments from
+    /// `x` out of the mesh's bounding box, visiting only the patches whose bounding volume the segment may meet (each node
+    /// with the part of the segment inside its ancestors' volumes, clipped by its own), with exact
     /// orientation tests; a segment through an edge or a vertex is shot again along
     /// another direction. Equal to [`contains3_brute`] on every input. Points exactly on a
     /// face are [`Location::Boundary`].
@@ -193,19 +187,25 @@ impl HalTree3 {
         }
         let mesh = self.mesh();
         let positions = mesh.positions();
-        let (centre, radius) = segment_frame(mesh);
-        'directions: for direction in DIRECTIONS {
-            let y = far_end(x, direction, centre, radius);
+        let bounds = mesh.bounding_box();
+        if outside_box(&bounds, x) {
+            return Location::Outside;
+        }
+        let slack = 1e-9 * (bounds.diagonal() + x.abs().max_element());
+        'directions: for y in far_ends(&bounds, x) {
             let mut inside = false;
-            let mut stack: Vec<u32> = self.roots().to_vec();
-            while let Some(n) = stack.pop() {
+            let d = y - x;
+            // Each node is visited with the part of the segment inside all its ancestors'
+            // volumes, clipped further by its own.
+            let mut stack: Vec<(u32, (f64, f64))> =
+                self.roots().iter().map(|&r| (r, (0.0, 1.0))).collect();
+            while let Some((n, span)) = stack.pop() {
                 let node = &self.nodes()[n as usize];
-                if let Some(bound) = &node.bound {
-                    let corners = node.corners.map(|v| positions[v as usize]);
-                    if !may_meet_bound(bound, corners, x, y) {
-                        continue;
-                    }
+                let mut span = Some(span);
+                for region in self.node_regions(n) {
+                    span = span.and_then(|s| region.clip(x, d, s, slack));
                 }
+                let Some(span) = span else { continue };
                 if node.children.is_empty() {
                     for &f in &node.faces {
                         let t = mesh.triangles()[f as usize].map(|v| positions[v as usize]);
@@ -216,7 +216,7 @@ impl HalTree3 {
                         }
                     }
                 } else {
-                    stack.extend(node.children.iter().copied());
+                    stack.extend(node.children.iter().map(|&c| (c, span)));
                 }
             }
             return if inside {

@@ -8,6 +8,7 @@ use glam::DVec3;
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::HalError;
+use crate::intersect3::{Region, bound_regions};
 use crate::lens::bulge_width;
 use crate::surface3::{GenusZeroSurface, RootBall};
 
@@ -99,6 +100,9 @@ pub struct HalTree3 {
     /// The root triangles (one or two).
     roots: Vec<u32>,
     sides: Vec<Side>,
+    /// Per node, the two convex regions holding its patch (everything for a leaf), for
+    /// point inclusion.
+    regions: Vec<[Region; 2]>,
 }
 
 impl HalTree3 {
@@ -117,6 +121,7 @@ impl HalTree3 {
             nodes: Vec::new(),
             roots: Vec::new(),
             sides: Vec::new(),
+            regions: Vec::new(),
         };
         let ij = tree.new_side(tree.surface.shortest_path(i, j));
         let jk = tree.new_side(tree.surface.shortest_path(j, k));
@@ -129,6 +134,16 @@ impl HalTree3 {
         while !frontier.is_empty() {
             frontier = tree.refine(&frontier);
         }
+        let positions = tree.surface.mesh().positions();
+        tree.regions = tree
+            .nodes
+            .iter()
+            .map(|node| {
+                node.bound.map_or([Region::Everything; 2], |bound| {
+                    bound_regions(&bound, node.corners.map(|v| positions[v as usize]))
+                })
+            })
+            .collect();
         Ok(tree)
     }
 
@@ -676,6 +691,11 @@ impl HalTree3 {
     #[must_use]
     pub fn nodes(&self) -> &[Node3] {
         &self.nodes
+    }
+
+    /// The two convex regions holding node `n`'s patch.
+    pub(crate) fn node_regions(&self, n: u32) -> [Region; 2] {
+        self.regions[n as usize]
     }
 
     /// The root triangles (one or two: the three root paths may leave one patch).
