@@ -15,11 +15,11 @@
 //! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions, motion, polylines and certified Hausdorff distances |
 //! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
 //! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection through one entry point (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), with coverage of the whole surface certified at every level, certified fit evaluation, traversal and exports |
+//! | `hal` (feature `hal`) | `sphaera-hal` | HAL trees: hierarchical approximation and localization of polygons and polylines by signed discs, adaptive approximation by widths, hierarchical point inclusion and intersection detection, for polygons, polylines and closed genus-0 meshes |
 //!
-//! | `hal` (feature `hal`) | `sphaera-hal` | HAL trees: hierarchical approximation and localization of polygons and polylines by signed discs, adaptive approximation by widths, hierarchical point inclusion and intersection detection (2D; genus-0 meshes to come) |
+//! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | view-dependent distance-transform silhouette labels: camera sets with constant-time nearest views, conservative mesh mapping, exact Euclidean and chamfer distance transforms, labels for new views (the level of detail they guide is in progress) |
 //!
-//! Later capabilities (silhouette labels) join this table as their crates land; see `docs/architecture.md` in
-//! the repository.
+//! See `docs/architecture.md` in the repository for how the crates fit together.
 //!
 //! # Quick start
 //!
@@ -42,6 +42,8 @@ pub use sphaera_hal as hal;
 #[cfg(feature = "medial")]
 pub use sphaera_medial as medial;
 pub use sphaera_mesh as mesh;
+#[cfg(feature = "silhouette")]
+pub use sphaera_silhouette as silhouette;
 #[cfg(feature = "simplify")]
 pub use sphaera_simplify as simplify;
 #[cfg(feature = "spheretree")]

@@ -1,0 +1,83 @@
+//! Projecting a mesh for one view: the camera frame, the image coordinates (the bounding
+//! sphere's image is the square `[−1, 1]²`), and which faces face the camera.
+
+use glam::{DVec2, DVec3};
+use sphaera_mesh::{Sphere, TriMesh};
+
+use crate::views::Projection;
+
+/// One view of one mesh: where its camera is and how it maps points to the image plane.
+#[derive(Clone, Copy, Debug)]
+pub struct Camera {
+    /// The bounding sphere's centre.
+    centre: DVec3,
+    /// The bounding radius (1 for a mesh that is a single point).
+    radius: f64,
+    /// Right, up and toward the camera (orthonormal).
+    u: DVec3,
+    v: DVec3,
+    w: DVec3,
+    /// For a perspective camera: its position and `√(D² − 1)` (the reciprocal of the
+    /// tangent of the half field of view that holds the sphere).
+    eye: Option<(DVec3, f64)>,
+}
+
+impl Camera {
+    /// The camera of `projection` looking from unit `direction` at the sphere `bounds`.
+    #[must_use]
+    pub fn new(bounds: Sphere, direction: DVec3, projection: Projection) -> Self {
+        let w = direction.normalize();
+        let helper = if w.z.abs() < 0.9 { DVec3::Z } else { DVec3::X };
+        let u = helper.cross(w).normalize();
+        let v = w.cross(u);
+        let radius = if bounds.radius > 0.0 {
+            bounds.radius
+        } else {
+            1.0
+        };
+        let eye = match projection {
+            Projection::Orthographic => None,
+            Projection::Perspective { distance } => Some((
+                bounds.center + w * (distance * radius),
+                (distance * distance - 1.0).sqrt(),
+            )),
+        };
+        Self {
+            centre: bounds.center,
+            radius,
+            u,
+            v,
+            w,
+            eye,
+        }
+    }
+
+    /// The image coordinates of `p` (the bounding sphere's image fits in `[−1, 1]²`).
+    #[must_use]
+    pub fn project(&self, p: DVec3) -> DVec2 {
+        match self.eye {
+            None => {
+                let d = p - self.centre;
+                DVec2::new(d.dot(self.u), d.dot(self.v)) / self.radius
+            }
+            Some((eye, cotangent)) => {
+                let d = p - eye;
+                let depth = -d.dot(self.w);
+                DVec2::new(d.dot(self.u), d.dot(self.v)) * (cotangent / depth)
+            }
+        }
+    }
+
+    /// Whether triangle `t` of `mesh` faces the camera (its counter-clockwise normal
+    /// points toward it; an edge-on face does not).
+    #[must_use]
+    pub fn faces_camera(&self, mesh: &TriMesh, t: [u32; 3]) -> bool {
+        let [a, b, c] = t.map(|i| mesh.positions()[i as usize]);
+        let normal = (b - a).cross(c - a);
+        let toward = match self.eye {
+            None => self.w,
+            Some((eye, _)) => eye - a,
+        };
+        normal.dot(toward) > 0.0
+    }
+}

@@ -1,0 +1,46 @@
+//! Errors of the silhouette labels.
+
+use thiserror::Error;
+
+/// What can go wrong computing or using silhouette labels.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SilhouetteError {
+    /// The angular step of a regular view set is not in `(0°, 90°]`, or does not divide
+    /// 180°.
+    #[error("a view step must divide 180° and lie in (0°, 90°], got {degrees}°")]
+    InvalidStep {
+        /// The step asked for, in degrees.
+        degrees: f64,
+    },
+    /// A grid needs at least one cell a side.
+    #[error("the label grid needs a resolution of at least 1 cell, got {resolution}")]
+    InvalidResolution {
+        /// The resolution asked for.
+        resolution: usize,
+    },
+    /// A perspective camera must be outside the mesh's bounding sphere.
+    #[error(
+        "a perspective camera at {distance} bounding radii is inside the bounding sphere: it must be farther than 1"
+    )]
+    CameraInside {
+        /// The camera's distance from the centre, in bounding radii.
+        distance: f64,
+    },
+    /// A view direction of zero length or with NaN.
+    #[error("a view direction must be finite and non-zero, got {direction:?}")]
+    InvalidDirection {
+        /// The direction given.
+        direction: [f64; 3],
+    },
+    /// Labels asked for a mesh without triangles.
+    #[error("the mesh has no triangles: nothing to label")]
+    EmptyMesh,
+    /// Interpolation over zero views, or more views than the set has.
+    #[error("cannot average the labels of {asked} nearest views out of {available}")]
+    InvalidNearest {
+        /// How many views were asked for.
+        asked: usize,
+        /// How many the set has.
+        available: usize,
+    },
+}
