@@ -1,6 +1,9 @@
 //! Silhouette labels: the distance transforms against `imageproc`'s in the same run (on
 //! the binary image of the Stanford bunny seen from the side at 512², background on the
-//! silhouettes), and the labels of the 69k bunny for every 15° view (266) at 512².
+//! silhouettes), the labels of the 69k bunny for every 15° view (266) at 512², and the
+//! view-dependent extraction from its full hierarchy for a view between the cameras
+//! (error 1 % of the diagonal, factor ¼ within 2 cells of the contour), against the label
+//! lookup alone.
 //!
 //! `imageproc` measures distances to its *foreground* (non-zero) pixels, so it gets the
 //! complement of our object image; it treats nothing beyond the image as background, which
@@ -17,7 +20,11 @@ use imageproc::distance_transform::{
 };
 use imageproc::image::{GrayImage, Luma};
 use sphaera::mesh::DVec3;
-use sphaera::silhouette::{DistanceTransform, Labels, Projection, ViewSet, label_view};
+use sphaera::silhouette::{
+    ContourTolerance, DistanceTransform, Interpolation, Labels, Projection, ViewDependent, ViewSet,
+    label_view,
+};
+use sphaera::simplify::{Hierarchy, SimplifyOptions};
 
 /// Cells a side.
 const RESOLUTION: usize = 512;
@@ -62,6 +69,40 @@ fn bench(c: &mut Criterion) {
     group.finish();
 
     let views = ViewSet::regular(15.0).expect("266 views");
+    // Extraction for a new view (from the base mesh each time), labels by the nearest view
+    // and by the 4 nearest, and the lookup alone.
+    let labels =
+        Labels::compute(&bunny, &views, RESOLUTION, DistanceTransform::Euclidean).expect("labels");
+    let hierarchy = Hierarchy::build(&bunny, &SimplifyOptions::default()).expect("a hierarchy");
+    let mut extractor = ViewDependent::new(&hierarchy, &labels).expect("the same mesh");
+    let tolerance = ContourTolerance {
+        error: 0.01 * bunny.bounding_box_diagonal(),
+        factor: 0.25,
+        threshold: 2.0,
+    };
+    let between = DVec3::new(0.31, 0.44, 0.52);
+    let mut group = c.benchmark_group("extraction_bunny_69k");
+    group.sample_size(20);
+    group.measurement_time(Duration::from_secs(5));
+    for (name, interpolation) in [
+        ("nearest", Interpolation::Nearest),
+        ("average_4", Interpolation::Average(4)),
+    ] {
+        group.bench_function(format!("extract_{name}"), |b| {
+            b.iter(|| {
+                black_box(
+                    extractor
+                        .extract(between, interpolation, tolerance)
+                        .expect("extracts"),
+                )
+            });
+        });
+        group.bench_function(format!("labels_{name}"), |b| {
+            b.iter(|| black_box(labels.for_view(between, interpolation).expect("labels")));
+        });
+    }
+    group.finish();
+
     let mut group = c.benchmark_group("labels_bunny_69k");
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(20));

@@ -3,7 +3,8 @@
 use thiserror::Error;
 
 /// What can go wrong computing or using silhouette labels.
-#[derive(Debug, Error, Clone, PartialEq)]
+#[derive(Debug, Error)]
+#[non_exhaustive]
 pub enum SilhouetteError {
     /// The angular step of a regular view set is not in `(0°, 90°]`, or does not divide
     /// 180°.
@@ -35,6 +36,29 @@ pub enum SilhouetteError {
     /// Labels asked for a mesh without triangles.
     #[error("the mesh has no triangles: nothing to label")]
     EmptyMesh,
+    /// Labels and a hierarchy of different meshes.
+    #[error("the labels are for {labels} vertices, the hierarchy's mesh has {hierarchy}")]
+    MeshMismatch {
+        /// Vertices the labels were computed for.
+        labels: usize,
+        /// Input vertices of the hierarchy.
+        hierarchy: usize,
+    },
+    /// A hierarchy whose vertices are not the input's (full-edge placement moves them, so
+    /// labels computed on the input no longer apply).
+    #[error("the hierarchy must use Placement::Subset, so that its vertices keep their labels")]
+    NotSubset,
+    /// An allowed error or factor that is negative or not finite (or a NaN threshold).
+    #[error("{what} must be finite and non-negative, got {value}")]
+    InvalidParameter {
+        /// Which parameter.
+        what: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// An error from the simplification hierarchy.
+    #[error(transparent)]
+    Simplify(#[from] sphaera_simplify::SimplifyError),
     /// Interpolation over zero views, or more views than the set has.
     #[error("cannot average the labels of {asked} nearest views out of {available}")]
     InvalidNearest {

@@ -299,6 +299,12 @@ impl Labels {
         })
     }
 
+    /// Vertices labelled (the mesh's vertex count).
+    #[must_use]
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
     /// The view set.
     #[must_use]
     pub fn views(&self) -> &ViewSet {

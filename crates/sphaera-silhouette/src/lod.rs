@@ -1,0 +1,239 @@
+//! Level of detail guided by labels (section 3.3): the contour region (triangles with a
+//! vertex at most `threshold` cells from the silhouette) gets the allowed error `e · f`,
+//! the rest `e`. Extracted view by view from `sphaera-simplify`'s progressive hierarchy,
+//! with the error-sphere bound of each region; or, for one mesh that keeps the
+//! silhouettes of many views, as per-vertex tolerance weights for the static simplifier.
+
+use glam::DVec3;
+use sphaera_simplify::{Hierarchy, Placement, Refinement, Simplified};
+
+use crate::SilhouetteError;
+use crate::labels::{Interpolation, Labels};
+
+/// Per-vertex tolerance weights for [`sphaera_simplify::SimplifyOptions::with_weights`]:
+/// `factor` for a vertex whose label is at most `threshold` cells in any of `views` (every
+/// view when `views` is empty), 1 elsewhere. With `factor = 0` the contour of every chosen
+/// view is kept exactly (the simplifier refuses weights that are all zero: a mesh that is
+/// all contour cannot be simplified with `factor = 0`).
+///
+/// # Errors
+///
+/// [`SilhouetteError::InvalidParameter`] for a negative or non-finite `factor` or a NaN
+/// `threshold`.
+pub fn contour_weights(
+    labels: &Labels,
+    views: &[usize],
+    threshold: f32,
+    factor: f64,
+) -> Result<Vec<f64>, SilhouetteError> {
+    check("factor", factor)?;
+    if threshold.is_nan() {
+        return Err(SilhouetteError::InvalidParameter {
+            what: "threshold",
+            value: f64::from(threshold),
+        });
+    }
+    let chosen: Vec<usize> = if views.is_empty() {
+        (0..labels.views().len()).collect()
+    } else {
+        views.to_vec()
+    };
+    let mut nearest = vec![f32::INFINITY; labels.vertex_count()];
+    for k in chosen {
+        for (n, l) in nearest.iter_mut().zip(labels.view(k)) {
+            *n = n.min(l);
+        }
+    }
+    Ok(nearest
+        .into_iter()
+        .map(|l| if l <= threshold { factor } else { 1.0 })
+        .collect())
+}
+
+fn check(what: &'static str, value: f64) -> Result<(), SilhouetteError> {
+    if value.is_finite() && value >= 0.0 {
+        Ok(())
+    } else {
+        Err(SilhouetteError::InvalidParameter { what, value })
+    }
+}
+
+/// What a view-dependent extraction asks for.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContourTolerance {
+    /// The allowed error `e` away from the contour (a length).
+    pub error: f64,
+    /// The factor `f` on `e` in the contour region (`0`: no error there).
+    pub factor: f64,
+    /// The contour region: triangles with a vertex at most this many cells from the
+    /// silhouette.
+    pub threshold: f32,
+}
+
+/// One extracted mesh and its certified errors per region.
+#[derive(Clone, Debug)]
+pub struct Extraction {
+    /// The mesh (Subset placement: every vertex an input vertex), its radii and input
+    /// vertices.
+    pub simplified: Simplified,
+    /// The largest error bound of a contour triangle (the largest radius of its corners:
+    /// no point of the original it stands for is farther, both ways).
+    pub contour_error: f64,
+    /// The largest error bound of the other triangles.
+    pub other_error: f64,
+    /// Triangles in the contour region.
+    pub contour_triangles: usize,
+}
+
+/// View-dependent extraction from a progressive hierarchy with labels computed on the
+/// hierarchy's input mesh.
+pub struct ViewDependent<'h> {
+    hierarchy: &'h Hierarchy,
+    labels: &'h Labels,
+    refinement: Refinement<'h>,
+    /// Per hierarchy vertex, its input vertex.
+    input: Vec<u32>,
+}
+
+impl<'h> ViewDependent<'h> {
+    /// Pairs a hierarchy with the labels of its input mesh.
+    ///
+    /// # Errors
+    ///
+    /// [`SilhouetteError::NotSubset`] for a hierarchy that moves vertices;
+    /// [`SilhouetteError::MeshMismatch`] when the labels are for another vertex count.
+    pub fn new(hierarchy: &'h Hierarchy, labels: &'h Labels) -> Result<Self, SilhouetteError> {
+        if hierarchy.placement() != Placement::Subset {
+            return Err(SilhouetteError::NotSubset);
+        }
+        if hierarchy.input_vertex_count() != labels.vertex_count() {
+            return Err(SilhouetteError::MeshMismatch {
+                labels: labels.vertex_count(),
+                hierarchy: hierarchy.input_vertex_count(),
+            });
+        }
+        let input = (0..hierarchy.vertex_count() as u32)
+            .map(|v| hierarchy.original_vertex(v).unwrap_or(v))
+            .collect();
+        Ok(Self {
+            hierarchy,
+            labels,
+            refinement: hierarchy.refinement(),
+            input,
+        })
+    }
+
+    /// Per hierarchy vertex, the smallest label over the input vertices collapsed into it
+    /// (in the base mesh, transitively), so that a coarse triangle standing for a stretch
+    /// of contour is in the contour region even when its corners are not.
+    fn cluster_labels(&self, labels: &[f32]) -> Vec<f32> {
+        let mut smallest: Vec<f32> = self.input.iter().map(|&i| labels[i as usize]).collect();
+        for c in 0..self.hierarchy.collapse_count() as u32 {
+            if let (Some(u), Some(p)) = (
+                self.hierarchy.removed_vertex(c),
+                self.hierarchy.kept_vertex(c),
+            ) {
+                smallest[p as usize] = smallest[p as usize].min(smallest[u as usize]);
+            }
+        }
+        smallest
+    }
+
+    /// Refines the hierarchy from its base mesh until every triangle's error bound (the
+    /// largest radius of its corners) is within its allowance: `tolerance.error ·
+    /// tolerance.factor` in the contour region of the view from `direction` (labels by
+    /// `interpolation`), `tolerance.error` elsewhere.
+    ///
+    /// # Errors
+    ///
+    /// [`SilhouetteError::InvalidParameter`] for a negative or non-finite error or
+    /// factor, or a NaN threshold; as [`Labels::for_view`].
+    pub fn extract(
+        &mut self,
+        direction: DVec3,
+        interpolation: Interpolation,
+        tolerance: ContourTolerance,
+    ) -> Result<Extraction, SilhouetteError> {
+        check("error", tolerance.error)?;
+        check("factor", tolerance.factor)?;
+        if tolerance.threshold.is_nan() {
+            return Err(SilhouetteError::InvalidParameter {
+                what: "threshold",
+                value: f64::NAN,
+            });
+        }
+        let labels = self.labels.for_view(direction, interpolation)?;
+        let cluster = self.cluster_labels(&labels);
+        let in_contour = |corners: [u32; 3]| {
+            corners
+                .iter()
+                .any(|&v| cluster[v as usize] <= tolerance.threshold)
+        };
+        let allowed = |contour: bool| {
+            if contour {
+                tolerance.error * tolerance.factor
+            } else {
+                tolerance.error
+            }
+        };
+        let refinement = &mut self.refinement;
+        refinement.reset();
+        let hierarchy = self.hierarchy;
+        let mut work: Vec<u32> = refinement.live_triangles().collect();
+        let mut undone = Vec::new();
+        while let Some(t) = work.pop() {
+            let Some(corners) = refinement.corners(t) else {
+                continue;
+            };
+            let bound = corners
+                .iter()
+                .map(|&v| refinement.radius(v))
+                .fold(0.0, f64::max);
+            if bound <= allowed(in_contour(corners)) {
+                continue;
+            }
+            let Some(&v) =
+                corners
+                    .iter()
+                    .filter(|&&v| refinement.can_split(v))
+                    .max_by(|&&a, &&b| {
+                        refinement
+                            .radius(a)
+                            .total_cmp(&refinement.radius(b))
+                            .then(b.cmp(&a))
+                    })
+            else {
+                continue;
+            };
+            undone.clear();
+            refinement.split_vertex_into(v, &mut undone)?;
+            for &c in &undone {
+                work.extend_from_slice(hierarchy.triangles_added_by_split(c));
+                work.extend_from_slice(hierarchy.triangles_affected_by_split(c));
+            }
+            work.push(t);
+        }
+        let (mut contour_error, mut other_error, mut contour_triangles) = (0.0_f64, 0.0_f64, 0);
+        for t in refinement.live_triangles() {
+            let Some(corners) = refinement.corners(t) else {
+                continue;
+            };
+            let bound = corners
+                .iter()
+                .map(|&v| refinement.radius(v))
+                .fold(0.0, f64::max);
+            if in_contour(corners) {
+                contour_error = contour_error.max(bound);
+                contour_triangles += 1;
+            } else {
+                other_error = other_error.max(bound);
+            }
+        }
+        Ok(Extraction {
+            simplified: refinement.to_simplified(),
+            contour_error,
+            other_error,
+            contour_triangles,
+        })
+    }
+}

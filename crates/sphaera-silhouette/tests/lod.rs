@@ -1,0 +1,164 @@
+//! Level of detail guided by labels: every triangle of an extraction meets its allowance
+//! (checked again from the output), factor 0 keeps the contour exact, a larger error or
+//! factor never gives more triangles, the static weights freeze the contour, and the
+//! errors are named.
+// Weights of exactly 0 and 1 are compared exactly on purpose.
+#![allow(clippy::float_cmp)]
+
+use sphaera_mesh::{DVec3, shapes};
+use sphaera_silhouette::{
+    ContourTolerance, DistanceTransform, Interpolation, Labels, SilhouetteError, ViewDependent,
+    ViewSet, contour_weights,
+};
+use sphaera_simplify::{Hierarchy, Placement, SimplifyOptions, simplify};
+
+fn setup() -> (sphaera_mesh::TriMesh, Hierarchy, Labels) {
+    let mesh = shapes::torus(1.0, 0.35, 40).unwrap();
+    let hierarchy =
+        Hierarchy::build(&mesh, &SimplifyOptions::default().with_target_triangles(60)).unwrap();
+    let views = ViewSet::regular(30.0).unwrap();
+    let labels = Labels::compute(&mesh, &views, 96, DistanceTransform::Euclidean).unwrap();
+    (mesh, hierarchy, labels)
+}
+
+#[test]
+fn every_triangle_meets_its_allowance() {
+    let (mesh, hierarchy, labels) = setup();
+    let diagonal = mesh.bounding_box_diagonal();
+    let mut extractor = ViewDependent::new(&hierarchy, &labels).unwrap();
+    let mut previous = usize::MAX;
+    for (direction, interpolation) in [
+        (DVec3::Z, Interpolation::Nearest),
+        (DVec3::new(0.4, -0.3, 0.7), Interpolation::Average(4)),
+        (DVec3::X, Interpolation::Nearest),
+    ] {
+        for factor in [0.0, 0.25, 1.0] {
+            let tolerance = ContourTolerance {
+                error: 0.02 * diagonal,
+                factor,
+                threshold: 3.0,
+            };
+            let out = extractor
+                .extract(direction, interpolation, tolerance)
+                .unwrap();
+            assert!(
+                out.other_error <= tolerance.error,
+                "{factor}: {}",
+                out.other_error
+            );
+            assert!(
+                out.contour_error <= tolerance.error * factor,
+                "{factor}: {}",
+                out.contour_error
+            );
+            assert!(
+                out.contour_triangles > 0
+                    && out.contour_triangles <= out.simplified.mesh.triangle_count()
+            );
+            // The whole mesh's bound is the larger of the two regions'.
+            assert!(out.simplified.error_bound <= out.contour_error.max(out.other_error) + 1e-12);
+            if direction == DVec3::X {
+                assert!(
+                    out.simplified.mesh.triangle_count() <= previous,
+                    "a larger factor, no more triangles"
+                );
+                previous = out.simplified.mesh.triangle_count();
+            }
+        }
+    }
+    // A larger error never needs more triangles.
+    let mut count = |error: f64| {
+        extractor
+            .extract(
+                DVec3::Z,
+                Interpolation::Nearest,
+                ContourTolerance {
+                    error: error * diagonal,
+                    factor: 0.5,
+                    threshold: 2.0,
+                },
+            )
+            .unwrap()
+            .simplified
+            .mesh
+            .triangle_count()
+    };
+    let (coarse, middle, fine) = (count(0.05), count(0.01), count(0.002));
+    assert!(
+        coarse <= middle && middle <= fine,
+        "{coarse} {middle} {fine}"
+    );
+}
+
+#[test]
+fn static_weights_freeze_the_contour_of_every_view() {
+    let (mesh, _, labels) = setup();
+    // From every view, every vertex of a torus is near some silhouette.
+    let all = contour_weights(&labels, &[], 1.0, 0.0).unwrap();
+    assert!(all.iter().all(|&w| w == 0.0));
+    let weights = contour_weights(&labels, &[0, 7, 20], 1.0, 0.0).unwrap();
+    assert!(weights.contains(&0.0) && weights.contains(&1.0));
+    let out = simplify(
+        &mesh,
+        &SimplifyOptions::default()
+            .with_weights(weights.clone())
+            .with_target_ratio(0.2),
+    )
+    .unwrap();
+    for (i, &o) in out.original_vertex.iter().enumerate() {
+        if weights[o as usize] == 0.0 {
+            assert!(out.vertex_radii[i] <= 0.0, "contour vertex {o} moved");
+        }
+    }
+    // One view only: fewer vertices in its contour than in three views' together.
+    let one = contour_weights(&labels, &[0], 1.0, 0.0).unwrap();
+    let zeros = |w: &[f64]| w.iter().filter(|&&x| x == 0.0).count();
+    assert!(zeros(&one) < zeros(&weights));
+    assert!(matches!(
+        contour_weights(&labels, &[], 1.0, -1.0),
+        Err(SilhouetteError::InvalidParameter { what: "factor", .. })
+    ));
+}
+
+#[test]
+fn mismatched_inputs_are_refused() {
+    let (mesh, hierarchy, labels) = setup();
+    let other = shapes::sphere(1.0, 10).unwrap();
+    let other_labels = Labels::compute(
+        &other,
+        &ViewSet::regular(90.0).unwrap(),
+        16,
+        DistanceTransform::Chamfer,
+    )
+    .unwrap();
+    assert!(matches!(
+        ViewDependent::new(&hierarchy, &other_labels),
+        Err(SilhouetteError::MeshMismatch { .. })
+    ));
+    let optimal = Hierarchy::build(
+        &mesh,
+        &SimplifyOptions::default()
+            .with_placement(Placement::Optimal)
+            .with_target_triangles(60),
+    )
+    .unwrap();
+    assert!(matches!(
+        ViewDependent::new(&optimal, &labels),
+        Err(SilhouetteError::NotSubset)
+    ));
+    let mut extractor = ViewDependent::new(&hierarchy, &labels).unwrap();
+    for (error, factor) in [(-1.0, 0.5), (f64::NAN, 0.5), (0.1, f64::INFINITY)] {
+        assert!(matches!(
+            extractor.extract(
+                DVec3::Z,
+                Interpolation::Nearest,
+                ContourTolerance {
+                    error,
+                    factor,
+                    threshold: 1.0
+                }
+            ),
+            Err(SilhouetteError::InvalidParameter { .. })
+        ));
+    }
+}
