@@ -284,6 +284,10 @@ const CHARTS: &[(&str, Coverage)] = &[
         "hal_vs_simplify",
         Coverage::Only(&["spot.obj", "bunny_lowres.obj", "fandisk.obj"]),
     ),
+    (
+        "silhouette_error_vs_triangles",
+        Coverage::Only(&["stanford-bunny.obj", "dragon_vrip_res2.ply"]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

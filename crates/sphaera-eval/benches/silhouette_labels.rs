@@ -21,8 +21,8 @@ use imageproc::distance_transform::{
 use imageproc::image::{GrayImage, Luma};
 use sphaera::mesh::DVec3;
 use sphaera::silhouette::{
-    ContourTolerance, DistanceTransform, Interpolation, Labels, Projection, ViewDependent, ViewSet,
-    label_view,
+    ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, Projection,
+    ViewDependent, ViewSet, label_view,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
 
@@ -40,6 +40,7 @@ fn bench(c: &mut Criterion) {
         Projection::Orthographic,
         RESOLUTION,
         DistanceTransform::Euclidean,
+        Contours::All,
     )
     .expect("labels");
     let object: Vec<bool> = side.cells.iter().map(|&d| d > 0.0).collect();
@@ -71,8 +72,14 @@ fn bench(c: &mut Criterion) {
     let views = ViewSet::regular(15.0).expect("266 views");
     // Extraction for a new view (from the base mesh each time), labels by the nearest view
     // and by the 4 nearest, and the lookup alone.
-    let labels =
-        Labels::compute(&bunny, &views, RESOLUTION, DistanceTransform::Euclidean).expect("labels");
+    let labels = Labels::compute(
+        &bunny,
+        &views,
+        RESOLUTION,
+        DistanceTransform::Euclidean,
+        Contours::All,
+    )
+    .expect("labels");
     let hierarchy = Hierarchy::build(&bunny, &SimplifyOptions::default()).expect("a hierarchy");
     let mut extractor = ViewDependent::new(&hierarchy, &labels).expect("the same mesh");
     let tolerance = ContourTolerance {
@@ -109,8 +116,14 @@ fn bench(c: &mut Criterion) {
     group.bench_function("266_views_512", |b| {
         b.iter(|| {
             black_box(
-                Labels::compute(&bunny, &views, RESOLUTION, DistanceTransform::Euclidean)
-                    .expect("labels"),
+                Labels::compute(
+                    &bunny,
+                    &views,
+                    RESOLUTION,
+                    DistanceTransform::Euclidean,
+                    Contours::All,
+                )
+                .expect("labels"),
             )
         });
     });

@@ -4,11 +4,11 @@
 //! the nearest precomputed view or the average of the `n` nearest.
 
 use glam::{DVec2, DVec3};
-use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::SilhouetteError;
 use crate::camera::Camera;
+use crate::coverage::bounding_sphere;
 use crate::distance::DistanceTransform;
 use crate::raster::{cell_index, cells_of_triangle, cells_of_triangle_into};
 use crate::views::{Projection, ViewSet};
@@ -43,14 +43,6 @@ pub struct ViewLabels {
     pub silhouette: Vec<bool>,
 }
 
-/// The bounding sphere the views are framed on.
-fn bounds(mesh: &TriMesh) -> Result<Sphere, SilhouetteError> {
-    if mesh.triangles().is_empty() {
-        return Err(SilhouetteError::EmptyMesh);
-    }
-    minimum_enclosing_ball(mesh.positions()).map_err(|_| SilhouetteError::EmptyMesh)
-}
-
 /// The labels of one view of `mesh`, looking from `direction` (toward the camera).
 ///
 /// # Errors
@@ -63,15 +55,17 @@ pub fn label_view(
     projection: Projection,
     resolution: usize,
     transform: DistanceTransform,
+    contours: Contours,
 ) -> Result<ViewLabels, SilhouetteError> {
     check(direction, projection, resolution)?;
-    let sphere = bounds(mesh)?;
+    let sphere = bounding_sphere(mesh)?;
     Ok(label_in_frame(
-        mesh, sphere, direction, projection, resolution, transform,
+        mesh, sphere, direction, projection, resolution, transform, contours,
     ))
 }
 
-fn check(
+/// Checks a view's parameters.
+pub(crate) fn check(
     direction: DVec3,
     projection: Projection,
     resolution: usize,
@@ -93,6 +87,19 @@ fn check(
     Ok(())
 }
 
+/// Which silhouettes the binary image brings out.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Contours {
+    /// The outline only (the paper: "in the case that only the external contour has to be
+    /// preserved"): labels measure the distance to the mesh's outline in the image.
+    External,
+    /// The outline and the internal silhouettes (the paper's Fig. 2): cells under faces
+    /// holding a silhouette vertex are background too. On a bumpy scan every bump is a
+    /// silhouette somewhere, so much of the mesh gets small labels.
+    #[default]
+    All,
+}
+
 /// One view's projection and binary image: the vertices' image points, each face's
 /// cells, and the object cells (under some face, and not under a face holding a
 /// silhouette vertex).
@@ -110,6 +117,7 @@ fn map_view(
     direction: DVec3,
     projection: Projection,
     resolution: usize,
+    contours: Contours,
     mut each_face: impl FnMut(usize, &[usize]),
 ) -> Mapped {
     let camera = Camera::new(sphere, direction.normalize(), projection);
@@ -139,7 +147,7 @@ fn map_view(
     let mut list = Vec::new();
     for (f, t) in mesh.triangles().iter().enumerate() {
         cells_of_triangle_into(t.map(|v| image[v as usize]), resolution, &mut list);
-        let on_silhouette = t.iter().any(|&v| silhouette[v as usize]);
+        let on_silhouette = contours == Contours::All && t.iter().any(|&v| silhouette[v as usize]);
         for &c in &list {
             occupied[c] = true;
             cut[c] |= on_silhouette;
@@ -162,8 +170,17 @@ fn vertex_labels_in_frame(
     projection: Projection,
     resolution: usize,
     transform: DistanceTransform,
+    contours: Contours,
 ) -> Vec<f32> {
-    let mapped = map_view(mesh, sphere, direction, projection, resolution, |_, _| {});
+    let mapped = map_view(
+        mesh,
+        sphere,
+        direction,
+        projection,
+        resolution,
+        contours,
+        |_, _| {},
+    );
     let distances = transform.apply(&mapped.object, resolution, resolution);
     mapped
         .image
@@ -179,6 +196,7 @@ fn label_in_frame(
     projection: Projection,
     resolution: usize,
     transform: DistanceTransform,
+    contours: Contours,
 ) -> ViewLabels {
     let mut face_cells: Vec<Vec<usize>> = vec![Vec::new(); mesh.triangle_count()];
     let mapped = map_view(
@@ -187,6 +205,7 @@ fn label_in_frame(
         direction,
         projection,
         resolution,
+        contours,
         |f, cells| {
             face_cells[f] = cells.to_vec();
         },
@@ -267,9 +286,10 @@ impl Labels {
         views: &ViewSet,
         resolution: usize,
         transform: DistanceTransform,
+        contours: Contours,
     ) -> Result<Self, SilhouetteError> {
         check(DVec3::Z, views.projection(), resolution)?;
-        let sphere = bounds(mesh)?;
+        let sphere = bounding_sphere(mesh)?;
         let one = |k: usize| -> Vec<u16> {
             vertex_labels_in_frame(
                 mesh,
@@ -278,6 +298,7 @@ impl Labels {
                 views.projection(),
                 resolution,
                 transform,
+                contours,
             )
             .into_iter()
             .map(quantize)

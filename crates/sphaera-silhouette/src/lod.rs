@@ -1,6 +1,8 @@
 //! Level of detail guided by labels (section 3.3): the contour region (triangles with a
-//! vertex at most `threshold` cells from the silhouette) gets the allowed error `e · f`,
-//! the rest `e`. Extracted view by view from `sphaera-simplify`'s progressive hierarchy,
+//! corner at most `threshold` cells from the silhouette, the paper's rule) gets the
+//! allowed error `e · f`, the rest `e`. (Counting a coarse corner with the smallest label
+//! of the input vertices collapsed into it was tried: it puts most coarse triangles in
+//! the region and spends 15–35 % more triangles for the same outline.) Extracted view by view from `sphaera-simplify`'s progressive hierarchy,
 //! with the error-sphere bound of each region; or, for one mesh that keeps the
 //! silhouettes of many views, as per-vertex tolerance weights for the static simplifier.
 
@@ -123,22 +125,6 @@ impl<'h> ViewDependent<'h> {
         })
     }
 
-    /// Per hierarchy vertex, the smallest label over the input vertices collapsed into it
-    /// (in the base mesh, transitively), so that a coarse triangle standing for a stretch
-    /// of contour is in the contour region even when its corners are not.
-    fn cluster_labels(&self, labels: &[f32]) -> Vec<f32> {
-        let mut smallest: Vec<f32> = self.input.iter().map(|&i| labels[i as usize]).collect();
-        for c in 0..self.hierarchy.collapse_count() as u32 {
-            if let (Some(u), Some(p)) = (
-                self.hierarchy.removed_vertex(c),
-                self.hierarchy.kept_vertex(c),
-            ) {
-                smallest[p as usize] = smallest[p as usize].min(smallest[u as usize]);
-            }
-        }
-        smallest
-    }
-
     /// Refines the hierarchy from its base mesh until every triangle's error bound (the
     /// largest radius of its corners) is within its allowance: `tolerance.error ·
     /// tolerance.factor` in the contour region of the view from `direction` (labels by
@@ -163,7 +149,9 @@ impl<'h> ViewDependent<'h> {
             });
         }
         let labels = self.labels.for_view(direction, interpolation)?;
-        let cluster = self.cluster_labels(&labels);
+        // The paper's rule: a triangle is in the contour region when one of its corners
+        // is (Subset placement: a corner is an input vertex and keeps its label).
+        let cluster: Vec<f32> = self.input.iter().map(|&i| labels[i as usize]).collect();
         let in_contour = |corners: [u32; 3]| {
             corners
                 .iter()

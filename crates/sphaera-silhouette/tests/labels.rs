@@ -8,8 +8,8 @@ use proptest::prelude::*;
 use sphaera_mesh::glam::DVec2;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_silhouette::{
-    DistanceTransform, FaceGrid, Interpolation, Labels, Projection, SilhouetteError, ViewSet,
-    label_view,
+    Contours, DistanceTransform, FaceGrid, Interpolation, Labels, Projection, SilhouetteError,
+    ViewSet, label_view,
 };
 
 fn directions() -> Vec<DVec3> {
@@ -35,7 +35,8 @@ fn silhouette_vertices_have_label_zero_and_labels_grow_inward() {
         ] {
             for transform in [DistanceTransform::Euclidean, DistanceTransform::Chamfer] {
                 for d in directions() {
-                    let labels = label_view(mesh, d, projection, 96, transform).unwrap();
+                    let labels =
+                        label_view(mesh, d, projection, 96, transform, Contours::All).unwrap();
                     for (v, &on) in labels.silhouette.iter().enumerate() {
                         if on {
                             assert_eq!(labels.vertices[v], 0.0, "mesh {m}, vertex {v}, {d}");
@@ -66,6 +67,7 @@ fn silhouette_vertices_have_label_zero_and_labels_grow_inward() {
         Projection::Orthographic,
         128,
         DistanceTransform::Euclidean,
+        Contours::All,
     )
     .unwrap();
     let mut upper: Vec<(f64, f32)> = mesh
@@ -90,7 +92,14 @@ fn silhouette_vertices_have_label_zero_and_labels_grow_inward() {
 fn precomputed_views_come_back_exactly_and_new_views_interpolate() {
     let mesh = shapes::torus(1.0, 0.35, 20).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels = Labels::compute(&mesh, &views, 64, DistanceTransform::Euclidean).unwrap();
+    let labels = Labels::compute(
+        &mesh,
+        &views,
+        64,
+        DistanceTransform::Euclidean,
+        Contours::All,
+    )
+    .unwrap();
     assert_eq!(
         labels.storage_bytes(),
         2 * mesh.positions().len() * views.len()
@@ -112,6 +121,7 @@ fn precomputed_views_come_back_exactly_and_new_views_interpolate() {
             Projection::Orthographic,
             64,
             DistanceTransform::Euclidean,
+            Contours::All,
         )
         .unwrap();
         for (a, b) in own.iter().zip(&direct.vertices) {
@@ -150,9 +160,23 @@ fn scaling_by_a_power_of_two_changes_no_label() {
         .unwrap()
     };
     let views = ViewSet::regular(45.0).unwrap();
-    let reference = Labels::compute(&moved(1.0), &views, 48, DistanceTransform::Euclidean).unwrap();
+    let reference = Labels::compute(
+        &moved(1.0),
+        &views,
+        48,
+        DistanceTransform::Euclidean,
+        Contours::All,
+    )
+    .unwrap();
     for s in [0.25, 1024.0, 2f64.powi(-30)] {
-        let labels = Labels::compute(&moved(s), &views, 48, DistanceTransform::Euclidean).unwrap();
+        let labels = Labels::compute(
+            &moved(s),
+            &views,
+            48,
+            DistanceTransform::Euclidean,
+            Contours::All,
+        )
+        .unwrap();
         for k in 0..views.len() {
             assert_eq!(labels.stored(k), reference.stored(k), "scale {s}, view {k}");
         }
@@ -205,6 +229,7 @@ fn awkward_inputs() {
             Projection::Orthographic,
             32,
             DistanceTransform::Euclidean,
+            Contours::All,
         )
         .unwrap();
         assert!(labels.vertices.iter().all(|l| l.is_finite()), "{d}");
@@ -217,6 +242,7 @@ fn awkward_inputs() {
         Projection::Orthographic,
         1,
         DistanceTransform::Euclidean,
+        Contours::All,
     )
     .unwrap();
     assert_eq!(one.cells.len(), 1);
@@ -240,7 +266,8 @@ fn awkward_inputs() {
     let finned = TriMesh::new(positions, fin).unwrap();
     for mesh in [&open, &finned] {
         let views = ViewSet::regular(45.0).unwrap();
-        let labels = Labels::compute(mesh, &views, 32, DistanceTransform::Chamfer).unwrap();
+        let labels =
+            Labels::compute(mesh, &views, 32, DistanceTransform::Chamfer, Contours::All).unwrap();
         assert_eq!(labels.views().len(), 26);
     }
     // Errors, named.
@@ -250,7 +277,8 @@ fn awkward_inputs() {
             DVec3::Z,
             Projection::Perspective { distance: 0.5 },
             8,
-            DistanceTransform::Euclidean
+            DistanceTransform::Euclidean,
+            Contours::All
         ),
         Err(SilhouetteError::CameraInside { .. })
     ));
@@ -260,7 +288,8 @@ fn awkward_inputs() {
             DVec3::Z,
             Projection::Orthographic,
             0,
-            DistanceTransform::Euclidean
+            DistanceTransform::Euclidean,
+            Contours::All
         ),
         Err(SilhouetteError::InvalidResolution { resolution: 0 })
     ));
@@ -270,7 +299,8 @@ fn awkward_inputs() {
             DVec3::NAN,
             Projection::Orthographic,
             8,
-            DistanceTransform::Euclidean
+            DistanceTransform::Euclidean,
+            Contours::All
         ),
         Err(SilhouetteError::InvalidDirection { .. })
     ));
@@ -281,7 +311,8 @@ fn awkward_inputs() {
             DVec3::Z,
             Projection::Orthographic,
             8,
-            DistanceTransform::Euclidean
+            DistanceTransform::Euclidean,
+            Contours::All
         ),
         Err(SilhouetteError::EmptyMesh)
     ));
@@ -301,6 +332,7 @@ fn real_meshes_label_their_silhouettes_zero() {
                 Projection::Orthographic,
                 128,
                 DistanceTransform::Euclidean,
+                Contours::All,
             )
             .unwrap();
             let zero = labels
@@ -315,4 +347,30 @@ fn real_meshes_label_their_silhouettes_zero() {
             );
         }
     }
+}
+
+#[test]
+fn coverage_of_a_sphere_is_its_disc_and_a_simplification_differs_at_its_outline() {
+    use sphaera_silhouette::{bounding_sphere, coverage, silhouette_difference};
+    let mesh = shapes::sphere(1.0, 64).unwrap();
+    let frame = bounding_sphere(&mesh).unwrap();
+    for d in directions() {
+        let image = coverage(&mesh, frame, d, Projection::Orthographic, 128).unwrap();
+        let covered = image.iter().filter(|&&c| c).count() as f64;
+        let disc = std::f64::consts::PI * 64.0 * 64.0;
+        assert!(
+            (covered - disc).abs() < 0.03 * disc,
+            "{d}: {covered} against {disc}"
+        );
+        assert_eq!(silhouette_difference(&image, &image), 0);
+    }
+    let coarse = shapes::sphere(1.0, 8).unwrap();
+    let a = coverage(&mesh, frame, DVec3::Z, Projection::Orthographic, 128).unwrap();
+    let b = coverage(&coarse, frame, DVec3::Z, Projection::Orthographic, 128).unwrap();
+    let wrong = silhouette_difference(&a, &b);
+    assert!(wrong > 0 && wrong < 2000, "{wrong}");
+    assert!(matches!(
+        coverage(&mesh, frame, DVec3::ZERO, Projection::Orthographic, 8),
+        Err(SilhouetteError::InvalidDirection { .. })
+    ));
 }

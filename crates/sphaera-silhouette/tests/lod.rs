@@ -7,8 +7,8 @@
 
 use sphaera_mesh::{DVec3, shapes};
 use sphaera_silhouette::{
-    ContourTolerance, DistanceTransform, Interpolation, Labels, SilhouetteError, ViewDependent,
-    ViewSet, contour_weights,
+    ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, SilhouetteError,
+    ViewDependent, ViewSet, contour_weights,
 };
 use sphaera_simplify::{Hierarchy, Placement, SimplifyOptions, simplify};
 
@@ -17,7 +17,14 @@ fn setup() -> (sphaera_mesh::TriMesh, Hierarchy, Labels) {
     let hierarchy =
         Hierarchy::build(&mesh, &SimplifyOptions::default().with_target_triangles(60)).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels = Labels::compute(&mesh, &views, 96, DistanceTransform::Euclidean).unwrap();
+    let labels = Labels::compute(
+        &mesh,
+        &views,
+        96,
+        DistanceTransform::Euclidean,
+        Contours::All,
+    )
+    .unwrap();
     (mesh, hierarchy, labels)
 }
 
@@ -129,6 +136,7 @@ fn mismatched_inputs_are_refused() {
         &ViewSet::regular(90.0).unwrap(),
         16,
         DistanceTransform::Chamfer,
+        Contours::All,
     )
     .unwrap();
     assert!(matches!(

@@ -12,7 +12,9 @@
 //! - `spheretree_similarity`: `spheretree/similarity.rs` (the default tree under random
 //!   similarity transforms);
 //! - `hal`: `hal/mod.rs` (three charts: widths, query speed, against strip and box trees;
-//!   the peers in `hal/peers.rs`).
+//!   the peers in `hal/peers.rs`);
+//! - `silhouette_error_vs_triangles`: `silhouette.rs` (levels of detail guided by
+//!   silhouette labels against unweighted ones, in image space).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -21,6 +23,7 @@ mod hal;
 mod hausdorff_gap;
 mod load_topology;
 mod medial_static_vs_adaptive;
+mod silhouette;
 mod simplify_error;
 mod spheretree;
 mod sweep_throughput;
@@ -42,6 +45,7 @@ pub const NAMES: &[&str] = &[
     spheretree::NAME,
     spheretree::similarity::NAME,
     hal::NAME,
+    silhouette::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -55,6 +59,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         spheretree::NAME => spheretree::run(data, out),
         spheretree::similarity::NAME => spheretree::similarity::run(data, out),
         hal::NAME => hal::run(data, out),
+        silhouette::NAME => silhouette::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }
