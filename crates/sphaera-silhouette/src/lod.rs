@@ -173,10 +173,7 @@ impl<'h> ViewDependent<'h> {
             let Some(corners) = refinement.corners(t) else {
                 continue;
             };
-            let bound = corners
-                .iter()
-                .map(|&v| refinement.radius(v))
-                .fold(0.0, f64::max);
+            let bound = triangle_bound(refinement, corners);
             if bound <= allowed(in_contour(corners)) {
                 continue;
             }
@@ -206,10 +203,7 @@ impl<'h> ViewDependent<'h> {
             let Some(corners) = refinement.corners(t) else {
                 continue;
             };
-            let bound = corners
-                .iter()
-                .map(|&v| refinement.radius(v))
-                .fold(0.0, f64::max);
+            let bound = triangle_bound(refinement, corners);
             if in_contour(corners) {
                 contour_error = contour_error.max(bound);
                 contour_triangles += 1;
@@ -224,4 +218,12 @@ impl<'h> ViewDependent<'h> {
             contour_triangles,
         })
     }
+}
+
+/// A triangle's error bound in a refinement: the largest radius of its corners.
+fn triangle_bound(refinement: &Refinement<'_>, corners: [u32; 3]) -> f64 {
+    corners
+        .iter()
+        .map(|&v| refinement.radius(v))
+        .fold(0.0, f64::max)
 }
