@@ -62,6 +62,8 @@ fn envelope(
         let (pq, fq) = sites[q];
         let mut s;
         loop {
+            // Invariant: `v` starts with the virtual site at −1 and the loop below pops
+            // only while more than one site is left, so it is never empty.
             let (pv, fv) = sites[*v.last().expect("the first site stays")];
             s = ((fq + pq * pq) - (fv + pv * pv)) / (2.0 * (pq - pv));
             if s <= z[v.len() - 1] && v.len() > 1 {
