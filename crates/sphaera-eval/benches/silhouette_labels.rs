@@ -1,9 +1,10 @@
 //! Silhouette labels: the distance transforms against `imageproc`'s in the same run (on
 //! the binary image of the Stanford bunny seen from the side at 512², background on the
 //! silhouettes), the labels of the 69k bunny for every 15° view (266) at 512², and the
-//! view-dependent extraction from its full hierarchy for a view between the cameras
-//! (error 1 % of the diagonal, factor ¼ within 2 cells of the contour), against the label
-//! lookup alone.
+//! view-dependent extraction from its full hierarchy (error 1 % of the diagonal, factor ¼
+//! within 2 cells of the contour) for a view between the cameras from scratch and for a
+//! camera orbiting 1° per frame from the previous frame's mesh, against the label lookup
+//! alone.
 //!
 //! `imageproc` measures distances to its *foreground* (non-zero) pixels, so it gets the
 //! complement of our object image; it treats nothing beyond the image as background, which
@@ -91,15 +92,32 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("extraction_bunny_69k");
     group.sample_size(20);
     group.measurement_time(Duration::from_secs(5));
+    // From scratch: a new extractor for the view (the first phase, refining the whole
+    // mesh to the error, included).
+    group.bench_function("extract_scratch_nearest", |b| {
+        b.iter(|| {
+            let mut fresh = ViewDependent::new(&hierarchy, &labels).expect("the same mesh");
+            black_box(
+                fresh
+                    .extract(between, Interpolation::Nearest, tolerance)
+                    .expect("extracts"),
+            )
+        });
+    });
+    // From the previous view's mesh: a camera orbiting 1° per frame.
     for (name, interpolation) in [
         ("nearest", Interpolation::Nearest),
         ("average_4", Interpolation::Average(4)),
     ] {
-        group.bench_function(format!("extract_{name}"), |b| {
+        let mut frame = 0_u32;
+        group.bench_function(format!("extract_next_{name}"), |b| {
             b.iter(|| {
+                frame = (frame + 1) % 360;
+                let a = f64::from(frame).to_radians();
+                let direction = DVec3::new(a.cos(), 0.35, a.sin());
                 black_box(
                     extractor
-                        .extract(between, interpolation, tolerance)
+                        .extract(direction, interpolation, tolerance)
                         .expect("extracts"),
                 )
             });

@@ -89,12 +89,36 @@ pub struct Extraction {
 
 /// View-dependent extraction from a progressive hierarchy with labels computed on the
 /// hierarchy's input mesh.
+///
+/// Extraction runs in two phases. The first refines the hierarchy until every vertex
+/// radius is within the error `e` allowed away from the contour: it depends on `e` alone,
+/// so it is computed once and kept. The second refines, from there, the triangles of the
+/// view's contour region down to `e · f`. Moving to another view with the same `e` undoes
+/// only the previous view's second phase and redoes it for the new contour: the work is
+/// proportional to the contour, not to the mesh. The result never depends on the views
+/// extracted before.
 pub struct ViewDependent<'h> {
     hierarchy: &'h Hierarchy,
     labels: &'h Labels,
     refinement: Refinement<'h>,
     /// Per hierarchy vertex, its input vertex.
     input: Vec<u32>,
+    /// The first phase for the last error asked for.
+    prefix: Option<Prefix>,
+    /// Reused lists of the second phase.
+    work: Vec<u32>,
+    added: Vec<u32>,
+    undone: Vec<u32>,
+}
+
+/// The refinement to an error `e` that every view shares.
+struct Prefix {
+    /// The error (compared bit for bit).
+    error: f64,
+    /// Collapses undone to reach it.
+    undone: usize,
+    /// Its live triangles with their corners, in increasing id order.
+    triangles: Vec<(u32, [u32; 3])>,
 }
 
 impl<'h> ViewDependent<'h> {
@@ -122,18 +146,26 @@ impl<'h> ViewDependent<'h> {
             labels,
             refinement: hierarchy.refinement(),
             input,
+            prefix: None,
+            work: Vec::new(),
+            added: Vec::new(),
+            undone: Vec::new(),
         })
     }
 
-    /// Refines the hierarchy from its base mesh until every triangle's error bound (the
-    /// largest radius of its corners) is within its allowance: `tolerance.error ·
-    /// tolerance.factor` in the contour region of the view from `direction` (labels by
-    /// `interpolation`), `tolerance.error` elsewhere.
+    /// Refines the hierarchy until every triangle's error bound (the largest radius of its
+    /// corners) is within its allowance: `tolerance.error · tolerance.factor` in the
+    /// contour region of the view from `direction` (labels by `interpolation`),
+    /// `tolerance.error` elsewhere.
+    ///
+    /// The first call with an error refines the whole mesh to it (a scan of the
+    /// hierarchy); later calls with the same error start from there and redo only the
+    /// contour region (see [`ViewDependent`]). The result is the same either way.
     ///
     /// # Errors
     ///
-    /// [`SilhouetteError::InvalidParameter`] for a negative or non-finite error or
-    /// factor, or a NaN threshold; as [`Labels::for_view`].
+    /// [`SilhouetteError::InvalidParameter`] for a negative or non-finite error, a factor
+    /// outside `[0, 1]`, or a NaN threshold; as [`Labels::for_view`].
     pub fn extract(
         &mut self,
         direction: DVec3,
@@ -142,6 +174,12 @@ impl<'h> ViewDependent<'h> {
     ) -> Result<Extraction, SilhouetteError> {
         check("error", tolerance.error)?;
         check("factor", tolerance.factor)?;
+        if tolerance.factor > 1.0 {
+            return Err(SilhouetteError::InvalidParameter {
+                what: "factor",
+                value: tolerance.factor,
+            });
+        }
         if tolerance.threshold.is_nan() {
             return Err(SilhouetteError::InvalidParameter {
                 what: "threshold",
@@ -149,32 +187,38 @@ impl<'h> ViewDependent<'h> {
             });
         }
         let labels = self.labels.for_view(direction, interpolation)?;
+        let prefix = self.prefix_for(tolerance.error);
+        let input = &self.input;
         // The paper's rule: a triangle is in the contour region when one of its corners
         // is (Subset placement: a corner is an input vertex and keeps its label).
-        let cluster: Vec<f32> = self.input.iter().map(|&i| labels[i as usize]).collect();
         let in_contour = |corners: [u32; 3]| {
             corners
                 .iter()
-                .any(|&v| cluster[v as usize] <= tolerance.threshold)
+                .any(|&v| labels[input[v as usize] as usize] <= tolerance.threshold)
         };
-        let allowed = |contour: bool| {
-            if contour {
-                tolerance.error * tolerance.factor
-            } else {
-                tolerance.error
-            }
-        };
+        let contour_allowance = tolerance.error * tolerance.factor;
         let refinement = &mut self.refinement;
-        refinement.reset();
         let hierarchy = self.hierarchy;
-        let mut work: Vec<u32> = refinement.live_triangles().collect();
-        let mut undone = Vec::new();
+        // Away from the contour every triangle meets `error` after the first phase, so
+        // only contour triangles can need more.
+        let work = &mut self.work;
+        work.clear();
+        work.extend(prefix.triangles.iter().filter_map(|&(t, corners)| {
+            (in_contour(corners) && triangle_bound(refinement, corners) > contour_allowance)
+                .then_some(t)
+        }));
+        let (added, undone) = (&mut self.added, &mut self.undone);
+        added.clear();
         while let Some(t) = work.pop() {
             let Some(corners) = refinement.corners(t) else {
                 continue;
             };
-            let bound = triangle_bound(refinement, corners);
-            if bound <= allowed(in_contour(corners)) {
+            let allowed = if in_contour(corners) {
+                contour_allowance
+            } else {
+                tolerance.error
+            };
+            if triangle_bound(refinement, corners) <= allowed {
                 continue;
             }
             let Some(&v) =
@@ -191,32 +235,65 @@ impl<'h> ViewDependent<'h> {
                 continue;
             };
             undone.clear();
-            refinement.split_vertex_into(v, &mut undone)?;
-            for &c in &undone {
+            refinement.split_vertex_into(v, undone)?;
+            for &c in undone.iter() {
+                added.extend_from_slice(hierarchy.triangles_added_by_split(c));
                 work.extend_from_slice(hierarchy.triangles_added_by_split(c));
                 work.extend_from_slice(hierarchy.triangles_affected_by_split(c));
             }
             work.push(t);
         }
+        added.extend(prefix.triangles.iter().map(|&(t, _)| t));
+        let simplified = refinement.simplified_of(added);
         let (mut contour_error, mut other_error, mut contour_triangles) = (0.0_f64, 0.0_f64, 0);
-        for t in refinement.live_triangles() {
-            let Some(corners) = refinement.corners(t) else {
-                continue;
-            };
-            let bound = triangle_bound(refinement, corners);
-            if in_contour(corners) {
+        for corners in simplified.mesh.triangles() {
+            let inputs = corners.map(|x| simplified.original_vertex[x as usize]);
+            let bound = corners
+                .iter()
+                .map(|&x| simplified.vertex_radii[x as usize])
+                .fold(0.0, f64::max);
+            if inputs
+                .iter()
+                .any(|&i| labels[i as usize] <= tolerance.threshold)
+            {
                 contour_error = contour_error.max(bound);
                 contour_triangles += 1;
             } else {
                 other_error = other_error.max(bound);
             }
         }
+        self.prefix = Some(prefix);
         Ok(Extraction {
-            simplified: refinement.to_simplified(),
+            simplified,
             contour_error,
             other_error,
             contour_triangles,
         })
+    }
+
+    /// The first phase for `error`: kept from the last call when the error is the same
+    /// (the refinement is taken back to it), computed from the base mesh otherwise.
+    fn prefix_for(&mut self, error: f64) -> Prefix {
+        match self.prefix.take() {
+            Some(prefix) if prefix.error.to_bits() == error.to_bits() => {
+                self.refinement.reset_to(prefix.undone);
+                prefix
+            }
+            _ => {
+                let refinement = &mut self.refinement;
+                refinement.reset();
+                refinement.refine_to_error(error);
+                let triangles = refinement
+                    .live_triangles()
+                    .filter_map(|t| refinement.corners(t).map(|corners| (t, corners)))
+                    .collect();
+                Prefix {
+                    error,
+                    undone: refinement.undone_count(),
+                    triangles,
+                }
+            }
+        }
     }
 }
 

@@ -97,6 +97,49 @@ fn every_triangle_meets_its_allowance() {
     );
 }
 
+/// Moving from view to view reuses the first phase and redoes the contour only: the
+/// meshes are the ones a fresh extractor gives for each view, whatever came before
+/// (including a change of error and back).
+#[test]
+fn coherent_extraction_equals_extraction_from_scratch() {
+    let (mesh, hierarchy, labels) = setup();
+    let diagonal = mesh.bounding_box_diagonal();
+    let tolerance = |error: f64, factor: f64| ContourTolerance {
+        error: error * diagonal,
+        factor,
+        threshold: 2.0,
+    };
+    let mut moving = ViewDependent::new(&hierarchy, &labels).unwrap();
+    let path = (0..12).map(|i| {
+        let a = f64::from(i) * 0.13;
+        (
+            DVec3::new(a.cos(), 0.3 * a.sin(), a.sin()),
+            if i % 3 == 0 {
+                Interpolation::Average(4)
+            } else {
+                Interpolation::Nearest
+            },
+            tolerance(
+                if i == 7 { 0.04 } else { 0.015 },
+                if i % 2 == 0 { 0.25 } else { 0.0 },
+            ),
+        )
+    });
+    for (direction, interpolation, tolerance) in path {
+        let coherent = moving.extract(direction, interpolation, tolerance).unwrap();
+        let fresh = ViewDependent::new(&hierarchy, &labels)
+            .unwrap()
+            .extract(direction, interpolation, tolerance)
+            .unwrap();
+        assert_eq!(coherent.simplified, fresh.simplified);
+        assert_eq!(coherent.contour_triangles, fresh.contour_triangles);
+        assert_eq!(
+            (coherent.contour_error, coherent.other_error),
+            (fresh.contour_error, fresh.other_error)
+        );
+    }
+}
+
 #[test]
 fn static_weights_freeze_the_contour_of_every_view() {
     let (mesh, _, labels) = setup();
@@ -155,7 +198,12 @@ fn mismatched_inputs_are_refused() {
         Err(SilhouetteError::NotSubset)
     ));
     let mut extractor = ViewDependent::new(&hierarchy, &labels).unwrap();
-    for (error, factor) in [(-1.0, 0.5), (f64::NAN, 0.5), (0.1, f64::INFINITY)] {
+    for (error, factor) in [
+        (-1.0, 0.5),
+        (f64::NAN, 0.5),
+        (0.1, f64::INFINITY),
+        (0.1, 1.5),
+    ] {
         assert!(matches!(
             extractor.extract(
                 DVec3::Z,

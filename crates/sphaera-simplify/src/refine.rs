@@ -325,10 +325,52 @@ impl<'h> Refinement<'h> {
     /// The current mesh: live triangles (compacted, unreferenced vertices dropped), radii
     /// and input vertex of each output vertex.
     pub fn to_simplified(&self) -> Simplified {
-        let n = self.hierarchy.vertex_count();
         let live: Vec<[u32; 3]> = (0..self.hierarchy.triangle_count() as u32)
             .filter_map(|t| self.corners(t))
             .collect();
+        self.simplified_from(&live)
+    }
+
+    /// The current mesh from a caller who tracks the live triangles (from
+    /// [`Refinement::live_triangles`] once, then the split reports): the given triangles
+    /// that are live, in increasing id order, with [`Refinement::to_simplified`]'s
+    /// vertices, radii and input vertices. Equal to [`Refinement::to_simplified`] when
+    /// `triangles` holds every live triangle; ids that are not live (or repeated) are
+    /// skipped.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
+    ///
+    /// let sphere = shapes::sphere(1.0, 12)?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default().with_target_triangles(20))?;
+    /// let mut refinement = hierarchy.refinement();
+    /// let mut live: Vec<u32> = refinement.live_triangles().collect();
+    /// let v = (0..hierarchy.vertex_count() as u32).find(|&v| refinement.can_split(v)).unwrap();
+    /// for c in refinement.split_vertex(v)? {
+    ///     live.extend(hierarchy.triangles_added_by_split(c));
+    /// }
+    /// assert_eq!(refinement.simplified_of(&live), refinement.to_simplified());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// `O(triangles · log + vertices)`, without [`Refinement::to_simplified`]'s scan of
+    /// every triangle of the hierarchy.
+    pub fn simplified_of(&self, triangles: &[u32]) -> Simplified {
+        let mut ids = triangles.to_vec();
+        ids.sort_unstable();
+        ids.dedup();
+        let live: Vec<[u32; 3]> = ids.into_iter().filter_map(|t| self.corners(t)).collect();
+        self.simplified_from(&live)
+    }
+
+    /// The mesh of `live` (current corners of live triangles, in increasing id order).
+    fn simplified_from(&self, live: &[[u32; 3]]) -> Simplified {
+        let n = self.hierarchy.vertex_count();
         // Output vertices in increasing hierarchy order, copies of a non-manifold vertex
         // merged into one (they are never collapsed, so they agree), as
         // `HalfEdgeMesh::to_trimesh` does.
