@@ -49,6 +49,21 @@ pub fn check_target(path: &Path) -> Result<()> {
     Ok(())
 }
 
+/// Fails before any work when the output's extension is not a format we write.
+pub fn check_mesh_format(path: &Path) -> Result<()> {
+    match sphaera::mesh::io::Format::from_path(path) {
+        Some(sphaera::mesh::io::Format::Obj | sphaera::mesh::io::Format::Ply) => Ok(()),
+        Some(format) => bail!(
+            "cannot write {}: writing {format} files is not supported (use .obj or .ply)",
+            path.display()
+        ),
+        None => bail!(
+            "cannot write {}: the extension is not .obj or .ply",
+            path.display()
+        ),
+    }
+}
+
 /// Formats a count with thousands separators: `871414` → `871,414`.
 pub fn thousands(n: usize) -> String {
     let digits = n.to_string();

@@ -6,9 +6,9 @@ use glam::{DVec2, DVec3};
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, TriMesh};
 
-use crate::SilhouetteError;
 use crate::camera::Camera;
 use crate::views::Projection;
+use crate::{DistanceTransform, SilhouetteError};
 
 /// The sphere views of `mesh` are framed on: the smallest ball holding its vertices.
 ///
@@ -37,40 +37,66 @@ pub fn coverage(
     projection: Projection,
     resolution: usize,
 ) -> Result<Vec<bool>, SilhouetteError> {
+    let camera = checked_camera(frame, direction, projection, resolution)?;
+    let image = project_all(mesh, &camera);
+    let mut covered = vec![false; resolution * resolution];
+    for t in mesh.triangles() {
+        for_each_covered_centre(t.map(|v| image[v as usize]), resolution, |cell, _| {
+            covered[cell] = true;
+        });
+    }
+    Ok(covered)
+}
+
+/// The camera of a view after checking its parameters.
+pub(crate) fn checked_camera(
+    frame: Sphere,
+    direction: DVec3,
+    projection: Projection,
+    resolution: usize,
+) -> Result<Camera, SilhouetteError> {
     crate::labels::check(direction, projection, resolution)?;
-    let camera = Camera::new(frame, direction.normalize(), projection);
-    let image: Vec<DVec2> = mesh
-        .positions()
+    Ok(Camera::new(frame, direction.normalize(), projection))
+}
+
+/// Every vertex of `mesh` in image coordinates.
+pub(crate) fn project_all(mesh: &TriMesh, camera: &Camera) -> Vec<DVec2> {
+    mesh.positions()
         .iter()
         .map(|&p| camera.project(p))
-        .collect();
+        .collect()
+}
+
+/// Calls `visit(cell, centre)` for every cell (row-major from the bottom) whose centre the
+/// image triangle `t` covers, edges included.
+pub(crate) fn for_each_covered_centre(
+    t: [DVec2; 3],
+    resolution: usize,
+    mut visit: impl FnMut(usize, DVec2),
+) {
     let size = 2.0 / resolution as f64;
     let last = resolution as f64 - 1.0;
     // The cell whose centre is at or after `x` (centres at −1 + (i + ½)·size).
     let first_centre = |x: f64| ((x + 1.0) / size - 0.5).ceil().clamp(0.0, last + 1.0) as usize;
     let last_centre = |x: f64| ((x + 1.0) / size - 0.5).floor().clamp(-1.0, last) as i64;
-    let mut covered = vec![false; resolution * resolution];
-    for t in mesh.triangles() {
-        let [a, b, c] = t.map(|v| image[v as usize]);
-        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-        let (i0, i1) = (first_centre(lo.x), last_centre(hi.x));
-        let (j0, j1) = (first_centre(lo.y), last_centre(hi.y));
-        if i1 < 0 || j1 < 0 {
-            continue;
-        }
-        let side = |p: DVec2, q: DVec2, x: DVec2| (q - p).perp_dot(x - p);
-        for j in j0..=j1 as usize {
-            let y = -1.0 + (j as f64 + 0.5) * size;
-            for i in i0..=i1 as usize {
-                let x = DVec2::new(-1.0 + (i as f64 + 0.5) * size, y);
-                let s = [side(a, b, x), side(b, c, x), side(c, a, x)];
-                if s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0) {
-                    covered[j * resolution + i] = true;
-                }
+    let [a, b, c] = t;
+    let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+    let (i0, i1) = (first_centre(lo.x), last_centre(hi.x));
+    let (j0, j1) = (first_centre(lo.y), last_centre(hi.y));
+    if i1 < 0 || j1 < 0 {
+        return;
+    }
+    let side = |p: DVec2, q: DVec2, x: DVec2| (q - p).perp_dot(x - p);
+    for j in j0..=j1 as usize {
+        let y = -1.0 + (j as f64 + 0.5) * size;
+        for i in i0..=i1 as usize {
+            let x = DVec2::new(-1.0 + (i as f64 + 0.5) * size, y);
+            let s = [side(a, b, x), side(b, c, x), side(c, a, x)];
+            if s.iter().all(|&v| v >= 0.0) || s.iter().all(|&v| v <= 0.0) {
+                visit(j * resolution + i, x);
             }
         }
     }
-    Ok(covered)
 }
 
 /// The number of cells where two coverage images of the same size differ.
@@ -82,4 +108,79 @@ pub fn coverage(
 pub fn silhouette_difference(a: &[bool], b: &[bool]) -> usize {
     assert_eq!(a.len(), b.len(), "two images of one size");
     a.iter().zip(b).filter(|(x, y)| x != y).count()
+}
+
+/// The largest displacement between two silhouettes, in cells: the farthest a cell
+/// covered by one image (and not the other) lies from the nearest cell covered by the
+/// other (the Hausdorff distance between the covered regions, between cell centres).
+/// `Some(0.0)` for equal images, `None` when exactly one is empty.
+///
+/// # Panics
+///
+/// If the images are not both `resolution²` cells.
+#[must_use]
+pub fn contour_displacement(a: &[bool], b: &[bool], resolution: usize) -> Option<f64> {
+    let n = resolution * resolution;
+    assert!(
+        a.len() == n && b.len() == n,
+        "two images of resolution² cells"
+    );
+    match (a.contains(&true), b.contains(&true)) {
+        (false, false) => return Some(0.0),
+        (true, false) | (false, true) => return None,
+        (true, true) => {}
+    }
+    Some(one_way(a, b, resolution).max(one_way(b, a, resolution)))
+}
+
+/// The farthest a cell of `a` outside `b` lies from `b`'s nearest cell.
+fn one_way(a: &[bool], b: &[bool], resolution: usize) -> f64 {
+    // Distances to the nearest cell of `b`, or to the ring of cells around the image when
+    // that is nearer (the transform counts it as background): below the distance to that
+    // ring the answer is exact, at it `b`'s cells are searched directly.
+    let outside_b: Vec<bool> = b.iter().map(|&x| !x).collect();
+    let distance = DistanceTransform::Euclidean.apply(&outside_b, resolution, resolution);
+    let mut boundary: Option<Vec<(f64, f64)>> = None;
+    let mut worst = 0.0_f64;
+    for cell in (0..a.len()).filter(|&c| a[c] && !b[c]) {
+        let (i, j) = (cell % resolution, cell / resolution);
+        let ring = (i.min(j).min(resolution - 1 - i).min(resolution - 1 - j) + 1) as f64;
+        let d = f64::from(distance[cell]);
+        let d = if d < ring {
+            d
+        } else {
+            let cells = boundary.get_or_insert_with(|| boundary_cells(b, resolution));
+            let (x, y) = (i as f64, j as f64);
+            cells
+                .iter()
+                .map(|&(u, v)| (u - x).hypot(v - y))
+                .fold(f64::INFINITY, f64::min)
+        };
+        worst = worst.max(d);
+    }
+    worst
+}
+
+/// The covered cells of `image` next to an uncovered one or to the image's edge (where a
+/// nearest covered cell always lies), as `(column, row)`.
+fn boundary_cells(image: &[bool], resolution: usize) -> Vec<(f64, f64)> {
+    let covered = |i: usize, j: usize| image[j * resolution + i];
+    let mut cells = Vec::new();
+    for j in 0..resolution {
+        for i in 0..resolution {
+            if !covered(i, j) {
+                continue;
+            }
+            let edge = i == 0 || j == 0 || i + 1 == resolution || j + 1 == resolution;
+            if edge
+                || !covered(i - 1, j)
+                || !covered(i + 1, j)
+                || !covered(i, j - 1)
+                || !covered(i, j + 1)
+            {
+                cells.push((i as f64, j as f64));
+            }
+        }
+    }
+    cells
 }

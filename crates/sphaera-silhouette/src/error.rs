@@ -48,13 +48,24 @@ pub enum SilhouetteError {
     /// labels computed on the input no longer apply).
     #[error("the hierarchy must use Placement::Subset, so that its vertices keep their labels")]
     NotSubset,
-    /// An allowed error or factor that is negative or not finite (or a NaN threshold).
-    #[error("{what} must be finite and non-negative, got {value}")]
+    /// An allowed error that is negative or not finite, a factor outside `[0, 1]`, a NaN
+    /// threshold or a non-positive scale.
+    #[error("{what} must be {requirement}, got {value}")]
     InvalidParameter {
         /// Which parameter.
         what: &'static str,
         /// Its value.
         value: f64,
+        /// What it must be.
+        requirement: &'static str,
+    },
+    /// Per-vertex values for a picture of another mesh.
+    #[error("{values} values for a mesh of {vertices} vertices: one value per vertex")]
+    ValueCountMismatch {
+        /// Values given.
+        values: usize,
+        /// Vertices of the mesh.
+        vertices: usize,
     },
     /// An error from the simplification hierarchy.
     #[error(transparent)]

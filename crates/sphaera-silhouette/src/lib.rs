@@ -107,14 +107,16 @@ mod distance;
 mod error;
 mod labels;
 mod lod;
+mod picture;
 mod raster;
 mod views;
 
 pub use camera::Camera;
-pub use coverage::{bounding_sphere, coverage, silhouette_difference};
+pub use coverage::{bounding_sphere, contour_displacement, coverage, silhouette_difference};
 pub use distance::DistanceTransform;
 pub use error::SilhouetteError;
 pub use labels::{Contours, Interpolation, LABEL_SCALE, Labels, ViewLabels, label_view};
 pub use lod::{ContourTolerance, Extraction, ViewDependent, contour_weights};
+pub use picture::{Picture, overlay_picture, shaded_picture};
 pub use raster::FaceGrid;
 pub use views::{Projection, ViewSet};

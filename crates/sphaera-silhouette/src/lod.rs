@@ -33,6 +33,7 @@ pub fn contour_weights(
         return Err(SilhouetteError::InvalidParameter {
             what: "threshold",
             value: f64::from(threshold),
+            requirement: "a number",
         });
     }
     let chosen: Vec<usize> = if views.is_empty() {
@@ -56,7 +57,11 @@ fn check(what: &'static str, value: f64) -> Result<(), SilhouetteError> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
-        Err(SilhouetteError::InvalidParameter { what, value })
+        Err(SilhouetteError::InvalidParameter {
+            what,
+            value,
+            requirement: "finite and non-negative",
+        })
     }
 }
 
@@ -178,12 +183,14 @@ impl<'h> ViewDependent<'h> {
             return Err(SilhouetteError::InvalidParameter {
                 what: "factor",
                 value: tolerance.factor,
+                requirement: "at most 1 (the contour is allowed no more error than elsewhere)",
             });
         }
         if tolerance.threshold.is_nan() {
             return Err(SilhouetteError::InvalidParameter {
                 what: "threshold",
                 value: f64::NAN,
+                requirement: "a number",
             });
         }
         let labels = self.labels.for_view(direction, interpolation)?;

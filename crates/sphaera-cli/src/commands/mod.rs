@@ -5,6 +5,7 @@ mod hal;
 mod hausdorff;
 mod info;
 mod medial;
+mod silhouette;
 mod simplify;
 mod spheretree;
 
@@ -22,5 +23,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Medial(args) => medial::run(args, cli.quiet),
         Command::Spheretree(args) => spheretree::run(args, cli.quiet),
         Command::Hal(args) => hal::run(args),
+        Command::Silhouette(args) => silhouette::run(args, cli.quiet),
     }
 }

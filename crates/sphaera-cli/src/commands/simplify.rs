@@ -13,7 +13,7 @@ use crate::{
     cli::SimplifyArgs,
     input::read_mesh,
     measure,
-    output::{check_target, print_json, thousands},
+    output::{check_mesh_format, check_target, print_json, thousands},
     progress,
 };
 
@@ -55,7 +55,7 @@ struct Seconds {
 
 pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     if let Some(path) = &args.output {
-        check_writable_format(path)?;
+        check_mesh_format(path)?;
         check_target(path)?;
     }
     let input = read_mesh(args.mesh.as_deref(), quiet)?;
@@ -125,21 +125,6 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     } else {
         print!("{}", report.to_text());
         Ok(())
-    }
-}
-
-/// Fails before any work when the output's extension is not a format we write.
-fn check_writable_format(path: &std::path::Path) -> Result<()> {
-    match io::Format::from_path(path) {
-        Some(io::Format::Obj | io::Format::Ply) => Ok(()),
-        Some(format) => anyhow::bail!(
-            "cannot write {}: writing {format} files is not supported (use .obj or .ply)",
-            path.display()
-        ),
-        None => anyhow::bail!(
-            "cannot write {}: the extension is not .obj or .ply",
-            path.display()
-        ),
     }
 }
 

@@ -1,0 +1,379 @@
+//! `sphaera silhouette`: silhouette labels from a set of cameras, and the level of detail
+//! they guide for one view, with its certified error per region and its silhouette error
+//! in pixels against an unweighted level of as many triangles.
+
+use std::{path::Path, time::Instant};
+
+use anyhow::{Context, Result, bail};
+use image::{ImageEncoder, codecs::png::PngEncoder};
+use serde::Serialize;
+use sphaera::{
+    mesh::{DVec3, TriMesh, io},
+    silhouette::{
+        ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, Picture, Projection,
+        ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage, overlay_picture,
+        shaded_picture, silhouette_difference,
+    },
+    simplify::{Hierarchy, SimplifyOptions, SimplifyProgress},
+};
+
+use crate::{
+    cli::{ContoursArg, SilhouetteArgs, TransformArg},
+    input::read_mesh,
+    output::{check_mesh_format, check_target, print_json, thousands},
+    progress,
+};
+
+/// Everything `sphaera silhouette` reports; also its JSON schema.
+#[derive(Debug, Serialize)]
+struct Report {
+    /// The input file, or `<embedded bunny_lowres.obj>`.
+    source: String,
+    /// The view: the unit direction toward the camera.
+    view: [f64; 3],
+    /// Cameras of the view set and the degrees between them.
+    cameras: usize,
+    step_degrees: f64,
+    /// `orthographic`, or `perspective` with the distance in bounding radii.
+    projection: String,
+    /// Cells a side of the label grids (and of the silhouette comparison).
+    resolution: usize,
+    /// `outline` or `all` (the outline and the internal silhouettes).
+    contours: &'static str,
+    /// `euclidean` or `chamfer`.
+    transform: &'static str,
+    /// Cameras whose labels the view's are the average of (1: the nearest).
+    nearest: usize,
+    /// The contour region: triangles with a corner at most this many cells from the
+    /// silhouette.
+    threshold: f32,
+    /// The contour region's allowed error as a fraction of `error`.
+    factor: f64,
+    /// The error allowed away from the contour, absolute and relative to the diagonal.
+    error: f64,
+    error_relative: f64,
+    /// Bytes of the stored labels (one `u16` per vertex per camera).
+    label_bytes: usize,
+    triangles_in: usize,
+    triangles_out: usize,
+    contour_triangles: usize,
+    /// Certified bounds on the distance between the result and the input, per region.
+    contour_error: f64,
+    other_error: f64,
+    /// Cells of the view where the result's silhouette differs from the original's.
+    silhouette_pixels_wrong: usize,
+    /// The farthest a differing cell lies from the other silhouette, in cells (`null`
+    /// when the result shows nothing).
+    contour_displacement: Option<f64>,
+    /// The same for the hierarchy's unweighted level of as many triangles.
+    unweighted_pixels_wrong: usize,
+    unweighted_contour_displacement: Option<f64>,
+    /// Cells the original covers in the view.
+    silhouette_pixels: usize,
+    /// Written files (`null` when not asked for).
+    output: Option<String>,
+    labels_png: Option<String>,
+    compare_png: Option<String>,
+    seconds: Seconds,
+}
+
+#[derive(Debug, Serialize)]
+struct Seconds {
+    load: f64,
+    labels: f64,
+    hierarchy: f64,
+    extract: f64,
+    compare: f64,
+    write: f64,
+}
+
+pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
+    if let Some(path) = &args.output {
+        check_mesh_format(path)?;
+        check_target(path)?;
+    }
+    for path in [&args.labels_png, &args.compare_png].into_iter().flatten() {
+        check_png(path)?;
+        check_target(path)?;
+    }
+    let view = DVec3::from_array(args.view).normalize();
+    let interpolation = match args.nearest {
+        0 => bail!("--nearest must be at least 1"),
+        1 => Interpolation::Nearest,
+        n => Interpolation::Average(n),
+    };
+    let mut views = ViewSet::regular(args.step)?;
+    if let Some(distance) = args.perspective {
+        views = views.with_perspective(distance)?;
+    }
+    let projection = views.projection();
+    if args.nearest > views.len() {
+        bail!(
+            "--nearest {} asks for more cameras than the {} of a {}° step",
+            args.nearest,
+            views.len(),
+            args.step
+        );
+    }
+    let input = read_mesh(args.mesh.as_deref(), quiet)?;
+    let mesh = &input.loaded.mesh;
+    if mesh.triangle_count() == 0 {
+        bail!("{} has no triangles: nothing to label", input.source);
+    }
+    let diagonal = mesh.bounding_box_diagonal();
+    let error = args.error.resolve(diagonal);
+    let tolerance = ContourTolerance {
+        error,
+        factor: args.factor,
+        threshold: args.threshold,
+    };
+
+    let started = Instant::now();
+    let bar = progress::spinner(
+        quiet,
+        &format!("labelling {} views at {}²", views.len(), args.resolution),
+    );
+    let labels = Labels::compute(
+        mesh,
+        &views,
+        args.resolution,
+        transform(args.transform),
+        contours(args.contours),
+    );
+    bar.finish_and_clear();
+    let labels = labels?;
+    let labels_seconds = started.elapsed().as_secs_f64();
+
+    let started = Instant::now();
+    let bar = progress::bar(
+        quiet,
+        &format!(
+            "building the hierarchy of {} triangles",
+            thousands(mesh.triangle_count())
+        ),
+        mesh.triangle_count() as u64,
+    );
+    let report_progress = |p: &SimplifyProgress| {
+        bar.set_length(p.to_remove as u64);
+        bar.set_position(p.removed as u64);
+    };
+    let hierarchy =
+        Hierarchy::build_with_progress(mesh, &SimplifyOptions::default(), &report_progress);
+    bar.finish_and_clear();
+    let hierarchy = hierarchy?;
+    let hierarchy_seconds = started.elapsed().as_secs_f64();
+
+    let started = Instant::now();
+    let extraction =
+        ViewDependent::new(&hierarchy, &labels)?.extract(view, interpolation, tolerance)?;
+    let extract_seconds = started.elapsed().as_secs_f64();
+    let result = &extraction.simplified.mesh;
+
+    let started = Instant::now();
+    let frame = bounding_sphere(mesh)?;
+    let picture = |m: &TriMesh| coverage(m, frame, view, projection, args.resolution);
+    let original = picture(mesh)?;
+    let ours = picture(result)?;
+    let uniform = picture(&hierarchy.level_by_triangles(result.triangle_count()).mesh)?;
+    let compare_seconds = started.elapsed().as_secs_f64();
+
+    let started = Instant::now();
+    if let Some(path) = &args.output {
+        io::save(path, result)?;
+    }
+    if let Some(path) = &args.labels_png {
+        let values = labels.for_view(view, interpolation)?;
+        let scale = values.iter().copied().fold(0.0_f32, f32::max).max(1.0);
+        let shaded = shaded_picture(
+            mesh,
+            frame,
+            view,
+            projection,
+            args.resolution,
+            &values,
+            scale,
+        )?;
+        write_png(path, &shaded)?;
+    }
+    if let Some(path) = &args.compare_png {
+        write_png(path, &overlay_picture(&original, &ours, args.resolution))?;
+    }
+    let write_seconds = started.elapsed().as_secs_f64();
+
+    let shown = |p: &Option<std::path::PathBuf>| p.as_ref().map(|p| p.display().to_string());
+    let report = Report {
+        source: input.source,
+        view: view.to_array(),
+        cameras: views.len(),
+        step_degrees: args.step,
+        projection: match projection {
+            Projection::Perspective { distance } => format!("perspective at {distance} radii"),
+            _ => "orthographic".to_owned(),
+        },
+        resolution: args.resolution,
+        contours: match args.contours {
+            ContoursArg::Outline => "outline",
+            ContoursArg::All => "all",
+        },
+        transform: match args.transform {
+            TransformArg::Euclidean => "euclidean",
+            TransformArg::Chamfer => "chamfer",
+        },
+        nearest: args.nearest,
+        threshold: args.threshold,
+        factor: args.factor,
+        error,
+        error_relative: if diagonal > 0.0 {
+            error / diagonal
+        } else {
+            0.0
+        },
+        label_bytes: labels.storage_bytes(),
+        triangles_in: mesh.triangle_count(),
+        triangles_out: result.triangle_count(),
+        contour_triangles: extraction.contour_triangles,
+        contour_error: extraction.contour_error,
+        other_error: extraction.other_error,
+        silhouette_pixels_wrong: silhouette_difference(&original, &ours),
+        contour_displacement: contour_displacement(&original, &ours, args.resolution),
+        unweighted_pixels_wrong: silhouette_difference(&original, &uniform),
+        unweighted_contour_displacement: contour_displacement(&original, &uniform, args.resolution),
+        silhouette_pixels: original.iter().filter(|&&c| c).count(),
+        output: shown(&args.output),
+        labels_png: shown(&args.labels_png),
+        compare_png: shown(&args.compare_png),
+        seconds: Seconds {
+            load: input.seconds,
+            labels: labels_seconds,
+            hierarchy: hierarchy_seconds,
+            extract: extract_seconds,
+            compare: compare_seconds,
+            write: write_seconds,
+        },
+    };
+    if args.print.json {
+        print_json(&report)
+    } else {
+        print!("{}", report.to_text());
+        Ok(())
+    }
+}
+
+fn transform(arg: TransformArg) -> DistanceTransform {
+    match arg {
+        TransformArg::Euclidean => DistanceTransform::Euclidean,
+        TransformArg::Chamfer => DistanceTransform::Chamfer,
+    }
+}
+
+fn contours(arg: ContoursArg) -> Contours {
+    match arg {
+        ContoursArg::Outline => Contours::External,
+        ContoursArg::All => Contours::All,
+    }
+}
+
+/// Fails before any work unless `path` ends in `.png`.
+fn check_png(path: &Path) -> Result<()> {
+    let png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !png {
+        bail!(
+            "cannot write {}: pictures are PNG files (.png)",
+            path.display()
+        );
+    }
+    Ok(())
+}
+
+/// Encodes `picture` as PNG and writes it atomically.
+fn write_png(path: &Path, picture: &Picture) -> Result<()> {
+    let mut bytes = Vec::new();
+    let side = u32::try_from(picture.size).context("the picture is too large for PNG")?;
+    PngEncoder::new(&mut bytes)
+        .write_image(&picture.rgb, side, side, image::ExtendedColorType::Rgb8)
+        .with_context(|| format!("cannot encode {} as PNG", path.display()))?;
+    io::write_atomic(path, |w| std::io::Write::write_all(w, &bytes))?;
+    Ok(())
+}
+
+impl Report {
+    fn to_text(&self) -> String {
+        let cells = |d: Option<f64>| d.map_or("-".to_owned(), |d| format!("{d:.1}"));
+        let percent = |d: f64| {
+            if self.error_relative > 0.0 {
+                100.0 * d * self.error_relative / self.error
+            } else {
+                0.0
+            }
+        };
+        let [x, y, z] = self.view;
+        let mut lines = vec![
+            format!("mesh            {}", self.source),
+            format!(
+                "cameras         {} every {}°, {}, {}² cells, {} labels, {} transform ({} KiB)",
+                self.cameras,
+                self.step_degrees,
+                self.projection,
+                self.resolution,
+                self.contours,
+                self.transform,
+                self.label_bytes / 1024
+            ),
+            format!(
+                "view            {x:.3},{y:.3},{z:.3} (labels of {} nearest camera{})",
+                self.nearest,
+                if self.nearest == 1 { "" } else { "s" }
+            ),
+            format!(
+                "triangles       {} -> {} ({} in the contour region, {} cells)",
+                thousands(self.triangles_in),
+                thousands(self.triangles_out),
+                thousands(self.contour_triangles),
+                self.threshold
+            ),
+            format!(
+                "error bound     {:.4e} ({:.4} %) in the contour region, {:.4e} ({:.4} %) \
+                 elsewhere; allowed {:.4} % × {}",
+                self.contour_error,
+                percent(self.contour_error),
+                self.other_error,
+                percent(self.other_error),
+                100.0 * self.error_relative,
+                self.factor
+            ),
+            format!(
+                "silhouette      {} of {} pixels wrong, contour moved up to {} cells \
+                 (unweighted, as many triangles: {} wrong, {} cells)",
+                thousands(self.silhouette_pixels_wrong),
+                thousands(self.silhouette_pixels),
+                cells(self.contour_displacement),
+                thousands(self.unweighted_pixels_wrong),
+                cells(self.unweighted_contour_displacement)
+            ),
+            format!(
+                "time            {:.3} s to read, {:.3} s to label, {:.3} s for the hierarchy, \
+                 {:.4} s to extract, {:.3} s to compare, {:.3} s to write",
+                self.seconds.load,
+                self.seconds.labels,
+                self.seconds.hierarchy,
+                self.seconds.extract,
+                self.seconds.compare,
+                self.seconds.write
+            ),
+        ];
+        let written: Vec<&str> = [&self.output, &self.labels_png, &self.compare_png]
+            .into_iter()
+            .flatten()
+            .map(String::as_str)
+            .collect();
+        lines.push(if written.is_empty() {
+            "written to      nothing (give --output FILE.obj, --labels-png, --compare-png)"
+                .to_owned()
+        } else {
+            format!("written to      {}", written.join(", "))
+        });
+        lines.join("\n") + "\n"
+    }
+}

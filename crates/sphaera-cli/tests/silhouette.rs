@@ -1,0 +1,194 @@
+//! End-to-end tests of `sphaera silhouette`: the report's bounds hold, the mesh and both
+//! pictures are written and read back, awkward meshes and settings run, and every bad
+//! argument is refused by name before anything is written.
+
+mod common;
+
+use std::path::Path;
+
+use common::{json, sphaera};
+use sphaera::mesh::{DVec3, TriMesh, io, shapes};
+
+/// A small, fast setting: 30° between cameras, 128² cells.
+const FAST: [&str; 4] = ["--step", "30", "--resolution", "128"];
+
+fn run_json(extra: &[&str]) -> serde_json::Value {
+    let mut args = vec!["silhouette", "--json"];
+    args.extend_from_slice(&FAST);
+    args.extend_from_slice(extra);
+    json(&sphaera(&args))
+}
+
+fn number(report: &serde_json::Value, key: &str) -> f64 {
+    report[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("{key} in {report}"))
+}
+
+#[test]
+fn the_embedded_bunny_keeps_its_contour_and_writes_everything() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("view.obj");
+    let labels = dir.path().join("labels.png");
+    let compare = dir.path().join("compare.png");
+    let report = run_json(&[
+        "--view",
+        "0.3,-0.4,0.8",
+        "--error",
+        "2%",
+        "--factor",
+        "0.25",
+        "--nearest",
+        "4",
+        "-o",
+        mesh.to_str().unwrap(),
+        "--labels-png",
+        labels.to_str().unwrap(),
+        "--compare-png",
+        compare.to_str().unwrap(),
+    ]);
+    assert_eq!(report["triangles_in"], 3674);
+    // Both poles and five rings of twelve.
+    assert_eq!(report["cameras"], 62);
+    let error = number(&report, "error");
+    assert!(number(&report, "contour_error") <= 0.25 * error * (1.0 + 1e-12));
+    assert!(number(&report, "other_error") <= error * (1.0 + 1e-12));
+    let out = report["triangles_out"].as_u64().unwrap();
+    assert!(0 < out && out < 3674, "{out}");
+    assert!(report["contour_triangles"].as_u64().unwrap() <= out);
+    assert!(number(&report, "silhouette_pixels") > 1000.0);
+    assert!(number(&report, "contour_displacement") >= 0.0);
+    // The mesh reads back with the reported count; the pictures are 128² PNGs.
+    let back = io::load(&mesh).unwrap();
+    assert_eq!(back.triangle_count() as u64, out);
+    for picture in [&labels, &compare] {
+        let image = image::open(picture).unwrap();
+        assert_eq!((image.width(), image.height()), (128, 128));
+    }
+}
+
+#[test]
+fn factor_zero_keeps_the_contour_exact_and_perspective_runs() {
+    let report = run_json(&["--factor", "0", "--perspective", "3"]);
+    assert_eq!(number(&report, "contour_error"), 0.0);
+    assert!(
+        report["projection"]
+            .as_str()
+            .unwrap()
+            .contains("perspective")
+    );
+    // Resolution 1 and threshold 0 are legal, if coarse.
+    let report = json(&sphaera(&[
+        "silhouette",
+        "--json",
+        "--step",
+        "30",
+        "--resolution",
+        "1",
+        "--threshold",
+        "0",
+    ]));
+    assert!(report["triangles_out"].as_u64().unwrap() > 0);
+}
+
+fn write(dir: &Path, name: &str, mesh: &TriMesh) -> String {
+    let path = dir.join(name);
+    io::save(&path, mesh).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
+#[test]
+fn open_non_manifold_and_far_away_meshes_run() {
+    let dir = tempfile::tempdir().unwrap();
+    // An open mesh: a sphere without its top cap (back faces visible through the hole).
+    let sphere = shapes::sphere(1.0, 16).unwrap();
+    let kept: Vec<[u32; 3]> = sphere
+        .triangles()
+        .iter()
+        .copied()
+        .filter(|t| t.iter().all(|&v| sphere.positions()[v as usize].z < 0.8))
+        .collect();
+    let open = TriMesh::new(sphere.positions().to_vec(), kept).unwrap();
+    // Two spheres sharing one vertex (pinched, non-manifold there).
+    let a = shapes::sphere(1.0, 10).unwrap();
+    let top = a
+        .positions()
+        .iter()
+        .position(|p| p.z > 0.999)
+        .expect("a pole") as u32;
+    let n = a.vertex_count() as u32;
+    let mut positions = a.positions().to_vec();
+    positions.extend(
+        a.positions()
+            .iter()
+            .map(|p| DVec3::new(p.x, p.y, 2.0 - p.z)),
+    );
+    let mut triangles = a.triangles().to_vec();
+    triangles.extend(a.triangles().iter().map(|t| {
+        // Mirrored: reverse the order to keep it outward, and weld the pole.
+        [t[0], t[2], t[1]].map(|v| if v == top { top } else { v + n })
+    }));
+    let pinched = TriMesh::new(positions, triangles).unwrap();
+    // Far away and tiny.
+    let tiny = TriMesh::new(
+        sphere
+            .positions()
+            .iter()
+            .map(|p| *p * 1e-6 + DVec3::splat(1e6))
+            .collect(),
+        sphere.triangles().to_vec(),
+    )
+    .unwrap();
+    for (name, mesh) in [
+        ("open.obj", &open),
+        ("pinched.obj", &pinched),
+        ("tiny.obj", &tiny),
+    ] {
+        let path = write(dir.path(), name, mesh);
+        let report = run_json(&[&path]);
+        let error = number(&report, "error");
+        assert!(
+            number(&report, "other_error") <= error * (1.0 + 1e-12),
+            "{name}"
+        );
+        assert!(report["triangles_out"].as_u64().unwrap() > 0, "{name}");
+    }
+}
+
+fn fails_with(args: &[&str], expected: &str) {
+    let mut all = vec!["silhouette"];
+    all.extend_from_slice(&FAST);
+    all.extend_from_slice(args);
+    let output = sphaera(&all);
+    assert!(!output.status.success(), "{args:?} succeeded");
+    let message = String::from_utf8_lossy(&output.stderr).to_lowercase();
+    assert!(message.contains(expected), "{args:?}: {message}");
+}
+
+#[test]
+fn bad_arguments_are_named_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let jpeg = dir.path().join("labels.jpg");
+    fails_with(&["--labels-png", jpeg.to_str().unwrap()], "png");
+    assert!(!jpeg.exists());
+    let stl = dir.path().join("out.stl");
+    fails_with(&["-o", stl.to_str().unwrap()], "stl");
+    assert!(!stl.exists());
+    fails_with(&["--view", "0,0,0"], "not zero");
+    fails_with(&["--view", "1,2"], "direction");
+    fails_with(&["--perspective", "0.5"], "inside the bounding sphere");
+    fails_with(&["--factor", "1.5"], "factor");
+    fails_with(&["--factor=-1"], "factor");
+    fails_with(&["--nearest", "0"], "nearest");
+    fails_with(&["--nearest", "500"], "nearest");
+    fails_with(&["--step", "7"], "step");
+    let output = sphaera(&["silhouette", "--resolution", "0"]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("resolution"));
+    let empty = dir.path().join("empty.obj");
+    std::fs::write(&empty, "# nothing\n").unwrap();
+    fails_with(&[empty.to_str().unwrap()], "empty.obj");
+    let broken = dir.path().join("broken.obj");
+    std::fs::write(&broken, "v 0 0 0\nv 1 0 0\nf 1 2 9\n").unwrap();
+    fails_with(&[broken.to_str().unwrap()], "broken.obj");
+}
