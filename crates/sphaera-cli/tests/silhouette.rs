@@ -70,7 +70,7 @@ fn the_embedded_bunny_keeps_its_contour_and_writes_everything() {
 #[test]
 fn factor_zero_keeps_the_contour_exact_and_perspective_runs() {
     let report = run_json(&["--factor", "0", "--perspective", "3"]);
-    assert_eq!(number(&report, "contour_error"), 0.0);
+    assert!(number(&report, "contour_error") <= 0.0);
     assert!(
         report["projection"]
             .as_str()
