@@ -6,15 +6,17 @@
 //! views, how far each vertex, edge and face of a mesh lies from the silhouette in the
 //! image, so that a simplifier can keep the error small near contours, from any view.
 //!
-//! Status (issue 18, in progress): camera sets with constant-time nearest-view lookup,
-//! conservative mesh mapping, binary images with the internal silhouettes cut out, exact
-//! Euclidean and chamfer distance transforms, labels per view carried back to vertices,
-//! edges and faces, compact storage and interpolation for new views; the level of detail
-//! they guide (section 3.3) extracted view by view from `sphaera-simplify`'s progressive
-//! hierarchy with the error bound of each region ([`ViewDependent`]), and as weights for
-//! the static simplifier ([`contour_weights`]); the image-space silhouette error
-//! ([`coverage`], [`silhouette_difference`]). Not yet: coherent view-to-view
-//! extraction, the CLI.
+//! What it gives: camera sets with constant-time nearest-view lookup, conservative mesh
+//! mapping, binary images with the internal silhouettes cut out, exact Euclidean and
+//! chamfer distance transforms, labels per view carried back to vertices, edges and
+//! faces, compact storage and interpolation for new views. On top of the labels, the
+//! level of detail they guide (section 3.3): extracted view by view from
+//! `sphaera-simplify`'s progressive hierarchy, coherently from one view to the next, with
+//! the certified error bound of each region ([`ViewDependent`]); or per-vertex weights for
+//! the static simplifier ([`contour_weights`]). To judge the result: the image-space
+//! silhouette error ([`coverage`], [`silhouette_difference`], [`contour_displacement`])
+//! and pictures made by code ([`shaded_picture`], the paper's Fig. 3, and
+//! [`overlay_picture`]). The `sphaera silhouette` subcommand runs all of it on a mesh file.
 //!
 //! # Quick start
 //!
@@ -55,9 +57,11 @@
 //! - **Level of detail** ([`ViewDependent::extract`]): the contour region is the
 //!   triangles with a corner at most `threshold` cells from the silhouette; its allowed
 //!   error is `e · f`, elsewhere `e`. Labels of the outline alone ([`Contours::External`])
-//!   make a narrower region than with the internal silhouettes ([`Contours::All`]). The hierarchy is refined from its base
-//!   mesh until every triangle's error-sphere bound meets its allowance, so the result
-//!   carries a certified bound per region, which the paper's extraction does not.
+//!   make a narrower region than with the internal silhouettes ([`Contours::All`]). The
+//!   hierarchy is refined until every triangle's error-sphere bound meets its allowance,
+//!   so the result carries a certified bound per region, which the paper's extraction
+//!   does not. The refinement to `e` everywhere is kept between views; a new view redoes
+//!   only its contour region.
 //!
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};

@@ -90,6 +90,8 @@ pub struct Extraction {
     pub other_error: f64,
     /// Triangles in the contour region.
     pub contour_triangles: usize,
+    /// Per triangle of the mesh: whether it is in the contour region.
+    pub in_contour: Vec<bool>,
 }
 
 /// View-dependent extraction from a progressive hierarchy with labels computed on the
@@ -253,16 +255,18 @@ impl<'h> ViewDependent<'h> {
         added.extend(prefix.triangles.iter().map(|&(t, _)| t));
         let simplified = refinement.simplified_of(added);
         let (mut contour_error, mut other_error, mut contour_triangles) = (0.0_f64, 0.0_f64, 0);
+        let mut region = Vec::with_capacity(simplified.mesh.triangle_count());
         for corners in simplified.mesh.triangles() {
             let inputs = corners.map(|x| simplified.original_vertex[x as usize]);
             let bound = corners
                 .iter()
                 .map(|&x| simplified.vertex_radii[x as usize])
                 .fold(0.0, f64::max);
-            if inputs
+            let contour = inputs
                 .iter()
-                .any(|&i| labels[i as usize] <= tolerance.threshold)
-            {
+                .any(|&i| labels[i as usize] <= tolerance.threshold);
+            region.push(contour);
+            if contour {
                 contour_error = contour_error.max(bound);
                 contour_triangles += 1;
             } else {
@@ -275,6 +279,7 @@ impl<'h> ViewDependent<'h> {
             contour_error,
             other_error,
             contour_triangles,
+            in_contour: region,
         })
     }
 

@@ -62,6 +62,11 @@ fn every_triangle_meets_its_allowance() {
                 out.contour_triangles > 0
                     && out.contour_triangles <= out.simplified.mesh.triangle_count()
             );
+            assert_eq!(out.in_contour.len(), out.simplified.mesh.triangle_count());
+            assert_eq!(
+                out.in_contour.iter().filter(|&&c| c).count(),
+                out.contour_triangles
+            );
             // The whole mesh's bound is the larger of the two regions'.
             assert!(out.simplified.error_bound <= out.contour_error.max(out.other_error) + 1e-12);
             if direction == DVec3::X {
@@ -132,7 +137,7 @@ fn coherent_extraction_equals_extraction_from_scratch() {
             .extract(direction, interpolation, tolerance)
             .unwrap();
         assert_eq!(coherent.simplified, fresh.simplified);
-        assert_eq!(coherent.contour_triangles, fresh.contour_triangles);
+        assert_eq!(coherent.in_contour, fresh.in_contour);
         assert_eq!(
             (coherent.contour_error, coherent.other_error),
             (fresh.contour_error, fresh.other_error)

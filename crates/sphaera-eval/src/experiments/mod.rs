@@ -13,8 +13,10 @@
 //!   similarity transforms);
 //! - `hal`: `hal/mod.rs` (three charts: widths, query speed, against strip and box trees;
 //!   the peers in `hal/peers.rs`);
-//! - `silhouette_error_vs_triangles`: `silhouette.rs` (levels of detail guided by
-//!   silhouette labels against unweighted ones, in image space).
+//! - `silhouette_error_vs_triangles`: `silhouette/mod.rs` (levels of detail guided by
+//!   silhouette labels against unweighted ones, in image space and object space; the
+//!   Fig. 3 picture in `silhouette/picture.rs`);
+//! - `silhouette_time_vs_faces`: `silhouette/timing.rs` (the paper's Tables 1–2).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -46,6 +48,7 @@ pub const NAMES: &[&str] = &[
     spheretree::similarity::NAME,
     hal::NAME,
     silhouette::NAME,
+    silhouette::timing::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -60,6 +63,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         spheretree::similarity::NAME => spheretree::similarity::run(data, out),
         hal::NAME => hal::run(data, out),
         silhouette::NAME => silhouette::run(data, out),
+        silhouette::timing::NAME => silhouette::timing::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }
