@@ -223,3 +223,52 @@ fn mismatched_inputs_are_refused() {
         ));
     }
 }
+
+/// Scaling by a power of two scales the extraction exactly: the same triangles, the
+/// positions and bounds scaled, the same contour region.
+#[test]
+fn scaling_by_a_power_of_two_scales_the_extraction_exactly() {
+    let mesh = shapes::torus(1.0, 0.35, 24).unwrap();
+    let views = ViewSet::regular(30.0).unwrap();
+    let extract = |scale: f64| {
+        let scaled = sphaera_mesh::TriMesh::new(
+            mesh.positions().iter().map(|&p| p * scale).collect(),
+            mesh.triangles().to_vec(),
+        )
+        .unwrap();
+        let labels = Labels::compute(
+            &scaled,
+            &views,
+            64,
+            DistanceTransform::Euclidean,
+            Contours::External,
+        )
+        .unwrap();
+        let hierarchy = Hierarchy::build(&scaled, &SimplifyOptions::default()).unwrap();
+        ViewDependent::new(&hierarchy, &labels)
+            .unwrap()
+            .extract(
+                DVec3::new(0.3, -0.5, 0.8),
+                Interpolation::Average(4),
+                ContourTolerance {
+                    error: 0.03 * scale,
+                    factor: 0.25,
+                    threshold: 2.0,
+                },
+            )
+            .unwrap()
+    };
+    let reference = extract(1.0);
+    for scale in [0.25, 8.0, 2f64.powi(-20), 2f64.powi(30)] {
+        let scaled = extract(scale);
+        let (a, b) = (&reference.simplified, &scaled.simplified);
+        assert_eq!(a.mesh.triangles(), b.mesh.triangles(), "scale {scale}");
+        assert_eq!(a.original_vertex, b.original_vertex);
+        assert_eq!(reference.in_contour, scaled.in_contour);
+        for (p, q) in a.mesh.positions().iter().zip(b.mesh.positions()) {
+            assert_eq!(*p * scale, *q);
+        }
+        assert_eq!(reference.contour_error * scale, scaled.contour_error);
+        assert_eq!(reference.other_error * scale, scaled.other_error);
+    }
+}
