@@ -73,11 +73,21 @@ impl Camera {
     #[must_use]
     pub fn faces_camera(&self, mesh: &TriMesh, t: [u32; 3]) -> bool {
         let [a, b, c] = t.map(|i| mesh.positions()[i as usize]);
-        let normal = (b - a).cross(c - a);
+        self.normal_faces_camera(face_normal([a, b, c]), a)
+    }
+
+    /// Whether a face with (unnormalized) normal `normal` and first corner `corner` faces
+    /// the camera, as [`Camera::faces_camera`].
+    pub(crate) fn normal_faces_camera(&self, normal: DVec3, corner: DVec3) -> bool {
         let toward = match self.eye {
             None => self.w,
-            Some((eye, _)) => eye - a,
+            Some((eye, _)) => eye - corner,
         };
         normal.dot(toward) > 0.0
     }
+}
+
+/// The counter-clockwise normal of the triangle with corners `[a, b, c]`, unnormalized.
+pub(crate) fn face_normal([a, b, c]: [DVec3; 3]) -> DVec3 {
+    (b - a).cross(c - a)
 }

@@ -24,86 +24,124 @@ impl DistanceTransform {
     /// If `object.len() != width * height`.
     #[must_use]
     pub fn apply(self, object: &[bool], width: usize, height: usize) -> Vec<f32> {
+        let mut distances = Vec::new();
+        self.apply_into(
+            object,
+            width,
+            height,
+            &mut Workspace::default(),
+            &mut distances,
+        );
+        distances
+    }
+
+    /// [`DistanceTransform::apply`] into `distances` (resized), with buffers from
+    /// `workspace` (reused from image to image).
+    pub(crate) fn apply_into(
+        self,
+        object: &[bool],
+        width: usize,
+        height: usize,
+        workspace: &mut Workspace,
+        distances: &mut Vec<f32>,
+    ) {
         assert_eq!(object.len(), width * height, "the image is width × height");
         match self {
-            Self::Euclidean => euclidean(object, width, height),
-            Self::Chamfer => chamfer(object, width, height),
+            Self::Euclidean => euclidean(object, width, height, workspace, distances),
+            Self::Chamfer => *distances = chamfer(object, width, height),
         }
     }
 }
 
-/// Squared distance along one line: `f` in (0 for background, infinite for object, or
-/// the squared distances of the first pass), the lower envelope of the parabolas
-/// `(x − p)² + f(p)` out, with background beyond both ends (virtual sites at `−1` and
-/// `n`).
+/// Buffers of the Euclidean transform, kept from image to image.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Workspace {
+    /// Per pixel: the distance to the nearest background pixel of its column.
+    column: Vec<u32>,
+    /// The sites `(p, f(p))` of one run's lower envelope, left to right.
+    sites: Vec<(i64, i64)>,
+    /// The breakpoints between consecutive sites, as fractions (numerator, positive
+    /// denominator).
+    breaks: Vec<(i64, i64)>,
+}
+
+/// One run of object pixels of a row, at positions `0..n`, between background pixels (or
+/// the image's edges) at `−1` and `n`: the distances of its pixels into `out`, from the
+/// lower envelope of the parabolas `(x − p)² + f(p)`, with `f(p)` the square of
+/// `column[p]` (the distance along the column), and 0 at the two background sites.
+///
+/// The breakpoints of the envelope are fractions of integers, compared exactly by cross
+/// multiplication: for a side of `n` pixels the terms are about `4n³` at most, far within `i64`
+/// for any grid that fits in memory.
 fn envelope(
-    f: &[f64],
-    out: &mut [f64],
-    sites: &mut Vec<(f64, f64)>,
-    v: &mut Vec<usize>,
-    z: &mut Vec<f64>,
+    column: &[u32],
+    out: &mut [f32],
+    sites: &mut Vec<(i64, i64)>,
+    breaks: &mut Vec<(i64, i64)>,
 ) {
-    let n = f.len();
+    let n = column.len() as i64;
     sites.clear();
-    sites.push((-1.0, 0.0));
-    sites.extend(
-        f.iter()
-            .enumerate()
-            .filter(|(_, value)| value.is_finite())
-            .map(|(p, &value)| (p as f64, value)),
-    );
-    sites.push((n as f64, 0.0));
-    v.clear();
-    z.clear();
-    v.push(0);
-    z.push(f64::NEG_INFINITY);
-    z.push(f64::INFINITY);
-    for q in 1..sites.len() {
-        let (pq, fq) = sites[q];
-        let mut s;
-        loop {
-            // Invariant: `v` starts with the virtual site at −1 and the loop below pops
-            // only while more than one site is left, so it is never empty.
-            let (pv, fv) = sites[*v.last().expect("the first site stays")];
-            s = ((fq + pq * pq) - (fv + pv * pv)) / (2.0 * (pq - pv));
-            if s <= z[v.len() - 1] && v.len() > 1 {
-                v.pop();
-                z.pop();
-            } else {
-                break;
-            }
+    breaks.clear();
+    sites.push((-1, 0));
+    let object = (0..)
+        .zip(column)
+        .map(|(p, &c)| (p, i64::from(c) * i64::from(c)));
+    for (q, fq) in object.chain([(n, 0)]) {
+        // Where the parabola of q overtakes that of site (p, f(p)) (q > p).
+        let breakpoint = |(p, fp): (i64, i64)| ((fq + q * q) - (fp + p * p), 2 * (q - p));
+        // Invariant: `sites` holds one more site than `breaks` (at least the one at −1),
+        // so its last index is valid.
+        let mut s = breakpoint(sites[sites.len() - 1]);
+        // The last site is hidden when q overtakes it no later than it overtook the one
+        // before it.
+        while let Some(&(num, den)) = breaks.last()
+            && s.0 * den <= num * s.1
+        {
+            sites.pop();
+            breaks.pop();
+            s = breakpoint(sites[sites.len() - 1]);
         }
-        // z[v.len()] is the right end of the last parabola: it becomes s.
-        let last = v.len();
-        z[last] = s;
-        v.push(q);
-        z.push(f64::INFINITY);
+        breaks.push(s);
+        sites.push((q, fq));
     }
     let mut k = 0;
-    for (x, slot) in out.iter_mut().enumerate() {
-        let x = x as f64;
-        while z[k + 1] < x {
+    for (x, d) in (0..).zip(out) {
+        while let Some(&(num, den)) = breaks.get(k)
+            && num < x * den
+        {
             k += 1;
         }
-        let (p, fp) = sites[v[k]];
-        *slot = (x - p) * (x - p) + fp;
+        let (p, fp) = sites[k];
+        // Exact: an integer below 2⁵³.
+        *d = (((x - p) * (x - p) + fp) as f64).sqrt() as f32;
     }
 }
 
 /// Exact Euclidean distance transform: first, along every column, the distance to the
 /// nearest background pixel of the column (two sweeps over whole rows, so memory is read
 /// in order); then, along every row, the lower envelope of the parabolas of those squared
-/// distances.
-fn euclidean(object: &[bool], width: usize, height: usize) -> Vec<f32> {
+/// distances (Felzenszwalb and Huttenlocher). A background pixel hides every parabola
+/// beyond it from the pixels on its other side, so each run of object pixels of a row is
+/// enveloped on its own, between the background pixels (or the image's edges) that bound
+/// it.
+fn euclidean(
+    object: &[bool],
+    width: usize,
+    height: usize,
+    workspace: &mut Workspace,
+    distances: &mut Vec<f32>,
+) {
     // Column distances (in pixels, background beyond the top and bottom rows).
-    let mut column = vec![0.0_f64; width * height];
+    let column = &mut workspace.column;
+    column.clear();
+    column.resize(width * height, 0);
     for y in 0..height {
         for x in 0..width {
             let i = y * width + x;
             column[i] = if object[i] {
-                if y == 0 { 1.0 } else { column[i - width] + 1.0 }
+                if y == 0 { 1 } else { column[i - width] + 1 }
             } else {
-                0.0
+                0
             };
         }
     }
@@ -112,29 +150,40 @@ fn euclidean(object: &[bool], width: usize, height: usize) -> Vec<f32> {
             let i = y * width + x;
             // Background lies beyond the bottom row too.
             let below = if y + 1 == height {
-                1.0
+                1
             } else {
-                column[i + width] + 1.0
+                column[i + width] + 1
             };
             if below < column[i] {
                 column[i] = below;
             }
         }
     }
-    let (mut sites, mut v, mut z) = (Vec::new(), Vec::new(), Vec::new());
-    let mut row = vec![0.0; width];
-    let mut out = vec![0.0; width];
-    let mut distances = vec![0.0_f32; width * height];
-    for y in 0..height {
-        for (slot, &c) in row.iter_mut().zip(&column[y * width..(y + 1) * width]) {
-            *slot = c * c;
-        }
-        envelope(&row, &mut out, &mut sites, &mut v, &mut z);
-        for (d, &squared) in distances[y * width..(y + 1) * width].iter_mut().zip(&out) {
-            *d = squared.sqrt() as f32;
+    distances.clear();
+    distances.resize(width * height, 0.0);
+    for (line, out) in column
+        .chunks_exact(width)
+        .zip(distances.chunks_exact_mut(width))
+    {
+        let mut x = 0;
+        while x < width {
+            if line[x] == 0 {
+                x += 1;
+                continue;
+            }
+            let end = line[x..]
+                .iter()
+                .position(|&c| c == 0)
+                .map_or(width, |n| x + n);
+            envelope(
+                &line[x..end],
+                &mut out[x..end],
+                &mut workspace.sites,
+                &mut workspace.breaks,
+            );
+            x = end;
         }
     }
-    distances
 }
 
 /// The 3–4 chamfer transform, two passes, divided by 3.

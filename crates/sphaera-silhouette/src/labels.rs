@@ -7,10 +7,10 @@ use glam::{DVec2, DVec3};
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::SilhouetteError;
-use crate::camera::Camera;
+use crate::camera::{Camera, face_normal};
 use crate::coverage::bounding_sphere;
-use crate::distance::DistanceTransform;
-use crate::raster::{cell_index, cells_of_triangle, cells_of_triangle_into};
+use crate::distance::{DistanceTransform, Workspace};
+use crate::raster::{cell_index, mark_triangle, rows_of_triangle};
 use crate::views::{Projection, ViewSet};
 
 /// Stored labels are `round(distance · LABEL_SCALE)` in a `u16` (saturating): a sixteenth
@@ -100,92 +100,98 @@ pub enum Contours {
     All,
 }
 
-/// One view's projection and binary image: the vertices' image points, each face's
-/// cells, and the object cells (under some face, and not under a face holding a
-/// silhouette vertex).
-struct Mapped {
+/// One view's projection and binary image, in buffers kept from view to view.
+#[derive(Debug, Default)]
+struct Frame {
+    /// Per vertex: its image point.
     image: Vec<DVec2>,
-    silhouette: Vec<bool>,
+    /// Per vertex: bit 1 when a face toward the camera holds it, bit 2 when one away from
+    /// it does; both make a silhouette vertex.
+    sides: Vec<u8>,
+    /// Per cell: 0 when no face touches it, 2 when a face holding a silhouette vertex
+    /// does (with [`Contours::All`]), else 1 (an object cell).
+    marks: Vec<u8>,
+    /// The faces holding no silhouette vertex (mark 1), marked after the others.
+    later: Vec<usize>,
+    /// Per cell: whether it is an object cell.
     object: Vec<bool>,
+    /// Per cell: the distance transform of `object`.
+    distances: Vec<f32>,
+    workspace: Workspace,
 }
 
-/// Projects `mesh`, finds its silhouette vertices and builds the binary image, calling
-/// `each_face(f, cells)` with every face's cells.
-fn map_view(
-    mesh: &TriMesh,
-    sphere: Sphere,
-    direction: DVec3,
-    projection: Projection,
-    resolution: usize,
-    contours: Contours,
-    mut each_face: impl FnMut(usize, &[usize]),
-) -> Mapped {
-    let camera = Camera::new(sphere, direction.normalize(), projection);
-    let image: Vec<DVec2> = mesh
-        .positions()
-        .iter()
-        .map(|&p| camera.project(p))
-        .collect();
-    // Silhouette vertices: shared by a face toward the camera and one away from it.
-    let mut toward = vec![false; image.len()];
-    let mut away = vec![false; image.len()];
-    for &t in mesh.triangles() {
-        let seen = if camera.faces_camera(mesh, t) {
-            &mut toward
-        } else {
-            &mut away
-        };
-        for v in t {
-            seen[v as usize] = true;
+/// `sides` bits of a vertex held by faces toward and away from the camera.
+const BOTH_SIDES: u8 = 3;
+
+impl Frame {
+    /// Projects `mesh` (whose faces have the normals `normals`), finds its silhouette
+    /// vertices and builds the binary image and its distance transform.
+    fn map(
+        &mut self,
+        mesh: &TriMesh,
+        normals: &[DVec3],
+        camera: &Camera,
+        resolution: usize,
+        transform: DistanceTransform,
+        contours: Contours,
+    ) {
+        let positions = mesh.positions();
+        self.image.clear();
+        self.image
+            .extend(positions.iter().map(|&p| camera.project(p)));
+        // Silhouette vertices: shared by a face toward the camera and one away from it.
+        self.sides.clear();
+        self.sides.resize(positions.len(), 0);
+        for (t, &normal) in mesh.triangles().iter().zip(normals) {
+            let toward = camera.normal_faces_camera(normal, positions[t[0] as usize]);
+            let side = if toward { 1 } else { 2 };
+            for &v in t {
+                self.sides[v as usize] |= side;
+            }
         }
-    }
-    let silhouette: Vec<bool> = toward.iter().zip(&away).map(|(&a, &b)| a && b).collect();
-    // Occupancy, with every cell under a face holding a silhouette vertex cut out.
-    let cells = resolution * resolution;
-    let mut occupied = vec![false; cells];
-    let mut cut = vec![false; cells];
-    let mut list = Vec::new();
-    for (f, t) in mesh.triangles().iter().enumerate() {
-        cells_of_triangle_into(t.map(|v| image[v as usize]), resolution, &mut list);
-        let on_silhouette = contours == Contours::All && t.iter().any(|&v| silhouette[v as usize]);
-        for &c in &list {
-            occupied[c] = true;
-            cut[c] |= on_silhouette;
+        // Occupancy (mark 1), with every cell under a face holding a silhouette vertex cut
+        // out (mark 2). Cut faces go first, so that more rows of the others are already
+        // marked and skipped; the marks do not depend on the order.
+        self.marks.clear();
+        self.marks.resize(resolution * resolution, 0);
+        self.later.clear();
+        for (f, t) in mesh.triangles().iter().enumerate() {
+            let cut = contours == Contours::All
+                && t.iter().any(|&v| self.sides[v as usize] == BOTH_SIDES);
+            if cut {
+                let corners = t.map(|v| self.image[v as usize]);
+                mark_triangle(corners, resolution, &mut self.marks, 2);
+            } else {
+                self.later.push(f);
+            }
         }
-        each_face(f, &list);
+        for &f in &self.later {
+            let corners = mesh.triangles()[f].map(|v| self.image[v as usize]);
+            mark_triangle(corners, resolution, &mut self.marks, 1);
+        }
+        self.object.clear();
+        self.object.extend(self.marks.iter().map(|&m| m == 1));
+        transform.apply_into(
+            &self.object,
+            resolution,
+            resolution,
+            &mut self.workspace,
+            &mut self.distances,
+        );
     }
-    let object = occupied.iter().zip(&cut).map(|(&o, &c)| o && !c).collect();
-    Mapped {
-        image,
-        silhouette,
-        object,
+
+    /// The distance of the cell holding image point `p`.
+    fn distance_at(&self, p: DVec2, resolution: usize) -> f32 {
+        self.distances[cell_index(p, resolution)]
     }
 }
 
-/// Vertex labels only (what [`Labels`] stores).
-fn vertex_labels_in_frame(
-    mesh: &TriMesh,
-    sphere: Sphere,
-    direction: DVec3,
-    projection: Projection,
-    resolution: usize,
-    transform: DistanceTransform,
-    contours: Contours,
-) -> Vec<f32> {
-    let mapped = map_view(
-        mesh,
-        sphere,
-        direction,
-        projection,
-        resolution,
-        contours,
-        |_, _| {},
-    );
-    let distances = transform.apply(&mapped.object, resolution, resolution);
-    mapped
-        .image
+/// The (unnormalized) normal of every face of `mesh`.
+fn face_normals(mesh: &TriMesh) -> Vec<DVec3> {
+    let positions = mesh.positions();
+    mesh.triangles()
         .iter()
-        .map(|&p| distances[cell_index(p, resolution)])
+        .map(|t| face_normal(t.map(|v| positions[v as usize])))
         .collect()
 }
 
@@ -198,26 +204,33 @@ fn label_in_frame(
     transform: DistanceTransform,
     contours: Contours,
 ) -> ViewLabels {
-    let mut face_cells: Vec<Vec<usize>> = vec![Vec::new(); mesh.triangle_count()];
-    let mapped = map_view(
+    let camera = Camera::new(sphere, direction.normalize(), projection);
+    let mut frame = Frame::default();
+    frame.map(
         mesh,
-        sphere,
-        direction,
-        projection,
+        &face_normals(mesh),
+        &camera,
         resolution,
+        transform,
         contours,
-        |f, cells| {
-            face_cells[f] = cells.to_vec();
-        },
     );
-    let distances = transform.apply(&mapped.object, resolution, resolution);
-    let smallest = |cells: &[usize]| {
-        cells
-            .iter()
-            .map(|&c| distances[c])
-            .fold(f32::INFINITY, f32::min)
+    let (image, distances) = (&frame.image, &frame.distances);
+    // The smallest distance over the cells a triangle touches.
+    let smallest = |t: [DVec2; 3]| {
+        let mut min = f32::INFINITY;
+        rows_of_triangle(t, resolution, |j, a, b| {
+            let row = j * resolution;
+            min = distances[row + a..=row + b]
+                .iter()
+                .fold(min, |m, &d| m.min(d));
+        });
+        min
     };
-    let faces = face_cells.iter().map(|cells| smallest(cells)).collect();
+    let faces = mesh
+        .triangles()
+        .iter()
+        .map(|t| smallest(t.map(|v| image[v as usize])))
+        .collect();
     let mut edges: Vec<[u32; 2]> = mesh
         .triangles()
         .iter()
@@ -226,26 +239,26 @@ fn label_in_frame(
         .collect();
     edges.sort_unstable();
     edges.dedup();
-    let image = &mapped.image;
     let edge_labels = edges
         .iter()
         .map(|&[u, v]| {
             let (a, b) = (image[u as usize], image[v as usize]);
-            smallest(&cells_of_triangle([a, b, b], resolution))
+            smallest([a, b, b])
         })
         .collect();
     let vertices = image
         .iter()
-        .map(|&p| distances[cell_index(p, resolution)])
+        .map(|&p| frame.distance_at(p, resolution))
         .collect();
+    let silhouette = frame.sides.iter().map(|&s| s == BOTH_SIDES).collect();
     ViewLabels {
         resolution,
-        cells: distances,
+        cells: frame.distances,
         vertices,
         edges,
         edge_labels,
         faces,
-        silhouette: mapped.silhouette,
+        silhouette,
     }
 }
 
@@ -290,33 +303,40 @@ impl Labels {
     ) -> Result<Self, SilhouetteError> {
         check(DVec3::Z, views.projection(), resolution)?;
         let sphere = bounding_sphere(mesh)?;
-        let one = |k: usize| -> Vec<u16> {
-            vertex_labels_in_frame(
-                mesh,
-                sphere,
-                views.direction(k),
-                views.projection(),
-                resolution,
-                transform,
-                contours,
-            )
-            .into_iter()
-            .map(quantize)
-            .collect()
+        let normals = face_normals(mesh);
+        let vertex_count = mesh.positions().len();
+        // View k's vertex labels into `out`, with `frame`'s buffers.
+        let one = |frame: &mut Frame, (k, out): (usize, &mut [u16])| {
+            let camera = Camera::new(sphere, views.direction(k).normalize(), views.projection());
+            frame.map(mesh, &normals, &camera, resolution, transform, contours);
+            for (q, &p) in out.iter_mut().zip(&frame.image) {
+                *q = quantize(frame.distance_at(p, resolution));
+            }
         };
+        let mut values = vec![0_u16; views.len() * vertex_count];
+        // A mesh with triangles has vertices; `max(1)` only keeps the chunk size valid.
+        let chunk = vertex_count.max(1);
         #[cfg(feature = "parallel")]
-        let per_view: Vec<Vec<u16>> = {
+        {
             use rayon::prelude::*;
-            (0..views.len()).into_par_iter().map(one).collect()
-        };
+            values
+                .par_chunks_mut(chunk)
+                .enumerate()
+                .for_each_init(Frame::default, one);
+        }
         #[cfg(not(feature = "parallel"))]
-        let per_view: Vec<Vec<u16>> = (0..views.len()).map(one).collect();
+        {
+            let mut frame = Frame::default();
+            for view in values.chunks_mut(chunk).enumerate() {
+                one(&mut frame, view);
+            }
+        }
         Ok(Self {
             views: views.clone(),
             resolution,
             transform,
-            vertex_count: mesh.positions().len(),
-            values: per_view.concat(),
+            vertex_count,
+            values,
         })
     }
 

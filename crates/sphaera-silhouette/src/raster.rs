@@ -13,6 +13,13 @@ pub struct FaceGrid {
     faces: Vec<u32>,
 }
 
+/// A clamped cell coordinate (in `[0, resolution − 1]`, or NaN) as an index.
+fn index(x: f64) -> usize {
+    // Invariant: `x` is clamped to `[0, resolution − 1]` (or NaN, which gives 0, as a
+    // cast to `usize` would), so it fits an `i64` and is not negative.
+    x as i64 as usize
+}
+
 /// The cell span `[lo, hi]` (clamped) that the interval `[a, b]` of image coordinates
 /// touches.
 fn span(a: f64, b: f64, resolution: usize) -> Option<(usize, usize)> {
@@ -22,30 +29,67 @@ fn span(a: f64, b: f64, resolution: usize) -> Option<(usize, usize)> {
     if hi < 0.0 || lo > resolution as f64 {
         return None;
     }
-    Some((lo.clamp(0.0, last) as usize, hi.clamp(0.0, last) as usize))
+    Some((index(lo.clamp(0.0, last)), index(hi.clamp(0.0, last))))
 }
 
-/// The x-extent of the closed triangle `t` within the horizontal band `[lo, hi]` (`None`
-/// when it misses the band): the triangle's part in the band is convex, so it covers
-/// every x between the extremes of its corners in the band and its edges' crossings of
-/// the band's two lines.
-fn extent_in_band(t: [DVec2; 3], lo: f64, hi: f64) -> Option<(f64, f64)> {
-    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
-    let mut take = |x: f64| {
-        min = min.min(x);
-        max = max.max(x);
-    };
-    for k in 0..3 {
-        let (a, b) = (t[k], t[(k + 1) % 3]);
-        if a.y >= lo && a.y <= hi {
-            take(a.x);
+/// One edge of a triangle, from `a` to `b`, set up for crossing horizontal lines.
+#[derive(Clone, Copy)]
+struct Edge {
+    a: DVec2,
+    /// `b − a`.
+    delta: DVec2,
+    /// The edge's y-range.
+    low: f64,
+    high: f64,
+    /// Not horizontal (a horizontal edge adds only its ends, taken as corners).
+    sloped: bool,
+}
+
+impl Edge {
+    fn new(a: DVec2, b: DVec2) -> Self {
+        let delta = DVec2::new(b.x - a.x, b.y - a.y);
+        Self {
+            a,
+            delta,
+            low: a.y.min(b.y),
+            high: a.y.max(b.y),
+            sloped: delta.y.abs() > 0.0,
         }
-        // A horizontal edge adds only its ends (taken as corners).
-        if (b.y - a.y).abs() > 0.0 {
-            for y in [lo, hi] {
-                if y >= a.y.min(b.y) && y <= a.y.max(b.y) {
-                    take(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
-                }
+    }
+
+    /// Where the edge crosses the line at height `y`, if it does.
+    fn crossing(&self, y: f64) -> Option<f64> {
+        (self.sloped && y >= self.low && y <= self.high)
+            .then(|| self.a.x + (y - self.a.y) * self.delta.x / self.delta.y)
+    }
+}
+
+/// The x-extent of the closed triangle with corners `t` and edges `edges` within the
+/// horizontal band `[lo, hi]` (`None` when it misses the band): the triangle's part in
+/// the band is convex, so it covers every x between the extremes of its corners in the
+/// band and its edges' crossings of the band's two lines.
+#[inline]
+fn extent_in_band(t: &[DVec2; 3], edges: &[Edge; 3], lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+    // As `f64::min` and `f64::max` (a NaN is skipped; the sign of a zero extreme does not
+    // change the cells), without their NaN handling.
+    let mut take = |x: f64| {
+        if x < min {
+            min = x;
+        }
+        if x > max {
+            max = x;
+        }
+    };
+    for corner in t {
+        if corner.y >= lo && corner.y <= hi {
+            take(corner.x);
+        }
+    }
+    for edge in edges {
+        for y in [lo, hi] {
+            if let Some(x) = edge.crossing(y) {
+                take(x);
             }
         }
     }
@@ -70,30 +114,184 @@ pub(crate) fn cells_of_triangle(t: [DVec2; 3], resolution: usize) -> Vec<usize> 
 /// [`cells_of_triangle`] into `cells` (cleared first).
 pub(crate) fn cells_of_triangle_into(t: [DVec2; 3], resolution: usize, cells: &mut Vec<usize>) {
     cells.clear();
-    let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
-    let (Some((i0, i1)), Some((j0, j1))) =
-        (span(lo.x, hi.x, resolution), span(lo.y, hi.y, resolution))
-    else {
+    rows_of_triangle(t, resolution, |j, a, b| {
+        cells.extend((a..=b).map(|i| j * resolution + i));
+    });
+}
+
+/// The cells a projected triangle touches (conservatively), row by row from the bottom:
+/// `row(j, a, b)` for the cells `a..=b` (never empty) of row `j`.
+pub(crate) fn rows_of_triangle(
+    t: [DVec2; 3],
+    resolution: usize,
+    mut row: impl FnMut(usize, usize, usize),
+) {
+    let Some(bounds) = Bounds::new(t, resolution) else {
         return;
     };
-    let size = 2.0 / resolution as f64;
-    if i0 == i1 && j0 == j1 {
-        // Within one cell's span: it touches that cell.
-        cells.push(j0 * resolution + i0);
+    let rows = Rows::new(t, bounds, resolution);
+    for j in bounds.j0..=bounds.j1 {
+        if let Some((a, b)) = rows.row(j) {
+            row(j, a, b);
+        }
+    }
+}
+
+/// Raises every cell of `marks` (a `resolution²` grid of 0, 1 and 2) that the projected
+/// triangle `t` touches to at least `mark` (1 or 2): as [`rows_of_triangle`] with `max`,
+/// but a row whose cells in the triangle's bounding box are all at least `mark` already
+/// is left alone, unrasterized (the triangle's cells in a row lie in its bounding box).
+pub(crate) fn mark_triangle(t: [DVec2; 3], resolution: usize, marks: &mut [u8], mark: u8) {
+    debug_assert!(mark == 1 || mark == 2, "marks are 0, 1 and 2");
+    let Some(bounds) = Bounds::new(t, resolution) else {
+        return;
+    };
+    let width = bounds.i1 - bounds.i0 + 1;
+    let covered = |j: usize, marks: &[u8]| at_least(marks, j * resolution + bounds.i0, width, mark);
+    // Set up the edges only for a triangle with some row left to mark.
+    let Some(first) = (bounds.j0..=bounds.j1).find(|&j| !covered(j, marks)) else {
+        return;
+    };
+    let rows = Rows::new(t, bounds, resolution);
+    for j in first..=bounds.j1 {
+        if j > first && covered(j, marks) {
+            continue;
+        }
+        if let Some((a, b)) = rows.row(j) {
+            raise(marks, j * resolution + a, b - a + 1, mark);
+        }
+    }
+}
+
+/// 1 in each byte from byte `len` (below 8) on: the bytes past a run of `len` cells, which
+/// pass a test and which an update leaves alone.
+fn beyond(len: usize) -> u64 {
+    ONES << (8 * len)
+}
+
+/// 1 in every byte of a word.
+const ONES: u64 = 0x0101_0101_0101_0101;
+
+/// Bit 0 of each byte of `word` (bytes 0, 1 or 2): whether it is at least `mark` (1: either
+/// bit; 2: bit 1).
+fn passes(word: u64, mark: u8) -> u64 {
+    (if mark == 1 {
+        word | (word >> 1)
+    } else {
+        word >> 1
+    }) & ONES
+}
+
+/// Whether the `len` cells of `marks` (0, 1 or 2 each) from `start` are all at least
+/// `mark` (1 or 2). Up to 7 cells are tested at once, as the bytes of a word.
+#[inline]
+fn at_least(marks: &[u8], start: usize, len: usize, mark: u8) -> bool {
+    if len < 8
+        && let Some(word) = marks.get(start..).and_then(<[u8]>::first_chunk::<8>)
+    {
+        return passes(u64::from_le_bytes(*word), mark) | beyond(len) == ONES;
+    }
+    marks[start..start + len].iter().all(|&m| m >= mark)
+}
+
+/// Raises the `len` cells of `marks` (0, 1 or 2 each) from `start` to at least `mark` (1
+/// or 2). Up to 7 cells are raised at once, as the bytes of a word.
+#[inline]
+fn raise(marks: &mut [u8], start: usize, len: usize, mark: u8) {
+    if len < 8
+        && let Some(bytes) = marks
+            .get_mut(start..)
+            .and_then(<[u8]>::first_chunk_mut::<8>)
+    {
+        let word = u64::from_le_bytes(*bytes);
+        // 1 in each of the `len` bytes below `mark`, 0 elsewhere.
+        let low = (passes(word, mark) | beyond(len)) ^ ONES;
+        // Bytes below 2 are 0 or 1 and become 2; bytes below 1 are 0 and become 1.
+        let raised = if mark == 2 {
+            (word & !(low * 0xff)) | (low * 2)
+        } else {
+            word | low
+        };
+        *bytes = raised.to_le_bytes();
         return;
     }
-    // Row by row: the cells the triangle's extent in the row's band reaches, widened by a
-    // relative margin on the side of touching.
-    let margin = 1e-12 * (1.0 + hi.abs().max(lo.abs()).max_element());
-    for j in j0..=j1 {
+    for m in &mut marks[start..start + len] {
+        *m = (*m).max(mark);
+    }
+}
+
+/// The cell spans `i0..=i1` (columns) and `j0..=j1` (rows) of a projected triangle's
+/// bounding box, and the box.
+#[derive(Clone, Copy)]
+struct Bounds {
+    lo: DVec2,
+    hi: DVec2,
+    i0: usize,
+    i1: usize,
+    j0: usize,
+    j1: usize,
+}
+
+impl Bounds {
+    /// `None` when the box misses the grid.
+    #[inline]
+    fn new(t: [DVec2; 3], resolution: usize) -> Option<Self> {
+        let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+        let (i0, i1) = span(lo.x, hi.x, resolution)?;
+        let (j0, j1) = span(lo.y, hi.y, resolution)?;
+        Some(Self {
+            lo,
+            hi,
+            i0,
+            i1,
+            j0,
+            j1,
+        })
+    }
+}
+
+/// A projected triangle set up for conservative rasterization row by row: its bounding
+/// box, its edges and the margin of touching.
+struct Rows {
+    t: [DVec2; 3],
+    resolution: usize,
+    bounds: Bounds,
+    /// Within one cell's span: it touches that cell.
+    single: bool,
+    edges: [Edge; 3],
+    /// A relative margin by which each row's band and extent are widened, on the side of
+    /// touching.
+    margin: f64,
+}
+
+impl Rows {
+    #[inline]
+    fn new(t: [DVec2; 3], bounds: Bounds, resolution: usize) -> Self {
+        let (lo, hi) = (bounds.lo, bounds.hi);
+        Self {
+            t,
+            resolution,
+            bounds,
+            single: bounds.i0 == bounds.i1 && bounds.j0 == bounds.j1,
+            edges: [0, 1, 2].map(|k| Edge::new(t[k], t[(k + 1) % 3])),
+            margin: 1e-12 * (1.0 + hi.abs().max(lo.abs()).max_element()),
+        }
+    }
+
+    /// The cells `a..=b` the triangle touches in row `j` (of `j0..=j1`): those its extent
+    /// in the row's band reaches.
+    #[inline]
+    fn row(&self, j: usize) -> Option<(usize, usize)> {
+        let Bounds { i0, i1, .. } = self.bounds;
+        if self.single {
+            return Some((i0, i0));
+        }
+        let (size, margin) = (2.0 / self.resolution as f64, self.margin);
         let band = -1.0 + j as f64 * size;
-        let Some((x0, x1)) = extent_in_band(t, band - margin, band + size + margin) else {
-            continue;
-        };
-        let Some((a, b)) = span(x0 - margin, x1 + margin, resolution) else {
-            continue;
-        };
-        cells.extend((a.max(i0)..=b.min(i1)).map(|i| j * resolution + i));
+        let (x0, x1) = extent_in_band(&self.t, &self.edges, band - margin, band + size + margin)?;
+        let (a, b) = span(x0 - margin, x1 + margin, self.resolution)?;
+        let (a, b) = (a.max(i0), b.min(i1));
+        (a <= b).then_some((a, b))
     }
 }
 
