@@ -288,6 +288,16 @@ const CHARTS: &[(&str, Coverage)] = &[
         "silhouette_error_vs_triangles",
         Coverage::Only(&["stanford-bunny.obj", "dragon_vrip_res2.ply"]),
     ),
+    (
+        "silhouette_time_vs_faces",
+        Coverage::Only(&[
+            "dragon_vrip_res4.ply",
+            "dragon_vrip_res3.ply",
+            "stanford-bunny.obj",
+            "dragon_vrip_res2.ply",
+            "dragon_vrip.ply",
+        ]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

@@ -3,6 +3,8 @@
 //! distances carried back to the vertices, edges and faces; for a new view, the labels of
 //! the nearest precomputed view or the average of the `n` nearest.
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use glam::{DVec2, DVec3};
 use sphaera_mesh::{Sphere, TriMesh};
 
@@ -301,7 +303,45 @@ impl Labels {
         transform: DistanceTransform,
         contours: Contours,
     ) -> Result<Self, SilhouetteError> {
+        Self::compute_with_progress(mesh, views, resolution, transform, contours, &|_| {})
+    }
+
+    /// [`Labels::compute`], calling `progress` with the number of views labelled so far
+    /// after each view: from whichever thread labelled it, each count from 1 to the number
+    /// of views once, and in parallel not necessarily in order.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_silhouette::{Contours, DistanceTransform, Labels, ViewSet};
+    ///
+    /// let mesh = shapes::sphere(1.0, 8)?;
+    /// let views = ViewSet::regular(45.0)?;
+    /// let last = AtomicUsize::new(0);
+    /// let labels = Labels::compute_with_progress(
+    ///     &mesh, &views, 16, DistanceTransform::Euclidean, Contours::All,
+    ///     &|done| { last.fetch_max(done, Ordering::Relaxed); },
+    /// )?;
+    /// assert_eq!(last.into_inner(), views.len());
+    /// assert_eq!(labels.views().len(), views.len());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`label_view`].
+    pub fn compute_with_progress(
+        mesh: &TriMesh,
+        views: &ViewSet,
+        resolution: usize,
+        transform: DistanceTransform,
+        contours: Contours,
+        progress: &(dyn Fn(usize) + Sync),
+    ) -> Result<Self, SilhouetteError> {
         check(DVec3::Z, views.projection(), resolution)?;
+        let done = AtomicUsize::new(0);
         let sphere = bounding_sphere(mesh)?;
         let normals = face_normals(mesh);
         let vertex_count = mesh.positions().len();
@@ -312,6 +352,7 @@ impl Labels {
             for (q, &p) in out.iter_mut().zip(&frame.image) {
                 *q = quantize(frame.distance_at(p, resolution));
             }
+            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
         };
         let mut values = vec![0_u16; views.len() * vertex_count];
         // A mesh with triangles has vertices; `max(1)` only keeps the chunk size valid.

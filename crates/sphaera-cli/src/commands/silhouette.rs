@@ -129,16 +129,18 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     };
 
     let started = Instant::now();
-    let bar = progress::spinner(
+    let bar = progress::bar(
         quiet,
         &format!("labelling {} views at {}²", views.len(), args.resolution),
+        views.len() as u64,
     );
-    let labels = Labels::compute(
+    let labels = Labels::compute_with_progress(
         mesh,
         &views,
         args.resolution,
         transform(args.transform),
         contours(args.contours),
+        &|done| bar.set_position(done as u64),
     );
     bar.finish_and_clear();
     let labels = labels?;

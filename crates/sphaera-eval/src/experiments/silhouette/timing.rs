@@ -18,7 +18,7 @@ use sphaera::silhouette::{
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
 
-use crate::chart::{ChartSpec, Series, log_log_scatter, write_csv};
+use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 
 /// The experiment's name (`--only silhouette_time_vs_faces`).
 pub const NAME: &str = "silhouette_time_vs_faces";
@@ -161,13 +161,30 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
         ],
         &rows,
     )?;
-    log_log_scatter(
+    let (once, per_frame) = series.split_at(2);
+    log_log_panels(
         &out.join(format!("{NAME}.svg")),
-        &ChartSpec {
-            title: "silhouette labels and view-dependent extraction: time against faces",
-            x_label: "faces of the input mesh",
-            y_label: "seconds (labels, hierarchy: once; the rest: per frame)",
-        },
-        &series,
+        &[
+            Panel {
+                spec: ChartSpec {
+                    title: "once per mesh (2 cores)",
+                    x_label: "faces of the input mesh",
+                    y_label: "seconds",
+                },
+                series: once,
+                diagonal: false,
+                legend: SeriesLabelPosition::LowerRight,
+            },
+            Panel {
+                spec: ChartSpec {
+                    title: "per frame, camera orbiting 1° a frame (1 thread)",
+                    x_label: "faces of the input mesh",
+                    y_label: "seconds",
+                },
+                series: per_frame,
+                diagonal: false,
+                legend: SeriesLabelPosition::UpperLeft,
+            },
+        ],
     )
 }
