@@ -272,3 +272,51 @@ fn scaling_by_a_power_of_two_scales_the_extraction_exactly() {
         assert_eq!(reference.other_error * scale, scaled.other_error);
     }
 }
+
+/// Where extraction must not fail: a sphere (no internal silhouette), labels at one cell
+/// a side, threshold 0, a view along a face plane of a cube, and a view equidistant from
+/// four cameras; every triangle still meets its allowance.
+#[test]
+fn awkward_settings_still_meet_every_allowance() {
+    let cases = [
+        (shapes::sphere(1.0, 20).unwrap(), 64, 0.0, DVec3::Z),
+        (shapes::sphere(1.0, 20).unwrap(), 1, 2.0, DVec3::X),
+        (shapes::cube(1.0, 6).unwrap(), 32, 1.0, DVec3::X),
+        // Between four 90° cameras: (±1, 0, 0), (0, ±1, 0) around the equator's corner.
+        (
+            shapes::torus(1.0, 0.3, 20).unwrap(),
+            32,
+            2.0,
+            DVec3::new(1.0, 1.0, 0.0),
+        ),
+    ];
+    for (mesh, resolution, threshold, direction) in cases {
+        let views = ViewSet::regular(90.0).unwrap();
+        let labels = Labels::compute(
+            &mesh,
+            &views,
+            resolution,
+            DistanceTransform::Euclidean,
+            Contours::All,
+        )
+        .unwrap();
+        let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();
+        let mut lod = ViewDependent::new(&hierarchy, &labels).unwrap();
+        let error = 0.05 * mesh.bounding_box_diagonal();
+        for interpolation in [Interpolation::Nearest, Interpolation::Average(4)] {
+            let out = lod
+                .extract(
+                    direction,
+                    interpolation,
+                    ContourTolerance {
+                        error,
+                        factor: 0.5,
+                        threshold,
+                    },
+                )
+                .unwrap();
+            assert!(out.simplified.mesh.triangle_count() > 0);
+            assert!(out.other_error <= error && out.contour_error <= 0.5 * error);
+        }
+    }
+}
