@@ -90,6 +90,15 @@ fn sweep_vs_parry(c: &mut Criterion) {
                         .sum::<f64>()
                 });
             });
+            group.bench_function("sphaera_tree_cursor", |b| {
+                b.iter(|| {
+                    let mut cursor = tree.cursor();
+                    points
+                        .iter()
+                        .map(|&p| cursor.closest(p).expect("finite").distance)
+                        .sum::<f64>()
+                });
+            });
             group.bench_function("parry", |b| {
                 b.iter(|| points.iter().map(|&p| parry.distance(p)).sum::<f64>());
             });

@@ -1,5 +1,5 @@
 //! The one bounding-volume hierarchy of the workspace: a binary tree of axis-aligned boxes
-//! over items (triangles, spheres, …), built by median splits.
+//! over items (triangles, spheres, …), built by binned surface-area splits.
 //!
 //! Every tree that Sphaera searches is this tree with different leaves: the exact
 //! closest-point [`TriangleTree`](crate::closest::TriangleTree), the far-field expansions
@@ -39,6 +39,8 @@
 use std::ops::{ControlFlow, Range};
 
 use glam::DVec3;
+
+use smallvec::SmallVec;
 
 use crate::{Aabb, MeshError};
 
@@ -93,15 +95,22 @@ pub trait NearestFirst {
 
     /// Visits the leaf items at `positions` of [`BoxTree::order`]; `Break` ends the search.
     fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()>;
+
+    /// Called for each node skipped because [`NearestFirst::may_improve`] said no, with its
+    /// box's squared distance: a lower bound on every item under it (a search that wants
+    /// the nearest item it did not take, for a safe radius, keeps the smallest). Does
+    /// nothing by default.
+    fn pruned(&mut self, _distance_squared: f64) {}
 }
 
 impl BoxTree {
     /// Builds the tree over `items` (each item's box and split point), at most
     /// `leaf_size` items per leaf (0 is taken as 1).
     ///
-    /// A node of more than `leaf_size` items is split at the median of its items'
-    /// centroids along the longest axis of the centroids' box, ties broken by item index,
-    /// so the same items always give the same tree.
+    /// A node of more than `leaf_size` items is split along the longest axis of its
+    /// items' centroids, at the boundary between 16 equal slabs that minimizes the
+    /// surface-area cost (each half's box area times its item count; at the median when
+    /// the centroids do not spread), so the same items always give the same tree.
     ///
     /// # Errors
     ///
@@ -120,17 +129,11 @@ impl BoxTree {
         };
         let leaf_size = leaf_size.max(1);
         let mut order: Vec<u32> = (0..count).collect();
-        let placeholder = BoxNode {
-            bounds: Aabb::EMPTY,
-            start: 0,
-            end: 0,
-            right: 0,
+        let nodes = if order.is_empty() {
+            Vec::new()
+        } else {
+            Builder { items, leaf_size }.node(&mut order, 0, 0)
         };
-        let mut nodes = vec![placeholder; node_count(items.len(), leaf_size)];
-        if !order.is_empty() {
-            let builder = Builder { items, leaf_size };
-            builder.node(&mut order, 0, &mut nodes, 0);
-        }
         Ok(Self { nodes, order })
     }
 
@@ -185,15 +188,20 @@ impl BoxTree {
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
     pub fn search_nearest_first(&self, p: DVec3, search: &mut impl NearestFirst) {
-        let mut stack: Vec<usize> = Vec::with_capacity(64);
-        if !self.nodes.is_empty() {
-            stack.push(0);
-        }
-        while let Some(n) = stack.pop() {
-            let node = self.nodes[n];
-            if !search.may_improve(node.bounds.distance_squared_to_point(p)) {
+        let Some(root) = self.nodes.first() else {
+            return;
+        };
+        // Each entry keeps its box's squared distance, computed once when its parent was
+        // opened. A balanced tree over 32-bit item counts is at most 33 levels deep and
+        // the stack holds at most one entry per level plus one, so it stays inline.
+        let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
+        stack.push((0, root.bounds.distance_squared_to_point(p)));
+        while let Some((n, to_node)) = stack.pop() {
+            if !search.may_improve(to_node) {
+                search.pruned(to_node);
                 continue;
             }
+            let node = self.nodes[n as usize];
             match node.right() {
                 None => {
                     if search.visit_leaf(node.items()).is_break() {
@@ -202,30 +210,21 @@ impl BoxTree {
                 }
                 Some(right) => {
                     let left = n + 1;
-                    let to_left = self.nodes[left].bounds.distance_squared_to_point(p);
-                    let to_right = self.nodes[right].bounds.distance_squared_to_point(p);
+                    let [left_box, right_box] =
+                        [self.nodes[left as usize].bounds, self.nodes[right].bounds];
+                    let to_left = left_box.distance_squared_to_point(p);
+                    let to_right = right_box.distance_squared_to_point(p);
                     // The nearer child on top of the stack.
-                    if to_left <= to_right {
-                        stack.extend([right, left]);
+                    let (near, far) = if to_left <= to_right {
+                        ((left, to_left), (right as u32, to_right))
                     } else {
-                        stack.extend([left, right]);
-                    }
+                        ((right as u32, to_right), (left, to_left))
+                    };
+                    stack.push(far);
+                    stack.push(near);
                 }
             }
         }
-    }
-}
-
-/// Nodes of the subtree over `count` items (the median split makes it a function of the
-/// count alone, so each subtree's slots are known before it is built).
-fn node_count(count: usize, leaf_size: usize) -> usize {
-    if count == 0 {
-        0
-    } else if count <= leaf_size {
-        1
-    } else {
-        let middle = count / 2;
-        1 + node_count(middle, leaf_size) + node_count(count - middle, leaf_size)
     }
 }
 
@@ -233,6 +232,14 @@ fn node_count(count: usize, leaf_size: usize) -> usize {
 /// `parallel`; smaller ones are not worth a task.
 #[cfg(feature = "parallel")]
 const PARALLEL_ITEMS: usize = 4096;
+
+/// Bins of the surface-area split.
+const BINS: usize = 16;
+
+/// Below this depth every split is a median split: a surface-area split may cut off a
+/// few items at a time (items spread exponentially), and the median bounds the depth at
+/// this plus `log2(n / leaf_size)`.
+const MAX_AREA_SPLIT_DEPTH: usize = 48;
 
 /// What every node of a build reads.
 #[derive(Clone, Copy)]
@@ -242,53 +249,130 @@ struct Builder<'a> {
 }
 
 impl Builder<'_> {
-    /// Builds the subtree over `order` (whose first item sits at `offset` of the final
-    /// order) into `slots` (exactly its node count, depth first; the first slot is node
-    /// `index` of the tree). The two halves touch disjoint items and slots, so they can be
-    /// built in any order, or at once, with the same result.
-    ///
-    /// The recursion depth is `log2(n / leaf_size) + 1`: the median split halves every
-    /// range.
-    fn node(self, order: &mut [u32], offset: usize, slots: &mut [BoxNode], index: usize) {
+    /// The subtree over `order` (whose first item sits at `offset` of the final order),
+    /// its nodes depth first with child indices relative to its root. The two halves touch
+    /// disjoint items, so they can be built in any order, or at once, with the same
+    /// result.
+    fn node(self, order: &mut [u32], offset: usize, depth: usize) -> Vec<BoxNode> {
         let items = self.items;
         let bounds = order
             .iter()
             .fold(Aabb::EMPTY, |b, &i| b.union(items[i as usize].0));
         // Lossless: the build checked that the item count fits a u32.
         let start = offset as u32;
-        let (slot, below) = slots.split_at_mut(1);
-        slot[0] = BoxNode {
+        let node = BoxNode {
             bounds,
             start,
             end: start + order.len() as u32,
             right: 0,
         };
         if order.len() <= self.leaf_size {
-            return;
+            return vec![node];
         }
-        let axis = Aabb::from_points(order.iter().map(|&i| items[i as usize].1)).longest_axis();
-        let middle = order.len() / 2;
-        order.select_nth_unstable_by(middle, |&a, &b| {
-            items[a as usize].1[axis]
-                .total_cmp(&items[b as usize].1[axis])
-                .then(a.cmp(&b))
-        });
-        #[cfg(feature = "parallel")]
         let count = order.len();
+        let middle = self.split(order, depth < MAX_AREA_SPLIT_DEPTH);
         let (left, right) = order.split_at_mut(middle);
-        let (left_slots, right_slots) = below.split_at_mut(node_count(middle, self.leaf_size));
-        let right_index = index + 1 + left_slots.len();
-        slot[0].right = right_index as u32;
-        let mut build_left = || self.node(left, offset, left_slots, index + 1);
-        let mut build_right = || self.node(right, offset + middle, right_slots, right_index);
+        let mut build_left = move || self.node(left, offset, depth + 1);
+        let mut build_right = move || self.node(right, offset + middle, depth + 1);
         #[cfg(feature = "parallel")]
-        if count >= PARALLEL_ITEMS {
-            rayon::join(build_left, build_right);
-            return;
+        let (left, right) = if count >= PARALLEL_ITEMS {
+            rayon::join(build_left, build_right)
+        } else {
+            (build_left(), build_right())
+        };
+        #[cfg(not(feature = "parallel"))]
+        let (left, right) = {
+            let _ = count;
+            (build_left(), build_right())
+        };
+        let mut nodes = Vec::with_capacity(1 + left.len() + right.len());
+        // Lossless: a tree over at most u32::MAX items has fewer than 2³² nodes.
+        let right_at = 1 + left.len() as u32;
+        nodes.push(BoxNode {
+            right: right_at,
+            ..node
+        });
+        for (shift, half) in [(1, left), (right_at, right)] {
+            nodes.extend(half.into_iter().map(|mut n| {
+                if n.right != 0 {
+                    n.right += shift;
+                }
+                n
+            }));
         }
-        build_left();
-        build_right();
+        nodes
     }
+
+    /// Splits `order` (more than one item) in two non-empty halves and returns the size
+    /// of the first: along the longest axis of the centroids, at the boundary between
+    /// [`BINS`] equal slabs that minimizes the surface-area cost (each half's box area
+    /// times its item count), the first such boundary on ties; at the median of the
+    /// centroids (ties by item index) when the centroids coincide or every item falls in
+    /// one slab, or when `by_area` is false. Items keep their relative order within each
+    /// half, so the same items always give the same tree.
+    fn split(self, order: &mut [u32], by_area: bool) -> usize {
+        let items = self.items;
+        let centroids = Aabb::from_points(order.iter().map(|&i| items[i as usize].1));
+        let axis = centroids.longest_axis();
+        let (low, extent) = (centroids.min[axis], centroids.extent()[axis]);
+        let middle = order.len() / 2;
+        let median = |order: &mut [u32]| {
+            order.select_nth_unstable_by(middle, |&a, &b| {
+                items[a as usize].1[axis]
+                    .total_cmp(&items[b as usize].1[axis])
+                    .then(a.cmp(&b))
+            });
+            middle
+        };
+        if !(by_area && extent > 0.0 && extent.is_finite()) {
+            return median(order);
+        }
+        let scale = BINS as f64 / extent;
+        let bin = |i: u32| (((items[i as usize].1[axis] - low) * scale) as usize).min(BINS - 1);
+        let mut boxes = [Aabb::EMPTY; BINS];
+        let mut counts = [0_usize; BINS];
+        for &i in order.iter() {
+            let b = bin(i);
+            boxes[b] = boxes[b].union(items[i as usize].0);
+            counts[b] += 1;
+        }
+        // Costs of the boundaries after bin k (k = 0 .. BINS − 2), from both sides.
+        let mut below = [(Aabb::EMPTY, 0_usize); BINS];
+        let mut running = (Aabb::EMPTY, 0);
+        for k in 0..BINS {
+            running = (running.0.union(boxes[k]), running.1 + counts[k]);
+            below[k] = running;
+        }
+        let mut best: Option<(f64, usize)> = None;
+        let mut above = (Aabb::EMPTY, 0);
+        for k in (0..BINS - 1).rev() {
+            above = (above.0.union(boxes[k + 1]), above.1 + counts[k + 1]);
+            let (left, right) = (below[k], above);
+            if left.1 == 0 || right.1 == 0 {
+                continue;
+            }
+            let cost = half_area(left.0) * left.1 as f64 + half_area(right.0) * right.1 as f64;
+            // `<=` while walking down: the first boundary wins ties.
+            if best.is_none_or(|(c, _)| cost <= c) {
+                best = Some((cost, k));
+            }
+        }
+        let Some((_, k)) = best else {
+            return median(order);
+        };
+        let (first, second): (Vec<u32>, Vec<u32>) = order.iter().partition(|&&i| bin(i) <= k);
+        let size = first.len();
+        for (slot, i) in order.iter_mut().zip(first.into_iter().chain(second)) {
+            *slot = i;
+        }
+        size
+    }
+}
+
+/// Half the surface area of a box (the split cost's measure; 0 for an empty box).
+fn half_area(b: Aabb) -> f64 {
+    let e = b.extent().max(DVec3::ZERO);
+    e.x * e.y + e.y * e.z + e.z * e.x
 }
 
 #[cfg(test)]
@@ -331,6 +415,32 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn items_spread_exponentially_keep_the_tree_shallow() {
+        // Each surface-area split would cut off one item: the median takes over deep down.
+        let items: Vec<(Aabb, DVec3)> = (0..3000)
+            .map(|i| DVec3::new(1.2_f64.powi(i / 8 - 150), f64::from(i % 8), 0.0))
+            .map(|p| (Aabb::new(p, p), p))
+            .collect();
+        let tree = BoxTree::build(&items, 1).expect("3000 items");
+        let mut deepest = 0;
+        let mut stack = vec![(0_usize, 1_usize)];
+        while let Some((n, depth)) = stack.pop() {
+            deepest = deepest.max(depth);
+            if let Some(right) = tree.nodes()[n].right() {
+                stack.extend([(n + 1, depth + 1), (right, depth + 1)]);
+            }
+        }
+        assert!(deepest <= MAX_AREA_SPLIT_DEPTH + 14, "depth {deepest}");
+        let leaves: usize = tree
+            .nodes()
+            .iter()
+            .filter(|n| n.is_leaf())
+            .map(|n| n.items().len())
+            .sum();
+        assert_eq!(leaves, 3000);
     }
 
     #[test]

@@ -72,3 +72,61 @@ proptest! {
         }
     }
 }
+
+/// A walk: steps of every size from 1e-9 to 1, in a seeded order.
+fn walk() -> impl Strategy<Value = Vec<DVec3>> {
+    (point(), prop::collection::vec((point(), -9..1_i32), 1..40)).prop_map(|(start, steps)| {
+        let mut p = start;
+        let mut out = vec![p];
+        for (direction, exponent) in steps {
+            p += direction.normalize_or_zero() * 10f64.powi(exponent);
+            out.push(p);
+        }
+        out
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The cursor answers every step of a walk exactly (its shortcut and its seeded
+    /// descent both), and a batch answers exactly what independent queries do.
+    #[test]
+    fn cursor_and_batch_match_brute_force(
+        shape in 0..5_usize,
+        soup in soup(),
+        points in walk(),
+    ) {
+        let mesh = if shape < 4 { shapes().swap_remove(shape) } else { soup };
+        let tree = TriangleTree::new(&mesh).expect("non-empty");
+        let mut cursor = tree.cursor();
+        for &p in &points {
+            let expected = brute::distance(&mesh, p);
+            let answer = cursor.closest(p).expect("finite query");
+            prop_assert!(brute::close(answer.distance, expected), "{} vs {expected}", answer.distance);
+            let triangle = mesh.triangle(answer.triangle as usize).expect("in range");
+            prop_assert!(point_triangle_distance_squared(answer.point, &triangle).sqrt() <= 1e-9);
+        }
+        prop_assert_eq!(cursor.queries(), points.len());
+        let batch = tree.closest_many(&points).expect("finite queries");
+        for (p, answer) in points.iter().zip(batch) {
+            prop_assert_eq!(answer, tree.closest(*p).expect("finite query"));
+        }
+    }
+}
+
+#[test]
+fn the_cursor_takes_its_shortcut_on_small_steps_and_refuses_bad_points() {
+    // Inside a cube, near the middle of a face: the nearest face is clear of the others.
+    let cube = shapes::cube(2.0, 2).expect("cube");
+    let tree = TriangleTree::new(&cube).expect("non-empty");
+    let mut cursor = tree.cursor();
+    for i in 0..100 {
+        let p = DVec3::new(0.55 + 1e-4 * f64::from(i), 0.1, 0.05);
+        let answer = cursor.closest(p).expect("finite");
+        assert!((answer.distance - (1.0 - p.x)).abs() < 1e-12);
+    }
+    assert!(cursor.shortcuts() >= 90, "{}", cursor.shortcuts());
+    assert!(cursor.closest(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
+    assert!(tree.closest_many(&[DVec3::ZERO, DVec3::INFINITY]).is_err());
+}

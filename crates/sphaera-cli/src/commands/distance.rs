@@ -1,4 +1,8 @@
 //! `sphaera distance`: exact (or certified approximate) closest points on a mesh.
+//!
+//! Exact answers come from the triangle tree, on every core (the fastest exact engine we
+//! have, and no hierarchy to build); certified intervals to a `--tolerance` come from
+//! Meshsweeper sessions over the hierarchy of error spheres.
 
 use std::{path::Path, time::Instant};
 
@@ -7,8 +11,8 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 use sphaera::{
-    mesh::{DVec3, TriMesh},
-    sweep::{Feature, SessionStats, Sweeper, Tolerance, build_hierarchy},
+    mesh::{DVec3, TriMesh, closest::TriangleTree},
+    sweep::{Feature, Sweeper, Tolerance, build_hierarchy},
 };
 
 use crate::{
@@ -32,8 +36,11 @@ struct Report {
     /// `--points FILE`, or `random N (seed S)`.
     queries_from: String,
     triangles: usize,
-    /// Triangles of the base mesh every query session starts from.
-    base_triangles: usize,
+    /// `triangle tree` (exact answers, both cores) or `meshsweeper` (certified intervals
+    /// to `--tolerance`, one session).
+    engine: &'static str,
+    /// Triangles of the base mesh every query session starts from (`null` for the tree).
+    base_triangles: Option<usize>,
     /// The `--tolerance` in mesh units (`null`: exact answers).
     tolerance: Option<f64>,
     /// One answer per query point, in input order.
@@ -43,7 +50,8 @@ struct Report {
     max_distance: f64,
     mean_distance: f64,
     queries_per_second: f64,
-    session: Stats,
+    /// The Meshsweeper session's counters (`null` for the tree).
+    session: Option<Stats>,
     seconds: Seconds,
 }
 
@@ -75,8 +83,9 @@ struct Stats {
 #[derive(Debug, Serialize)]
 struct Seconds {
     load: f64,
-    /// Building the hierarchy of error spheres (once per mesh).
-    hierarchy: f64,
+    /// Building the engine once per mesh: the triangle tree, or the hierarchy of error
+    /// spheres.
+    build: f64,
     queries: f64,
 }
 
@@ -96,6 +105,103 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
     let diagonal = mesh.bounding_box_diagonal();
     let tolerance = args.tolerance.map(|t| t.resolve(diagonal));
 
+    let built = match tolerance {
+        None => exact(mesh, &points, quiet)?,
+        Some(t) => certified(mesh, &points, t, quiet)?,
+    };
+    let middles: Vec<f64> = built
+        .answers
+        .iter()
+        .map(|a| 0.5 * (a.lower + a.upper))
+        .collect();
+    let answers = built.answers;
+    let report = Report {
+        source: input.source,
+        queries_from,
+        triangles: mesh.triangle_count(),
+        engine: built.engine,
+        base_triangles: built.base_triangles,
+        tolerance,
+        min_distance: middles.iter().copied().fold(f64::INFINITY, f64::min),
+        max_distance: middles.iter().copied().fold(0.0, f64::max),
+        mean_distance: middles.iter().sum::<f64>() / middles.len().max(1) as f64,
+        queries_per_second: if built.query_seconds > 0.0 {
+            answers.len() as f64 / built.query_seconds
+        } else {
+            0.0
+        },
+        answers,
+        session: built.session,
+        seconds: Seconds {
+            load: input.seconds,
+            build: built.build_seconds,
+            queries: built.query_seconds,
+        },
+    };
+    if args.print.json {
+        print_json(&report)
+    } else {
+        print!("{}", report.to_text());
+        Ok(())
+    }
+}
+
+/// The answers of one engine and what it cost.
+struct Built {
+    engine: &'static str,
+    answers: Vec<Answer>,
+    base_triangles: Option<usize>,
+    session: Option<Stats>,
+    build_seconds: f64,
+    query_seconds: f64,
+}
+
+/// Exact answers from the triangle tree, on every core.
+fn exact(mesh: &TriMesh, points: &[DVec3], quiet: bool) -> Result<Built> {
+    let spinner = progress::spinner(
+        quiet,
+        &format!(
+            "building the tree of {} triangles",
+            thousands(mesh.triangle_count())
+        ),
+    );
+    let started = Instant::now();
+    let tree = TriangleTree::new(mesh);
+    let build_seconds = started.elapsed().as_secs_f64();
+    spinner.finish_and_clear();
+    let tree = tree?;
+    let spinner = progress::spinner(
+        quiet,
+        &format!("querying {} points", thousands(points.len())),
+    );
+    let started = Instant::now();
+    let closest = tree.closest_many(points);
+    let query_seconds = started.elapsed().as_secs_f64();
+    spinner.finish_and_clear();
+    let answers = points
+        .iter()
+        .zip(closest?)
+        .map(|(p, c)| Answer {
+            query: p.to_array(),
+            lower: c.distance,
+            upper: c.distance,
+            point: Some(c.point.to_array()),
+            triangle: Some(c.triangle),
+            feature: Some(feature_name(c.feature)),
+        })
+        .collect();
+    Ok(Built {
+        engine: "triangle tree",
+        answers,
+        base_triangles: None,
+        session: None,
+        build_seconds,
+        query_seconds,
+    })
+}
+
+/// Certified intervals at most `tolerance` wide from one Meshsweeper session.
+fn certified(mesh: &TriMesh, points: &[DVec3], tolerance: f64, quiet: bool) -> Result<Built> {
     let spinner = progress::spinner(
         quiet,
         &format!(
@@ -105,12 +211,11 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
     );
     let started = Instant::now();
     let hierarchy = build_hierarchy(mesh);
-    let hierarchy_seconds = started.elapsed().as_secs_f64();
+    let build_seconds = started.elapsed().as_secs_f64();
     spinner.finish_and_clear();
     let hierarchy = hierarchy?;
     let sweeper = Sweeper::new(&hierarchy)?;
     let mut session = sweeper.session();
-
     let bar = progress::bar(
         quiet,
         &format!("querying {} points", thousands(points.len())),
@@ -119,74 +224,36 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
     let started = Instant::now();
     let mut answers = Vec::with_capacity(points.len());
     for (i, &p) in points.iter().enumerate() {
-        let answer = match tolerance {
-            None => {
-                let c = session.closest(p)?;
-                Answer {
-                    query: p.to_array(),
-                    lower: c.distance,
-                    upper: c.distance,
-                    point: Some(c.point.to_array()),
-                    triangle: Some(c.triangle),
-                    feature: Some(feature_name(c.feature)),
-                }
-            }
-            Some(t) => {
-                let b = session.closest_within(p, Tolerance::Absolute(t))?;
-                Answer {
-                    query: p.to_array(),
-                    lower: b.lower,
-                    upper: b.upper,
-                    point: b.closest.map(|c| c.point.to_array()),
-                    triangle: b.closest.map(|c| c.triangle),
-                    feature: b.closest.map(|c| feature_name(c.feature)),
-                }
-            }
-        };
-        answers.push(answer);
+        let b = session.closest_within(p, Tolerance::Absolute(tolerance))?;
+        answers.push(Answer {
+            query: p.to_array(),
+            lower: b.lower,
+            upper: b.upper,
+            point: b.closest.map(|c| c.point.to_array()),
+            triangle: b.closest.map(|c| c.triangle),
+            feature: b.closest.map(|c| feature_name(c.feature)),
+        });
         if i % 256 == 0 {
             bar.set_position(i as u64);
         }
     }
     let query_seconds = started.elapsed().as_secs_f64();
     bar.finish_and_clear();
-
-    let middles: Vec<f64> = answers.iter().map(|a| 0.5 * (a.lower + a.upper)).collect();
-    let stats: SessionStats = session.stats();
-    let report = Report {
-        source: input.source,
-        queries_from,
-        triangles: mesh.triangle_count(),
-        base_triangles: sweeper.base_triangles().len(),
-        tolerance,
-        min_distance: middles.iter().copied().fold(f64::INFINITY, f64::min),
-        max_distance: middles.iter().copied().fold(0.0, f64::max),
-        mean_distance: middles.iter().sum::<f64>() / middles.len().max(1) as f64,
-        queries_per_second: if query_seconds > 0.0 {
-            answers.len() as f64 / query_seconds
-        } else {
-            0.0
-        },
+    let stats = session.stats();
+    Ok(Built {
+        engine: "meshsweeper",
         answers,
-        session: Stats {
+        base_triangles: Some(sweeper.base_triangles().len()),
+        session: Some(Stats {
             constant_time_queries: stats.constant_time,
             vertex_splits: stats.splits,
             distance_evaluations: stats.distance_evaluations,
             resets: stats.resets,
             bytes_per_triangle: session.memory_bytes() as f64 / mesh.triangle_count().max(1) as f64,
-        },
-        seconds: Seconds {
-            load: input.seconds,
-            hierarchy: hierarchy_seconds,
-            queries: query_seconds,
-        },
-    };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+        }),
+        build_seconds,
+        query_seconds,
+    })
 }
 
 /// `vertex 12`, `edge 3 7` or `face`.
@@ -262,11 +329,19 @@ impl Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!("mesh            {}", self.source),
-            format!(
-                "triangles       {} (base mesh {})",
-                thousands(self.triangles),
-                thousands(self.base_triangles)
-            ),
+            match self.base_triangles {
+                Some(base) => format!(
+                    "triangles       {} (base mesh {}), {}",
+                    thousands(self.triangles),
+                    thousands(base),
+                    self.engine
+                ),
+                None => format!(
+                    "triangles       {}, {}",
+                    thousands(self.triangles),
+                    self.engine
+                ),
+            },
             format!(
                 "queries         {} from {}",
                 thousands(self.answers.len()),
@@ -281,23 +356,26 @@ impl Report {
                 self.min_distance, self.mean_distance, self.max_distance
             ),
             format!(
-                "time            {:.3} s to read, {:.3} s for the hierarchy, {:.3} s for the \
+                "time            {:.3} s to read, {:.3} s to build the {}, {:.3} s for the \
                  queries ({:.0} per second)",
                 self.seconds.load,
-                self.seconds.hierarchy,
+                self.seconds.build,
+                self.engine,
                 self.seconds.queries,
                 self.queries_per_second
             ),
-            format!(
+        ];
+        if let Some(session) = &self.session {
+            lines.push(format!(
                 "session         {} vertex splits, {} distance evaluations, {} resets, {} \
                  constant-time answers, {:.1} bytes per triangle",
-                thousands(self.session.vertex_splits),
-                thousands(self.session.distance_evaluations),
-                thousands(self.session.resets),
-                thousands(self.session.constant_time_queries),
-                self.session.bytes_per_triangle
-            ),
-        ];
+                thousands(session.vertex_splits),
+                thousands(session.distance_evaluations),
+                thousands(session.resets),
+                thousands(session.constant_time_queries),
+                session.bytes_per_triangle
+            ));
+        }
         for a in self.answers.iter().take(TEXT_ANSWERS) {
             let [x, y, z] = a.query;
             lines.push(match (a.point, a.triangle, &a.feature) {

@@ -4,10 +4,16 @@
 //! For each mesh of [`MESHES`] and each query set of [`crate::query_sets`] (`uniform` in
 //! the 1.5× box, `near` the surface, a smooth `path`), queries per second on one thread:
 //!
-//! - **Sphaera**: one [`Sweeper::session`] per query set, answering the points in order
-//!   (so the `path` set is coherent), as in the `sweep_vs_parry` bench; the session's
-//!   creation is timed, the hierarchy build ([`build_hierarchy`], which is parallel) is not
-//!   (its time is in the CSV);
+//! - **triangle tree**: Sphaera's exact engine for independent queries
+//!   ([`TriangleTree::closest`]); its build is not timed (its time is in the CSV);
+//! - **tree cursor**: the same tree answering the points in order through one
+//!   [`TriangleTree::cursor`] (coherent on the `path` set);
+//! - **Meshsweeper session**: one [`Sweeper::session`] per query set, answering the points
+//!   in order (so the `path` set is coherent), as in the `sweep_vs_parry` bench; the
+//!   session's creation is timed, the hierarchy build ([`build_hierarchy`], which is
+//!   parallel) is not (its time is in the CSV);
+//! - **Meshsweeper anytime 1 %**: the same session's certified intervals at most 1 % of the
+//!   diagonal wide ([`Session::closest_within`](sphaera::sweep::Session::closest_within));
 //! - **parry3d-f64** 0.31: `TriMesh` point projection through [`DistanceToMesh`] (its BVH
 //!   build is not timed; its time is in the CSV);
 //! - **brute force** ([`BruteForce`]: every triangle for every query): timed on the first
@@ -25,8 +31,8 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use sphaera::{
-    mesh::{DVec3, TriMesh},
-    sweep::{Sweeper, build_hierarchy},
+    mesh::{DVec3, TriMesh, closest::TriangleTree},
+    sweep::{Sweeper, Tolerance, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
 
@@ -56,7 +62,14 @@ pub const BRUTE_EVALUATIONS: usize = 20_000_000;
 pub const PARRY_RUNS: usize = 5;
 
 /// The methods, in chart order.
-const METHODS: [&str; 3] = ["sphaera", "parry3d", "brute_force"];
+const METHODS: [&str; 6] = [
+    "triangle_tree",
+    "tree_cursor",
+    "meshsweeper_session",
+    "meshsweeper_anytime_1%",
+    "parry3d",
+    "brute_force",
+];
 
 /// One measured point.
 struct Row {
@@ -98,6 +111,8 @@ fn measure_mesh(
         build_hierarchy(mesh).context("cannot build the hierarchy")
     })?;
     let sweeper = Sweeper::new(&hierarchy)?;
+    let (tree_s, tree) = min_time(1, || Ok(TriangleTree::new(mesh)?))?;
+    let tolerance = Tolerance::Absolute(0.01 * mesh.bounding_box_diagonal());
     let (bvh_s, parry) = min_time(1, || Ok(DistanceToMesh::new(mesh)))?;
     let brute = BruteForce::new(mesh);
     let brute_queries = (BRUTE_EVALUATIONS / mesh.triangle_count().max(1)).clamp(8, queries);
@@ -109,19 +124,51 @@ fn measure_mesh(
                 Ok::<f64, anyhow::Error>(sum + session.closest(p)?.distance)
             })
         })?;
+        let (anytime_s, _) = min_time(runs, || {
+            let mut session = sweeper.session();
+            points.iter().try_fold(0.0, |sum, &p| {
+                Ok::<f64, anyhow::Error>(sum + session.closest_within(p, tolerance)?.upper)
+            })
+        })?;
+        let (tree_q, tree_sum) = min_time(runs.max(PARRY_RUNS), || {
+            points.iter().try_fold(0.0, |sum, &p| {
+                Ok::<f64, anyhow::Error>(sum + tree.closest(p)?.distance)
+            })
+        })?;
+        let (cursor_s, cursor_sum) = min_time(runs.max(PARRY_RUNS), || {
+            let mut cursor = tree.cursor();
+            points.iter().try_fold(0.0, |sum, &p| {
+                Ok::<f64, anyhow::Error>(sum + cursor.closest(p)?.distance)
+            })
+        })?;
         let (parry_s, parry_sum) = min_time(runs.max(PARRY_RUNS), || {
             Ok(sum_of(&points, |p| parry.distance(p)))
         })?;
         let subset = &points[..brute_queries.min(points.len())];
         let (brute_s, _) = min_time(runs, || Ok(sum_of(subset, |p| brute.distance(p))))?;
         // Both answer exact distances: a mismatch would make the comparison meaningless.
-        let relative = (sphaera_sum - parry_sum).abs() / parry_sum.max(f64::MIN_POSITIVE);
-        anyhow::ensure!(
-            relative < 1e-6,
-            "{file} {set}: Sphaera and parry disagree ({sphaera_sum} vs {parry_sum})"
-        );
+        for ours in [sphaera_sum, tree_sum, cursor_sum] {
+            let relative = (ours - parry_sum).abs() / parry_sum.max(f64::MIN_POSITIVE);
+            anyhow::ensure!(
+                relative < 1e-6,
+                "{file} {set}: Sphaera and parry disagree ({ours} vs {parry_sum})"
+            );
+        }
         for (method, queries, seconds, build_seconds) in [
-            ("sphaera", points.len(), sphaera_s, Some(hierarchy_s)),
+            ("triangle_tree", points.len(), tree_q, Some(tree_s)),
+            ("tree_cursor", points.len(), cursor_s, Some(tree_s)),
+            (
+                "meshsweeper_session",
+                points.len(),
+                sphaera_s,
+                Some(hierarchy_s),
+            ),
+            (
+                "meshsweeper_anytime_1%",
+                points.len(),
+                anytime_s,
+                Some(hierarchy_s),
+            ),
             ("parry3d", points.len(), parry_s, Some(bvh_s)),
             ("brute_force", subset.len(), brute_s, None),
         ] {

@@ -25,7 +25,7 @@ mod triangle_tree;
 
 use glam::DVec3;
 
-pub use triangle_tree::TriangleTree;
+pub use triangle_tree::{TreeCursor, TriangleTree};
 
 /// The feature of a mesh a closest point lies on, in the mesh's vertex indices.
 ///

@@ -13,8 +13,10 @@ use crate::{Aabb, MeshError, TriMesh};
 
 use super::ClosestPoint;
 
-/// Triangles per leaf.
-const LEAF_SIZE: usize = 4;
+/// Triangles per leaf. Measured on the 69k bunny against 2, 4, 8 and 12: a leaf's
+/// triangles are rejected by their boxes at little cost, and fewer levels mean fewer box
+/// tests on the way down (uniform queries 1.4× faster than with 4).
+const LEAF_SIZE: usize = 16;
 
 /// An axis-aligned bounding-box tree over a mesh's triangles answering exact
 /// closest-point queries; immutable and `Sync`, so one tree serves every thread.
@@ -139,14 +141,92 @@ impl TriangleTree {
                 requirement: "a non-negative number",
             });
         }
+        let search = self.search(p, max_distance * max_distance, None);
+        Ok(search.best.map(|(i, _)| self.answer_at(i, p)))
+    }
+
+    /// A cursor for a stream of queries that move a little at a time (a path, a moving
+    /// body): see [`TreeCursor`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let sphere = shapes::sphere(1.0, 32)?;
+    /// let tree = TriangleTree::new(&sphere)?;
+    /// let mut cursor = tree.cursor();
+    /// for i in 0..1000 {
+    ///     let a = f64::from(i) * 1e-3;
+    ///     let p = DVec3::new(2.0 * a.cos(), 2.0 * a.sin(), 0.3);
+    ///     // The same distance an independent query finds.
+    ///     let answer = cursor.closest(p)?;
+    ///     assert!((answer.distance - tree.closest(p)?.distance).abs() < 1e-12);
+    /// }
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    #[must_use]
+    pub fn cursor(&self) -> TreeCursor<'_> {
+        TreeCursor {
+            tree: self,
+            last: None,
+            queries: 0,
+            shortcuts: 0,
+        }
+    }
+
+    /// The exact closest point of every point of `points`, in order: [`TriangleTree::closest`]
+    /// for each, on every core with the `parallel` feature (the answers are the same
+    /// either way).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let tree = TriangleTree::new(&shapes::cube(2.0, 2)?)?; // the cube [-1, 1]³
+    /// let points: Vec<DVec3> = (0..100).map(|i| DVec3::new(2.0 + f64::from(i), 0.0, 0.0)).collect();
+    /// let answers = tree.closest_many(&points)?;
+    /// assert_eq!(answers[7].distance, 8.0);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NonFiniteQuery`] for the first non-finite point (no answer is
+    /// returned).
+    pub fn closest_many(&self, points: &[DVec3]) -> Result<Vec<ClosestPoint>, MeshError> {
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            points.par_iter().map(|&p| self.closest(p)).collect()
+        }
+        #[cfg(not(feature = "parallel"))]
+        {
+            points.iter().map(|&p| self.closest(p)).collect()
+        }
+    }
+
+    /// The descent: the nearest triangle within `bound_squared` (inclusive), starting
+    /// from `seed` (a tree position already known at that squared distance, or `None`),
+    /// and the smallest squared distance of anything else.
+    fn search(&self, p: DVec3, bound_squared: f64, seed: Option<usize>) -> Search<'_> {
         let mut search = Search {
             corners: &self.corners,
             p,
-            best_squared: max_distance * max_distance,
-            best: None,
+            best_squared: bound_squared,
+            best: seed.map(|i| (i, bound_squared)),
+            runner_up_squared: f64::INFINITY,
         };
         self.boxes.search_nearest_first(p, &mut search);
-        Ok(search.best.map(|(i, hit)| self.answer(i, p, &hit)))
+        search
+    }
+
+    /// The answer on the triangle at tree position `i`.
+    fn answer_at(&self, i: usize, p: DVec3) -> ClosestPoint {
+        let [a, b, c] = self.corners[i];
+        let hit = closest_point_on_triangle(p, &Triangle::new(a, b, c));
+        self.answer(i, p, &hit)
     }
 
     /// The distance from `p` to the mesh, for callers that need only the number: the
@@ -195,13 +275,17 @@ impl TriangleTree {
     }
 }
 
-/// The state of one closest-point descent.
+/// The state of one closest-point descent. Candidates are compared by
+/// [`point_triangle_distance_squared`] (a third of the cost of the closest point with its
+/// feature, which only the winner gets).
 struct Search<'a> {
     corners: &'a [[DVec3; 3]],
     p: DVec3,
     best_squared: f64,
-    /// The best triangle so far (its position in tree order) and its closest point.
-    best: Option<(usize, TriangleClosestPoint)>,
+    /// The best triangle so far (its position in tree order) and its squared distance.
+    best: Option<(usize, f64)>,
+    /// The smallest squared distance (or lower bound of one) of every other triangle.
+    runner_up_squared: f64,
 }
 
 impl NearestFirst for Search<'_> {
@@ -210,22 +294,134 @@ impl NearestFirst for Search<'_> {
     }
 
     fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
+        let current = self.best.map(|(i, _)| i);
         for i in positions {
-            let [a, b, c] = self.corners[i];
-            // The triangle's box first: the exact test costs ten times more.
-            let bounds = Aabb::new(a.min(b).min(c), a.max(b).max(c));
-            if bounds.distance_squared_to_point(self.p) > self.best_squared {
+            if Some(i) == current {
+                // A seed is not compared with itself.
                 continue;
             }
-            let hit = closest_point_on_triangle(self.p, &Triangle::new(a, b, c));
-            let better = hit.distance_squared < self.best_squared
-                || (self.best.is_none() && hit.distance_squared <= self.best_squared);
+            let [a, b, c] = self.corners[i];
+            // The triangle's box first: the distance costs several times more.
+            let bounds = Aabb::new(a.min(b).min(c), a.max(b).max(c));
+            let to_box = bounds.distance_squared_to_point(self.p);
+            if to_box > self.best_squared {
+                self.runner_up_squared = self.runner_up_squared.min(to_box);
+                continue;
+            }
+            let d = point_triangle_distance_squared(self.p, &Triangle::new(a, b, c));
+            let better = d < self.best_squared || (self.best.is_none() && d <= self.best_squared);
             if better {
-                self.best_squared = hit.distance_squared;
-                self.best = Some((i, hit));
+                if let Some((_, previous)) = self.best {
+                    self.runner_up_squared = self.runner_up_squared.min(previous);
+                }
+                self.best_squared = d;
+                self.best = Some((i, d));
+            } else {
+                self.runner_up_squared = self.runner_up_squared.min(d);
             }
         }
         ControlFlow::Continue(())
+    }
+
+    fn pruned(&mut self, distance_squared: f64) {
+        self.runner_up_squared = self.runner_up_squared.min(distance_squared);
+    }
+}
+
+/// Exact closest points for a stream of queries that move a little at a time, from
+/// [`TriangleTree::cursor`].
+///
+/// Each full search also bounds the distance of every other triangle (the nearest one
+/// it did not take, or the nearest box it pruned). The next query checks the previous
+/// answer's triangle first: if it is nearer than that bound minus the distance moved, it
+/// is still the closest, found in constant time. Otherwise the descent starts with that
+/// triangle's distance as its bound, which prunes most of the tree. Answers are exact,
+/// as [`TriangleTree::closest`]'s; where two triangles are exactly as near, the one
+/// chosen may differ from an independent query's.
+#[derive(Clone, Debug)]
+pub struct TreeCursor<'t> {
+    tree: &'t TriangleTree,
+    last: Option<Last>,
+    queries: usize,
+    shortcuts: usize,
+}
+
+/// What a cursor keeps of its last answer.
+#[derive(Clone, Copy, Debug)]
+struct Last {
+    query: DVec3,
+    /// The answer's tree position.
+    position: usize,
+    /// A lower bound on the distance from `query` of every other triangle.
+    runner_up: f64,
+}
+
+impl TreeCursor<'_> {
+    /// The exact closest point of the mesh to `p`.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
+    pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, MeshError> {
+        if !p.is_finite() {
+            return Err(MeshError::NonFiniteQuery {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            });
+        }
+        self.queries += 1;
+        let tree = self.tree;
+        let (search, runner_up) = match self.last {
+            Some(last) => {
+                let moved = (p - last.query).length();
+                // Every other triangle is at least this far from `p`.
+                let others = last.runner_up - moved;
+                let answer = tree.answer_at(last.position, p);
+                if answer.distance < others {
+                    self.shortcuts += 1;
+                    self.last = Some(Last {
+                        query: p,
+                        position: last.position,
+                        runner_up: others,
+                    });
+                    return Ok(answer);
+                }
+                let [a, b, c] = tree.corners[last.position];
+                let bound = point_triangle_distance_squared(p, &Triangle::new(a, b, c));
+                let search = tree.search(p, bound, Some(last.position));
+                let runner_up = search.runner_up_squared.sqrt();
+                (search, runner_up)
+            }
+            None => {
+                let search = tree.search(p, f64::INFINITY, None);
+                let runner_up = search.runner_up_squared.sqrt();
+                (search, runner_up)
+            }
+        };
+        // A finite query on a non-empty tree always finds a triangle (invariant).
+        let Some((position, _)) = search.best else {
+            return Err(MeshError::EmptyMesh);
+        };
+        let answer = tree.answer_at(position, p);
+        self.last = Some(Last {
+            query: p,
+            position,
+            runner_up,
+        });
+        Ok(answer)
+    }
+
+    /// Queries answered so far.
+    #[must_use]
+    pub fn queries(&self) -> usize {
+        self.queries
+    }
+
+    /// Queries answered from the previous answer's triangle alone.
+    #[must_use]
+    pub fn shortcuts(&self) -> usize {
+        self.shortcuts
     }
 }
 
