@@ -230,6 +230,10 @@ const CHARTS: &[(&str, Coverage)] = &[
         ]),
     ),
     (
+        "sweep_speedup_vs_step",
+        Coverage::Only(&["stanford-bunny.obj", "dragon_vrip_res2.ply"]),
+    ),
+    (
         "hausdorff_gap_vs_time",
         Coverage::Only(&["stanford-bunny.obj", "bunny_lowres.obj"]),
     ),

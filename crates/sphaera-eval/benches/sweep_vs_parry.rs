@@ -1,5 +1,6 @@
 //! Closest-point queries: Sphaera's Meshsweeper sessions and its static `TriangleTree`
-//! against parry3d-f64's `TriMesh` point projection (its BVH), in the same run.
+//! (one query at a time, through a coherent `TreeCursor`, and `closest_many` on both
+//! cores) against parry3d-f64's `TriMesh` point projection (its BVH), in the same run.
 //!
 //! Query sets (seeded; `sphaera_eval::query_sets`, shared with the `sweep_throughput`
 //! experiment), on the 69k-triangle bunny and the 871k-triangle dragon:
@@ -96,6 +97,15 @@ fn sweep_vs_parry(c: &mut Criterion) {
                     points
                         .iter()
                         .map(|&p| cursor.closest(p).expect("finite").distance)
+                        .sum::<f64>()
+                });
+            });
+            group.bench_function("sphaera_closest_many_2_threads", |b| {
+                b.iter(|| {
+                    tree.closest_many(&points)
+                        .expect("finite")
+                        .iter()
+                        .map(|c| c.distance)
                         .sum::<f64>()
                 });
             });

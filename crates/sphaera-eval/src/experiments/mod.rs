@@ -6,6 +6,8 @@
 //! - `simplify_error_vs_time`: `simplify_error.rs` (the calls of [`crate::methods`]);
 //! - `sweep_throughput`: `sweep_throughput.rs` (the points of [`crate::query_sets`], and
 //!   [`crate::brute`]);
+//! - `sweep_speedup_vs_step`: `sweep_coherence.rs` (coherent queries against the step
+//!   length);
 //! - `hausdorff_gap_vs_time`: `hausdorff_gap.rs` (the naive estimate of [`crate::brute`]);
 //! - `medial_static_vs_adaptive`: `medial_static_vs_adaptive.rs`;
 //! - `spheretree`: `spheretree/mod.rs`, its tables and charts in `spheretree/charts.rs`;
@@ -28,6 +30,7 @@ mod medial_static_vs_adaptive;
 mod silhouette;
 mod simplify_error;
 mod spheretree;
+mod sweep_coherence;
 mod sweep_throughput;
 
 use std::path::Path;
@@ -42,6 +45,7 @@ pub const NAMES: &[&str] = &[
     load_topology::NAME,
     simplify_error::NAME,
     sweep_throughput::NAME,
+    sweep_coherence::NAME,
     hausdorff_gap::NAME,
     medial_static_vs_adaptive::NAME,
     spheretree::NAME,
@@ -57,6 +61,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         load_topology::NAME => load_topology::run(data, out),
         simplify_error::NAME => simplify_error::run(data, out),
         sweep_throughput::NAME => sweep_throughput::run(data, out),
+        sweep_coherence::NAME => sweep_coherence::run(data, out),
         hausdorff_gap::NAME => hausdorff_gap::run(data, out),
         medial_static_vs_adaptive::NAME => medial_static_vs_adaptive::run(data, out),
         spheretree::NAME => spheretree::run(data, out),
