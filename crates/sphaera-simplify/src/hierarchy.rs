@@ -425,6 +425,26 @@ impl Hierarchy {
         Refinement::at_base(self)
     }
 
+    /// A new changing state with every collapse undone: the input mesh, whose live
+    /// triangles ([`Refinement::live_triangles`]) are the input's, by hierarchy id.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::{SimplifyOptions, Hierarchy};
+    ///
+    /// let sphere = shapes::sphere(1.0, 8)?;
+    /// let hierarchy = Hierarchy::build(&sphere, &SimplifyOptions::default())?;
+    /// let finest = hierarchy.finest_refinement();
+    /// assert_eq!(finest.live_triangle_count(), sphere.triangle_count());
+    /// assert_eq!(finest.live_triangles().count(), sphere.triangle_count());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn finest_refinement(&self) -> Refinement<'_> {
+        Refinement::at_prefix(self, 0)
+    }
+
     /// The base mesh (every collapse applied): the same result as
     /// [`simplify`](crate::simplify) with the same options.
     pub fn base(&self) -> Simplified {

@@ -81,4 +81,7 @@ pub struct SessionStats {
     pub distance_evaluations: usize,
     /// Resets to the base mesh.
     pub resets: usize,
+    /// Exact queries answered by the tree of input triangles
+    /// ([`SessionOptions::exact_by_tree`](crate::SessionOptions::exact_by_tree)).
+    pub tree_queries: usize,
 }

@@ -83,6 +83,10 @@ pub enum SweepError {
     /// The points given for a [`Polyline`](crate::polyline::Polyline) do not make one.
     #[error("invalid polyline: {0}")]
     InvalidPolyline(PolylineDefect),
+    /// The triangle tree over the input mesh could not be built (more triangles than
+    /// 32-bit indices address).
+    #[error("cannot build the triangle tree of the input: {0}")]
+    Tree(#[source] sphaera_mesh::MeshError),
 }
 
 /// What makes a list of points not a [`Polyline`](crate::polyline::Polyline), in

@@ -15,8 +15,10 @@
 //!   hierarchy of error spheres that [`sphaera_simplify`] records: anytime certified
 //!   intervals to a tolerance ([`Session::closest_within`]), meshes that move rigidly or
 //!   deform ([`Session::move_mesh`], [`Session::deform`]), and certified Hausdorff
-//!   distances between whole meshes ([`hausdorff`]). A [`Session`] also answers exact
-//!   queries the paper's way, which is how the paper's claims are tested.
+//!   distances between whole meshes ([`hausdorff`]). A [`Session`]'s exact queries
+//!   ([`Session::closest`]) come from the same tree by default, while the mesh keeps its
+//!   shape; [`SessionOptions::with_exact_by_tree`]`(false)` answers them the paper's way,
+//!   which is how the paper's claims are tested.
 //!
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};
@@ -54,8 +56,8 @@
 //! `docs/benchmarks.md`): the triangle tree builds 2× faster than parry's BVH and answers
 //! uniform and near-surface queries on the 69k bunny faster than parry per query, and
 //! [`TriangleTree::closest_many`] answers 100,000 near points in about 0.1 s all told
-//! (parry 0.2 s). Meshsweeper sessions are slower than both for exact queries; their
-//! place is the rest of the list above.
+//! (parry 0.2 s). The paper's exact queries are 5–30× slower than the tree's; the
+//! hierarchy's place is the rest of the list above.
 //!
 //! # How it works
 //!

@@ -62,17 +62,22 @@ proptest! {
     ) {
         let (mesh, hierarchy) = &fixtures()[shape];
         let sweeper = Sweeper::new(hierarchy).expect("non-empty");
-        // Independent queries, one coherent session, and a session that never resets.
-        let mut session = sweeper.session();
-        let mut sticky = sweeper.session_with(&SessionOptions::default().with_max_triangles(usize::MAX).with_jump_factor(f64::INFINITY));
-        for &p in &points {
-            check_closest(mesh, &mut sweeper.session(), p);
-            check_closest(mesh, &mut session, p);
-            check_closest(mesh, &mut sticky, p);
-            // A small step from there (the constant-time case or a little refinement).
-            let q = p + DVec3::new(step, -0.5 * step, 0.25 * step);
-            check_closest(mesh, &mut session, q);
-            check_closest(mesh, &mut sticky, q);
+        // Both exact engines: the tree of input triangles and the paper's refinement.
+        for by_tree in [true, false] {
+            let options = SessionOptions::default().with_exact_by_tree(by_tree);
+            // Independent queries, one coherent session, and a session that never resets.
+            let mut session = sweeper.session_with(&options);
+            let mut sticky = sweeper.session_with(&options.with_max_triangles(usize::MAX).with_jump_factor(f64::INFINITY));
+            for &p in &points {
+                check_closest(mesh, &mut sweeper.session_with(&options), p);
+                check_closest(mesh, &mut session, p);
+                check_closest(mesh, &mut sticky, p);
+                // A small step from there (the constant-time case or a little refinement).
+                let q = p + DVec3::new(step, -0.5 * step, 0.25 * step);
+                check_closest(mesh, &mut session, q);
+                check_closest(mesh, &mut sticky, q);
+            }
+            prop_assert_eq!(session.stats().tree_queries > 0, by_tree);
         }
     }
 
@@ -133,12 +138,14 @@ proptest! {
     }
 }
 
+/// The paper's exact path (section 5.1): coherence saves refinement.
 #[test]
 fn a_coherent_path_refines_far_less_than_fresh_queries() {
     let sphere = shapes::sphere(1.0, 24).expect("sphere");
     let hierarchy = build_hierarchy(&sphere).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
-    let mut session = sweeper.session();
+    let paper = SessionOptions::default().with_exact_by_tree(false);
+    let mut session = sweeper.session_with(&paper);
     for i in 0..100 {
         let angle = f64::from(i) * 0.01;
         let p = 2.0 * DVec3::new(angle.cos(), angle.sin(), 0.1);
@@ -149,7 +156,7 @@ fn a_coherent_path_refines_far_less_than_fresh_queries() {
     for i in 0..100 {
         let angle = f64::from(i) * 0.01;
         let p = 2.0 * DVec3::new(angle.cos(), angle.sin(), 0.1);
-        let mut session = sweeper.session();
+        let mut session = sweeper.session_with(&paper);
         check_closest(&sphere, &mut session, p);
         fresh_splits += session.stats().splits;
     }

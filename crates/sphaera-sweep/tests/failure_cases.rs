@@ -296,21 +296,25 @@ fn centre_of_a_sphere_mesh_is_exact() {
     let sphere = shapes::sphere(1.0, 64).expect("sphere");
     let hierarchy = build_hierarchy(&sphere).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
-    let mut session = sweeper.session();
-    let answer = check(&sphere, &mut session, DVec3::ZERO);
-    let stats = session.stats();
-    // Measured (2026-11-21): 765 splits and 13,385 distance evaluations for 3968
-    // triangles: linear, as the paper predicts for this query.
-    eprintln!(
-        "sphere centre: {} triangles, distance {}, {stats:?}",
-        sphere.triangle_count(),
-        answer.distance
-    );
-    assert!(answer.distance > 0.99 && answer.distance < 1.0);
-    // Slightly off the centre too, in the same session and fresh.
-    let p = DVec3::new(1e-3, -2e-3, 5e-4);
-    check(&sphere, &mut session, p);
-    check(&sphere, &mut sweeper.session(), p);
+    // The paper's way, then the tree's (where every box holds the query too).
+    for by_tree in [false, true] {
+        let options = SessionOptions::default().with_exact_by_tree(by_tree);
+        let mut session = sweeper.session_with(&options);
+        let answer = check(&sphere, &mut session, DVec3::ZERO);
+        let stats = session.stats();
+        // Measured (2026-11-21): 765 splits and 13,385 distance evaluations for 3968
+        // triangles: linear, as the paper predicts for this query.
+        eprintln!(
+            "sphere centre: {} triangles, distance {}, {stats:?}",
+            sphere.triangle_count(),
+            answer.distance
+        );
+        assert!(answer.distance > 0.99 && answer.distance < 1.0);
+        // Slightly off the centre too, in the same session and fresh.
+        let p = DVec3::new(1e-3, -2e-3, 5e-4);
+        check(&sphere, &mut session, p);
+        check(&sphere, &mut sweeper.session_with(&options), p);
+    }
 }
 
 #[test]
@@ -919,7 +923,26 @@ fn one_session_through_every_case_in_sequence() {
 /// A long random walk mixing big jumps, tiny steps, repeats, vertices and the other
 /// queries, every answer compared to brute force.
 /// With `very_far`, some jumps go 1e5 times the size away (and back).
+/// Run twice: exact queries from the tree of input triangles, then the paper's way.
 fn random_walk(mesh: &TriMesh, options: SessionOptions, seed: u64, steps: usize, very_far: bool) {
+    for by_tree in [true, false] {
+        random_walk_with(
+            mesh,
+            options.with_exact_by_tree(by_tree),
+            seed,
+            steps,
+            very_far,
+        );
+    }
+}
+
+fn random_walk_with(
+    mesh: &TriMesh,
+    options: SessionOptions,
+    seed: u64,
+    steps: usize,
+    very_far: bool,
+) {
     let hierarchy = build_hierarchy(mesh).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
     let mut session = sweeper.session_with(&options);
@@ -1037,27 +1060,32 @@ fn a_walk_out_to_1e12_and_back_stays_exact() {
     let sphere = shapes::sphere(1.0, 16).expect("sphere");
     let hierarchy = build_hierarchy(&sphere).expect("hierarchy");
     let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
-    let mut session = sweeper.session();
-    let dir = DVec3::new(0.36, 0.48, 0.8);
-    // Out to 1e12 and back, each step a quarter of the distance: never a reset.
-    let mut r = 2.0;
-    while r < 1e12 {
-        check(&sphere, &mut session, r * dir);
-        r *= 1.25;
-    }
-    while r > 2.0 {
-        check(&sphere, &mut session, r * dir);
-        r /= 1.25;
-    }
-    // The precision rule resets the session once the total motion passes 64 diagonals.
-    assert!(session.stats().resets > 0);
-    for i in 0..50 {
-        let i = f64::from(i);
-        check(
-            &sphere,
-            &mut session,
-            1.5 * dir + DVec3::new(0.01 * i, -0.013 * i, 0.02),
-        );
+    // The paper's exact path (whose precision rule this is about), then the tree's.
+    for by_tree in [false, true] {
+        let mut session =
+            sweeper.session_with(&SessionOptions::default().with_exact_by_tree(by_tree));
+        let dir = DVec3::new(0.36, 0.48, 0.8);
+        // Out to 1e12 and back, each step a quarter of the distance: never a reset.
+        let mut r = 2.0;
+        while r < 1e12 {
+            check(&sphere, &mut session, r * dir);
+            r *= 1.25;
+        }
+        while r > 2.0 {
+            check(&sphere, &mut session, r * dir);
+            r /= 1.25;
+        }
+        // The precision rule resets the session once the total motion passes 64
+        // diagonals (the tree never refines, so it never resets).
+        assert_eq!(session.stats().resets > 0, !by_tree);
+        for i in 0..50 {
+            let i = f64::from(i);
+            check(
+                &sphere,
+                &mut session,
+                1.5 * dir + DVec3::new(0.01 * i, -0.013 * i, 0.02),
+            );
+        }
     }
 }
 

@@ -95,6 +95,15 @@ impl TriangleTree {
         self.corners.len()
     }
 
+    /// Bytes of the tree's arrays (corners, vertex indices, nodes and order).
+    #[must_use]
+    pub fn memory_bytes(&self) -> usize {
+        size_of_val(self.corners.as_slice())
+            + size_of_val(self.vertices.as_slice())
+            + size_of_val(self.boxes.nodes())
+            + size_of_val(self.boxes.order())
+    }
+
     /// The exact closest point of the mesh to `p` (ties: the first triangle in the tree's
     /// order, so the same input gives the same answer).
     ///

@@ -1,6 +1,7 @@
 //! A query session: the refined mesh and the priority queue, kept between queries.
 
 use glam::DVec3;
+use sphaera_mesh::closest::TreeCursor;
 use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
 use sphaera_simplify::{Hierarchy, Refinement};
 
@@ -42,6 +43,12 @@ pub struct SessionOptions {
     /// Reset before a query when the query point moved more than this many times the
     /// previous answer's distance (`f64::INFINITY`: never for motion).
     pub jump_factor: f64,
+    /// Answer [`Session::closest`] from the sweeper's tree of input triangles through a
+    /// [`TreeCursor`] (`true`, the default: the fastest exact engine, coherent from one
+    /// query to the next) while the mesh has its own shape (rigid poses included), or
+    /// by refining the hierarchy, the paper's way (`false`). A deformed mesh is always
+    /// answered the paper's way. The answers are exact either way.
+    pub exact_by_tree: bool,
 }
 
 impl Default for SessionOptions {
@@ -49,6 +56,7 @@ impl Default for SessionOptions {
         Self {
             max_triangles: 20_000,
             jump_factor: 1.0,
+            exact_by_tree: true,
         }
     }
 }
@@ -66,6 +74,32 @@ impl SessionOptions {
     #[must_use]
     pub fn with_jump_factor(mut self, factor: f64) -> Self {
         self.jump_factor = factor;
+        self
+    }
+
+    /// With exact queries from the tree of input triangles (`true`) or the paper's
+    /// refinement (`false`); see [`SessionOptions::exact_by_tree`].
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, shapes};
+    /// use sphaera_sweep::{SessionOptions, Sweeper, build_hierarchy};
+    ///
+    /// let torus = shapes::torus(1.0, 0.25, 24)?;
+    /// let hierarchy = build_hierarchy(&torus)?;
+    /// let sweeper = Sweeper::new(&hierarchy)?;
+    /// let mut tree = sweeper.session();
+    /// let mut paper = sweeper.session_with(&SessionOptions::default().with_exact_by_tree(false));
+    /// let p = DVec3::new(2.0, 0.1, 0.3);
+    /// assert_eq!(tree.closest(p)?.distance, paper.closest(p)?.distance);
+    /// assert_eq!((tree.stats().splits, tree.stats().tree_queries), (0, 1));
+    /// assert!(paper.stats().splits > 0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn with_exact_by_tree(mut self, by_tree: bool) -> Self {
+        self.exact_by_tree = by_tree;
         self
     }
 }
@@ -135,8 +169,10 @@ pub struct Session<'s> {
     /// The pre-refined state a reset goes back to; queue ids from `triangles` on are its
     /// spatial groups.
     warm: &'s WarmStart,
-    /// Collapses undone at the warm start.
+    /// Collapses undone at the warm start (once [`Session::warm_up`] has run).
     warm_undone: usize,
+    /// Whether the warm start has been applied.
+    warmed: bool,
     /// The split mark when the warm start's groups were last queued: a member touched by
     /// a later split has its own entry and is skipped when its group is expanded.
     warm_mark: u32,
@@ -167,6 +203,9 @@ pub struct Session<'s> {
     pose: Pose,
     /// The deformed geometry, or `None` for the hierarchy's own.
     shape: Option<DeformedShape>,
+    /// With [`SessionOptions::exact_by_tree`]: the cursor over the input triangles, and
+    /// the hierarchy id of each of its triangles.
+    cursor: Option<(TreeCursor<'s>, &'s [u32])>,
     /// The bounding box of the current vertex positions (mesh coordinates).
     bounds: (DVec3, DVec3),
 }
@@ -185,18 +224,13 @@ impl<'s> Session<'s> {
     pub(crate) fn new(sweeper: &'s Sweeper<'s>, options: SessionOptions) -> Self {
         let hierarchy = sweeper.hierarchy();
         let warm = sweeper.warm_start();
-        let mut refinement = hierarchy.refinement();
-        let mut undone = Vec::new();
-        for &c in warm.collapses() {
-            // The warm start's collapses are valid and in a valid order (invariant);
-            // an error would only leave the session colder.
-            let _ = refinement.undo_collapse(c, &mut undone);
-        }
-        Self {
+        let refinement = hierarchy.refinement();
+        let mut session = Self {
             hierarchy,
             base: sweeper.base_triangles(),
             warm,
-            warm_undone: refinement.undone_count(),
+            warm_undone: 0,
+            warmed: false,
             warm_mark: 0,
             triangles: hierarchy.triangle_count() as u32,
             diagonal: sweeper.diagonal(),
@@ -216,10 +250,40 @@ impl<'s> Session<'s> {
             pose: Pose::IDENTITY,
             shape: None,
             bounds: bounding_box(hierarchy.positions()),
+            cursor: options.exact_by_tree.then(|| {
+                let (tree, ids) = sweeper.finest();
+                (tree.cursor(), ids)
+            }),
+        };
+        if !options.exact_by_tree {
+            session.warm_up();
         }
+        session
+    }
+
+    /// Refines to the sweeper's warm start, once: every query that uses the hierarchy
+    /// needs it, and a session that only answers exact queries from the tree never pays
+    /// for it.
+    pub(crate) fn warm_up(&mut self) {
+        if self.warmed {
+            return;
+        }
+        self.warmed = true;
+        let mut undone = Vec::new();
+        for &c in self.warm.collapses() {
+            // The warm start's collapses are valid and in a valid order (invariant);
+            // an error would only leave the session colder.
+            let _ = self.refinement.undo_collapse(c, &mut undone);
+        }
+        self.warm_undone = self.refinement.undone_count();
     }
 
     /// The exact closest point of the mesh to `p`.
+    ///
+    /// By default ([`SessionOptions::exact_by_tree`]) the sweeper's tree of input
+    /// triangles answers, through a cursor that starts from the previous answer, while the
+    /// mesh has its own shape; otherwise (the option off, or a deformed mesh) the
+    /// hierarchy is refined, the paper's way.
     ///
     /// # Errors
     ///
@@ -227,12 +291,31 @@ impl<'s> Session<'s> {
     ///
     /// # Performance
     ///
-    /// Constant when `p` is inside the safe ball of the previous answer; otherwise the
-    /// intervals still below the answer are re-evaluated and split. Worst case linear in
-    /// the mesh size (a query at the centre of a sphere mesh touches every triangle).
+    /// From the tree: logarithmic, about as fast as parry3d-f64's BVH (see
+    /// `docs/benchmarks.md`). The paper's way: constant when `p` is inside the safe ball
+    /// of the previous answer; otherwise the intervals still below the answer are
+    /// re-evaluated and split. Worst case linear in the mesh size either way (a query at
+    /// the centre of a sphere mesh touches every triangle).
     pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, SweepError> {
         let p = self.pose.to_local(check_point(p)?);
         self.stats.queries += 1;
+        if self.shape.is_none()
+            && let Some((cursor, ids)) = &mut self.cursor
+        {
+            let shortcuts = cursor.shortcuts();
+            // The point is finite and the tree non-empty, so the cursor answers.
+            let hit = cursor.closest(p).map_err(|_| SweepError::EmptyMesh)?;
+            if cursor.shortcuts() > shortcuts {
+                self.stats.constant_time += 1;
+            }
+            self.stats.tree_queries += 1;
+            let t = ids
+                .get(hit.triangle as usize)
+                .copied()
+                .ok_or(SweepError::EmptyMesh)?;
+            let answer = self.leaf_answer(t, p).ok_or(SweepError::EmptyMesh)?;
+            return Ok(self.to_world(answer));
+        }
         if let Some(safe) = self.safe
             && (p - safe.center).length() <= safe.radius
             && let Some(answer) = self.leaf_answer(safe.triangle, p)
@@ -313,6 +396,7 @@ impl<'s> Session<'s> {
 
     /// Back to the base mesh (also done automatically, see [`SessionOptions`]).
     pub fn reset(&mut self) {
+        self.warm_up();
         // A deformed session goes back to the base mesh: the warm start's bounds are for
         // the hierarchy's own geometry.
         let keep = if self.shape.is_none() {
@@ -446,6 +530,7 @@ impl<'s> Session<'s> {
     /// Moves the query point to `p`: widens every interval by the motion (lazily, through
     /// the key shift), or resets per [`SessionOptions`].
     fn move_to(&mut self, p: DVec3) {
+        self.warm_up();
         self.safe = None;
         let jump = self.query.map_or(0.0, |q| (p - q).length());
         let grown = self

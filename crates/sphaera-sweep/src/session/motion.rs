@@ -67,6 +67,7 @@ impl Session<'_> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn move_mesh(&mut self, pose: DAffine3) -> Result<(), SweepError> {
+        self.warm_up();
         let next = Pose::new(pose)?;
         if let Some(q) = self.query {
             // The same world point, in the new mesh coordinates.
@@ -154,6 +155,7 @@ impl Session<'_> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn deform(&mut self, shape: DeformedShape) -> Result<(), SweepError> {
+        self.warm_up();
         check_tables(self.hierarchy, &shape)?;
         let moved = match &self.shape {
             Some(old) => max_displacement(old.positions(), shape.positions()),
@@ -215,6 +217,7 @@ impl Session<'_> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn move_vertices(&mut self, positions: &[DVec3]) -> Result<(), SweepError> {
+        self.warm_up();
         let had_shape = self.shape.is_some();
         let mut shape = match self.shape.take() {
             Some(shape) => shape,

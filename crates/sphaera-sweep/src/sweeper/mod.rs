@@ -1,6 +1,6 @@
 //! The shared, read-only part of the distance engine.
 
-use sphaera_mesh::{DVec3, TriMesh};
+use sphaera_mesh::{DVec3, TriMesh, closest::TriangleTree};
 use sphaera_simplify::{Hierarchy, SimplifyError, SimplifyOptions};
 
 mod warm_start;
@@ -12,9 +12,11 @@ use crate::{Session, SessionOptions, SweepError};
 
 /// Closest-point queries on the mesh a [`Hierarchy`] was built from (Meshsweeper).
 ///
-/// The sweeper holds only what is fixed: a reference to the hierarchy's tables and the
-/// base mesh's triangles. It is `Sync`; every thread opens its own [`Session`], which owns
-/// the changing state (the refined mesh and the priority queue).
+/// The sweeper holds only what is fixed: a reference to the hierarchy's tables, the base
+/// mesh's triangles, the warm start, and a [`TriangleTree`] over the input triangles,
+/// which answers a session's exact queries (see [`SessionOptions::exact_by_tree`]). It is
+/// `Sync`; every thread opens its own [`Session`], which owns the changing state (the
+/// refined mesh and the priority queue).
 ///
 /// # Examples
 ///
@@ -36,6 +38,10 @@ pub struct Sweeper<'h> {
     base: Vec<u32>,
     diagonal: f64,
     warm: WarmStart,
+    /// The input triangles, for exact queries, and the hierarchy id of each of its
+    /// triangles.
+    finest: TriangleTree,
+    finest_ids: Vec<u32>,
 }
 
 impl<'h> Sweeper<'h> {
@@ -98,11 +104,14 @@ impl<'h> Sweeper<'h> {
         );
         let diagonal = (max - min).length();
         let diagonal = if diagonal.is_finite() { diagonal } else { 0.0 };
+        let (finest, finest_ids) = finest_tree(hierarchy)?;
         Ok(Self {
             hierarchy,
             base,
             diagonal,
             warm: WarmStart::new(hierarchy, triangles, diagonal),
+            finest,
+            finest_ids,
         })
     }
 
@@ -112,10 +121,19 @@ impl<'h> Sweeper<'h> {
         self.warm.triangle_count()
     }
 
-    /// Bytes of the sweeper's own tables (the base mesh and the warm start; the
-    /// hierarchy is not counted).
+    /// Bytes of the sweeper's own tables (the base mesh, the warm start and the tree of
+    /// input triangles; the hierarchy is not counted).
     pub fn memory_bytes(&self) -> usize {
-        4 * self.base.len() + self.warm.bytes()
+        4 * self.base.len()
+            + self.warm.bytes()
+            + self.finest.memory_bytes()
+            + 4 * self.finest_ids.len()
+    }
+
+    /// The tree of input triangles that answers exact queries, and the hierarchy triangle
+    /// id of each of its triangles.
+    pub(crate) fn finest(&self) -> (&TriangleTree, &[u32]) {
+        (&self.finest, &self.finest_ids)
     }
 
     /// The warm start sessions begin from and reset to.
@@ -148,6 +166,24 @@ impl<'h> Sweeper<'h> {
     pub fn session_with(&self, options: &SessionOptions) -> Session<'_> {
         Session::new(self, *options)
     }
+}
+
+/// The tree over the input triangles of `hierarchy` (its finest state), and the
+/// hierarchy id of each tree triangle.
+fn finest_tree(hierarchy: &Hierarchy) -> Result<(TriangleTree, Vec<u32>), SweepError> {
+    let finest = hierarchy.finest_refinement();
+    let (ids, triangles): (Vec<u32>, Vec<[u32; 3]>) = finest
+        .live_triangles()
+        .filter_map(|t| finest.corners(t).map(|corners| (t, corners)))
+        .unzip();
+    // The hierarchy's positions are finite and its live triangles index them (the
+    // simplifier's invariants), so the mesh is valid; an empty one is reported as such.
+    let mesh = TriMesh::new(hierarchy.positions().to_vec(), triangles).map_err(SweepError::Tree)?;
+    let tree = TriangleTree::new(&mesh).map_err(|e| match e {
+        sphaera_mesh::MeshError::EmptyMesh => SweepError::EmptyMesh,
+        other => SweepError::Tree(other),
+    })?;
+    Ok((tree, ids))
 }
 
 /// The hierarchy a distance engine wants for `mesh`: simplified as far as possible, with
