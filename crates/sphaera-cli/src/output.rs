@@ -12,6 +12,22 @@ pub fn print_json(value: &impl Serialize) -> Result<()> {
     Ok(())
 }
 
+/// A subcommand's result: its JSON form is its `Serialize`, its text form this.
+pub trait Report: Serialize {
+    /// The lines people read, ending with a newline.
+    fn to_text(&self) -> String;
+}
+
+/// Prints `report` on stdout: one JSON document with `--json`, else its text.
+pub fn print_report(report: &impl Report, json: bool) -> Result<()> {
+    if json {
+        print_json(report)
+    } else {
+        print!("{}", report.to_text());
+        Ok(())
+    }
+}
+
 /// Fails before any work when `path` cannot take an output: its folder is missing, is not
 /// a folder or refuses a new file; the path is a folder; or the file is read-only (an
 /// atomic write would replace it regardless, which a read-only file says not to do).

@@ -18,7 +18,7 @@ use sphaera::{
 use crate::{
     cli::DistanceArgs,
     input::read_mesh,
-    output::{print_json, thousands},
+    output::{print_report, thousands},
     progress,
 };
 
@@ -138,12 +138,7 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
             queries: built.query_seconds,
         },
     };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+    print_report(&report, args.print.json)
 }
 
 /// The answers of one engine and what it cost.
@@ -325,7 +320,7 @@ fn parse_points(text: &str) -> Result<Vec<DVec3>> {
     Ok(points)
 }
 
-impl Report {
+impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!("mesh            {}", self.source),

@@ -19,7 +19,7 @@ use sphaera::{
 use crate::{
     cli::HausdorffArgs,
     input::read_mesh,
-    output::{print_json, thousands},
+    output::{print_report, thousands},
     progress,
 };
 
@@ -188,12 +188,7 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
             hausdorff: hausdorff_seconds,
         },
     };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+    print_report(&report, args.print.json)
 }
 
 fn side(d: &DirectedHausdorff) -> Side {
@@ -227,7 +222,7 @@ fn check_ply(path: &std::path::Path) -> Result<()> {
     Ok(())
 }
 
-impl Report {
+impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let direction = |name: &str, s: &Side| {
             format!(

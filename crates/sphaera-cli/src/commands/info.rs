@@ -9,7 +9,7 @@ use sphaera::mesh::{TriMesh, io::LoadReport, topology::TopologyReport};
 use crate::{
     cli::InfoArgs,
     input::read_mesh,
-    output::{print_json, thousands, yes_no},
+    output::{print_report, thousands, yes_no},
     progress,
 };
 
@@ -95,12 +95,7 @@ pub fn run(args: &InfoArgs, quiet: bool) -> Result<()> {
             topology: topology_seconds,
         },
     );
-    if args.output.json {
-        print_json(&info)
-    } else {
-        print!("{}", info.to_text());
-        Ok(())
-    }
+    print_report(&info, args.output.json)
 }
 
 impl Info {
@@ -150,7 +145,9 @@ impl Info {
             seconds,
         }
     }
+}
 
+impl crate::output::Report for Info {
     fn to_text(&self) -> String {
         let t = &self.topology;
         let genus = t.genus.map_or_else(

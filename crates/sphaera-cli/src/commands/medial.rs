@@ -22,7 +22,7 @@ use sphaera::{
 use crate::{
     cli::{CoverArg, MedialArgs},
     input::read_mesh,
-    output::{check_target, print_json, thousands},
+    output::{check_target, print_report, thousands},
     progress,
 };
 
@@ -312,12 +312,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
             certify: certify_seconds,
         },
     };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+    print_report(&report, args.print.json)
 }
 
 /// The spheres of the set, before any growth.
@@ -396,7 +391,7 @@ fn eq2_error(surface: &Surface, centre: DVec3, radius: f64) -> f64 {
     error.max(0.0)
 }
 
-impl Report {
+impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!(

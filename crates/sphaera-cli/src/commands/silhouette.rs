@@ -20,7 +20,7 @@ use sphaera::{
 use crate::{
     cli::{ContoursArg, SilhouetteArgs, TransformArg},
     input::read_mesh,
-    output::{check_mesh_format, check_target, print_json, thousands},
+    output::{check_mesh_format, check_target, print_report, thousands},
     progress,
 };
 
@@ -253,12 +253,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
             write: write_seconds,
         },
     };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+    print_report(&report, args.print.json)
 }
 
 fn transform(arg: TransformArg) -> DistanceTransform {
@@ -300,7 +295,7 @@ fn write_png(path: &Path, picture: &Picture) -> Result<()> {
     Ok(())
 }
 
-impl Report {
+impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let cells = |d: Option<f64>| d.map_or("-".to_owned(), |d| format!("{d:.1}"));
         let percent = |d: f64| {

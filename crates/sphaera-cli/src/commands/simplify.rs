@@ -13,7 +13,7 @@ use crate::{
     cli::SimplifyArgs,
     input::read_mesh,
     measure,
-    output::{check_mesh_format, check_target, print_json, thousands},
+    output::{check_mesh_format, check_target, print_report, thousands},
     progress,
 };
 
@@ -120,15 +120,10 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
             write: write_seconds,
         },
     };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+    print_report(&report, args.print.json)
 }
 
-impl Report {
+impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!("mesh            {}", self.source),

@@ -20,7 +20,7 @@ use sphaera::spheretree::{
 use crate::{
     cli::SpheretreeArgs,
     input::read_mesh,
-    output::{check_target, print_json, thousands},
+    output::{check_target, print_report, thousands},
     progress,
 };
 
@@ -157,12 +157,7 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
             evaluate: evaluate_seconds,
         },
     };
-    if args.print.json {
-        print_json(&report)
-    } else {
-        print!("{}", report.to_text());
-        Ok(())
-    }
+    print_report(&report, args.print.json)
 }
 
 /// The link name of a YAML export: the mesh file's stem, or `bunny` for the embedded
@@ -265,7 +260,7 @@ fn write_tree(path: &Path, tree: &SphereTree, name: &str, tolerance: Option<f64>
     written.with_context(|| format!("cannot write {}", path.display()))
 }
 
-impl Report {
+impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let percent = |x: f64| {
             if self.diagonal > 0.0 {
