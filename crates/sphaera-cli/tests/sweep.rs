@@ -64,3 +64,34 @@ fn distance_answers_random_points_exactly() {
         assert!(answer["point"].is_array());
     }
 }
+
+#[test]
+fn distance_with_a_tolerance_gives_certified_intervals_no_wider() {
+    let exact = json(&sphaera(&["distance", "--random", "200", "--json"]));
+    let approx = json(&sphaera(&[
+        "distance",
+        "--random",
+        "200",
+        "--tolerance",
+        "1%",
+        "--json",
+    ]));
+    let tolerance = approx["tolerance"].as_f64().expect("a tolerance");
+    let pairs = exact["answers"]
+        .as_array()
+        .expect("answers")
+        .iter()
+        .zip(approx["answers"].as_array().expect("answers"));
+    for (e, a) in pairs {
+        let d = e["lower"].as_f64().expect("exact");
+        let (lower, upper) = (
+            a["lower"].as_f64().expect("lower"),
+            a["upper"].as_f64().expect("upper"),
+        );
+        assert!(
+            lower <= d + 1e-12 && d <= upper + 1e-12,
+            "{lower} {d} {upper}"
+        );
+        assert!(upper - lower <= tolerance + 1e-12);
+    }
+}

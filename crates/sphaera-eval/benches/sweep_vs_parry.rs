@@ -1,4 +1,5 @@
-//! Closest-point queries: Sphaera's Meshsweeper sessions and its static `TriangleTree`
+//! Closest-point queries: Sphaera's sessions (exact answers from the tree by default, and
+//! the paper's way) and its static `TriangleTree`
 //! (one query at a time, through a coherent `TreeCursor`, and `closest_many` on both
 //! cores) against parry3d-f64's `TriMesh` point projection (its BVH), in the same run.
 //!
@@ -27,7 +28,7 @@ use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh as ParryTriMesh, TriMeshFlags};
 use sphaera::{
     mesh::{DVec3, TriMesh, closest::TriangleTree, io, shapes},
-    sweep::{Sweeper, build_hierarchy},
+    sweep::{SessionOptions, Sweeper, build_hierarchy},
 };
 use sphaera_eval::query_sets::query_sets;
 use sphaera_tests::hausdorff::DistanceToMesh;
@@ -74,15 +75,23 @@ fn sweep_vs_parry(c: &mut Criterion) {
             group.sample_size(10);
             group.warm_up_time(Duration::from_millis(300));
             group.measurement_time(Duration::from_secs(2));
-            group.bench_function("sphaera_session", |b| {
-                b.iter(|| {
-                    let mut session = sweeper.session();
-                    points
-                        .iter()
-                        .map(|&p| session.closest(p).expect("finite").distance)
-                        .sum::<f64>()
+            for (name, options) in [
+                ("sphaera_session", SessionOptions::default()),
+                (
+                    "sphaera_session_paper",
+                    SessionOptions::default().with_exact_by_tree(false),
+                ),
+            ] {
+                group.bench_function(name, |b| {
+                    b.iter(|| {
+                        let mut session = sweeper.session_with(&options);
+                        points
+                            .iter()
+                            .map(|&p| session.closest(p).expect("finite").distance)
+                            .sum::<f64>()
+                    });
                 });
-            });
+            }
             group.bench_function("sphaera_triangle_tree", |b| {
                 b.iter(|| {
                     points
@@ -174,14 +183,28 @@ fn worst_case(c: &mut Criterion) {
     ));
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(2));
-    group.bench_function("sphaera_fresh_sessions", |b| {
-        b.iter(|| {
-            points
-                .iter()
-                .map(|&p| sweeper.session().closest(p).expect("finite").distance)
-                .sum::<f64>()
+    for (name, options) in [
+        ("sphaera_fresh_sessions", SessionOptions::default()),
+        (
+            "sphaera_fresh_sessions_paper",
+            SessionOptions::default().with_exact_by_tree(false),
+        ),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                points
+                    .iter()
+                    .map(|&p| {
+                        sweeper
+                            .session_with(&options)
+                            .closest(p)
+                            .expect("finite")
+                            .distance
+                    })
+                    .sum::<f64>()
+            });
         });
-    });
+    }
     group.bench_function("parry", |b| {
         b.iter(|| {
             points

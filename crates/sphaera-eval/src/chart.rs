@@ -92,7 +92,13 @@ pub fn log_log_panels(path: &Path, panels: &[Panel<'_>]) -> Result<()> {
                     .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], grey));
             }
             for (i, s) in panel.series.iter().enumerate() {
-                let color = PALETTE[i % CLASSIC_COLORS];
+                // The first six as the older charts have them; more series take the rest
+                // of the palette rather than repeat a colour.
+                let color = if panel.series.len() <= CLASSIC_COLORS {
+                    PALETTE[i % CLASSIC_COLORS]
+                } else {
+                    palette(i)
+                };
                 let points: Vec<(f64, f64)> =
                     s.points.iter().copied().filter(is_positive).collect();
                 if points.is_empty() {

@@ -130,3 +130,40 @@ fn the_cursor_takes_its_shortcut_on_small_steps_and_refuses_bad_points() {
     assert!(cursor.closest(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
     assert!(tree.closest_many(&[DVec3::ZERO, DVec3::INFINITY]).is_err());
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The approximate query's interval holds the true distance and is no wider than
+    /// asked, absolute or relative; its point lies on the mesh at the upper end; a gap of
+    /// 0 is the exact query (to rounding).
+    #[test]
+    fn approximate_intervals_are_certified(
+        shape in 0..5_usize,
+        soup in soup(),
+        points in prop::collection::vec(point(), 1..16),
+        absolute in 0.0..0.5_f64,
+        relative in 0.0..0.5_f64,
+    ) {
+        let mesh = if shape < 4 { shapes().swap_remove(shape) } else { soup };
+        let tree = TriangleTree::new(&mesh).expect("non-empty");
+        let gap = |upper: f64| absolute + relative * upper;
+        for &p in &points {
+            let expected = brute::distance(&mesh, p);
+            let slack = 1e-12 * (1.0 + expected);
+            let approx = tree.closest_approx(p, &gap).expect("finite query");
+            prop_assert!(approx.lower <= expected + slack && expected <= approx.upper + slack,
+                "{} <= {expected} <= {}", approx.lower, approx.upper);
+            prop_assert!(approx.upper - approx.lower <= gap(approx.upper) + slack);
+            // The same number, by construction.
+            prop_assert!(approx.nearest.distance.to_bits() == approx.upper.to_bits());
+            let triangle = mesh.triangle(approx.nearest.triangle as usize).expect("in range");
+            prop_assert!(point_triangle_distance_squared(approx.nearest.point, &triangle).sqrt() <= 1e-9);
+            let exact = tree.closest_approx(p, &|_| 0.0).expect("finite query");
+            // Within rounding: a tie's distance computed on another triangle can be an ulp
+            // below.
+            prop_assert!(exact.upper - exact.lower <= slack);
+            prop_assert_eq!(exact.nearest, tree.closest(p).expect("finite query"));
+        }
+    }
+}

@@ -7,18 +7,19 @@
 //!   ([`TriangleTree`], from `sphaera-mesh`, re-exported here): a box tree over the input
 //!   triangles with surface-area splits, built in milliseconds. It offers
 //!   [`TriangleTree::closest`], [`TriangleTree::closest_many`] (every core, the same
-//!   answers) and [`TriangleTree::cursor`] (a stream of points that move a little: the
-//!   previous answer seeds the next). This is the engine `sphaera distance` uses for
-//!   exact queries.
+//!   answers), [`TriangleTree::cursor`] (a stream of points that move a little: the
+//!   previous answer seeds the next) and [`TriangleTree::closest_approx`] (a certified
+//!   interval at most a given gap wide). This is the engine `sphaera distance` uses.
 //! - **What a static tree cannot do** comes from Meshsweeper (Guéziec, *"Meshsweeper":
 //!   From Closest Point to Hausdorff Distances Between Meshes*, 2000) on the progressive
 //!   hierarchy of error spheres that [`sphaera_simplify`] records: anytime certified
 //!   intervals to a tolerance ([`Session::closest_within`]), meshes that move rigidly or
 //!   deform ([`Session::move_mesh`], [`Session::deform`]), and certified Hausdorff
-//!   distances between whole meshes ([`hausdorff`]). A [`Session`]'s exact queries
-//!   ([`Session::closest`]) come from the same tree by default, while the mesh keeps its
-//!   shape; [`SessionOptions::with_exact_by_tree`]`(false)` answers them the paper's way,
-//!   which is how the paper's claims are tested.
+//!   distances between whole meshes ([`hausdorff`]). A [`Session`]'s exact and anytime
+//!   queries ([`Session::closest`], [`Session::closest_within`]) come from the same tree
+//!   by default, while the mesh keeps its shape;
+//!   [`SessionOptions::with_exact_by_tree`]`(false)` answers them the paper's way, which
+//!   is how the paper's claims are tested.
 //!
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};
@@ -131,5 +132,5 @@ pub use session::{Session, SessionOptions};
 /// The exact closest point a query returns, and the mesh feature it lies on; the
 /// triangle tree that answers exact queries without a hierarchy, and its cursor for
 /// coherent streams (all defined in `sphaera-mesh`).
-pub use sphaera_mesh::closest::{ClosestPoint, Feature, TreeCursor, TriangleTree};
+pub use sphaera_mesh::closest::{ApproxClosest, ClosestPoint, Feature, TreeCursor, TriangleTree};
 pub use sweeper::{Sweeper, build_hierarchy};

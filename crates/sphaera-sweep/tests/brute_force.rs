@@ -90,19 +90,26 @@ proptest! {
     ) {
         let (mesh, hierarchy) = &fixtures()[shape];
         let sweeper = Sweeper::new(hierarchy).expect("non-empty");
-        let mut session = sweeper.session();
         let truth = brute::sorted_distances(mesh, p)[0];
-        let bounds = session.closest_within(p, Tolerance::Absolute(tolerance)).expect("ok");
-        prop_assert!(bounds.lower <= truth + 1e-12 && truth <= bounds.upper + 1e-12,
-            "{bounds:?} misses {truth}");
-        prop_assert!(bounds.gap() <= tolerance + 1e-12 || bounds.closest.is_some());
-        let bounds = session.closest_with_budget(p, budget).expect("ok");
-        prop_assert!(bounds.lower <= truth + 1e-12 && truth <= bounds.upper + 1e-12,
-            "{bounds:?} misses {truth}");
-        prop_assert!(bounds.splits <= budget);
-        let relative = session.closest_within(p, Tolerance::RelativeToUpper(0.1)).expect("ok");
-        prop_assert!(relative.lower <= truth + 1e-12 && truth <= relative.upper + 1e-12);
-        prop_assert!(relative.gap() <= 0.1 * relative.upper + 1e-12 || relative.closest.is_some());
+        // Both engines: the tree of input triangles and the paper's refinement.
+        for by_tree in [true, false] {
+            let mut session =
+                sweeper.session_with(&SessionOptions::default().with_exact_by_tree(by_tree));
+            let bounds = session.closest_within(p, Tolerance::Absolute(tolerance)).expect("ok");
+            prop_assert!(bounds.lower <= truth + 1e-12 && truth <= bounds.upper + 1e-12,
+                "{bounds:?} misses {truth}");
+            prop_assert!(bounds.gap() <= tolerance + 1e-12 || bounds.closest.is_some());
+            if let Some(c) = bounds.closest {
+                prop_assert!((c.distance - truth).abs() <= 1e-12 * (1.0 + truth));
+            }
+            let bounds = session.closest_with_budget(p, budget).expect("ok");
+            prop_assert!(bounds.lower <= truth + 1e-12 && truth <= bounds.upper + 1e-12,
+                "{bounds:?} misses {truth}");
+            prop_assert!(bounds.splits <= budget);
+            let relative = session.closest_within(p, Tolerance::RelativeToUpper(0.1)).expect("ok");
+            prop_assert!(relative.lower <= truth + 1e-12 && truth <= relative.upper + 1e-12);
+            prop_assert!(relative.gap() <= 0.1 * relative.upper + 1e-12 || relative.closest.is_some());
+        }
     }
 
     #[test]

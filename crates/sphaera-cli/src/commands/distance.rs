@@ -1,8 +1,8 @@
 //! `sphaera distance`: exact (or certified approximate) closest points on a mesh.
 //!
-//! Exact answers come from the triangle tree, on every core (the fastest exact engine we
-//! have, and no hierarchy to build); certified intervals to a `--tolerance` come from
-//! Meshsweeper sessions over the hierarchy of error spheres.
+//! Both come from the triangle tree (the fastest engine we have, and no hierarchy to
+//! build): exact answers on every core, certified intervals to a `--tolerance` from a
+//! descent that skips what cannot bring the distance down by more than the tolerance.
 
 use std::{path::Path, time::Instant};
 
@@ -12,7 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 use sphaera::{
     mesh::{DVec3, TriMesh, closest::TriangleTree},
-    sweep::{Feature, Sweeper, Tolerance, build_hierarchy},
+    sweep::Feature,
 };
 
 use crate::{
@@ -36,11 +36,9 @@ struct Report {
     /// `--points FILE`, or `random N (seed S)`.
     queries_from: String,
     triangles: usize,
-    /// `triangle tree` (exact answers, both cores) or `meshsweeper` (certified intervals
-    /// to `--tolerance`, one session).
+    /// `triangle tree` (exact answers, both cores) or `triangle tree, approximate`
+    /// (certified intervals at most `--tolerance` wide, one core).
     engine: &'static str,
-    /// Triangles of the base mesh every query session starts from (`null` for the tree).
-    base_triangles: Option<usize>,
     /// The `--tolerance` in mesh units (`null`: exact answers).
     tolerance: Option<f64>,
     /// One answer per query point, in input order.
@@ -50,8 +48,6 @@ struct Report {
     max_distance: f64,
     mean_distance: f64,
     queries_per_second: f64,
-    /// The Meshsweeper session's counters (`null` for the tree).
-    session: Option<Stats>,
     seconds: Seconds,
 }
 
@@ -69,22 +65,10 @@ struct Answer {
     feature: Option<String>,
 }
 
-/// The query session's counters.
-#[derive(Debug, Serialize)]
-struct Stats {
-    constant_time_queries: usize,
-    vertex_splits: usize,
-    distance_evaluations: usize,
-    resets: usize,
-    /// The session's own state (the hierarchy is shared), in bytes per input triangle.
-    bytes_per_triangle: f64,
-}
-
 #[derive(Debug, Serialize)]
 struct Seconds {
     load: f64,
-    /// Building the engine once per mesh: the triangle tree, or the hierarchy of error
-    /// spheres.
+    /// Building the triangle tree, once per mesh.
     build: f64,
     queries: f64,
 }
@@ -105,10 +89,7 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
     let diagonal = mesh.bounding_box_diagonal();
     let tolerance = args.tolerance.map(|t| t.resolve(diagonal));
 
-    let built = match tolerance {
-        None => exact(mesh, &points, quiet)?,
-        Some(t) => certified(mesh, &points, t, quiet)?,
-    };
+    let built = answer(mesh, &points, tolerance, quiet)?;
     let middles: Vec<f64> = built
         .answers
         .iter()
@@ -120,7 +101,6 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
         queries_from,
         triangles: mesh.triangle_count(),
         engine: built.engine,
-        base_triangles: built.base_triangles,
         tolerance,
         min_distance: middles.iter().copied().fold(f64::INFINITY, f64::min),
         max_distance: middles.iter().copied().fold(0.0, f64::max),
@@ -131,7 +111,6 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
             0.0
         },
         answers,
-        session: built.session,
         seconds: Seconds {
             load: input.seconds,
             build: built.build_seconds,
@@ -145,14 +124,13 @@ pub fn run(args: &DistanceArgs, quiet: bool) -> Result<()> {
 struct Built {
     engine: &'static str,
     answers: Vec<Answer>,
-    base_triangles: Option<usize>,
-    session: Option<Stats>,
     build_seconds: f64,
     query_seconds: f64,
 }
 
-/// Exact answers from the triangle tree, on every core.
-fn exact(mesh: &TriMesh, points: &[DVec3], quiet: bool) -> Result<Built> {
+/// Exact answers (on every core), or certified intervals at most `tolerance` wide, from
+/// the triangle tree.
+fn answer(mesh: &TriMesh, points: &[DVec3], tolerance: Option<f64>, quiet: bool) -> Result<Built> {
     let spinner = progress::spinner(
         quiet,
         &format!(
@@ -170,82 +148,48 @@ fn exact(mesh: &TriMesh, points: &[DVec3], quiet: bool) -> Result<Built> {
         &format!("querying {} points", thousands(points.len())),
     );
     let started = Instant::now();
-    let closest = tree.closest_many(points);
-    let query_seconds = started.elapsed().as_secs_f64();
-    spinner.finish_and_clear();
-    let answers = points
-        .iter()
-        .zip(closest?)
-        .map(|(p, c)| Answer {
-            query: p.to_array(),
-            lower: c.distance,
-            upper: c.distance,
-            point: Some(c.point.to_array()),
-            triangle: Some(c.triangle),
-            feature: Some(feature_name(c.feature)),
-        })
-        .collect();
-    Ok(Built {
-        engine: "triangle tree",
-        answers,
-        base_triangles: None,
-        session: None,
-        build_seconds,
-        query_seconds,
-    })
-}
-
-/// Certified intervals at most `tolerance` wide from one Meshsweeper session.
-fn certified(mesh: &TriMesh, points: &[DVec3], tolerance: f64, quiet: bool) -> Result<Built> {
-    let spinner = progress::spinner(
-        quiet,
-        &format!(
-            "building the hierarchy of {} triangles",
-            thousands(mesh.triangle_count())
-        ),
-    );
-    let started = Instant::now();
-    let hierarchy = build_hierarchy(mesh);
-    let build_seconds = started.elapsed().as_secs_f64();
-    spinner.finish_and_clear();
-    let hierarchy = hierarchy?;
-    let sweeper = Sweeper::new(&hierarchy)?;
-    let mut session = sweeper.session();
-    let bar = progress::bar(
-        quiet,
-        &format!("querying {} points", thousands(points.len())),
-        points.len() as u64,
-    );
-    let started = Instant::now();
-    let mut answers = Vec::with_capacity(points.len());
-    for (i, &p) in points.iter().enumerate() {
-        let b = session.closest_within(p, Tolerance::Absolute(tolerance))?;
-        answers.push(Answer {
-            query: p.to_array(),
-            lower: b.lower,
-            upper: b.upper,
-            point: b.closest.map(|c| c.point.to_array()),
-            triangle: b.closest.map(|c| c.triangle),
-            feature: b.closest.map(|c| feature_name(c.feature)),
-        });
-        if i % 256 == 0 {
-            bar.set_position(i as u64);
+    let (engine, answers) = match tolerance {
+        None => {
+            let closest = tree.closest_many(points);
+            let answers = points
+                .iter()
+                .zip(closest?)
+                .map(|(p, c)| Answer {
+                    query: p.to_array(),
+                    lower: c.distance,
+                    upper: c.distance,
+                    point: Some(c.point.to_array()),
+                    triangle: Some(c.triangle),
+                    feature: Some(feature_name(c.feature)),
+                })
+                .collect();
+            ("triangle tree", answers)
         }
-    }
+        Some(t) => {
+            let answers = points
+                .iter()
+                .map(|&p| {
+                    let a = tree.closest_approx(p, &|_| t)?;
+                    // The point at the upper end is the closest one only when exact.
+                    let exact = (a.lower >= a.upper).then_some(a.nearest);
+                    Ok(Answer {
+                        query: p.to_array(),
+                        lower: a.lower,
+                        upper: a.upper,
+                        point: exact.map(|c| c.point.to_array()),
+                        triangle: exact.map(|c| c.triangle),
+                        feature: exact.map(|c| feature_name(c.feature)),
+                    })
+                })
+                .collect::<Result<Vec<_>>>()?;
+            ("triangle tree, approximate", answers)
+        }
+    };
     let query_seconds = started.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-    let stats = session.stats();
+    spinner.finish_and_clear();
     Ok(Built {
-        engine: "meshsweeper",
+        engine,
         answers,
-        base_triangles: Some(sweeper.base_triangles().len()),
-        session: Some(Stats {
-            constant_time_queries: stats.constant_time,
-            vertex_splits: stats.splits,
-            distance_evaluations: stats.distance_evaluations,
-            resets: stats.resets,
-            bytes_per_triangle: session.memory_bytes() as f64 / mesh.triangle_count().max(1) as f64,
-        }),
         build_seconds,
         query_seconds,
     })
@@ -324,19 +268,11 @@ impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!("mesh            {}", self.source),
-            match self.base_triangles {
-                Some(base) => format!(
-                    "triangles       {} (base mesh {}), {}",
-                    thousands(self.triangles),
-                    thousands(base),
-                    self.engine
-                ),
-                None => format!(
-                    "triangles       {}, {}",
-                    thousands(self.triangles),
-                    self.engine
-                ),
-            },
+            format!(
+                "triangles       {}, {}",
+                thousands(self.triangles),
+                self.engine
+            ),
             format!(
                 "queries         {} from {}",
                 thousands(self.answers.len()),
@@ -351,26 +287,14 @@ impl crate::output::Report for Report {
                 self.min_distance, self.mean_distance, self.max_distance
             ),
             format!(
-                "time            {:.3} s to read, {:.3} s to build the {}, {:.3} s for the \
+                "time            {:.3} s to read, {:.3} s to build the tree, {:.3} s for the \
                  queries ({:.0} per second)",
                 self.seconds.load,
                 self.seconds.build,
-                self.engine,
                 self.seconds.queries,
                 self.queries_per_second
             ),
         ];
-        if let Some(session) = &self.session {
-            lines.push(format!(
-                "session         {} vertex splits, {} distance evaluations, {} resets, {} \
-                 constant-time answers, {:.1} bytes per triangle",
-                thousands(session.vertex_splits),
-                thousands(session.distance_evaluations),
-                thousands(session.resets),
-                thousands(session.constant_time_queries),
-                session.bytes_per_triangle
-            ));
-        }
         for a in self.answers.iter().take(TEXT_ANSWERS) {
             let [x, y, z] = a.query;
             lines.push(match (a.point, a.triangle, &a.feature) {

@@ -9,7 +9,8 @@
 //! - **tree cursor**: one [`TriangleTree::cursor`] answering the points in order (the
 //!   fan of the previous answer first, then a descent seeded by it);
 //! - **triangle tree**: independent [`TriangleTree::closest`] queries;
-//! - **Meshsweeper session**: one [`Sweeper::session`], the paper's coherent method;
+//! - **Meshsweeper session**: one session answering the paper's way
+//!   ([`SessionOptions::with_exact_by_tree`]`(false)`), the paper's coherent method;
 //! - **parry3d-f64**: independent point projections ([`DistanceToMesh`]).
 //!
 //! The chart plots each method's speed relative to parry's against the step; the CSV has
@@ -20,7 +21,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::{
     mesh::{DVec3, TriMesh, closest::TriangleTree},
-    sweep::{Sweeper, build_hierarchy},
+    sweep::{SessionOptions, Sweeper, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
 
@@ -82,7 +83,8 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
                 })
             })?;
             let (session_s, session_sum) = min_time(RUNS.min(2), || {
-                let mut session = sweeper.session();
+                let mut session =
+                    sweeper.session_with(&SessionOptions::default().with_exact_by_tree(false));
                 points.iter().try_fold(0.0, |sum, &p| {
                     Ok::<f64, anyhow::Error>(sum + session.closest(p)?.distance)
                 })

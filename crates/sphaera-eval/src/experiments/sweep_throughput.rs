@@ -8,12 +8,16 @@
 //!   ([`TriangleTree::closest`]); its build is not timed (its time is in the CSV);
 //! - **tree cursor**: the same tree answering the points in order through one
 //!   [`TriangleTree::cursor`] (coherent on the `path` set);
-//! - **Meshsweeper session**: one [`Sweeper::session`] per query set, answering the points
-//!   in order (so the `path` set is coherent), as in the `sweep_vs_parry` bench; the
-//!   session's creation is timed, the hierarchy build ([`build_hierarchy`], which is
-//!   parallel) is not (its time is in the CSV);
+//! - **tree anytime 1 %**: the same tree's certified intervals at most 1 % of the diagonal
+//!   wide ([`TriangleTree::closest_approx`], what a session's `closest_within` uses by
+//!   default);
+//! - **Meshsweeper session**: one session per query set answering the paper's way
+//!   ([`SessionOptions::with_exact_by_tree`]`(false)`), the points in order (so the
+//!   `path` set is coherent); the session's creation is timed, the hierarchy build
+//!   ([`build_hierarchy`], which is parallel) is not (its time is in the CSV);
 //! - **Meshsweeper anytime 1 %**: the same session's certified intervals at most 1 % of the
-//!   diagonal wide ([`Session::closest_within`](sphaera::sweep::Session::closest_within));
+//!   diagonal wide ([`Session::closest_within`](sphaera::sweep::Session::closest_within),
+//!   the paper's way);
 //! - **parry3d-f64** 0.31: `TriMesh` point projection through [`DistanceToMesh`] (its BVH
 //!   build is not timed; its time is in the CSV);
 //! - **brute force** ([`BruteForce`]: every triangle for every query): timed on the first
@@ -32,7 +36,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::{
     mesh::{DVec3, TriMesh, closest::TriangleTree},
-    sweep::{Sweeper, Tolerance, build_hierarchy},
+    sweep::{SessionOptions, Sweeper, Tolerance, build_hierarchy},
 };
 use sphaera_tests::hausdorff::DistanceToMesh;
 
@@ -62,9 +66,10 @@ pub const BRUTE_EVALUATIONS: usize = 20_000_000;
 pub const PARRY_RUNS: usize = 5;
 
 /// The methods, in chart order.
-const METHODS: [&str; 6] = [
+const METHODS: [&str; 7] = [
     "triangle_tree",
     "tree_cursor",
+    "tree_anytime_1%",
     "meshsweeper_session",
     "meshsweeper_anytime_1%",
     "parry3d",
@@ -112,20 +117,22 @@ fn measure_mesh(
     })?;
     let sweeper = Sweeper::new(&hierarchy)?;
     let (tree_s, tree) = min_time(1, || Ok(TriangleTree::new(mesh)?))?;
-    let tolerance = Tolerance::Absolute(0.01 * mesh.bounding_box_diagonal());
+    let gap = 0.01 * mesh.bounding_box_diagonal();
+    let tolerance = Tolerance::Absolute(gap);
+    let paper = SessionOptions::default().with_exact_by_tree(false);
     let (bvh_s, parry) = min_time(1, || Ok(DistanceToMesh::new(mesh)))?;
     let brute = BruteForce::new(mesh);
     let brute_queries = (BRUTE_EVALUATIONS / mesh.triangle_count().max(1)).clamp(8, queries);
     let triangles = mesh.triangle_count();
     for (set, points) in query_sets(mesh, queries)? {
         let (sphaera_s, sphaera_sum) = min_time(runs, || {
-            let mut session = sweeper.session();
+            let mut session = sweeper.session_with(&paper);
             points.iter().try_fold(0.0, |sum, &p| {
                 Ok::<f64, anyhow::Error>(sum + session.closest(p)?.distance)
             })
         })?;
         let (anytime_s, _) = min_time(runs, || {
-            let mut session = sweeper.session();
+            let mut session = sweeper.session_with(&paper);
             points.iter().try_fold(0.0, |sum, &p| {
                 Ok::<f64, anyhow::Error>(sum + session.closest_within(p, tolerance)?.upper)
             })
@@ -133,6 +140,11 @@ fn measure_mesh(
         let (tree_q, tree_sum) = min_time(runs.max(PARRY_RUNS), || {
             points.iter().try_fold(0.0, |sum, &p| {
                 Ok::<f64, anyhow::Error>(sum + tree.closest(p)?.distance)
+            })
+        })?;
+        let (tree_anytime_s, _) = min_time(runs.max(PARRY_RUNS), || {
+            points.iter().try_fold(0.0, |sum, &p| {
+                Ok::<f64, anyhow::Error>(sum + tree.closest_approx(p, &|_| gap)?.upper)
             })
         })?;
         let (cursor_s, cursor_sum) = min_time(runs.max(PARRY_RUNS), || {
@@ -157,6 +169,12 @@ fn measure_mesh(
         for (method, queries, seconds, build_seconds) in [
             ("triangle_tree", points.len(), tree_q, Some(tree_s)),
             ("tree_cursor", points.len(), cursor_s, Some(tree_s)),
+            (
+                "tree_anytime_1%",
+                points.len(),
+                tree_anytime_s,
+                Some(tree_s),
+            ),
             (
                 "meshsweeper_session",
                 points.len(),

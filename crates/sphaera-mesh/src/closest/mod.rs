@@ -25,7 +25,7 @@ mod triangle_tree;
 
 use glam::DVec3;
 
-pub use triangle_tree::{TreeCursor, TriangleTree};
+pub use triangle_tree::{ApproxClosest, TreeCursor, TriangleTree};
 
 /// The feature of a mesh a closest point lies on, in the mesh's vertex indices.
 ///

@@ -150,7 +150,7 @@ impl TriangleTree {
                 requirement: "a non-negative number",
             });
         }
-        let search = self.search(p, max_distance * max_distance, None);
+        let search = self.search(p, max_distance * max_distance, None, None);
         Ok(search.best.map(|(i, _)| self.answer_at(i, p)))
     }
 
@@ -219,16 +219,79 @@ impl TriangleTree {
     /// The descent: the nearest triangle within `bound_squared` (inclusive), starting
     /// from `seed` (a tree position already known at that squared distance, or `None`),
     /// and the smallest squared distance of anything else.
-    fn search(&self, p: DVec3, bound_squared: f64, seed: Option<usize>) -> Search<'_> {
+    fn search<'s>(
+        &'s self,
+        p: DVec3,
+        bound_squared: f64,
+        seed: Option<usize>,
+        gap: Option<&'s dyn Fn(f64) -> f64>,
+    ) -> Search<'s> {
         let mut search = Search {
             corners: &self.corners,
             p,
             best_squared: bound_squared,
-            best: seed.map(|i| (i, bound_squared)),
+            limit_squared: bound_squared,
+            gap,
+            best: None,
             runner_up_squared: f64::INFINITY,
         };
+        if let Some(i) = seed {
+            search.set_best(i, bound_squared);
+        }
         self.boxes.search_nearest_first(p, &mut search);
         search
+    }
+
+    /// A certified interval for the distance from `p` to the mesh, at most `gap(upper)`
+    /// wide, and the point of the mesh at distance `upper` (the closest point of the
+    /// nearest triangle found): the descent skips every box that cannot bring the
+    /// distance down by more than the gap allowed. With a gap of 0 it is
+    /// [`TriangleTree::closest`] (`lower == upper`).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let sphere = shapes::sphere(1.0, 48)?;
+    /// let tree = TriangleTree::new(&sphere)?;
+    /// let p = DVec3::new(0.3, 2.5, -0.4);
+    /// let exact = tree.closest(p)?.distance;
+    /// let approx = tree.closest_approx(p, &|_| 0.05)?;
+    /// assert!(approx.lower <= exact && exact <= approx.upper);
+    /// assert!(approx.upper - approx.lower <= 0.05);
+    /// assert_eq!(approx.nearest.distance, approx.upper);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
+    pub fn closest_approx(
+        &self,
+        p: DVec3,
+        gap: &dyn Fn(f64) -> f64,
+    ) -> Result<ApproxClosest, MeshError> {
+        if !p.is_finite() {
+            return Err(MeshError::NonFiniteQuery {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            });
+        }
+        let search = self.search(p, f64::INFINITY, None, Some(gap));
+        // A finite query on a non-empty tree always finds a triangle (invariant).
+        let Some((i, _)) = search.best else {
+            return Err(MeshError::EmptyMesh);
+        };
+        let nearest = self.answer_at(i, p);
+        let upper = nearest.distance;
+        let lower = search.runner_up_squared.sqrt().min(upper);
+        Ok(ApproxClosest {
+            lower,
+            upper,
+            nearest,
+        })
     }
 
     /// The answer on the triangle at tree position `i`.
@@ -291,15 +354,36 @@ struct Search<'a> {
     corners: &'a [[DVec3; 3]],
     p: DVec3,
     best_squared: f64,
+    /// What may still be worth a look: the square of the best distance less the gap an
+    /// approximate query allows (the best distance itself for an exact one).
+    limit_squared: f64,
+    /// The gap allowed for a best distance (`None`: exact).
+    gap: Option<&'a dyn Fn(f64) -> f64>,
     /// The best triangle so far (its position in tree order) and its squared distance.
     best: Option<(usize, f64)>,
     /// The smallest squared distance (or lower bound of one) of every other triangle.
     runner_up_squared: f64,
 }
 
+impl Search<'_> {
+    /// A new best triangle at squared distance `d`.
+    fn set_best(&mut self, i: usize, d: f64) {
+        self.best_squared = d;
+        self.best = Some((i, d));
+        self.limit_squared = match self.gap {
+            None => d,
+            Some(gap) => {
+                let best = d.sqrt();
+                let limit = (best - gap(best)).max(0.0);
+                limit * limit
+            }
+        };
+    }
+}
+
 impl NearestFirst for Search<'_> {
     fn may_improve(&self, distance_squared: f64) -> bool {
-        distance_squared <= self.best_squared
+        distance_squared <= self.limit_squared
     }
 
     fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
@@ -313,7 +397,7 @@ impl NearestFirst for Search<'_> {
             // The triangle's box first: the distance costs several times more.
             let bounds = Aabb::new(a.min(b).min(c), a.max(b).max(c));
             let to_box = bounds.distance_squared_to_point(self.p);
-            if to_box > self.best_squared {
+            if to_box > self.limit_squared {
                 self.runner_up_squared = self.runner_up_squared.min(to_box);
                 continue;
             }
@@ -323,8 +407,7 @@ impl NearestFirst for Search<'_> {
                 if let Some((_, previous)) = self.best {
                     self.runner_up_squared = self.runner_up_squared.min(previous);
                 }
-                self.best_squared = d;
-                self.best = Some((i, d));
+                self.set_best(i, d);
             } else {
                 self.runner_up_squared = self.runner_up_squared.min(d);
             }
@@ -335,6 +418,19 @@ impl NearestFirst for Search<'_> {
     fn pruned(&mut self, distance_squared: f64) {
         self.runner_up_squared = self.runner_up_squared.min(distance_squared);
     }
+}
+
+/// What [`TriangleTree::closest_approx`] returns: a certified interval for the distance
+/// and a point of the mesh at its upper end.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ApproxClosest {
+    /// A lower bound of the distance.
+    pub lower: f64,
+    /// An upper bound of the distance: `nearest.distance`.
+    pub upper: f64,
+    /// The closest point of the nearest triangle found (the exact answer when
+    /// `lower == upper`).
+    pub nearest: ClosestPoint,
 }
 
 /// Exact closest points for a stream of queries that move a little at a time, from
@@ -398,12 +494,12 @@ impl TreeCursor<'_> {
                 }
                 let [a, b, c] = tree.corners[last.position];
                 let bound = point_triangle_distance_squared(p, &Triangle::new(a, b, c));
-                let search = tree.search(p, bound, Some(last.position));
+                let search = tree.search(p, bound, Some(last.position), None);
                 let runner_up = search.runner_up_squared.sqrt();
                 (search, runner_up)
             }
             None => {
-                let search = tree.search(p, f64::INFINITY, None);
+                let search = tree.search(p, f64::INFINITY, None, None);
                 let runner_up = search.runner_up_squared.sqrt();
                 (search, runner_up)
             }
@@ -419,6 +515,12 @@ impl TreeCursor<'_> {
             runner_up,
         });
         Ok(answer)
+    }
+
+    /// The tree this cursor walks.
+    #[must_use]
+    pub fn tree(&self) -> &TriangleTree {
+        self.tree
     }
 
     /// Queries answered so far.

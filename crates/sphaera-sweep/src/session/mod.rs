@@ -343,7 +343,10 @@ impl<'s> Session<'s> {
     }
 
     /// A certified interval for the distance from `p` to the mesh, at most `tolerance`
-    /// wide (or exact, if the process reaches the input triangles first).
+    /// wide (or exact, if the process reaches the input triangles first). With
+    /// [`SessionOptions::exact_by_tree`] and the mesh in its own shape, the tree of input
+    /// triangles answers (skipping every box that cannot bring the distance down by more
+    /// than the tolerance); otherwise the hierarchy is refined, the paper's way.
     ///
     /// # Errors
     ///
@@ -355,6 +358,36 @@ impl<'s> Session<'s> {
         tolerance: Tolerance,
     ) -> Result<DistanceBounds, SweepError> {
         check_non_negative("tolerance", tolerance.value())?;
+        if self.shape.is_none()
+            && let Some((cursor, ids)) = &self.cursor
+        {
+            let local = self.pose.to_local(check_point(p)?);
+            self.stats.queries += 1;
+            self.stats.tree_queries += 1;
+            let gap = |upper: f64| tolerance.allowed_gap(upper);
+            // The point is finite and the tree non-empty, so the tree answers.
+            let approx = cursor
+                .tree()
+                .closest_approx(local, &gap)
+                .map_err(|_| SweepError::EmptyMesh)?;
+            // Exact when the interval closed (lower never exceeds upper).
+            let closest = if approx.lower >= approx.upper {
+                let t = ids
+                    .get(approx.nearest.triangle as usize)
+                    .copied()
+                    .ok_or(SweepError::EmptyMesh)?;
+                let answer = self.leaf_answer(t, local).ok_or(SweepError::EmptyMesh)?;
+                Some(self.to_world(answer))
+            } else {
+                None
+            };
+            return Ok(DistanceBounds {
+                lower: approx.lower,
+                upper: approx.upper,
+                closest,
+                splits: 0,
+            });
+        }
         self.bounded(p, Some(tolerance), usize::MAX)
     }
 
