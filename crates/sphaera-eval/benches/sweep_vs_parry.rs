@@ -16,7 +16,8 @@
 //! the previous distance plus the step, which the answer cannot exceed). The paper's
 //! linear worst case is timed too: queries at the centre of a sphere mesh (within 1e-9
 //! of it), each from a fresh session. Hierarchy and BVH builds are
-//! benched beside. Run with `cargo bench -p sphaera-eval --bench sweep_vs_parry` (append
+//! benched beside, and a deforming mesh frame by frame (`sweep_deforming`: Sphaera
+//! refits its tree, parry rebuilds). Run with `cargo bench -p sphaera-eval --bench sweep_vs_parry` (append
 //! `-- bunny` for the bunny only). Needs `../shared/data`; without it the bench says so.
 
 #![allow(clippy::print_stderr)]
@@ -66,6 +67,7 @@ fn sweep_vs_parry(c: &mut Criterion) {
             b.iter(|| DistanceToMesh::new(black_box(&mesh)));
         });
         group.finish();
+        deforming(c, name, &mesh);
         let tree = TriangleTree::new(&mesh).expect("non-empty");
         let hierarchy = build_hierarchy(&mesh).expect("builds");
         let sweeper = Sweeper::new(&hierarchy).expect("non-empty");
@@ -132,6 +134,91 @@ fn sweep_vs_parry(c: &mut Criterion) {
     }
     worst_case(c);
 }
+
+/// A deforming mesh, frame by frame: every vertex moved by a smooth displacement field
+/// (amplitude 1 % of the diagonal, wavelength half the diagonal, its phase advancing each
+/// frame), then [`FRAME_QUERIES`] exact queries near the surface. Sphaera refits its
+/// tree to the new positions (`TriangleTree::refit`); parry refits its BVH
+/// (`TriMesh::set_vertices` on a `DEFORMABLE` mesh), and also builds it anew. All pay for
+/// computing the positions.
+fn deforming(c: &mut Criterion, name: &str, mesh: &TriMesh) {
+    let diagonal = mesh.bounding_box_diagonal();
+    let (amplitude, wave) = (0.01 * diagonal, std::f64::consts::TAU / (0.5 * diagonal));
+    let at_frame = |frame: u32| -> Vec<DVec3> {
+        let phase = 0.1 * f64::from(frame);
+        mesh.positions()
+            .iter()
+            .map(|&p| {
+                p + amplitude
+                    * DVec3::new(
+                        (wave * p.y + phase).sin(),
+                        (wave * p.z + phase).sin(),
+                        (wave * p.x + phase).sin(),
+                    )
+            })
+            .collect()
+    };
+    let Some((_, points)) = query_sets(mesh, FRAME_QUERIES)
+        .expect("the mesh has area")
+        .into_iter()
+        .find(|(set, _)| *set == "near")
+    else {
+        return;
+    };
+    let mut tree = TriangleTree::new(mesh).expect("non-empty");
+    let mut group = c.benchmark_group(format!("sweep_deforming/{name}_frame_{FRAME_QUERIES}"));
+    group.sample_size(10);
+    group.measurement_time(Duration::from_secs(3));
+    let mut frame = 0_u32;
+    group.bench_function("sphaera_tree_refit", |b| {
+        b.iter(|| {
+            frame += 1;
+            tree.refit(&at_frame(frame))
+                .expect("one position per vertex");
+            points
+                .iter()
+                .map(|&p| tree.closest(p).expect("finite").distance)
+                .sum::<f64>()
+        });
+    });
+    let mut frame = 0_u32;
+    let mut deformable = ParryTriMesh::with_flags(
+        mesh.positions().to_vec(),
+        mesh.triangles().to_vec(),
+        TriMeshFlags::DEFORMABLE,
+    )
+    .expect("a non-empty mesh");
+    group.bench_function("parry_refit", |b| {
+        b.iter(|| {
+            frame += 1;
+            deformable.set_vertices(&at_frame(frame));
+            points
+                .iter()
+                .map(|&p| deformable.distance_to_local_point(p, false))
+                .sum::<f64>()
+        });
+    });
+    let mut frame = 0_u32;
+    group.bench_function("parry_rebuild", |b| {
+        b.iter(|| {
+            frame += 1;
+            let moved = ParryTriMesh::with_flags(
+                at_frame(frame),
+                mesh.triangles().to_vec(),
+                TriMeshFlags::empty(),
+            )
+            .expect("a non-empty mesh");
+            points
+                .iter()
+                .map(|&p| moved.distance_to_local_point(p, false))
+                .sum::<f64>()
+        });
+    });
+    group.finish();
+}
+
+/// Queries per frame of the deforming bench.
+const FRAME_QUERIES: usize = 1_000;
 
 /// parry's mesh of `mesh` (no topology needed for projection).
 fn parry_mesh(mesh: &TriMesh) -> ParryTriMesh {

@@ -143,6 +143,40 @@ impl BoxTree {
         &self.nodes
     }
 
+    /// Recomputes every node's box from its items' boxes (`bounds(position)` for the item
+    /// at each position of [`BoxTree::order`]), keeping the tree's shape: for items that
+    /// moved (a deforming mesh), in one pass from the leaves up. The boxes are exact; the
+    /// splits may fit the new positions worse than a new build would.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{Aabb, DVec3, bvh::BoxTree};
+    ///
+    /// let points: Vec<DVec3> = (0..10).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
+    /// let items: Vec<(Aabb, DVec3)> = points.iter().map(|&p| (Aabb::new(p, p), p)).collect();
+    /// let mut tree = BoxTree::build(&items, 2)?;
+    /// // Every point moves up by 1.
+    /// let order = tree.order().to_vec();
+    /// tree.refit(|i| {
+    ///     let p = points[order[i] as usize] + DVec3::Y;
+    ///     Aabb::new(p, p)
+    /// });
+    /// assert_eq!(tree.nodes()[0].bounds, Aabb::new(DVec3::Y, DVec3::new(9.0, 1.0, 0.0)));
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    pub fn refit(&mut self, bounds: impl Fn(usize) -> Aabb) {
+        // Depth first: every child comes after its parent, so a backward pass sees the
+        // children first.
+        for n in (0..self.nodes.len()).rev() {
+            let node = self.nodes[n];
+            self.nodes[n].bounds = match node.right() {
+                None => node.items().fold(Aabb::EMPTY, |b, i| b.union(bounds(i))),
+                Some(right) => self.nodes[n + 1].bounds.union(self.nodes[right].bounds),
+            };
+        }
+    }
+
     /// The item indices in tree order: every node's items are a contiguous range of it.
     #[must_use]
     pub fn order(&self) -> &[u32] {

@@ -167,3 +167,56 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// A tree refit to moved vertices answers exactly on the moved mesh, as a new tree
+    /// does, however far the vertices moved.
+    #[test]
+    fn a_refit_tree_answers_on_the_moved_mesh(
+        shape in 0..5_usize,
+        soup in soup(),
+        offsets in prop::collection::vec(point(), 1..8),
+        scale in 0.0..1.0_f64,
+        points in prop::collection::vec(point(), 1..12),
+    ) {
+        let mesh = if shape < 4 { shapes().swap_remove(shape) } else { soup };
+        let mut tree = TriangleTree::new(&mesh).expect("non-empty");
+        let moved: Vec<DVec3> = mesh
+            .positions()
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| p + scale * offsets[i % offsets.len()])
+            .collect();
+        let moved_mesh = TriMesh::new(moved.clone(), mesh.triangles().to_vec()).expect("valid");
+        tree.refit(&moved).expect("one position per vertex");
+        let fresh = TriangleTree::new(&moved_mesh).expect("non-empty");
+        for &p in &points {
+            let expected = brute::distance(&moved_mesh, p);
+            let answer = tree.closest(p).expect("finite query");
+            prop_assert!(brute::close(answer.distance, expected), "{} vs {expected}", answer.distance);
+            prop_assert!(brute::close(fresh.closest(p).expect("finite").distance, answer.distance));
+        }
+    }
+}
+
+#[test]
+fn a_refit_refuses_wrong_positions_and_keeps_the_tree() {
+    let cube = shapes::cube(2.0, 2).expect("cube");
+    let mut tree = TriangleTree::new(&cube).expect("non-empty");
+    let p = DVec3::new(3.0, 0.0, 0.0);
+    let before = tree.closest(p).expect("finite");
+    assert!(tree.refit(&cube.positions()[1..]).is_err());
+    let mut bad = cube.positions().to_vec();
+    bad[3].y = f64::NAN;
+    assert!(matches!(
+        tree.refit(&bad),
+        Err(sphaera_mesh::MeshError::NonFiniteCoordinate {
+            vertex: 3,
+            axis: 'y',
+            ..
+        })
+    ));
+    assert_eq!(tree.closest(p).expect("finite"), before);
+}

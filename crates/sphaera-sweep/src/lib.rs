@@ -8,8 +8,9 @@
 //!   triangles with surface-area splits, built in milliseconds. It offers
 //!   [`TriangleTree::closest`], [`TriangleTree::closest_many`] (every core, the same
 //!   answers), [`TriangleTree::cursor`] (a stream of points that move a little: the
-//!   previous answer seeds the next) and [`TriangleTree::closest_approx`] (a certified
-//!   interval at most a given gap wide). This is the engine `sphaera distance` uses.
+//!   previous answer seeds the next), [`TriangleTree::closest_approx`] (a certified
+//!   interval at most a given gap wide) and [`TriangleTree::refit`] (a deforming mesh,
+//!   frame by frame). This is the engine `sphaera distance` uses.
 //! - **What a static tree cannot do** comes from Meshsweeper (Guéziec, *"Meshsweeper":
 //!   From Closest Point to Hausdorff Distances Between Meshes*, 2000) on the progressive
 //!   hierarchy of error spheres that [`sphaera_simplify`] records: anytime certified

@@ -46,6 +46,8 @@ pub struct TriangleTree {
     corners: Vec<[DVec3; 3]>,
     /// Mesh vertex indices of each entry of `corners`.
     vertices: Vec<[u32; 3]>,
+    /// Vertices of the mesh the tree was built for.
+    vertex_count: usize,
 }
 
 impl TriangleTree {
@@ -86,6 +88,7 @@ impl TriangleTree {
             boxes,
             corners,
             vertices,
+            vertex_count: positions.len(),
         })
     }
 
@@ -93,6 +96,62 @@ impl TriangleTree {
     #[must_use]
     pub fn triangle_count(&self) -> usize {
         self.corners.len()
+    }
+
+    /// Moves the mesh's vertices to `positions` (one per vertex of the mesh the tree was
+    /// built from, same triangles) and refits every box, keeping the tree's shape: a
+    /// deforming mesh gets exact answers again in one linear pass, without a new build.
+    /// The splits fit large deformations worse than a new build would (queries slow
+    /// down, never go wrong).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let sphere = shapes::sphere(1.0, 24)?;
+    /// let mut tree = TriangleTree::new(&sphere)?;
+    /// // Inflate the sphere to radius 2: the point at 3 along x is now 1 away.
+    /// let moved: Vec<DVec3> = sphere.positions().iter().map(|&p| 2.0 * p).collect();
+    /// tree.refit(&moved)?;
+    /// let d = tree.closest(DVec3::new(3.0, 0.0, 0.0))?.distance;
+    /// assert!((d - 1.0).abs() < 0.02);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::VertexCountMismatch`] for another number of positions;
+    /// [`MeshError::NonFiniteCoordinate`] for a NaN or infinite coordinate (the tree is
+    /// left unchanged either way).
+    ///
+    /// # Performance
+    ///
+    /// Linear in the triangles; no allocation.
+    pub fn refit(&mut self, positions: &[DVec3]) -> Result<(), MeshError> {
+        if positions.len() != self.vertex_count {
+            return Err(MeshError::VertexCountMismatch {
+                expected: self.vertex_count,
+                actual: positions.len(),
+            });
+        }
+        if let Some((vertex, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+            let (axis, value) = [('x', p.x), ('y', p.y), ('z', p.z)]
+                .into_iter()
+                .find(|(_, v)| !v.is_finite())
+                .unwrap_or(('x', p.x));
+            return Err(MeshError::NonFiniteCoordinate {
+                vertex,
+                axis,
+                value,
+            });
+        }
+        for (corners, indices) in self.corners.iter_mut().zip(&self.vertices) {
+            *corners = indices.map(|v| positions[v as usize]);
+        }
+        let corners = &self.corners;
+        self.boxes.refit(|i| Aabb::from_points(corners[i]));
+        Ok(())
     }
 
     /// Bytes of the tree's arrays (corners, vertex indices, nodes and order).
