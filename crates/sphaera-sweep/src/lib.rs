@@ -3,7 +3,7 @@
 //! Closest points and Hausdorff distances on triangle meshes, with two engines in one
 //! design:
 //!
-//! - **Exact answers to independent questions** come from the triangle tree
+//! - **Exact answers, and intervals to a tolerance,** come from the triangle tree
 //!   ([`TriangleTree`], from `sphaera-mesh`, re-exported here): a box tree over the input
 //!   triangles with surface-area splits, built in milliseconds. It offers
 //!   [`TriangleTree::closest`], [`TriangleTree::closest_many`] (every core, the same
@@ -11,16 +11,16 @@
 //!   previous answer seeds the next), [`TriangleTree::closest_approx`] (a certified
 //!   interval at most a given gap wide) and [`TriangleTree::refit`] (a deforming mesh,
 //!   frame by frame). This is the engine `sphaera distance` uses.
-//! - **What a static tree cannot do** comes from Meshsweeper (Guéziec, *"Meshsweeper":
-//!   From Closest Point to Hausdorff Distances Between Meshes*, 2000) on the progressive
-//!   hierarchy of error spheres that [`sphaera_simplify`] records: anytime certified
-//!   intervals to a tolerance ([`Session::closest_within`]), meshes that move rigidly or
-//!   deform ([`Session::move_mesh`], [`Session::deform`]), and certified Hausdorff
-//!   distances between whole meshes ([`hausdorff`]). A [`Session`]'s exact and anytime
-//!   queries ([`Session::closest`], [`Session::closest_within`]) come from the same tree
-//!   by default, while the mesh keeps its shape;
-//!   [`SessionOptions::with_exact_by_tree`]`(false)` answers them the paper's way, which
-//!   is how the paper's claims are tested.
+//! - **The rest** comes from Meshsweeper (Guéziec, *"Meshsweeper": From Closest Point to
+//!   Hausdorff Distances Between Meshes*, 2000) on the progressive hierarchy of error
+//!   spheres that [`sphaera_simplify`] records: meshes that deform through inflated
+//!   radii ([`Session::deform`], [`Session::move_vertices`]), intervals after a budget of
+//!   refinement steps ([`Session::closest_with_budget`]), the `k` nearest triangles, and
+//!   certified Hausdorff distances between whole meshes ([`hausdorff`]). A [`Session`]'s
+//!   exact and tolerance queries ([`Session::closest`], [`Session::closest_within`]) come
+//!   from the tree by default while the mesh keeps its shape (rigid poses included,
+//!   [`Session::move_mesh`]); [`SessionOptions::with_exact_by_tree`]`(false)` answers
+//!   them the paper's way, which is how the paper's claims are tested.
 //!
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};
