@@ -11,7 +11,8 @@ use crate::queue::{Entry, Queue};
 use crate::shifted_keys::ShiftedKeys;
 use crate::sweeper::{Contents, WarmStart};
 use crate::{
-    ClosestPoint, DeformedShape, DistanceBounds, SessionStats, SweepError, Sweeper, Tolerance,
+    ClosestPoint, DeformedShape, DistanceBounds, Feature, SessionStats, SweepError, Sweeper,
+    Tolerance,
 };
 
 mod motion;
@@ -313,8 +314,7 @@ impl<'s> Session<'s> {
                 .get(hit.triangle as usize)
                 .copied()
                 .ok_or(SweepError::EmptyMesh)?;
-            let answer = self.leaf_answer(t, p).ok_or(SweepError::EmptyMesh)?;
-            return Ok(self.to_world(answer));
+            return Ok(self.to_world(self.from_tree(hit, t)));
         }
         if let Some(safe) = self.safe
             && (p - safe.center).length() <= safe.radius
@@ -376,8 +376,7 @@ impl<'s> Session<'s> {
                     .get(approx.nearest.triangle as usize)
                     .copied()
                     .ok_or(SweepError::EmptyMesh)?;
-                let answer = self.leaf_answer(t, local).ok_or(SweepError::EmptyMesh)?;
-                Some(self.to_world(answer))
+                Some(self.to_world(self.from_tree(approx.nearest, t)))
             } else {
                 None
             };
@@ -860,6 +859,23 @@ impl<'s> Session<'s> {
         self.last_distance = answer.distance;
         self.best_upper = self.best_upper.min(answer.distance);
         Ok(answer)
+    }
+
+    /// An answer of the sweeper's tree (hierarchy vertex ids, the tree's own triangle
+    /// index) for hierarchy triangle `t`, named in the input mesh as
+    /// [`Session::leaf_answer`] names it: the tree holds the finest positions, so the point
+    /// and distance stand.
+    fn from_tree(&self, hit: ClosestPoint, t: u32) -> ClosestPoint {
+        let input = |v: u32| self.hierarchy.original_vertex(v).unwrap_or(v);
+        ClosestPoint {
+            triangle: self.hierarchy.original_triangle(t).unwrap_or(t),
+            feature: match hit.feature {
+                Feature::Vertex(v) => Feature::Vertex(input(v)),
+                Feature::Edge(a, b) => Feature::Edge(input(a), input(b)),
+                Feature::Face => Feature::Face,
+            },
+            ..hit
+        }
     }
 
     /// The closest point of input triangle `t` (a leaf) to `p`.
