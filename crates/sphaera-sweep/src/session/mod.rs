@@ -314,7 +314,7 @@ impl<'s> Session<'s> {
                 .get(hit.triangle as usize)
                 .copied()
                 .ok_or(SweepError::EmptyMesh)?;
-            return Ok(self.to_world(self.from_tree(hit, t)));
+            return Ok(self.to_world(self.tree_answer(hit, t)));
         }
         if let Some(safe) = self.safe
             && (p - safe.center).length() <= safe.radius
@@ -376,7 +376,7 @@ impl<'s> Session<'s> {
                     .get(approx.nearest.triangle as usize)
                     .copied()
                     .ok_or(SweepError::EmptyMesh)?;
-                Some(self.to_world(self.from_tree(approx.nearest, t)))
+                Some(self.to_world(self.tree_answer(approx.nearest, t)))
             } else {
                 None
             };
@@ -865,7 +865,7 @@ impl<'s> Session<'s> {
     /// index) for hierarchy triangle `t`, named in the input mesh as
     /// [`Session::leaf_answer`] names it: the tree holds the finest positions, so the point
     /// and distance stand.
-    fn from_tree(&self, hit: ClosestPoint, t: u32) -> ClosestPoint {
+    fn tree_answer(&self, hit: ClosestPoint, t: u32) -> ClosestPoint {
         let input = |v: u32| self.hierarchy.original_vertex(v).unwrap_or(v);
         ClosestPoint {
             triangle: self.hierarchy.original_triangle(t).unwrap_or(t),
