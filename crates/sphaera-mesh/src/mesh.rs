@@ -156,7 +156,9 @@ impl TriMesh {
     }
 }
 
-fn check_positions(positions: &[DVec3]) -> Result<(), MeshError> {
+/// Rejects more vertices than `u32` indices address and any non-finite coordinate (named
+/// by vertex and axis).
+pub(crate) fn check_positions(positions: &[DVec3]) -> Result<(), MeshError> {
     if positions.len() > u32::MAX as usize {
         return Err(MeshError::TooManyVertices {
             count: positions.len(),

@@ -220,3 +220,68 @@ fn a_refit_refuses_wrong_positions_and_keeps_the_tree() {
     ));
     assert_eq!(tree.closest(p).expect("finite"), before);
 }
+
+/// Scaling by a power of two scales every answer exactly: the tree's splits, the cursor's
+/// shortcuts and the approximate intervals all see the same numbers, scaled. A rotation
+/// changes the answers by rounding only.
+#[test]
+fn powers_of_two_scale_the_answers_exactly_and_rotations_by_rounding() {
+    let mesh = shapes::torus(1.0, 0.3, 24).expect("torus");
+    let queries: Vec<DVec3> = (0..300)
+        .map(|i| {
+            let t = f64::from(i) * 0.05;
+            DVec3::new(1.6 * t.cos(), 1.4 * t.sin(), 0.4 * (3.0 * t).sin())
+        })
+        .collect();
+    let answers = |mesh: &TriMesh, scale: f64| {
+        let tree = TriangleTree::new(mesh).expect("non-empty");
+        let mut cursor = tree.cursor();
+        queries
+            .iter()
+            .map(|&q| {
+                let p = q * scale;
+                let approx = tree.closest_approx(p, &|_| 0.05 * scale).expect("finite");
+                (
+                    tree.closest(p).expect("finite"),
+                    cursor.closest(p).expect("finite").distance,
+                    (approx.lower, approx.upper),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let reference = answers(&mesh, 1.0);
+    for scale in [2f64.powi(40), 2f64.powi(-40)] {
+        let scaled = TriMesh::new(
+            mesh.positions().iter().map(|&p| p * scale).collect(),
+            mesh.triangles().to_vec(),
+        )
+        .expect("valid");
+        for ((a, ca, (la, ua)), (b, cb, (lb, ub))) in reference.iter().zip(answers(&scaled, scale))
+        {
+            assert_eq!(a.triangle, b.triangle);
+            assert_eq!(a.feature, b.feature);
+            assert_eq!(a.point * scale, b.point);
+            assert_eq!((a.distance * scale).to_bits(), b.distance.to_bits());
+            assert_eq!((ca * scale).to_bits(), cb.to_bits());
+            assert_eq!(
+                ((la * scale).to_bits(), (ua * scale).to_bits()),
+                (lb.to_bits(), ub.to_bits())
+            );
+        }
+    }
+    // A quarter turn about z and a shift: the same distances to rounding.
+    let turned = TriMesh::new(
+        mesh.positions()
+            .iter()
+            .map(|p| DVec3::new(-p.y, p.x, p.z) + DVec3::splat(1e3))
+            .collect(),
+        mesh.triangles().to_vec(),
+    )
+    .expect("valid");
+    let tree = TriangleTree::new(&turned).expect("non-empty");
+    for (q, (a, _, _)) in queries.iter().zip(&reference) {
+        let p = DVec3::new(-q.y, q.x, q.z) + DVec3::splat(1e3);
+        let d = tree.closest(p).expect("finite").distance;
+        assert!((d - a.distance).abs() <= 1e-9, "{d} vs {}", a.distance);
+    }
+}

@@ -135,17 +135,7 @@ impl TriangleTree {
                 actual: positions.len(),
             });
         }
-        if let Some((vertex, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
-            let (axis, value) = [('x', p.x), ('y', p.y), ('z', p.z)]
-                .into_iter()
-                .find(|(_, v)| !v.is_finite())
-                .unwrap_or(('x', p.x));
-            return Err(MeshError::NonFiniteCoordinate {
-                vertex,
-                axis,
-                value,
-            });
-        }
+        crate::mesh::check_positions(positions)?;
         for (corners, indices) in self.corners.iter_mut().zip(&self.vertices) {
             *corners = indices.map(|v| positions[v as usize]);
         }
