@@ -140,6 +140,15 @@ pub struct SilhouetteArgs {
     pub print: OutputArgs,
 }
 
+/// `sphaera hausdorff --engine`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum HausdorffEngineArg {
+    /// `sphaera_sweep::hausdorff`: triangle trees, every core.
+    Trees,
+    /// `sphaera_sweep::meshsweeper_hausdorff`: the paper's engine on hierarchies.
+    Meshsweeper,
+}
+
 /// `--contours`: which silhouettes labels measure from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum ContoursArg {
@@ -404,6 +413,11 @@ pub struct HausdorffArgs {
     /// Stop refining after this many samples (the bounds stay certified, only wider).
     #[arg(long, default_value_t = 20_000_000)]
     pub max_samples: usize,
+
+    /// The engine: `trees` (exact queries from triangle trees, every core; the fastest)
+    /// or `meshsweeper` (the paper's, on hierarchies of error spheres, one thread).
+    #[arg(long, value_enum, default_value_t = HausdorffEngineArg::Trees)]
+    pub engine: HausdorffEngineArg,
 
     /// Write mesh A as a PLY whose vertices are coloured by their distance to B, blue
     /// (0) to red (the largest), written atomically.

@@ -18,6 +18,21 @@ fn hausdorff_of_the_embedded_bunny_and_its_simplification_is_certified() {
     // The simplifier's certified bound holds the true distance.
     assert!(number(&report["simplifier_bound"]) >= lower);
     assert!(report["b_to_a"].is_object());
+    assert_eq!(report["engine"], "trees");
+    assert!(report["seconds"]["hierarchies"].is_null());
+
+    // The paper's engine certifies an interval that overlaps.
+    let paper = json(&sphaera(&[
+        "hausdorff",
+        "--json",
+        "--tolerance",
+        "0.01%",
+        "--engine",
+        "meshsweeper",
+    ]));
+    assert_eq!(paper["engine"], "meshsweeper");
+    assert!(number(&paper["seconds"]["hierarchies"]) >= 0.0);
+    assert!(number(&paper["lower"]) <= upper && lower <= number(&paper["upper"]));
 }
 
 #[test]

@@ -1,5 +1,7 @@
-//! Closest-point queries on a 3D polyline: Sphaera's polyline Meshsweeper sessions against
-//! parry3d-f64's `Polyline` point projection (its BVH), in the same run.
+//! Closest-point queries on a 3D polyline: Sphaera's polyline sessions (exact answers
+//! from the segment tree, the default, and the paper's capsule hierarchy,
+//! `with_exact_by_tree(false)`) against parry3d-f64's `Polyline` point projection (its
+//! BVH), in the same run; and anytime queries at 1 % of the helix's diagonal.
 //!
 //! The polyline (seeded): a noisy helix of 100 000 points, 20 turns of radius 1 and pitch
 //! 0.25, each point moved by up to 1 % of the radius. Query sets (seeded; the generator
@@ -17,7 +19,10 @@ use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use parry3d_f64::{query::PointQuery, shape::Polyline as ParryPolyline};
-use sphaera::{mesh::DVec3, sweep::Polyline};
+use sphaera::{
+    mesh::DVec3,
+    sweep::{Polyline, Tolerance, polyline::PolylineSessionOptions},
+};
 use sphaera_tests::random::Lcg64;
 
 /// Points of the polyline.
@@ -65,7 +70,7 @@ fn polyline_vs_parry(c: &mut Criterion) {
     let mut group = c.benchmark_group(format!("polyline_build/helix_{POINTS}"));
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(2));
-    group.bench_function("sphaera_hierarchy", |b| {
+    group.bench_function("sphaera", |b| {
         b.iter(|| Polyline::open(black_box(points.clone())).expect("valid"));
     });
     group.bench_function("parry_bvh", |b| {
@@ -86,6 +91,31 @@ fn polyline_vs_parry(c: &mut Criterion) {
                 queries
                     .iter()
                     .map(|&p| session.closest(p).expect("finite").distance)
+                    .sum::<f64>()
+            });
+        });
+        let paper = PolylineSessionOptions::default().with_exact_by_tree(false);
+        group.bench_function("sphaera_session_paper", |b| {
+            b.iter(|| {
+                let mut session = polyline.session_with(&paper);
+                queries
+                    .iter()
+                    .map(|&p| session.closest(p).expect("finite").distance)
+                    .sum::<f64>()
+            });
+        });
+        let one_percent = Tolerance::Absolute(0.01 * polyline.diagonal());
+        group.bench_function("sphaera_anytime_1%", |b| {
+            b.iter(|| {
+                let mut session = polyline.session();
+                queries
+                    .iter()
+                    .map(|&p| {
+                        session
+                            .closest_within(p, one_percent)
+                            .expect("finite")
+                            .upper
+                    })
                     .sum::<f64>()
             });
         });

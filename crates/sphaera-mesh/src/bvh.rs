@@ -222,14 +222,59 @@ impl BoxTree {
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
     pub fn search_nearest_first(&self, p: DVec3, search: &mut impl NearestFirst) {
+        self.search_nearest_first_by(|bounds| bounds.distance_squared_to_point(p), search);
+    }
+
+    /// [`search_nearest_first`](Self::search_nearest_first) with another measure of how
+    /// near a node is: `key(bounds)` of a node's box is what `search.may_improve` is asked
+    /// about, and the child with the smaller key is searched first. Any key works for the
+    /// order; for pruning to be sound it must be a lower bound of what the search looks
+    /// for under that box (for a point, the squared distance to the box).
+    ///
+    /// # Examples
+    ///
+    /// The point nearest to *both* of two points in the sense of the larger distance
+    /// (the key is the larger squared distance from either to the box):
+    ///
+    /// ```
+    /// use std::ops::{ControlFlow, Range};
+    /// use sphaera_mesh::{Aabb, DVec3, bvh::{BoxTree, NearestFirst}};
+    ///
+    /// let points: Vec<DVec3> = (0..500).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
+    /// let items: Vec<(Aabb, DVec3)> = points.iter().map(|&p| (Aabb::new(p, p), p)).collect();
+    /// let tree = BoxTree::build(&items, 4)?;
+    /// let (a, b) = (DVec3::new(100.0, 1.0, 0.0), DVec3::new(110.0, -1.0, 0.0));
+    ///
+    /// struct Both<'a> { a: DVec3, b: DVec3, points: &'a [DVec3], order: &'a [u32], best: f64 }
+    /// impl NearestFirst for Both<'_> {
+    ///     fn may_improve(&self, key: f64) -> bool { key < self.best }
+    ///     fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
+    ///         for &i in &self.order[positions] {
+    ///             let q = self.points[i as usize];
+    ///             self.best = self.best.min(self.a.distance_squared(q).max(self.b.distance_squared(q)));
+    ///         }
+    ///         ControlFlow::Continue(())
+    ///     }
+    /// }
+    /// let mut search = Both { a, b, points: &points, order: tree.order(), best: f64::INFINITY };
+    /// let key = |bounds: &Aabb| bounds.distance_squared_to_point(a).max(bounds.distance_squared_to_point(b));
+    /// tree.search_nearest_first_by(key, &mut search);
+    /// assert_eq!(search.best, 26.0); // the point at x = 105
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    pub fn search_nearest_first_by(
+        &self,
+        key: impl Fn(&Aabb) -> f64,
+        search: &mut impl NearestFirst,
+    ) {
         let Some(root) = self.nodes.first() else {
             return;
         };
-        // Each entry keeps its box's squared distance, computed once when its parent was
-        // opened. A balanced tree over 32-bit item counts is at most 33 levels deep and
-        // the stack holds at most one entry per level plus one, so it stays inline.
+        // Each entry keeps its box's key, computed once when its parent was opened. A
+        // balanced tree over 32-bit item counts is at most 33 levels deep and the stack
+        // holds at most one entry per level plus one, so it stays inline.
         let mut stack: SmallVec<[(u32, f64); 64]> = SmallVec::new();
-        stack.push((0, root.bounds.distance_squared_to_point(p)));
+        stack.push((0, key(&root.bounds)));
         while let Some((n, to_node)) = stack.pop() {
             if !search.may_improve(to_node) {
                 search.pruned(to_node);
@@ -244,10 +289,8 @@ impl BoxTree {
                 }
                 Some(right) => {
                     let left = n + 1;
-                    let [left_box, right_box] =
-                        [self.nodes[left as usize].bounds, self.nodes[right].bounds];
-                    let to_left = left_box.distance_squared_to_point(p);
-                    let to_right = right_box.distance_squared_to_point(p);
+                    let to_left = key(&self.nodes[left as usize].bounds);
+                    let to_right = key(&self.nodes[right].bounds);
                     // The nearer child on top of the stack.
                     let (near, far) = if to_left <= to_right {
                         ((left, to_left), (right as u32, to_right))

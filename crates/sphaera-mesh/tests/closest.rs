@@ -285,3 +285,42 @@ fn powers_of_two_scale_the_answers_exactly_and_rotations_by_rounding() {
         assert!((d - a.distance).abs() <= 1e-9, "{d} vs {}", a.distance);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    /// The triangle bound is brute force's smallest largest-corner distance, and with
+    /// `enough` it stops at a triangle within it (or finds the smallest).
+    #[test]
+    fn triangle_upper_bound_matches_brute_force(
+        mesh in prop_oneof![soup(), (0..4usize).prop_map(|i| shapes()[i].clone())],
+        corners in [point(), point(), point()],
+        enough in 0.0..3.0_f64,
+    ) {
+        let tree = TriangleTree::new(&mesh).expect("non-empty");
+        let brute = (0..mesh.triangle_count())
+            .filter_map(|t| mesh.triangle(t))
+            .map(|t| {
+                corners
+                    .iter()
+                    .map(|&p| point_triangle_distance_squared(p, &t))
+                    .fold(0.0_f64, f64::max)
+            })
+            .fold(f64::INFINITY, f64::min)
+            .sqrt();
+        let exact = tree.triangle_upper_bound(corners, 0.0).expect("finite");
+        prop_assert!((exact - brute).abs() <= 1e-12 * (1.0 + brute), "{exact} vs {brute}");
+        let early = tree.triangle_upper_bound(corners, enough).expect("finite");
+        prop_assert!(early >= exact - 1e-12);
+        prop_assert!(early <= enough || (early - brute).abs() <= 1e-12 * (1.0 + brute));
+        // The bound holds for every point of the triangle (dense barycentric samples).
+        for i in 0..=6 {
+            for j in 0..=(6 - i) {
+                let (u, v) = (f64::from(i) / 6.0, f64::from(j) / 6.0);
+                let p = u * corners[0] + v * corners[1] + (1.0 - u - v) * corners[2];
+                prop_assert!(brute::distance(&mesh, p) <= early + 1e-12 * (1.0 + early));
+            }
+        }
+        prop_assert!(tree.triangle_upper_bound([DVec3::NAN, corners[1], corners[2]], 0.0).is_err());
+    }
+}

@@ -1,16 +1,17 @@
-//! Certified Hausdorff distances between two meshes (paper section 6): see [`Hausdorff`].
+//! Certified Hausdorff distances between two meshes: see [`hausdorff`] (triangle trees,
+//! every core) and [`meshsweeper_hausdorff`] (the paper's, section 6, on hierarchies).
 
 mod bound;
 mod peel;
 mod side;
 mod target;
+mod trees;
 
 use std::cmp::Reverse;
 
 use glam::DVec3;
-use sphaera_mesh::Length;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
-use sphaera_simplify::Hierarchy;
+use sphaera_mesh::{Length, TriMesh};
 
 use crate::error::check_non_negative;
 use crate::{SweepError, Sweeper};
@@ -104,47 +105,52 @@ pub struct HausdorffProgress {
     pub upper: f64,
 }
 
-/// Options of [`hausdorff`], the Hausdorff distance between the meshes of two sweepers
-/// (paper section 6).
+/// Options of [`hausdorff`] and [`meshsweeper_hausdorff`], the certified Hausdorff
+/// distance between two meshes.
 ///
 /// The one-sided distance `h(A → B) = max over x ∈ A of d(x, B)` is bracketed:
 ///
-/// - the **lower bound** is the largest exact distance at a sample of `A`, each from a
-///   closest-point query of a [`Session`](crate::Session) on `B` (a sample is a point of
-///   `A`, so it cannot exceed the maximum);
+/// - the **lower bound** is the largest exact distance at a sample of `A` (a sample is a
+///   point of `A`, so it cannot exceed the maximum);
 /// - the **upper bound** is the largest, over triangles covering `A`, of a bound of the
 ///   distance from every point of the triangle to `B`, from points of `B` known near its
 ///   corners: the paper's bisector-plane bound (Fig. 9), a bound through one triangle of
-///   `B` (the distance to a triangle is convex), the same split across an edge shared by
-///   two triangles of `B`, and a bound through a level of detail of `B` (its triangles are
-///   larger, and lie within their error radii of `B`). The smallest applies.
+///   `B` (the distance to a triangle is convex, so over a triangle of `A` it is largest
+///   at a corner), the same split across an edge shared by two triangles of `B`. The
+///   smallest applies.
 ///
-/// An upper bound needs *a* point of `B`, not the closest one, so most samples only get a
-/// local walk over `B`'s triangles from a neighbour's answer (visiting the vertices of `A`
-/// along spiral *peel* paths, so a neighbour has always been answered); a sample is given
-/// an exact query only when the distance its walk found could raise the lower bound.
-/// Then the triangle with the largest upper bound is split in four at its edge midpoints
-/// and its children are queued, until the largest upper bound is within the tolerance of
-/// the lower bound: only triangles whose bound can still exceed the lower bound are ever
+/// Triangles whose bound exceeds the lower bound by more than the tolerance are split in
+/// four at their edge midpoints (new samples), until every bound is within the
+/// tolerance: only triangles whose bound can still exceed the lower bound are ever
 /// refined. For the symmetric `H(A, B) = max(h(A → B), h(B → A))` both directions share
-/// one queue and one lower bound, so once one direction's bounds fall below the other's
-/// lower bound it is never refined again (its own lower bound is then only as tight as
-/// it needed to be).
+/// one lower bound, so once one direction's bounds fall below the other's lower bound it
+/// is never refined again (its own lower bound is then only as tight as it needed to be).
+///
+/// The two engines differ in how samples are answered and what else bounds a triangle:
+///
+/// - [`hausdorff`] (the default) gives **every** sample an exact closest point from a
+///   [`TriangleTree`](crate::TriangleTree) of the other mesh, and when the corners'
+///   triangles are not enough asks the tree for the best single triangle
+///   ([`TriangleTree::triangle_upper_bound`](crate::TriangleTree::triangle_upper_bound)).
+///   It refines in rounds at a fixed lower bound, each round's queries and bounds on
+///   every core (identical results on one).
+/// - [`meshsweeper_hausdorff`] (the paper's, on two [`Sweeper`]s) gives most samples only
+///   a local walk from a neighbour's answer (an upper bound needs *a* point of `B`, not
+///   the closest), certifies those that could raise the lower bound with a Meshsweeper
+///   query, adds a bound through a level of detail of `B` from its hierarchy, and splits
+///   the triangle with the largest bound first, on one thread.
 ///
 /// # Examples
 ///
 /// ```
 /// use sphaera_mesh::shapes;
 /// use sphaera_mesh::Length;
-/// use sphaera_sweep::{Direction, HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
+/// use sphaera_sweep::{Direction, HausdorffOptions, hausdorff};
 ///
 /// // A cube with corners at ±1 and a unit sphere inside it.
 /// let (cube, sphere) = (shapes::cube(2.0, 8)?, shapes::sphere(1.0, 32)?);
-/// let (hc, hs) = (build_hierarchy(&cube)?, build_hierarchy(&sphere)?);
-/// let (a, b) = (Sweeper::new(&hc)?, Sweeper::new(&hs)?);
-///
 /// let options = HausdorffOptions::default().with_tolerance(Length::Absolute(1e-6));
-/// let result = hausdorff(&a, &b, &options)?;
+/// let result = hausdorff(&cube, &sphere, &options)?;
 /// assert!(result.lower <= result.upper && result.gap() <= 1e-6);
 /// // The cube's corners are farthest: √3 − 1 from the (tessellated) sphere.
 /// assert_eq!(result.dominating, Direction::AToB);
@@ -163,9 +169,11 @@ pub struct HausdorffOptions {
     /// Stop refining once this many samples (vertices included) were queried; the result
     /// then says `converged: false`. Default 20 million (about 1.3 GB of samples).
     pub max_samples: usize,
-    /// Certify the distance of every vertex (default `false`): the
+    /// Certify the distance of every vertex (default `false`) in
+    /// [`meshsweeper_hausdorff`]: the
     /// [`vertex_distances`](DirectedHausdorff::vertex_distances) are then exact, at the
     /// cost of one coherent closest-point query per vertex instead of a local walk.
+    /// [`hausdorff`]'s are always exact.
     pub exact_vertex_distances: bool,
     /// The symmetric `H(A, B) = max(h(A → B), h(B → A))` (`true`, the default), or the
     /// one-sided `h(A → B)` only.
@@ -213,19 +221,124 @@ impl HausdorffOptions {
     }
 }
 
-/// The Hausdorff distance between the meshes of sweepers `a` and `b`, bracketed by
-/// certified bounds as `options` say (see [`HausdorffOptions`] for the method).
+/// The Hausdorff distance between meshes `a` and `b`, bracketed by certified bounds as
+/// `options` say (see [`HausdorffOptions`] for the method): the fastest engine, on every
+/// core with the `parallel` feature (the same result on one).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::{Length, shapes};
+/// use sphaera_sweep::{HausdorffOptions, hausdorff};
+///
+/// let cube = shapes::cube(2.0, 4)?;
+/// let same = hausdorff(&cube, &cube, &HausdorffOptions::default())?;
+/// assert_eq!((same.lower, same.upper), (0.0, 0.0));
+///
+/// // A sphere of radius 1 against one of radius 1.1: about 0.1 apart.
+/// let (small, large) = (shapes::sphere(1.0, 32)?, shapes::sphere(1.1, 32)?);
+/// let options = HausdorffOptions::default().with_tolerance(Length::Absolute(1e-9));
+/// let h = hausdorff(&small, &large, &options)?;
+/// assert!(h.lower <= h.upper && h.gap() <= 1e-9);
+/// assert!((h.upper - 0.1).abs() < 1e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance;
+/// [`SweepError::EmptyMesh`] if a mesh has no triangle.
+///
+/// # Performance
+///
+/// A triangle tree per mesh (about 20 ms for 69k triangles), an exact query per used
+/// vertex and per midpoint, a bound per triangle of samples. The 69k-triangle bunny
+/// against its 10k-triangle simplification to 1e-5 of the diagonal: see
+/// `docs/benchmarks.md` ("Hausdorff distance"). Memory about 100 bytes per sample.
+pub fn hausdorff(
+    a: &TriMesh,
+    b: &TriMesh,
+    options: &HausdorffOptions,
+) -> Result<HausdorffDistance, SweepError> {
+    hausdorff_with_progress(a, b, options, &|_| {})
+}
+
+/// [`hausdorff`], calling `progress` after the vertices and after every round of
+/// refinement (from the calling thread).
+///
+/// # Examples
+///
+/// ```
+/// use std::sync::atomic::{AtomicUsize, Ordering};
+/// use sphaera_mesh::shapes;
+/// use sphaera_sweep::{HausdorffOptions, HausdorffProgress, hausdorff_with_progress};
+///
+/// let (cube, sphere) = (shapes::cube(2.0, 24)?, shapes::sphere(1.0, 48)?);
+/// let reports = AtomicUsize::new(0);
+/// let report = |p: &HausdorffProgress| {
+///     assert!(p.lower <= p.upper);
+///     reports.fetch_add(1, Ordering::Relaxed);
+/// };
+/// let h = hausdorff_with_progress(&cube, &sphere, &HausdorffOptions::default(), &report)?;
+/// assert!(h.lower <= h.upper);
+/// assert!(reports.into_inner() > 0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`hausdorff`].
+pub fn hausdorff_with_progress(
+    a: &TriMesh,
+    b: &TriMesh,
+    options: &HausdorffOptions,
+    progress: &(dyn Fn(&HausdorffProgress) + Sync),
+) -> Result<HausdorffDistance, SweepError> {
+    let allowed = allowed_gap(options.tolerance, a.positions(), b.positions())?;
+    let (target_b, target_a) = if options.symmetric {
+        let (b, a) = join(|| trees::TreeTarget::new(b), || trees::TreeTarget::new(a));
+        (b?, Some(a?))
+    } else {
+        (trees::TreeTarget::new(b)?, None)
+    };
+    let mut sides = vec![trees::TreeSide::new(a, &target_b)];
+    if let Some(target_a) = &target_a {
+        sides.push(trees::TreeSide::new(b, target_a));
+    }
+    let (unsettled, converged) = trees::refine(&mut sides, allowed, options.max_samples, progress)?;
+    let directed = sides
+        .into_iter()
+        .zip(unsettled)
+        .map(|(side, upper)| side.finish(upper));
+    assemble(directed, converged)
+}
+
+/// Both closures' results, side by side with the `parallel` feature.
+fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::join(a, b)
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        (a(), b())
+    }
+}
+
+/// The Hausdorff distance between the meshes of sweepers `a` and `b` by the paper's
+/// engine (section 6), bracketed by certified bounds as `options` say (see
+/// [`HausdorffOptions`]); [`hausdorff`] is faster.
 ///
 /// # Examples
 ///
 /// ```
 /// use sphaera_mesh::shapes;
-/// use sphaera_sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
+/// use sphaera_sweep::{HausdorffOptions, Sweeper, build_hierarchy, meshsweeper_hausdorff};
 ///
 /// let cube = shapes::cube(2.0, 4)?;
 /// let h = build_hierarchy(&cube)?;
 /// let s = Sweeper::new(&h)?;
-/// let same = hausdorff(&s, &s, &HausdorffOptions::default())?;
+/// let same = meshsweeper_hausdorff(&s, &s, &HausdorffOptions::default())?;
 /// assert_eq!((same.lower, same.upper), (0.0, 0.0));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
@@ -240,44 +353,21 @@ impl HausdorffOptions {
 /// refined triangle; memory about 64 bytes per sample. Symmetric: both directions, but
 /// only the dominating direction is refined once the other's upper bound falls below the
 /// lower bound.
-pub fn hausdorff(
+pub fn meshsweeper_hausdorff(
     a: &Sweeper<'_>,
     b: &Sweeper<'_>,
     options: &HausdorffOptions,
 ) -> Result<HausdorffDistance, SweepError> {
-    hausdorff_with_progress(a, b, options, &|_| {})
+    meshsweeper_hausdorff_with_progress(a, b, options, &|_| {})
 }
 
-/// [`hausdorff`], calling `progress` every few thousand samples (from the calling
-/// thread).
-///
-/// # Examples
-///
-/// ```
-/// use std::sync::atomic::{AtomicUsize, Ordering};
-/// use sphaera_mesh::shapes;
-/// use sphaera_sweep::{
-///     HausdorffOptions, HausdorffProgress, Sweeper, build_hierarchy, hausdorff_with_progress,
-/// };
-///
-/// let (cube, sphere) = (shapes::cube(2.0, 24)?, shapes::sphere(1.0, 48)?);
-/// let (hc, hs) = (build_hierarchy(&cube)?, build_hierarchy(&sphere)?);
-/// let (a, b) = (Sweeper::new(&hc)?, Sweeper::new(&hs)?);
-/// let reports = AtomicUsize::new(0);
-/// let report = |p: &HausdorffProgress| {
-///     assert!(p.lower <= p.upper);
-///     reports.fetch_add(1, Ordering::Relaxed);
-/// };
-/// let h = hausdorff_with_progress(&a, &b, &HausdorffOptions::default(), &report)?;
-/// assert!(h.lower <= h.upper);
-/// assert!(reports.into_inner() > 0);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
+/// [`meshsweeper_hausdorff`], calling `progress` every few thousand samples (from the
+/// calling thread).
 ///
 /// # Errors
 ///
-/// As [`hausdorff`].
-pub fn hausdorff_with_progress(
+/// As [`meshsweeper_hausdorff`].
+pub fn meshsweeper_hausdorff_with_progress(
     a: &Sweeper<'_>,
     b: &Sweeper<'_>,
     options: &HausdorffOptions,
@@ -303,13 +393,11 @@ struct Run<'r, 's> {
 impl Run<'_, '_> {
     fn run(self) -> Result<HausdorffDistance, SweepError> {
         let symmetric = self.options.symmetric;
-        check_non_negative("tolerance", self.options.tolerance.value())?;
-        let allowed = match self.options.tolerance {
-            Length::Absolute(t) => t,
-            Length::RelativeToDiagonal(f) => {
-                f * joint_diagonal(self.a.hierarchy(), self.b.hierarchy())
-            }
-        };
+        let allowed = allowed_gap(
+            self.options.tolerance,
+            self.a.hierarchy().positions(),
+            self.b.hierarchy().positions(),
+        )?;
         let mut sides = vec![Side::new(self.a, self.b)];
         if symmetric {
             sides.push(Side::new(self.b, self.a));
@@ -361,28 +449,43 @@ impl Run<'_, '_> {
                 *u = u.max(entry.upper);
             }
         }
-        let mut directed = sides
+        let directed = sides
             .into_iter()
             .zip(uppers)
             .map(|(side, upper)| side.finish(upper));
-        let a_to_b = directed.next().ok_or(SweepError::EmptyMesh)?;
-        let b_to_a = directed.next();
-        let (lower, upper, dominating) = match &b_to_a {
-            Some(b) if b.lower > a_to_b.lower => {
-                (b.lower, a_to_b.upper.max(b.upper), Direction::BToA)
-            }
-            Some(b) => (a_to_b.lower, a_to_b.upper.max(b.upper), Direction::AToB),
-            None => (a_to_b.lower, a_to_b.upper, Direction::AToB),
-        };
-        Ok(HausdorffDistance {
-            lower,
-            upper,
-            a_to_b,
-            b_to_a,
-            dominating,
-            converged,
-        })
+        assemble(directed, converged)
     }
+}
+
+/// The result from the directions `A → B` and (when symmetric) `B → A`, in that order.
+fn assemble(
+    mut directed: impl Iterator<Item = DirectedHausdorff>,
+    converged: bool,
+) -> Result<HausdorffDistance, SweepError> {
+    let a_to_b = directed.next().ok_or(SweepError::EmptyMesh)?;
+    let b_to_a = directed.next();
+    let (lower, upper, dominating) = match &b_to_a {
+        Some(b) if b.lower > a_to_b.lower => (b.lower, a_to_b.upper.max(b.upper), Direction::BToA),
+        Some(b) => (a_to_b.lower, a_to_b.upper.max(b.upper), Direction::AToB),
+        None => (a_to_b.lower, a_to_b.upper, Direction::AToB),
+    };
+    Ok(HausdorffDistance {
+        lower,
+        upper,
+        a_to_b,
+        b_to_a,
+        dominating,
+        converged,
+    })
+}
+
+/// The tolerance in mesh units.
+fn allowed_gap(tolerance: Length, a: &[DVec3], b: &[DVec3]) -> Result<f64, SweepError> {
+    check_non_negative("tolerance", tolerance.value())?;
+    Ok(match tolerance {
+        Length::Absolute(t) => t,
+        Length::RelativeToDiagonal(f) => f * joint_diagonal(a, b),
+    })
 }
 
 /// Splits the triangle with the largest upper bound until that bound is within `allowed`
@@ -456,8 +559,8 @@ fn push(
 }
 
 /// The bounding-box diagonal of both meshes' vertices together.
-fn joint_diagonal(a: &Hierarchy, b: &Hierarchy) -> f64 {
-    let (lo, hi) = a.positions().iter().chain(b.positions()).fold(
+fn joint_diagonal(a: &[DVec3], b: &[DVec3]) -> f64 {
+    let (lo, hi) = a.iter().chain(b).fold(
         (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
         |(lo, hi), &p| (lo.min(p), hi.max(p)),
     );

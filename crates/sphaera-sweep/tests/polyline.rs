@@ -80,14 +80,25 @@ fn check_bounds<P: PolylinePoint>(polyline: &Polyline<P>, p: P, lower: f64, uppe
 /// Independent queries (one fresh session each and one shared session), a coherent
 /// random walk, and anytime queries, all against brute force.
 fn check_all<P: PolylinePoint>(polyline: &Polyline<P>, queries: &[P], step: P) {
-    let mut shared = polyline.session();
+    for by_tree in [true, false] {
+        check_engine(polyline, queries, step, by_tree);
+    }
+}
+
+/// [`check_all`] with one engine.
+fn check_engine<P: PolylinePoint>(polyline: &Polyline<P>, queries: &[P], step: P, by_tree: bool) {
+    let options = PolylineSessionOptions::default().with_exact_by_tree(by_tree);
+    let mut shared = polyline.session_with(&options);
     for &p in queries {
-        check_exact(polyline, p, &polyline.session().closest(p).expect("finite"));
+        check_exact(
+            polyline,
+            p,
+            &polyline.session_with(&options).closest(p).expect("finite"),
+        );
         check_exact(polyline, p, &shared.closest(p).expect("finite"));
     }
     // A coherent walk: small steps, never resetting for jumps.
-    let mut walk =
-        polyline.session_with(&PolylineSessionOptions::default().with_jump_factor(f64::INFINITY));
+    let mut walk = polyline.session_with(&options.with_jump_factor(f64::INFINITY));
     let mut p = queries[0];
     for i in 0..40 {
         let wiggle = if i % 3 == 0 { step * -0.5 } else { step };
@@ -98,7 +109,7 @@ fn check_all<P: PolylinePoint>(polyline: &Polyline<P>, queries: &[P], step: P) {
         check_exact(polyline, q, &walk.closest(q).expect("finite"));
     }
     // Anytime queries.
-    let mut anytime = polyline.session();
+    let mut anytime = polyline.session_with(&options);
     for (i, &p) in queries.iter().enumerate() {
         let tolerance = 0.5 / (1.0 + i as f64);
         let b = anytime
@@ -246,8 +257,12 @@ fn the_centre_of_a_polygonal_circle_splits_every_capsule_and_is_exact() {
             .map(|i| DVec2::from_angle(std::f64::consts::TAU * f64::from(i) / f64::from(n)))
             .collect();
         let polyline = Polyline::closed(circle.clone()).expect("valid");
-        let mut session = polyline.session();
+        let paper = PolylineSessionOptions::default().with_exact_by_tree(false);
+        let mut session = polyline.session_with(&paper);
         let answer = session.closest(DVec2::ZERO).expect("finite");
+        // The tree finds a segment at the same distance.
+        let tree = polyline.session().closest(DVec2::ZERO).expect("finite");
+        assert!((tree.distance - answer.distance).abs() < 1e-15);
         check_exact(&polyline, DVec2::ZERO, &answer);
         let expected = (std::f64::consts::PI / f64::from(n)).cos();
         assert!((answer.distance - expected).abs() < 1e-12);
@@ -260,8 +275,13 @@ fn the_centre_of_a_polygonal_circle_splits_every_capsule_and_is_exact() {
             .collect();
         let polyline = Polyline::closed(tilted).expect("valid");
         let centre = DVec3::splat(5.0);
-        let answer = polyline.session().closest(centre).expect("finite");
-        check_exact(&polyline, centre, &answer);
+        for options in [paper, PolylineSessionOptions::default()] {
+            let answer = polyline
+                .session_with(&options)
+                .closest(centre)
+                .expect("finite");
+            check_exact(&polyline, centre, &answer);
+        }
     }
 }
 
@@ -385,7 +405,8 @@ fn the_reset_policy_keeps_answers_exact_and_is_counted() {
     let mut session = polyline.session_with(
         &PolylineSessionOptions::default()
             .with_max_front(8)
-            .with_jump_factor(f64::INFINITY),
+            .with_jump_factor(f64::INFINITY)
+            .with_exact_by_tree(false),
     );
     let mut rng = Lcg64::with_increment(3, 1);
     let mut next = || rng.unit() * 4.0 - 2.0;

@@ -11,13 +11,13 @@ use sphaera::{
     },
     simplify::{SimplifyOptions, simplify},
     sweep::{
-        DirectedHausdorff, Direction, HausdorffOptions, HausdorffProgress, Sweeper,
-        build_hierarchy, hausdorff_with_progress,
+        DirectedHausdorff, Direction, HausdorffDistance, HausdorffOptions, HausdorffProgress,
+        Sweeper, build_hierarchy, hausdorff_with_progress, meshsweeper_hausdorff_with_progress,
     },
 };
 
 use crate::{
-    cli::HausdorffArgs,
+    cli::{HausdorffArgs, HausdorffEngineArg},
     input::read_mesh,
     output::{print_report, thousands},
     progress,
@@ -37,6 +37,8 @@ struct Report {
     triangles_b: usize,
     /// `symmetric` or `one-sided`.
     mode: &'static str,
+    /// `trees` (the default) or `meshsweeper`.
+    engine: &'static str,
     /// The tolerance in mesh units.
     tolerance: f64,
     /// Certified: the true distance lies in `[lower, upper]`.
@@ -77,9 +79,10 @@ struct Seconds {
     load: f64,
     /// Simplifying A when B was omitted.
     simplify: f64,
-    /// Building both hierarchies of error spheres.
-    hierarchies: f64,
-    /// The Hausdorff computation itself.
+    /// Building both hierarchies of error spheres (`meshsweeper` engine only).
+    hierarchies: Option<f64>,
+    /// The Hausdorff computation itself (with the `trees` engine, the trees' build
+    /// included).
     hausdorff: f64,
 }
 
@@ -114,14 +117,6 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
         }
     };
 
-    let spinner = progress::spinner(quiet, "building the hierarchies of error spheres");
-    let started = Instant::now();
-    let hierarchies = (build_hierarchy(mesh_a), build_hierarchy(&mesh_b));
-    let hierarchy_seconds = started.elapsed().as_secs_f64();
-    spinner.finish_and_clear();
-    let (ha, hb) = (hierarchies.0?, hierarchies.1?);
-    let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
-
     let diagonal = joint_diagonal(mesh_a, &mesh_b);
     let tolerance = args.tolerance.resolve(diagonal);
     let spinner = progress::spinner(quiet, "querying the vertices");
@@ -140,13 +135,23 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
             ));
         }
     };
-    let started = Instant::now();
     let options = HausdorffOptions::default()
         .with_tolerance(Length::Absolute(tolerance))
         .with_max_samples(args.max_samples)
         .with_symmetric(!args.one_sided);
-    let result = hausdorff_with_progress(&sa, &sb, &options, &report_progress);
-    let hausdorff_seconds = started.elapsed().as_secs_f64();
+    let (result, hierarchy_seconds, hausdorff_seconds) = match args.engine {
+        HausdorffEngineArg::Trees => {
+            let started = Instant::now();
+            let result = hausdorff_with_progress(mesh_a, &mesh_b, &options, &report_progress);
+            (result, None, started.elapsed().as_secs_f64())
+        }
+        HausdorffEngineArg::Meshsweeper => {
+            spinner.set_message("building the hierarchies of error spheres");
+            let (result, hierarchies, seconds) =
+                by_meshsweeper(mesh_a, &mesh_b, &options, &report_progress)?;
+            (result, Some(hierarchies), seconds)
+        }
+    };
     spinner.finish_and_clear();
     let result = result?;
 
@@ -166,6 +171,10 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
             "one-sided"
         } else {
             "symmetric"
+        },
+        engine: match args.engine {
+            HausdorffEngineArg::Trees => "trees",
+            HausdorffEngineArg::Meshsweeper => "meshsweeper",
         },
         tolerance,
         lower: result.lower,
@@ -189,6 +198,26 @@ pub fn run(args: &HausdorffArgs, quiet: bool) -> Result<()> {
         },
     };
     print_report(&report, args.print.json)
+}
+
+/// The paper's engine: the result, the hierarchies' seconds and the computation's.
+fn by_meshsweeper(
+    a: &TriMesh,
+    b: &TriMesh,
+    options: &HausdorffOptions,
+    progress: &(dyn Fn(&HausdorffProgress) + Sync),
+) -> Result<(
+    Result<HausdorffDistance, sphaera::sweep::SweepError>,
+    f64,
+    f64,
+)> {
+    let started = Instant::now();
+    let (ha, hb) = (build_hierarchy(a)?, build_hierarchy(b)?);
+    let hierarchies = started.elapsed().as_secs_f64();
+    let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
+    let started = Instant::now();
+    let result = meshsweeper_hausdorff_with_progress(&sa, &sb, options, progress);
+    Ok((result, hierarchies, started.elapsed().as_secs_f64()))
 }
 
 fn side(d: &DirectedHausdorff) -> Side {
@@ -279,12 +308,13 @@ impl crate::output::Report for Report {
         if let Some(path) = &self.colors {
             lines.push(format!("colours         A by distance to B, in {path}"));
         }
+        let hierarchies = self
+            .seconds
+            .hierarchies
+            .map_or(String::new(), |s| format!("{s:.3} s for the hierarchies, "));
         lines.push(format!(
-            "time            {:.3} s to read, {:.3} s to simplify, {:.3} s for the hierarchies, {:.3} s for the distance",
-            self.seconds.load,
-            self.seconds.simplify,
-            self.seconds.hierarchies,
-            self.seconds.hausdorff
+            "time            {:.3} s to read, {:.3} s to simplify, {hierarchies}{:.3} s for the distance ({} engine)",
+            self.seconds.load, self.seconds.simplify, self.seconds.hausdorff, self.engine
         ));
         let mut text = lines.join("\n");
         text.push('\n');

@@ -7,11 +7,17 @@
 //! (`simplify(&m, &SimplifyOptions::default().with_target_ratio(0.15))`, defaults
 //! otherwise).
 //!
-//! - **Sphaera**: `hausdorff(&a, &b, &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(t)))` for
-//!   each `t` of [`TOLERANCES`] (relative to the bounding-box diagonal of both meshes
-//!   together). The hierarchies and sweepers are built once per pair, **outside** the
-//!   timing (their build time, which is parallel, is in the CSV as `build_seconds`); the
-//!   computation itself is single-threaded. Time: minimum of [`RUNS`] runs.
+//! - **Sphaera** (`sphaera`): `hausdorff(&a, &b, &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(t)))`
+//!   for each `t` of [`TOLERANCES`] (relative to the bounding-box diagonal of both meshes
+//!   together), from the meshes: **all told**, the triangle trees built inside the
+//!   timing, on both cores. Time: minimum of [`RUNS`] runs.
+//! - **Meshsweeper** (`meshsweeper`): the paper's engine, `meshsweeper_hausdorff`, one
+//!   thread; the hierarchies and sweepers are built once per pair, **outside** the timing
+//!   (their build time, which is parallel, is in the CSV as `build_seconds`).
+//! - **cascading-upper-bounds** (`cascading_upper_bounds`), the peer, through its Python
+//!   package (`peers/cub_hausdorff.py`, both directions, loading excluded) at the
+//!   tolerances of [`PEER_TOLERANCES`], when `$SPHAERA_CUB_PYTHON` (else `python3`) can
+//!   import it; skipped with a message otherwise.
 //! - **Naive** (paper section 6): every referenced vertex of each mesh against every
 //!   triangle of the other, by brute force on one thread ([`naive_hausdorff`]), timed once.
 //!   Its value is only a **lower bound** of the distance: it certifies nothing, so it has
@@ -20,13 +26,14 @@
 //! Distances and gaps are relative to the joint diagonal. By design this chart covers only
 //! the first meshes of [`PAIRS`]; `cargo xtask charts --check` checks them.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::Command;
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use sphaera::{
-    mesh::{Length, TriMesh},
+    mesh::{Length, TriMesh, io},
     simplify::{SimplifyOptions, simplify},
-    sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff},
+    sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff, meshsweeper_hausdorff},
 };
 
 use super::{load_mesh, load_or_skip, min_time};
@@ -50,6 +57,9 @@ pub const PAIRS: &[(&str, &str, Option<&str>)] = &[
 /// The tolerances, relative to the joint diagonal.
 pub const TOLERANCES: &[f64] = &[1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6];
 
+/// The tolerances the peer runs at (its time grows fast below 1e-5).
+pub const PEER_TOLERANCES: &[f64] = &[1e-3, 1e-4, 1e-5];
+
 /// Timing runs per tolerance (the minimum is kept).
 pub const RUNS: usize = 3;
 
@@ -72,6 +82,7 @@ struct Row {
 
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
+    let python = peer_python();
     for &(file, label, other) in PAIRS {
         let Some(a) = load_or_skip(data, file)? else {
             continue;
@@ -90,6 +101,9 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
             b.triangle_count()
         );
         measure_pair(file, &other, (&a, &b), &mut rows)?;
+        if let Some(python) = &python {
+            measure_peer(python, file, &other, (&a, &b), &mut rows)?;
+        }
     }
     write_table(out, &rows)?;
     draw(out, &rows)
@@ -111,18 +125,29 @@ fn measure_pair(
     })?;
     let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
     for &tolerance in TOLERANCES {
-        let (seconds, result) = min_time(RUNS, || {
-            Ok(hausdorff(
-                &sa,
-                &sb,
-                &HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(tolerance)),
-            )?)
-        })?;
+        let options =
+            HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(tolerance));
+        let (seconds, result) = min_time(RUNS, || Ok(hausdorff(a, b, &options)?))?;
         let samples = result.a_to_b.samples + result.b_to_a.as_ref().map_or(0, |s| s.samples);
         rows.push(Row {
             file,
             other: other.to_owned(),
             method: "sphaera",
+            tolerance: Some(tolerance),
+            seconds,
+            build_seconds: None,
+            lower: result.lower / diagonal,
+            upper: Some(result.upper / diagonal),
+            samples,
+            converged: result.converged,
+        });
+        report(rows.last());
+        let (seconds, result) = min_time(RUNS, || Ok(meshsweeper_hausdorff(&sa, &sb, &options)?))?;
+        let samples = result.a_to_b.samples + result.b_to_a.as_ref().map_or(0, |s| s.samples);
+        rows.push(Row {
+            file,
+            other: other.to_owned(),
+            method: "meshsweeper",
             tolerance: Some(tolerance),
             seconds,
             build_seconds: Some(build_seconds),
@@ -147,6 +172,85 @@ fn measure_pair(
         converged: false,
     });
     report(rows.last());
+    Ok(())
+}
+
+/// The Python interpreter that imports `cascading_upper_bounds`, or `None` (said).
+fn peer_python() -> Option<PathBuf> {
+    let python =
+        std::env::var_os("SPHAERA_CUB_PYTHON").map_or_else(|| "python3".into(), PathBuf::from);
+    let works = Command::new(&python)
+        .args(["-c", "import cascading_upper_bounds"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !works {
+        eprintln!(
+            "{NAME}: cascading-upper-bounds skipped: `{}` cannot import it (pip install \
+             cascading_upper_bounds numpy, then SPHAERA_CUB_PYTHON=<that python>)",
+            python.display()
+        );
+    }
+    works.then_some(python)
+}
+
+/// The peer at [`PEER_TOLERANCES`] (meshes written to temporary OBJ files, without the
+/// vertices no triangle uses).
+fn measure_peer(
+    python: &Path,
+    file: &'static str,
+    other: &str,
+    (a, b): (&TriMesh, &TriMesh),
+    rows: &mut Vec<Row>,
+) -> Result<()> {
+    let folder = std::env::temp_dir().join(format!("sphaera-cub-{}", std::process::id()));
+    std::fs::create_dir_all(&folder)?;
+    let (path_a, path_b) = (folder.join("a.obj"), folder.join("b.obj"));
+    io::write_obj(&path_a, a)?;
+    io::write_obj(&path_b, b)?;
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("peers/cub_hausdorff.py");
+    for &tolerance in PEER_TOLERANCES {
+        let output = Command::new(python)
+            .arg(&script)
+            .arg(&path_a)
+            .arg(&path_b)
+            .arg(tolerance.to_string())
+            .arg(RUNS.to_string())
+            .output()
+            .context("cannot run cub_hausdorff.py")?;
+        if !output.status.success() {
+            bail!(
+                "cub_hausdorff.py failed: {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+        let diagonal = a.bounding_box().union(b.bounding_box()).diagonal();
+        let mut best: Option<(f64, f64, f64)> = None;
+        for line in String::from_utf8_lossy(&output.stdout).lines() {
+            let run: serde_json::Value = serde_json::from_str(line)?;
+            let field = |k: &str| run[k].as_f64().unwrap_or(f64::NAN);
+            let (seconds, lower, upper) = (field("seconds"), field("lower"), field("upper"));
+            if best.is_none_or(|(s, _, _)| seconds < s) {
+                best = Some((seconds, lower, upper));
+            }
+        }
+        let Some((seconds, lower, upper)) = best else {
+            bail!("cub_hausdorff.py printed no run");
+        };
+        rows.push(Row {
+            file,
+            other: other.to_owned(),
+            method: "cascading_upper_bounds",
+            tolerance: Some(tolerance),
+            seconds,
+            build_seconds: None,
+            lower: lower / diagonal,
+            upper: Some(upper / diagonal),
+            samples: 0,
+            converged: true,
+        });
+        report(rows.last());
+    }
+    std::fs::remove_dir_all(&folder).ok();
     Ok(())
 }
 
@@ -219,29 +323,27 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
     let mut gaps = Vec::new();
     let mut bounds = Vec::new();
     for &(file, label, _) in PAIRS {
-        let sphaera = || {
-            rows.iter()
-                .filter(|r| r.file == file && r.method == "sphaera")
+        let method = |m: &'static str| rows.iter().filter(move |r| r.file == file && r.method == m);
+        let gap_of = |m: &'static str, name: &str| {
+            let mut series = Series::new(&format!("{name}, {label}"));
+            series.points = method(m)
+                .filter_map(|r| r.upper.map(|u| (r.seconds, u - r.lower)))
+                .collect();
+            series
         };
-        let mut gap = Series::new(&format!("Sphaera, {label}"));
-        gap.points = sphaera()
-            .filter_map(|r| r.upper.map(|u| (r.seconds, u - r.lower)))
-            .collect();
         let mut upper = Series::new(&format!("Sphaera upper, {label}"));
-        upper.points = sphaera()
+        upper.points = method("sphaera")
             .filter_map(|r| r.upper.map(|u| (r.seconds, u)))
             .collect();
         let mut lower = Series::new(&format!("Sphaera lower, {label}"));
-        lower.points = sphaera().map(|r| (r.seconds, r.lower)).collect();
+        lower.points = method("sphaera").map(|r| (r.seconds, r.lower)).collect();
         let mut naive = Series::new(&format!("naive (lower bound only), {label}"));
-        naive.points = rows
-            .iter()
-            .filter(|r| r.file == file && r.method == "naive")
-            .map(|r| (r.seconds, r.lower))
-            .collect();
-        // Same index, same colour: the gap series takes the upper bound's colour, and the
-        // two slots after it stay empty on the left (not drawn).
-        gaps.extend([gap, Series::new(""), Series::new("")]);
+        naive.points = method("naive").map(|r| (r.seconds, r.lower)).collect();
+        gaps.extend([
+            gap_of("sphaera", "Sphaera"),
+            gap_of("meshsweeper", "Meshsweeper (paper)"),
+            gap_of("cascading_upper_bounds", "cascading-upper-bounds"),
+        ]);
         bounds.extend([upper, lower, naive]);
     }
     log_log_panels(
@@ -251,7 +353,7 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
                 spec: ChartSpec {
                     title: "Certified Hausdorff gap against time",
                     x_label: &format!(
-                        "seconds, one thread (best of {RUNS}; hierarchies not timed)"
+                        "seconds (best of {RUNS}; Sphaera all told on 2 cores, Meshsweeper's hierarchies not timed)"
                     ),
                     y_label: "upper − lower, / joint diagonal",
                 },
@@ -262,7 +364,7 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
             Panel {
                 spec: ChartSpec {
                     title: "Bounds against time, and the naive all-pairs estimate",
-                    x_label: "seconds, one thread",
+                    x_label: "seconds (Sphaera all told on 2 cores; naive one thread)",
                     y_label: "symmetric Hausdorff distance / joint diagonal",
                 },
                 series: &bounds,

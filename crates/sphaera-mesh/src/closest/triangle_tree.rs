@@ -343,6 +343,57 @@ impl TriangleTree {
         })
     }
 
+    /// An upper bound of the distance from **every point** of the triangle with corners
+    /// `corners` to the mesh: the smallest, over the mesh's triangles `T`, of the largest
+    /// distance from a corner to `T`. The distance to a triangle is convex, so over the
+    /// triangle `corners` it is largest at a corner, and the distance to the mesh is at
+    /// most the distance to any one `T`. The descent stops at the first `T` whose bound is
+    /// at most `enough` (pass 0 for the smallest).
+    ///
+    /// Computed in floating point: callers that certify add their rounding slack.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let tree = TriangleTree::new(&shapes::cube(2.0, 2)?)?; // the cube [-1, 1]³
+    /// // A small triangle floating 0.5 above the top face, over one of its triangles.
+    /// let corners = [DVec3::new(0.75, -0.55, 1.5), DVec3::new(0.85, -0.55, 1.5), DVec3::new(0.8, -0.45, 1.5)];
+    /// assert!((tree.triangle_upper_bound(corners, 0.0)? - 0.5).abs() < 1e-12);
+    /// // A large one straddles several: no single triangle lies under it, the bound grows.
+    /// let large = [DVec3::new(-0.9, -0.9, 1.5), DVec3::new(0.9, -0.9, 1.5), DVec3::new(0.0, 0.9, 1.5)];
+    /// assert!(tree.triangle_upper_bound(large, 0.0)? > 0.6);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NonFiniteQuery`] if a corner has a NaN or infinite coordinate.
+    pub fn triangle_upper_bound(&self, corners: [DVec3; 3], enough: f64) -> Result<f64, MeshError> {
+        if let Some(p) = corners.iter().find(|p| !p.is_finite()) {
+            return Err(MeshError::NonFiniteQuery {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            });
+        }
+        let mut search = CornersBound {
+            corners: &self.corners,
+            x: corners,
+            best_squared: f64::INFINITY,
+            enough_squared: enough.max(0.0) * enough.max(0.0),
+        };
+        let key = |bounds: &Aabb| {
+            corners
+                .iter()
+                .map(|&p| bounds.distance_squared_to_point(p))
+                .fold(0.0_f64, f64::max)
+        };
+        self.boxes.search_nearest_first_by(key, &mut search);
+        Ok(search.best_squared.sqrt())
+    }
+
     /// The answer on the triangle at tree position `i`.
     fn answer_at(&self, i: usize, p: DVec3) -> ClosestPoint {
         let [a, b, c] = self.corners[i];
@@ -582,6 +633,46 @@ impl TreeCursor<'_> {
     #[must_use]
     pub fn shortcuts(&self) -> usize {
         self.shortcuts
+    }
+}
+
+/// The state of one [`TriangleTree::triangle_upper_bound`] descent.
+struct CornersBound<'a> {
+    corners: &'a [[DVec3; 3]],
+    x: [DVec3; 3],
+    best_squared: f64,
+    enough_squared: f64,
+}
+
+impl NearestFirst for CornersBound<'_> {
+    fn may_improve(&self, key: f64) -> bool {
+        key < self.best_squared
+    }
+
+    fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
+        for &[a, b, c] in &self.corners[positions] {
+            let bounds = Aabb::new(a.min(b).min(c), a.max(b).max(c));
+            if self
+                .x
+                .iter()
+                .any(|&p| bounds.distance_squared_to_point(p) >= self.best_squared)
+            {
+                continue;
+            }
+            let triangle = Triangle::new(a, b, c);
+            let mut worst = 0.0_f64;
+            for &p in &self.x {
+                worst = worst.max(point_triangle_distance_squared(p, &triangle));
+                if worst >= self.best_squared {
+                    break;
+                }
+            }
+            self.best_squared = self.best_squared.min(worst);
+            if self.best_squared <= self.enough_squared {
+                return ControlFlow::Break(());
+            }
+        }
+        ControlFlow::Continue(())
     }
 }
 

@@ -3,6 +3,7 @@
 use super::hierarchy::{self, Node};
 use super::point::{PolylinePoint, closest_on_segment};
 use super::session::{PolylineSession, PolylineSessionOptions};
+use super::tree::SegmentTree;
 use super::{PolylineClosest, PolylineFeature};
 use crate::SweepError;
 use crate::error::PolylineDefect;
@@ -51,6 +52,8 @@ pub struct Polyline<P> {
     vertex_count: usize,
     closed: bool,
     nodes: Vec<Node>,
+    /// The box tree over the segments, for exact and tolerance queries.
+    tree: SegmentTree<P>,
     diagonal: f64,
 }
 
@@ -175,11 +178,13 @@ impl<P: PolylinePoint> Polyline<P> {
             points.push(first);
         }
         let nodes = hierarchy::build(&points, scale);
+        let tree = SegmentTree::new(&points)?;
         Ok(Self {
             points,
             vertex_count: count,
             closed,
             nodes,
+            tree,
             diagonal,
         })
     }
@@ -220,9 +225,11 @@ impl<P: PolylinePoint> Polyline<P> {
         self.nodes.first().map_or(0.0, |n| n.error)
     }
 
-    /// Bytes held (points and hierarchy).
+    /// Bytes held (points, hierarchy and segment tree).
     pub fn memory_bytes(&self) -> usize {
-        self.points.capacity() * size_of::<P>() + self.nodes.capacity() * size_of::<Node>()
+        self.points.capacity() * size_of::<P>()
+            + self.nodes.capacity() * size_of::<Node>()
+            + self.tree.memory_bytes()
     }
 
     /// A query session with the default [`PolylineSessionOptions`].
@@ -233,6 +240,11 @@ impl<P: PolylinePoint> Polyline<P> {
     /// A query session with `options`.
     pub fn session_with(&self, options: &PolylineSessionOptions) -> PolylineSession<'_, P> {
         PolylineSession::new(self, *options)
+    }
+
+    /// The box tree over the segments.
+    pub(crate) fn tree(&self) -> &SegmentTree<P> {
+        &self.tree
     }
 
     /// The hierarchy (node 0 is the root).

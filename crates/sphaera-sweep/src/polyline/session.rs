@@ -36,6 +36,11 @@ pub struct PolylineSessionOptions {
     /// Reset before a query when the query point moved more than this many times the
     /// previous answer's distance (`f64::INFINITY`: never for motion).
     pub jump_factor: f64,
+    /// Answer [`PolylineSession::closest`] and [`PolylineSession::closest_within`] from
+    /// the polyline's box tree of segments (`true`, the default: the fastest) or by
+    /// refining the capsule hierarchy, the paper's way (`false`).
+    /// [`PolylineSession::closest_with_budget`] always refines the hierarchy.
+    pub exact_by_tree: bool,
 }
 
 impl Default for PolylineSessionOptions {
@@ -43,6 +48,7 @@ impl Default for PolylineSessionOptions {
         Self {
             max_front: 16_384,
             jump_factor: 1.0,
+            exact_by_tree: true,
         }
     }
 }
@@ -62,6 +68,14 @@ impl PolylineSessionOptions {
         self.jump_factor = factor;
         self
     }
+
+    /// With exact and tolerance queries answered by the segment tree (`true`) or the
+    /// paper's way (`false`).
+    #[must_use]
+    pub fn with_exact_by_tree(mut self, by_tree: bool) -> Self {
+        self.exact_by_tree = by_tree;
+        self
+    }
 }
 
 /// The exact answer of the last closest-point query and the radius around its query
@@ -71,6 +85,8 @@ struct SafeBall<P> {
     center: P,
     radius: f64,
     segment: usize,
+    /// The segment's position in the polyline's tree, when the tree answered.
+    position: Option<usize>,
 }
 
 /// Why the sweep stopped.
@@ -217,6 +233,27 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
             self.stats.distance_evaluations += 1;
             return Ok(answer);
         }
+        if self.options.exact_by_tree {
+            self.stats.tree_queries += 1;
+            // A finite query on a polyline (at least one segment) always finds one.
+            let seed = self.safe.and_then(|s| s.position);
+            let found = self
+                .polyline
+                .tree()
+                .search(p, None, seed)
+                .ok_or(SweepError::EmptyMesh)?;
+            let answer = self
+                .polyline
+                .closest_on(found.segment, p)
+                .ok_or(SweepError::EmptyMesh)?;
+            self.safe = Some(SafeBall {
+                center: p,
+                radius: (0.5 * (found.runner_up_squared.sqrt() - answer.distance)).max(0.0),
+                segment: answer.segment,
+                position: Some(found.position),
+            });
+            return Ok(answer);
+        }
         self.move_to(p);
         let Stop::Exact(leaf) = self.sweep(p, None, usize::MAX) else {
             // Unreachable: without a tolerance or a budget the sweep runs to a leaf.
@@ -231,6 +268,7 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
             center: p,
             radius: (0.5 * (second - answer.distance)).max(0.0),
             segment: answer.segment,
+            position: None,
         });
         Ok(answer)
     }
@@ -269,6 +307,31 @@ impl<'p, P: PolylinePoint> PolylineSession<'p, P> {
         tolerance: Tolerance,
     ) -> Result<PolylineBounds<P>, SweepError> {
         check_non_negative("tolerance", tolerance.value())?;
+        if self.options.exact_by_tree {
+            let p = check_query(p)?;
+            self.stats.queries += 1;
+            self.stats.tree_queries += 1;
+            let gap = |upper: f64| tolerance.allowed_gap(upper);
+            let found = self
+                .polyline
+                .tree()
+                .search(p, Some(&gap), None)
+                .ok_or(SweepError::EmptyMesh)?;
+            let upper = found.distance_squared.sqrt();
+            // Every other segment is at least this far.
+            let lower = found.runner_up_squared.sqrt().min(upper);
+            let closest = if lower >= upper {
+                self.polyline.closest_on(found.segment, p)
+            } else {
+                None
+            };
+            return Ok(PolylineBounds {
+                lower,
+                upper,
+                closest,
+                splits: 0,
+            });
+        }
         self.bounded(p, Some(tolerance), usize::MAX)
     }
 

@@ -12,7 +12,7 @@ use anyhow::{Context, Result, bail};
 use sphaera::hal::HalTree3;
 use sphaera::mesh::{Length, TriMesh};
 use sphaera::simplify::{SimplifyOptions, simplify};
-use sphaera::sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
+use sphaera::sweep::{HausdorffOptions, hausdorff};
 
 use super::{kept_width3, panels, style};
 use crate::chart::{
@@ -35,11 +35,9 @@ fn hollow(i: usize) -> Style {
 
 /// The certified symmetric Hausdorff distance between `a` and `b` (its upper end).
 fn certified_hausdorff(a: &TriMesh, b: &TriMesh) -> Result<f64> {
-    let (ha, hb) = (build_hierarchy(a)?, build_hierarchy(b)?);
-    let (sa, sb) = (Sweeper::new(&ha)?, Sweeper::new(&hb)?);
     let options =
         HausdorffOptions::default().with_tolerance(Length::RelativeToDiagonal(HAUSDORFF_TOLERANCE));
-    Ok(hausdorff(&sa, &sb, &options)?.upper)
+    Ok(hausdorff(a, b, &options)?.upper)
 }
 
 /// Writes `hal_vs_simplify.csv` and `.svg`.

@@ -40,7 +40,7 @@ use sphaera::silhouette::{
     ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage, silhouette_difference,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
-use sphaera::sweep::{HausdorffOptions, Sweeper, build_hierarchy, hausdorff};
+use sphaera::sweep::{HausdorffOptions, hausdorff};
 use sphaera_tests::random::SplitMix64;
 
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
@@ -279,8 +279,6 @@ fn object_errors(
     lod: &mut ViewDependent<'_>,
     directions: &[DVec3],
 ) -> Result<Vec<Vec<String>>> {
-    let original = build_hierarchy(mesh)?;
-    let original = Sweeper::new(&original)?;
     let diagonal = mesh.bounding_box_diagonal();
     let options = HausdorffOptions::default()
         .with_symmetric(false)
@@ -303,8 +301,7 @@ fn object_errors(
                 let part = region(&extraction, contour)?;
                 let (lower, upper) = match part {
                     Some(part) => {
-                        let h = build_hierarchy(&part)?;
-                        let h = hausdorff(&Sweeper::new(&h)?, &original, &options)?;
+                        let h = hausdorff(&part, mesh, &options)?;
                         (h.lower, h.upper)
                     }
                     None => (0.0, 0.0),
