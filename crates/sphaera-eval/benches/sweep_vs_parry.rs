@@ -29,7 +29,7 @@ use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh as ParryTriMesh, TriMeshFlags};
 use sphaera::{
     mesh::{DVec3, TriMesh, closest::TriangleTree, io, shapes},
-    sweep::{SessionOptions, Sweeper, build_hierarchy},
+    sweep::{SessionOptions, Sweeper, Tolerance, build_hierarchy},
 };
 use sphaera_eval::query_sets::query_sets;
 use sphaera_tests::hausdorff::DistanceToMesh;
@@ -94,6 +94,21 @@ fn sweep_vs_parry(c: &mut Criterion) {
                     });
                 });
             }
+            let one_percent = Tolerance::Absolute(0.01 * mesh.bounding_box_diagonal());
+            group.bench_function("sphaera_session_anytime_1%", |b| {
+                b.iter(|| {
+                    let mut session = sweeper.session();
+                    points
+                        .iter()
+                        .map(|&p| {
+                            session
+                                .closest_within(p, one_percent)
+                                .expect("finite")
+                                .upper
+                        })
+                        .sum::<f64>()
+                });
+            });
             group.bench_function("sphaera_triangle_tree", |b| {
                 b.iter(|| {
                     points
@@ -138,7 +153,9 @@ fn sweep_vs_parry(c: &mut Criterion) {
 /// A deforming mesh, frame by frame: every vertex moved by a smooth displacement field
 /// (amplitude 1 % of the diagonal, wavelength half the diagonal, its phase advancing each
 /// frame), then [`FRAME_QUERIES`] exact queries near the surface. Sphaera refits its
-/// tree to the new positions (`TriangleTree::refit`); parry refits its BVH
+/// tree to the new positions (`TriangleTree::refit`, on both cores), then answers one
+/// query at a time (`sphaera_tree_refit`), all on one thread (`_1_thread`), or in a batch
+/// on both cores (`_closest_many`); parry refits its BVH
 /// (`TriMesh::set_vertices` on a `DEFORMABLE` mesh), and also builds it anew. All pay for
 /// computing the positions.
 fn deforming(c: &mut Criterion, name: &str, mesh: &TriMesh) {
@@ -179,6 +196,37 @@ fn deforming(c: &mut Criterion, name: &str, mesh: &TriMesh) {
                 .iter()
                 .map(|&p| tree.closest(p).expect("finite").distance)
                 .sum::<f64>()
+        });
+    });
+    let mut frame = 0_u32;
+    group.bench_function("sphaera_tree_refit_closest_many", |b| {
+        b.iter(|| {
+            frame += 1;
+            tree.refit(&at_frame(frame))
+                .expect("one position per vertex");
+            tree.closest_many(&points)
+                .expect("finite")
+                .iter()
+                .map(|c| c.distance)
+                .sum::<f64>()
+        });
+    });
+    let one_thread = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("a pool");
+    let mut frame = 0_u32;
+    group.bench_function("sphaera_tree_refit_1_thread", |b| {
+        b.iter(|| {
+            frame += 1;
+            one_thread.install(|| {
+                tree.refit(&at_frame(frame))
+                    .expect("one position per vertex");
+                points
+                    .iter()
+                    .map(|&p| tree.closest(p).expect("finite").distance)
+                    .sum::<f64>()
+            })
         });
     });
     let mut frame = 0_u32;

@@ -165,16 +165,8 @@ impl BoxTree {
     /// assert_eq!(tree.nodes()[0].bounds, Aabb::new(DVec3::Y, DVec3::new(9.0, 1.0, 0.0)));
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
-    pub fn refit(&mut self, bounds: impl Fn(usize) -> Aabb) {
-        // Depth first: every child comes after its parent, so a backward pass sees the
-        // children first.
-        for n in (0..self.nodes.len()).rev() {
-            let node = self.nodes[n];
-            self.nodes[n].bounds = match node.right() {
-                None => node.items().fold(Aabb::EMPTY, |b, i| b.union(bounds(i))),
-                Some(right) => self.nodes[n + 1].bounds.union(self.nodes[right].bounds),
-            };
-        }
+    pub fn refit(&mut self, bounds: impl Fn(usize) -> Aabb + Sync) {
+        refit_subtree(&mut self.nodes, 0, &bounds);
     }
 
     /// The item indices in tree order: every node's items are a contiguous range of it.
@@ -304,6 +296,52 @@ impl BoxTree {
         }
     }
 }
+
+/// Refits the subtree whose nodes are `nodes` (depth first, so a subtree is a contiguous
+/// run: its root, its left subtree, its right subtree), the root being node `offset` of
+/// the tree; large subtrees refit their halves side by side with `parallel`.
+fn refit_subtree(nodes: &mut [BoxNode], offset: usize, bounds: &(impl Fn(usize) -> Aabb + Sync)) {
+    let Some((root, below)) = nodes.split_first_mut() else {
+        return;
+    };
+    let Some(right) = root.right() else {
+        root.bounds = root.items().fold(Aabb::EMPTY, |b, i| b.union(bounds(i)));
+        return;
+    };
+    // The right child's index within `below`.
+    let split = right - offset - 1;
+    let (left, right_nodes) = below.split_at_mut(split);
+    #[cfg(feature = "parallel")]
+    {
+        if below_len(left, right_nodes) >= PARALLEL_REFIT_NODES {
+            rayon::join(
+                || refit_subtree(left, offset + 1, bounds),
+                || refit_subtree(right_nodes, right, bounds),
+            );
+        } else {
+            refit_subtree(left, offset + 1, bounds);
+            refit_subtree(right_nodes, right, bounds);
+        }
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        refit_subtree(left, offset + 1, bounds);
+        refit_subtree(right_nodes, right, bounds);
+    }
+    if let (Some(l), Some(r)) = (left.first(), right_nodes.first()) {
+        root.bounds = l.bounds.union(r.bounds);
+    }
+}
+
+/// The nodes of both halves.
+#[cfg(feature = "parallel")]
+fn below_len(left: &[BoxNode], right: &[BoxNode]) -> usize {
+    left.len() + right.len()
+}
+
+/// Subtrees of at least this many nodes refit their halves side by side with `parallel`.
+#[cfg(feature = "parallel")]
+const PARALLEL_REFIT_NODES: usize = 2048;
 
 /// Subtrees over at least this many items build their two halves side by side with
 /// `parallel`; smaller ones are not worth a task.
@@ -492,6 +530,33 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_refit_gives_every_node_the_union_of_its_items_boxes() {
+        // Large enough for the parallel refit to split (over 2,048 nodes).
+        let centroids = points(20_000);
+        let items: Vec<(Aabb, DVec3)> = centroids.iter().map(|&c| (Aabb::new(c, c), c)).collect();
+        let mut tree = BoxTree::build(&items, 2).unwrap();
+        assert!(tree.nodes().len() > 8 * 2048);
+        let order = tree.order().to_vec();
+        let moved = |i: usize| {
+            let c = centroids[order[i] as usize];
+            let p = DVec3::new(c.y * 3.0 - 1.0, c.z * c.x, -c.x);
+            Aabb::new(p - 0.01, p + 0.02)
+        };
+        tree.refit(moved);
+        for (index, node) in tree.nodes().iter().enumerate() {
+            let expected = match node.right() {
+                None => node.items().fold(Aabb::EMPTY, |b, i| b.union(moved(i))),
+                Some(right) => tree.nodes()[index + 1]
+                    .bounds
+                    .union(tree.nodes()[right].bounds),
+            };
+            assert_eq!(node.bounds, expected, "node {index}");
+        }
+        let all = (0..order.len()).fold(Aabb::EMPTY, |b, i| b.union(moved(i)));
+        assert_eq!(tree.nodes()[0].bounds, all);
     }
 
     #[test]

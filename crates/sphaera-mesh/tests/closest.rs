@@ -166,6 +166,36 @@ proptest! {
             prop_assert_eq!(exact.nearest, tree.closest(p).expect("finite query"));
         }
     }
+
+    /// A cursor's approximate answers along a walk (seeded by the previous answer, mixed
+    /// with exact ones) are certified the same way.
+    #[test]
+    fn cursor_approximate_intervals_are_certified(
+        shape in 0..5_usize,
+        soup in soup(),
+        points in walk(),
+        absolute in 0.0..0.5_f64,
+        relative in 0.0..0.5_f64,
+    ) {
+        let mesh = if shape < 4 { shapes().swap_remove(shape) } else { soup };
+        let tree = TriangleTree::new(&mesh).expect("non-empty");
+        let gap = |upper: f64| absolute + relative * upper;
+        let mut cursor = tree.cursor();
+        for (i, &p) in points.iter().enumerate() {
+            let expected = brute::distance(&mesh, p);
+            let slack = 1e-12 * (1.0 + expected);
+            if i % 3 == 2 {
+                let answer = cursor.closest(p).expect("finite query");
+                prop_assert!(brute::close(answer.distance, expected));
+                continue;
+            }
+            let approx = cursor.closest_approx(p, &gap).expect("finite query");
+            prop_assert!(approx.lower <= expected + slack && expected <= approx.upper + slack,
+                "step {i}: {} <= {expected} <= {}", approx.lower, approx.upper);
+            prop_assert!(approx.upper - approx.lower <= gap(approx.upper) + slack);
+            prop_assert!(approx.nearest.distance.to_bits() == approx.upper.to_bits());
+        }
+    }
 }
 
 proptest! {

@@ -79,6 +79,38 @@ impl<'h> Refinement<'h> {
         }
     }
 
+    /// A placeholder that holds no state: no vertex present, no triangle live, nothing to
+    /// split. For a caller that creates the real state ([`Hierarchy::refinement`]) only
+    /// when it first needs it; it allocates nothing, where a real state costs a pass over
+    /// the collapses and four bytes per vertex and per collapse.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::shapes;
+    /// use sphaera_simplify::{Hierarchy, Refinement, SimplifyOptions};
+    ///
+    /// let hierarchy = Hierarchy::build(&shapes::sphere(1.0, 8)?, &SimplifyOptions::default())?;
+    /// let mut state = Refinement::placeholder(&hierarchy);
+    /// assert_eq!(state.live_triangle_count(), 0);
+    /// assert!(!state.is_present(0));
+    /// state = hierarchy.refinement();
+    /// assert!(state.live_triangle_count() > 0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn placeholder(hierarchy: &'h Hierarchy) -> Self {
+        Self {
+            hierarchy,
+            state: Vec::new(),
+            mark: Vec::new(),
+            generation: 0,
+            undone: Vec::new(),
+            live: 0,
+            scratch: Vec::new(),
+        }
+    }
+
     /// The base mesh.
     pub(crate) fn at_base(hierarchy: &'h Hierarchy) -> Self {
         Self::at_prefix(hierarchy, hierarchy.collapse_count())

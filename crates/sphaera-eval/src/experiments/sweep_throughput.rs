@@ -8,9 +8,11 @@
 //!   ([`TriangleTree::closest`]); its build is not timed (its time is in the CSV);
 //! - **tree cursor**: the same tree answering the points in order through one
 //!   [`TriangleTree::cursor`] (coherent on the `path` set);
-//! - **tree anytime 1 %**: the same tree's certified intervals at most 1 % of the diagonal
-//!   wide ([`TriangleTree::closest_approx`], what a session's `closest_within` uses by
-//!   default);
+//! - **tree anytime 1 %**: a default session's certified intervals at most 1 % of the
+//!   diagonal wide ([`Session::closest_within`](sphaera::sweep::Session::closest_within),
+//!   the documented entry point: the tree through the session's cursor,
+//!   [`TreeCursor::closest_approx`](sphaera::sweep::TreeCursor::closest_approx), seeded by
+//!   the previous answer);
 //! - **Meshsweeper session**: one session per query set answering the paper's way
 //!   ([`SessionOptions::with_exact_by_tree`]`(false)`), the points in order (so the
 //!   `path` set is coherent); the session's creation is timed, the hierarchy build
@@ -143,8 +145,9 @@ fn measure_mesh(
             })
         })?;
         let (tree_anytime_s, _) = min_time(runs.max(PARRY_RUNS), || {
+            let mut session = sweeper.session();
             points.iter().try_fold(0.0, |sum, &p| {
-                Ok::<f64, anyhow::Error>(sum + tree.closest_approx(p, &|_| gap)?.upper)
+                Ok::<f64, anyhow::Error>(sum + session.closest_within(p, tolerance)?.upper)
             })
         })?;
         let (cursor_s, cursor_sum) = min_time(runs.max(PARRY_RUNS), || {

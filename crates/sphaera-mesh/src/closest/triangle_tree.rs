@@ -127,7 +127,8 @@ impl TriangleTree {
     ///
     /// # Performance
     ///
-    /// Linear in the triangles; no allocation.
+    /// Linear in the triangles, on every core with the `parallel` feature (the same tree
+    /// either way); no allocation.
     pub fn refit(&mut self, positions: &[DVec3]) -> Result<(), MeshError> {
         if positions.len() != self.vertex_count {
             return Err(MeshError::VertexCountMismatch {
@@ -136,9 +137,20 @@ impl TriangleTree {
             });
         }
         crate::mesh::check_positions(positions)?;
-        for (corners, indices) in self.corners.iter_mut().zip(&self.vertices) {
+        let gather = |(corners, indices): (&mut [DVec3; 3], &[u32; 3])| {
             *corners = indices.map(|v| positions[v as usize]);
+        };
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            self.corners
+                .par_iter_mut()
+                .zip(self.vertices.par_iter())
+                .with_min_len(4096)
+                .for_each(gather);
         }
+        #[cfg(not(feature = "parallel"))]
+        self.corners.iter_mut().zip(&self.vertices).for_each(gather);
         let corners = &self.corners;
         self.boxes.refit(|i| Aabb::from_points(corners[i]));
         Ok(())
@@ -483,7 +495,12 @@ impl Search<'_> {
 
 impl NearestFirst for Search<'_> {
     fn may_improve(&self, distance_squared: f64) -> bool {
-        distance_squared <= self.limit_squared
+        // An approximate search needs boxes that can bring the distance *below* the best
+        // less the gap (one exactly there leaves the interval exactly as wide as allowed).
+        match self.gap {
+            None => distance_squared <= self.limit_squared,
+            Some(_) => distance_squared < self.limit_squared,
+        }
     }
 
     fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
@@ -508,6 +525,12 @@ impl NearestFirst for Search<'_> {
                     self.runner_up_squared = self.runner_up_squared.min(previous);
                 }
                 self.set_best(i, d);
+                if self.gap.is_some() && self.limit_squared <= 0.0 {
+                    // The best is within the gap of 0: `[0, best]` is narrow enough, and
+                    // nothing else needs a look (nor bounds the interval from below).
+                    self.runner_up_squared = 0.0;
+                    return ControlFlow::Break(());
+                }
             } else {
                 self.runner_up_squared = self.runner_up_squared.min(d);
             }
@@ -615,6 +638,104 @@ impl TreeCursor<'_> {
             runner_up,
         });
         Ok(answer)
+    }
+
+    /// A certified interval for the distance from `p` to the mesh, at most `gap(upper)`
+    /// wide, as [`TriangleTree::closest_approx`] gives, with the previous answer's
+    /// triangle as the starting bound: on a path of small steps, once the distance is
+    /// within the gap of 0 (or the previous triangle is still within the gap of the
+    /// best possible), most queries prune the whole tree at its root.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, closest::TriangleTree, shapes};
+    ///
+    /// let sphere = shapes::sphere(1.0, 32)?;
+    /// let tree = TriangleTree::new(&sphere)?;
+    /// let mut cursor = tree.cursor();
+    /// for i in 0..100 {
+    ///     let a = f64::from(i) * 1e-3;
+    ///     let p = DVec3::new(1.5 * a.cos(), 1.5 * a.sin(), 0.2);
+    ///     let approx = cursor.closest_approx(p, &|_| 0.01)?;
+    ///     let exact = tree.closest(p)?.distance;
+    ///     assert!(approx.lower <= exact && exact <= approx.upper);
+    ///     assert!(approx.upper - approx.lower <= 0.01);
+    /// }
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
+    pub fn closest_approx(
+        &mut self,
+        p: DVec3,
+        gap: &dyn Fn(f64) -> f64,
+    ) -> Result<ApproxClosest, MeshError> {
+        if !p.is_finite() {
+            return Err(MeshError::NonFiniteQuery {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            });
+        }
+        self.queries += 1;
+        let tree = self.tree;
+        // After a small step, a search asks for half the gap: that leaves room for the
+        // next queries' shortcut below (a jump would not use it, and a search for half
+        // the gap costs more).
+        let half = |upper: f64| 0.5 * gap(upper);
+        let search = match self.last {
+            Some(last) => {
+                let [a, b, c] = tree.corners[last.position];
+                let bound = point_triangle_distance_squared(p, &Triangle::new(a, b, c));
+                // Every other triangle is at least `others` from `p`: if that is within
+                // the gap of the previous triangle's distance, the interval between them
+                // is narrow enough without a search.
+                let moved = (p - last.query).length();
+                let others = last.runner_up - moved;
+                let upper = bound.sqrt();
+                if others >= upper - gap(upper) {
+                    self.shortcuts += 1;
+                    self.last = Some(Last {
+                        query: p,
+                        position: last.position,
+                        runner_up: others,
+                    });
+                    let nearest = tree.answer_at(last.position, p);
+                    return Ok(ApproxClosest {
+                        lower: others.max(0.0).min(nearest.distance),
+                        upper: nearest.distance,
+                        nearest,
+                    });
+                }
+                if moved < 0.25 * gap(upper) {
+                    tree.search(p, bound, Some(last.position), Some(&half))
+                } else {
+                    tree.search(p, bound, Some(last.position), Some(gap))
+                }
+            }
+            None => tree.search(p, f64::INFINITY, None, Some(gap)),
+        };
+        // A finite query on a non-empty tree always finds a triangle (invariant).
+        let Some((position, _)) = search.best else {
+            return Err(MeshError::EmptyMesh);
+        };
+        let nearest = tree.answer_at(position, p);
+        let runner_up = search.runner_up_squared.sqrt();
+        // Every other triangle is at least `runner_up` away, so the exact shortcut of
+        // the next query may use it too.
+        self.last = Some(Last {
+            query: p,
+            position,
+            runner_up,
+        });
+        Ok(ApproxClosest {
+            lower: runner_up.min(nearest.distance),
+            upper: nearest.distance,
+            nearest,
+        })
     }
 
     /// The tree this cursor walks.

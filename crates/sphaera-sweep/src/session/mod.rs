@@ -225,7 +225,6 @@ impl<'s> Session<'s> {
     pub(crate) fn new(sweeper: &'s Sweeper<'s>, options: SessionOptions) -> Self {
         let hierarchy = sweeper.hierarchy();
         let warm = sweeper.warm_start();
-        let refinement = hierarchy.refinement();
         let mut session = Self {
             hierarchy,
             base: sweeper.base_triangles(),
@@ -236,8 +235,10 @@ impl<'s> Session<'s> {
             triangles: hierarchy.triangle_count() as u32,
             diagonal: sweeper.diagonal(),
             options,
-            refinement,
-            queue: Queue::new(hierarchy.triangle_count() + warm.node_count()),
+            // The hierarchy's state is made when a query first needs it (`warm_up`): a
+            // session the tree answers never pays for it.
+            refinement: Refinement::placeholder(hierarchy),
+            queue: Queue::new(0),
             query: None,
             keys: ShiftedKeys::default(),
             best_upper: f64::INFINITY,
@@ -246,11 +247,11 @@ impl<'s> Session<'s> {
             stats: SessionStats::default(),
             undone: Vec::new(),
             touched: Vec::new(),
-            touched_at: vec![u32::MAX; hierarchy.triangle_count()],
+            touched_at: Vec::new(),
             mark: 0,
             pose: Pose::IDENTITY,
             shape: None,
-            bounds: bounding_box(hierarchy.positions()),
+            bounds: (DVec3::ZERO, DVec3::ZERO),
             cursor: options.exact_by_tree.then(|| {
                 let (tree, ids) = sweeper.finest();
                 (tree.cursor(), ids)
@@ -262,14 +263,19 @@ impl<'s> Session<'s> {
         session
     }
 
-    /// Refines to the sweeper's warm start, once: every query that uses the hierarchy
-    /// needs it, and a session that only answers exact queries from the tree never pays
-    /// for it.
+    /// Makes the hierarchy's state (the base mesh, the queue's slots, the mesh's bounds)
+    /// and refines to the sweeper's warm start, once: every query that uses the hierarchy
+    /// needs it, and a session that only answers from the tree never pays for it.
     pub(crate) fn warm_up(&mut self) {
         if self.warmed {
             return;
         }
         self.warmed = true;
+        let triangles = self.hierarchy.triangle_count();
+        self.refinement = self.hierarchy.refinement();
+        self.queue = Queue::new(triangles + self.warm.node_count());
+        self.touched_at = vec![u32::MAX; triangles];
+        self.bounds = bounding_box(self.hierarchy.positions());
         let mut undone = Vec::new();
         for &c in self.warm.collapses() {
             // The warm start's collapses are valid and in a valid order (invariant);
@@ -359,7 +365,7 @@ impl<'s> Session<'s> {
     ) -> Result<DistanceBounds, SweepError> {
         check_non_negative("tolerance", tolerance.value())?;
         if self.shape.is_none()
-            && let Some((cursor, ids)) = &self.cursor
+            && let Some((cursor, ids)) = &mut self.cursor
         {
             let local = self.pose.to_local(check_point(p)?);
             self.stats.queries += 1;
@@ -367,7 +373,6 @@ impl<'s> Session<'s> {
             let gap = |upper: f64| tolerance.allowed_gap(upper);
             // The point is finite and the tree non-empty, so the tree answers.
             let approx = cursor
-                .tree()
                 .closest_approx(local, &gap)
                 .map_err(|_| SweepError::EmptyMesh)?;
             // Exact when the interval closed (lower never exceeds upper).
@@ -450,15 +455,21 @@ impl<'s> Session<'s> {
         self.stats
     }
 
-    /// Live triangles of the refined mesh now.
+    /// Live triangles of the refined mesh now (0 until a query first needs the
+    /// hierarchy: a session the tree answers never refines).
     pub fn live_triangle_count(&self) -> usize {
         self.refinement.live_triangle_count()
     }
 
-    /// Bytes of this session's own state (the refinement and the queue; the hierarchy's
-    /// tables are shared).
+    /// Bytes of this session's own state (the refinement and the queue, once a query
+    /// needed the hierarchy; the hierarchy's tables are shared).
     pub fn memory_bytes(&self) -> usize {
-        4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
+        let state = if self.warmed {
+            4 * (self.hierarchy.vertex_count() + self.hierarchy.collapse_count())
+        } else {
+            0
+        };
+        state
             + 4 * self.refinement.undone_count()
             + self.queue.bytes()
             + self.shape.as_ref().map_or(0, DeformedShape::bytes)
