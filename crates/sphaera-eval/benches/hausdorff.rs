@@ -25,12 +25,7 @@
 // The bench reports the brackets, the peer's and the extrapolation factor on the terminal.
 #![allow(clippy::print_stderr)]
 
-use std::{
-    hint::black_box,
-    path::{Path, PathBuf},
-    process::Command,
-    time::Duration,
-};
+use std::{hint::black_box, path::Path, time::Duration};
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -43,7 +38,10 @@ use sphaera::{
         meshsweeper_hausdorff,
     },
 };
-use sphaera_eval::brute::{naive_hausdorff, referenced_vertices};
+use sphaera_eval::{
+    brute::{naive_hausdorff, referenced_vertices},
+    peers::{cub_python, run_cub},
+};
 
 /// The bunny pair, in `shared/data`.
 const PAIR: (&str, &str) = ("stanford-bunny.obj", "stanford-bunny-qem15.obj");
@@ -99,7 +97,7 @@ fn bunny(c: &mut Criterion) {
         bench.iter(|| hausdorff(black_box(&a), black_box(&b), &options()).expect("valid"));
     });
 
-    if let Some(python) = cub_python() {
+    if let Some(python) = cub_python("hausdorff bench") {
         group.bench_function("cascading_upper_bounds", |bench| {
             bench.iter_custom(|iters| cub_seconds(&python, &path_a, &path_b, iters));
         });
@@ -177,52 +175,15 @@ fn dragon(c: &mut Criterion) {
     group.finish();
 }
 
-/// The Python interpreter with `cascading_upper_bounds`, or `None` (said on the terminal).
-fn cub_python() -> Option<PathBuf> {
-    let python =
-        std::env::var_os("SPHAERA_CUB_PYTHON").map_or_else(|| "python3".into(), PathBuf::from);
-    let works = Command::new(&python)
-        .args(["-c", "import cascading_upper_bounds"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if works {
-        Some(python)
-    } else {
-        eprintln!(
-            "hausdorff bench: skipped cascading_upper_bounds: `{}` cannot import it \
-             (`python3 -m venv env && env/bin/pip install cascading_upper_bounds numpy`, \
-             then SPHAERA_CUB_PYTHON=env/bin/python)",
-            python.display()
-        );
-        None
-    }
-}
-
 /// The peer's seconds over `runs` runs of both directions, as the script reports them.
 fn cub_seconds(python: &Path, a: &Path, b: &Path, runs: u64) -> Duration {
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("peers/cub_hausdorff.py");
-    let output = Command::new(python)
-        .arg(script)
-        .arg(a)
-        .arg(b)
-        .arg(TOLERANCE.to_string())
-        .arg(runs.to_string())
-        .output()
-        .expect("the script runs");
-    assert!(
-        output.status.success(),
-        "cub_hausdorff.py failed: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
     let mut total = 0.0;
-    for line in String::from_utf8_lossy(&output.stdout).lines() {
-        let run: serde_json::Value = serde_json::from_str(line).expect("one JSON line per run");
-        total += run["seconds"].as_f64().expect("seconds");
+    for run in run_cub(python, a, b, TOLERANCE, runs).expect("cub_hausdorff.py runs") {
+        total += run.seconds;
         if !PEER_REPORTED.swap(true, Ordering::Relaxed) {
             eprintln!(
                 "hausdorff bench: cascading_upper_bounds: H in [{:.8e}, {:.8e}]",
-                run["lower"].as_f64().unwrap_or(f64::NAN),
-                run["upper"].as_f64().unwrap_or(f64::NAN)
+                run.lower, run.upper
             );
         }
     }

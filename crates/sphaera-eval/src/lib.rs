@@ -33,6 +33,8 @@
 //!   `simplify_error_vs_time` experiment, the `simplify_vs_meshopt` bench);
 //! - [`query_sets`]: the seeded closest-point query sets and their generator (the
 //!   `sweep_throughput` experiment, the `sweep_vs_parry` and `polyline_vs_parry` benches);
+//! - [`peers`]: peers run as child processes, today cascading-upper-bounds in Python (the
+//!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench);
 //! - [`chart`]: SVG charts (plotters) and the CSV written beside each (every experiment);
 //! - [`experiments`]: one private module per experiment, with [`experiments::NAMES`] and
 //!   [`experiments::run`] (the binary).
@@ -64,4 +66,5 @@ pub mod brute;
 pub mod chart;
 pub mod experiments;
 pub mod methods;
+pub mod peers;
 pub mod query_sets;

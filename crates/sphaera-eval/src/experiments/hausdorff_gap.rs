@@ -26,8 +26,7 @@
 //! Distances and gaps are relative to the joint diagonal. By design this chart covers only
 //! the first meshes of [`PAIRS`]; `cargo xtask charts --check` checks them.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use sphaera::{
@@ -37,8 +36,11 @@ use sphaera::{
 };
 
 use super::{load_mesh, load_or_skip, min_time};
-use crate::brute::naive_hausdorff;
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
+use crate::{
+    brute::naive_hausdorff,
+    peers::{CubRun, cub_python, run_cub},
+};
 
 /// The experiment's name: its files are `hausdorff_gap_vs_time.{svg,csv}`.
 pub const NAME: &str = "hausdorff_gap_vs_time";
@@ -82,7 +84,7 @@ struct Row {
 
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let mut rows = Vec::new();
-    let python = peer_python();
+    let python = cub_python(NAME);
     for &(file, label, other) in PAIRS {
         let Some(a) = load_or_skip(data, file)? else {
             continue;
@@ -175,24 +177,6 @@ fn measure_pair(
     Ok(())
 }
 
-/// The Python interpreter that imports `cascading_upper_bounds`, or `None` (said).
-fn peer_python() -> Option<PathBuf> {
-    let python =
-        std::env::var_os("SPHAERA_CUB_PYTHON").map_or_else(|| "python3".into(), PathBuf::from);
-    let works = Command::new(&python)
-        .args(["-c", "import cascading_upper_bounds"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !works {
-        eprintln!(
-            "{NAME}: cascading-upper-bounds skipped: `{}` cannot import it (pip install \
-             cascading_upper_bounds numpy, then SPHAERA_CUB_PYTHON=<that python>)",
-            python.display()
-        );
-    }
-    works.then_some(python)
-}
-
 /// The peer at [`PEER_TOLERANCES`] (meshes written to temporary OBJ files, without the
 /// vertices no triangle uses).
 fn measure_peer(
@@ -207,33 +191,16 @@ fn measure_peer(
     let (path_a, path_b) = (folder.join("a.obj"), folder.join("b.obj"));
     io::write_obj(&path_a, a)?;
     io::write_obj(&path_b, b)?;
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("peers/cub_hausdorff.py");
     for &tolerance in PEER_TOLERANCES {
-        let output = Command::new(python)
-            .arg(&script)
-            .arg(&path_a)
-            .arg(&path_b)
-            .arg(tolerance.to_string())
-            .arg(RUNS.to_string())
-            .output()
-            .context("cannot run cub_hausdorff.py")?;
-        if !output.status.success() {
-            bail!(
-                "cub_hausdorff.py failed: {}",
-                String::from_utf8_lossy(&output.stderr)
-            );
-        }
+        let runs = run_cub(python, &path_a, &path_b, tolerance, RUNS as u64)?;
         let diagonal = a.bounding_box().union(b.bounding_box()).diagonal();
-        let mut best: Option<(f64, f64, f64)> = None;
-        for line in String::from_utf8_lossy(&output.stdout).lines() {
-            let run: serde_json::Value = serde_json::from_str(line)?;
-            let field = |k: &str| run[k].as_f64().unwrap_or(f64::NAN);
-            let (seconds, lower, upper) = (field("seconds"), field("lower"), field("upper"));
-            if best.is_none_or(|(s, _, _)| seconds < s) {
-                best = Some((seconds, lower, upper));
-            }
-        }
-        let Some((seconds, lower, upper)) = best else {
+        let best = runs.iter().min_by(|x, y| x.seconds.total_cmp(&y.seconds));
+        let Some(&CubRun {
+            seconds,
+            lower,
+            upper,
+        }) = best
+        else {
             bail!("cub_hausdorff.py printed no run");
         };
         rows.push(Row {
