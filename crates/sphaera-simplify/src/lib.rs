@@ -156,6 +156,6 @@ pub use error::SimplifyError;
 pub use hierarchy::{Hierarchy, MemoryUse};
 pub use refine::Refinement;
 pub use simplifier::{
-    LockReport, Placement, Simplified, SimplifyOptions, SimplifyProgress, simplify,
+    LockReport, Order, Placement, Simplified, SimplifyOptions, SimplifyProgress, simplify,
     simplify_with_progress,
 };

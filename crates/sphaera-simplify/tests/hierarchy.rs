@@ -13,7 +13,7 @@ use common::{SLACK, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
 use sphaera_simplify::{
-    Hierarchy, Placement, Refinement, Simplified, SimplifyError, SimplifyOptions, simplify,
+    Hierarchy, Order, Placement, Refinement, Simplified, SimplifyError, SimplifyOptions, simplify,
 };
 
 fn check_invariants(original: &TriMesh, out: &Simplified, seed: u64) {
@@ -85,9 +85,11 @@ proptest! {
         resolution in 4usize..10,
         ratio in 0.05f64..0.9,
         lock_boundary: bool,
+        batched: bool,
     ) {
         let mesh = shape(kind, resolution);
-        let options = SimplifyOptions::default().with_lock_boundary(lock_boundary);
+        let order = if batched { Order::Batched } else { Order::Strict };
+        let options = SimplifyOptions::default().with_lock_boundary(lock_boundary).with_order(order);
         let hierarchy = Hierarchy::build(&mesh, &options).unwrap();
         prop_assert_eq!(hierarchy.base(), simplify(&mesh, &options).unwrap());
         let n = (ratio * mesh.triangle_count() as f64) as usize;

@@ -8,7 +8,7 @@ mod common;
 use common::{SLACK, grid, original_samples, shape, worst_containment, worst_coverage};
 use proptest::prelude::*;
 use sphaera_mesh::{TriMesh, shapes};
-use sphaera_simplify::{Placement, Simplified, SimplifyOptions, simplify};
+use sphaera_simplify::{Order, Placement, Simplified, SimplifyOptions, simplify};
 
 fn check_both(original: &TriMesh, out: &Simplified, samples: usize, seed: u64) {
     let xs = original_samples(original, samples, seed);
@@ -42,11 +42,13 @@ proptest! {
         ratio in 0.05f64..0.9,
         lock_boundary: bool,
         optimal: bool,
+        batched: bool,
         seed in 0u64..1000,
     ) {
         let mesh = shape(kind, resolution);
         let placement = if optimal { Placement::Optimal } else { Placement::Subset };
-        let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(ratio).with_lock_boundary(lock_boundary).with_placement(placement))
+        let order = if batched { Order::Batched } else { Order::Strict };
+        let out = simplify(&mesh, &SimplifyOptions::default().with_target_ratio(ratio).with_lock_boundary(lock_boundary).with_placement(placement).with_order(order))
             .unwrap();
         check_both(&mesh, &out, 300, seed);
     }

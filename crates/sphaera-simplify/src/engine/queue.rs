@@ -12,24 +12,37 @@ use std::cmp::Reverse;
 use sphaera_mesh::heap::{HeapItem, IndexedHeap, Priority, TotalF64};
 use sphaera_mesh::topology::HalfEdgeId;
 
+/// A vertex's cheapest collapse when it was evaluated.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Entry {
+    /// The queue key: the radius over the vertex's tolerance weight.
+    pub key: f64,
+    /// The radius the kept vertex gets.
+    pub radius: f64,
+    /// The collapse.
+    pub halfedge: HalfEdgeId,
+    /// Whether its topology was checked when it was evaluated (see
+    /// [`Topology`](super::Topology)).
+    pub checked: bool,
+}
+
 /// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Candidate {
-    pub cost: f64,
     pub vertex: u32,
-    pub halfedge: u32,
+    pub entry: Entry,
 }
 
 impl Priority for Candidate {
     type Key = (Reverse<TotalF64>, Reverse<u32>, Reverse<u32>);
 
-    /// The queue order: the lowest cost first, then the lowest vertex (total and
+    /// The queue order: the lowest key first, then the lowest vertex (total and
     /// deterministic; the half-edge never decides, as vertices are unique).
     fn priority(&self) -> Self::Key {
         (
-            Reverse(TotalF64(self.cost)),
+            Reverse(TotalF64(self.entry.key)),
             Reverse(self.vertex),
-            Reverse(self.halfedge),
+            Reverse(self.entry.halfedge.0),
         )
     }
 }
@@ -48,12 +61,11 @@ pub(super) struct Queue {
 
 impl Queue {
     /// The queue holding `initial[u]` for every vertex `u`.
-    pub(super) fn new(initial: &[Option<(f64, HalfEdgeId)>]) -> Self {
+    pub(super) fn new(initial: &[Option<Entry>]) -> Self {
         let items = initial.iter().enumerate().filter_map(|(u, c)| {
-            c.map(|(cost, h)| Candidate {
-                cost,
+            c.map(|entry| Candidate {
                 vertex: u as u32,
-                halfedge: h.0,
+                entry,
             })
         });
         Self {
@@ -62,8 +74,13 @@ impl Queue {
     }
 
     /// The current candidate of vertex `u`.
-    pub(super) fn get(&self, u: u32) -> Option<(f64, HalfEdgeId)> {
-        self.heap.get(u).map(|c| (c.cost, HalfEdgeId(c.halfedge)))
+    pub(super) fn get(&self, u: u32) -> Option<Entry> {
+        self.heap.get(u).map(|c| c.entry)
+    }
+
+    /// The first candidate, left in place.
+    pub(super) fn first(&self) -> Option<Candidate> {
+        self.heap.first().copied()
     }
 
     /// Removes and returns the first candidate.
@@ -71,17 +88,13 @@ impl Queue {
         self.heap.pop()
     }
 
-    /// Makes `candidate` the current candidate of vertex `u` (`None` removes it).
-    pub(super) fn set(&mut self, u: u32, candidate: Option<(f64, HalfEdgeId)>) {
-        match candidate {
+    /// Makes `entry` the current candidate of vertex `u` (`None` removes it).
+    pub(super) fn set(&mut self, u: u32, entry: Option<Entry>) {
+        match entry {
             None => {
                 self.heap.remove(u);
             }
-            Some((cost, h)) => self.heap.set(Candidate {
-                cost,
-                vertex: u,
-                halfedge: h.0,
-            }),
+            Some(entry) => self.heap.set(Candidate { vertex: u, entry }),
         }
     }
 }
@@ -95,10 +108,16 @@ mod tests {
     fn pops_like_a_sorted_list_of_current_candidates() {
         let n = 200_u32;
         let mut rng = Lcg64::new(7);
-        let initial: Vec<Option<(f64, HalfEdgeId)>> = (0..n)
+        let entry = |key: f64, h: u64| Entry {
+            key,
+            radius: key,
+            halfedge: HalfEdgeId(h as u32),
+            checked: true,
+        };
+        let initial: Vec<Option<Entry>> = (0..n)
             .map(|_| {
                 let r = rng.next_high31();
-                (!r.is_multiple_of(5)).then_some(((r % 17) as f64, HalfEdgeId((r % 1000) as u32)))
+                (!r.is_multiple_of(5)).then_some(entry((r % 17) as f64, r % 1000))
             })
             .collect();
         let mut queue = Queue::new(&initial);
@@ -110,16 +129,17 @@ mod tests {
                 let expected = model
                     .iter()
                     .enumerate()
-                    .filter_map(|(v, c)| c.map(|(cost, h)| (cost, v as u32, h.0)))
+                    .filter_map(|(v, c)| c.map(|e| (e.key, v as u32, e.halfedge.0)))
                     .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                let got = queue.pop().map(|c| (c.cost, c.vertex, c.halfedge));
+                let got = queue
+                    .pop()
+                    .map(|c| (c.entry.key, c.vertex, c.entry.halfedge.0));
                 assert_eq!(got, expected);
                 if let Some((_, v, _)) = expected {
                     model[v as usize] = None;
                 }
             } else {
-                let c = (!r.is_multiple_of(4))
-                    .then_some(((r % 13) as f64, HalfEdgeId((r % 77) as u32)));
+                let c = (!r.is_multiple_of(4)).then_some(entry((r % 13) as f64, r % 77));
                 queue.set(u, c);
                 model[u as usize] = c;
             }
