@@ -86,14 +86,19 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 }
 
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
-/// `tests/`, and the doctests (all run by `cargo test`); then the mesh, medial and
-/// sphere-tree crates again without their default `parallel` feature, whose results must
-/// be identical (the medial and sphere-tree tests compare digests of their spheres with
-/// the same recorded values both ways),
+/// `tests/`, and the doctests (all run by `cargo test`); then the mesh, simplification,
+/// medial and sphere-tree crates again without their default `parallel` feature, whose
+/// results must be identical (their tests compare digests of their results with the same
+/// recorded values both ways),
 /// and the sphere-tree's export and awkward-mesh tests with its optional `parry` feature.
 fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
-    for crate_name in ["sphaera-mesh", "sphaera-medial", "sphaera-spheretree"] {
+    for crate_name in [
+        "sphaera-mesh",
+        "sphaera-simplify",
+        "sphaera-medial",
+        "sphaera-spheretree",
+    ] {
         cargo(&[
             "test",
             "--locked",

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum, builder::PossibleValue};
 use sphaera::mesh::Length;
-use sphaera::simplify::Placement;
+use sphaera::simplify::{Order, Placement};
 use sphaera::spheretree::Method;
 
 /// Hierarchical sphere-based approximation of triangle meshes.
@@ -147,6 +147,37 @@ pub enum HausdorffEngineArg {
     Trees,
     /// `sphaera_sweep::meshsweeper_hausdorff`: the paper's engine on hierarchies.
     Meshsweeper,
+}
+
+/// `--order`: the simplifier's collapse order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OrderArg {
+    /// Strict below 32,768 vertices, batched above.
+    Auto,
+    /// The greedy order: the smallest radius first, always (one core).
+    Strict,
+    /// Stale candidates re-evaluated in batches on every core (faster on large meshes).
+    Batched,
+}
+
+impl OrderArg {
+    /// The simplifier's order.
+    pub fn order(self) -> Order {
+        match self {
+            Self::Auto => Order::Auto,
+            Self::Strict => Order::Strict,
+            Self::Batched => Order::Batched,
+        }
+    }
+
+    /// The name on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Strict => "strict",
+            Self::Batched => "batched",
+        }
+    }
 }
 
 /// `--contours`: which silhouettes labels measure from.
@@ -493,6 +524,10 @@ pub struct SimplifyArgs {
     /// Where the kept vertex of each collapse goes.
     #[arg(long, value_enum, default_value = PLACEMENTS[0].0)]
     pub placement: PlacementArg,
+
+    /// In which order collapses are applied (the bound is certified with each).
+    #[arg(long, value_enum, default_value_t = OrderArg::Auto)]
+    pub order: OrderArg,
 
     /// After simplifying, also measure the symmetric Hausdorff distance between input and
     /// output: the largest distance from every vertex, edge midpoint and 100,000 random

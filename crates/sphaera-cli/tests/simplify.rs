@@ -95,7 +95,10 @@ fn simplify_text_output_names_the_placement_and_the_measurement() {
     let output = sphaera(&["simplify", "--ratio", "0.5", "--measure", "--quiet"]);
     assert!(output.status.success());
     let text = String::from_utf8_lossy(&output.stdout);
-    assert!(text.contains("placement       subset"), "{text}");
+    assert!(
+        text.contains("placement       subset (order auto)"),
+        "{text}"
+    );
     assert!(text.contains("sampled lower bound"), "{text}");
     assert!(text.contains("s to measure"), "{text}");
     // Not a terminal: no progress bar on stderr.
@@ -114,4 +117,37 @@ fn simplify_rejects_an_unknown_placement_and_lists_the_known_ones() {
     assert!(message.contains("--placement"), "{message}");
     assert!(message.contains("centroid"), "{message}");
     assert!(message.contains("subset"), "{message}");
+}
+
+#[test]
+fn simplify_order_is_reported_and_both_orders_certify_their_bound() {
+    let auto = json(&sphaera(&["simplify", "--ratio", "0.2", "--json"]));
+    assert_eq!(auto["order"], "auto");
+    for order in ["strict", "batched"] {
+        let report = json(&sphaera(&[
+            "simplify",
+            "--ratio",
+            "0.2",
+            "--order",
+            order,
+            "--measure",
+            "--json",
+        ]));
+        assert_eq!(report["order"], order);
+        let bound = report["error_bound"].as_f64().unwrap();
+        let measured = report["measured_hausdorff"].as_f64().unwrap();
+        assert!(
+            measured <= bound * (1.0 + 1e-9),
+            "{order}: {measured} > {bound}"
+        );
+    }
+    // The embedded bunny is small: auto takes the strict order.
+    let strict = json(&sphaera(&[
+        "simplify", "--ratio", "0.2", "--order", "strict", "--json",
+    ]));
+    assert_eq!(auto["error_bound"], strict["error_bound"]);
+    let output = sphaera(&["simplify", "--order", "sideways"]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("batched"), "{message}");
 }

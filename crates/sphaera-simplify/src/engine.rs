@@ -44,7 +44,7 @@ use crate::simplifier::{LockReport, SimplifyProgress};
 use crate::spheres::{BoundaryPolicy, Fan, collapse_radius, edge_radius, simple_map_radius};
 use crate::weights::Weights;
 use glam::DVec3;
-use queue::{Candidate, Entry, Queue};
+use queue::{Entry, Queue};
 
 /// When to stop.
 #[derive(Clone, Copy, Debug)]
@@ -368,6 +368,18 @@ impl Stale {
         }
     }
 
+    /// Puts every waiting vertex into the next batch; `false` if there was none.
+    fn batch_waiting(&mut self) -> bool {
+        let before = self.list.len();
+        for (u, s) in self.state.iter_mut().enumerate() {
+            if *s == Staleness::Waiting {
+                *s = Staleness::Batched;
+                self.list.push(u as u32);
+            }
+        }
+        self.list.len() > before
+    }
+
     fn contains(&self, u: u32) -> bool {
         self.state
             .get(u as usize)
@@ -448,6 +460,9 @@ pub(crate) fn run(
     ));
     drop(all);
     let mut stale = Stale::new(n);
+    // Whether stale vertices far behind the front may wait (batched order, until the
+    // error bound is reached).
+    let mut lazy = !strict;
     let mut fan = Fan::empty();
 
     let mut collapses = 0;
@@ -472,16 +487,23 @@ pub(crate) fn run(
         // or the queue ends or passes the bound, the batch of stale vertices is
         // re-evaluated (on every core).
         let top = queue.first();
-        let front_is_stale = top.is_some_and(|t| stale.contains(t.vertex));
-        if top.is_none_or(|t| front_is_stale || t.entry.key > stop.max_radius) {
+        let front_is_stale = top.is_some_and(|(t, _)| stale.contains(t));
+        if top.is_none_or(|(_, key)| front_is_stale || key > stop.max_radius) {
             if stale.list.is_empty() && !front_is_stale {
-                break;
+                // At the error bound (or out of candidates): the waiting vertices are
+                // re-evaluated first, then no vertex waits any more, so that none is
+                // left out by its stale key.
+                if lazy && stale.batch_waiting() {
+                    lazy = false;
+                } else {
+                    break;
+                }
             }
-            let front = top.map(|t| t.vertex).filter(|_| front_is_stale);
+            let front = top.map(|(t, _)| t).filter(|_| front_is_stale);
             stale.refresh(front, &mut queue, &mesh, &radii, policy);
             continue;
         }
-        let Some(Candidate { vertex, entry }) = queue.pop() else {
+        let Some((vertex, entry)) = queue.pop() else {
             break;
         };
         let u = VertexId(vertex);
@@ -535,10 +557,10 @@ pub(crate) fn run(
         }
         // v and its neighbours are out of date (u is gone, and popping it unqueued it);
         // those far behind the front wait until they reach it.
-        let front = queue.first().map_or(f64::INFINITY, |c| c.entry.key);
+        let front = queue.first().map_or(f64::INFINITY, |(_, key)| key);
         stale.mark(v, true);
         for x in mesh.neighbors(v) {
-            let far = !strict && queue.get(x.0).is_some_and(|e| e.key > LAZY_FACTOR * front);
+            let far = lazy && queue.get(x.0).is_some_and(|e| e.key > LAZY_FACTOR * front);
             stale.mark(x, !far);
         }
         if strict {

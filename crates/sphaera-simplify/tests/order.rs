@@ -80,3 +80,59 @@ fn both_orders_reach_the_target_with_a_comparable_bound() {
         batched.error_bound
     );
 }
+
+/// FNV-1a over the output's positions, triangles and radii (bit patterns).
+fn digest(out: &sphaera_simplify::Simplified) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |x: u64| {
+        for byte in x.to_le_bytes() {
+            h = (h ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    for p in out.mesh.positions() {
+        for c in p.to_array() {
+            eat(c.to_bits());
+        }
+    }
+    for t in out.mesh.triangles() {
+        for &i in t {
+            eat(u64::from(i));
+        }
+    }
+    for r in &out.vertex_radii {
+        eat(r.to_bits());
+    }
+    h
+}
+
+#[test]
+fn batched_result_is_the_same_with_and_without_the_parallel_feature() {
+    // `cargo xtask test` runs this crate's tests with and without `parallel`; both must
+    // give the recorded digest.
+    let out = simplify(
+        &bumpy_sphere(),
+        &SimplifyOptions::default()
+            .with_target_ratio(0.1)
+            .with_order(Order::Batched),
+    )
+    .unwrap();
+    assert_eq!(
+        digest(&out),
+        0x2540_7591_0eb7_4330,
+        "digest {:#x}",
+        digest(&out)
+    );
+}
+
+#[test]
+fn batched_order_stops_at_the_error_bound_and_respects_it() {
+    let mesh = bumpy_sphere();
+    let bound = 0.002 * mesh.bounding_box_diagonal();
+    let options = SimplifyOptions::default().with_max_error(sphaera_mesh::Length::Absolute(bound));
+    let batched = simplify(&mesh, &options.clone().with_order(Order::Batched)).unwrap();
+    let strict = simplify(&mesh, &options.with_order(Order::Strict)).unwrap();
+    assert!(batched.error_bound <= bound);
+    // It goes about as far as the greedy order (no candidate is left out by a stale key).
+    let (b, s) = (batched.mesh.triangle_count(), strict.mesh.triangle_count());
+    assert!(b * 10 <= s * 11, "batched kept {b} triangles, strict {s}");
+}

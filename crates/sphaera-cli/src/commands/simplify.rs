@@ -26,6 +26,8 @@ struct Report {
     output: Option<String>,
     /// `--placement`: where kept vertices go.
     placement: &'static str,
+    /// `--order`: the collapse order asked for (`auto`, `strict` or `batched`).
+    order: &'static str,
     triangles_in: usize,
     triangles_out: usize,
     vertices_out: usize,
@@ -62,7 +64,8 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     let mesh = &input.loaded.mesh;
     let mut options = SimplifyOptions::default()
         .with_lock_boundary(!args.free_boundary)
-        .with_placement(args.placement.placement());
+        .with_placement(args.placement.placement())
+        .with_order(args.order.order());
     options.target_triangles = args.triangles;
     options.target_ratio = args.ratio;
     options.max_error = args.max_error;
@@ -103,6 +106,7 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
         source: input.source,
         output: args.output.as_ref().map(|p| p.display().to_string()),
         placement: args.placement.name(),
+        order: args.order.name(),
         triangles_in: mesh.triangle_count(),
         triangles_out: simplified.mesh.triangle_count(),
         vertices_out: simplified.mesh.vertex_count(),
@@ -127,7 +131,7 @@ impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let mut lines = vec![
             format!("mesh            {}", self.source),
-            format!("placement       {}", self.placement),
+            format!("placement       {} (order {})", self.placement, self.order),
             format!(
                 "triangles       {} -> {} ({} collapses)",
                 thousands(self.triangles_in),

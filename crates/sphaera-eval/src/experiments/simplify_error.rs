@@ -10,6 +10,11 @@
 //! bound. Distances are relative to the input's bounding-box diagonal. The methods and
 //! their options are in [`crate::methods`].
 //!
+//! `MeshLab`'s quadric edge collapse is there too, from its own output: `shared/data` holds
+//! the bunny simplified by `MeshLab` to 15 % ([`MESHLAB`]), measured the same way. Its time
+//! is unknown (it was not run here), so it appears only in the third panel, measured error
+//! against triangles kept, where every method is.
+//!
 //! By design this chart covers only [`MESHES`], not every mesh of `shared/data`; `cargo
 //! xtask charts --check` checks it covers exactly those.
 
@@ -41,6 +46,13 @@ pub const MESHES: &[(&str, &str, usize, &[f64])] = &[
     ("dragon_vrip.ply", "dragon 871k", 1, &[0.5, 0.1, 0.02]),
 ];
 
+/// `MeshLab`'s quadric edge collapse of a mesh of [`MESHES`]: the input, and `MeshLab`'s
+/// output in `shared/data`.
+pub const MESHLAB: (&str, &str) = ("stanford-bunny.obj", "stanford-bunny-qem15.obj");
+
+/// The method name of [`MESHLAB`]'s rows.
+const MESHLAB_METHOD: &str = "meshlab quadric";
+
 /// Random points per mesh for the measured distance (on top of every vertex and edge
 /// midpoint): enough for the value to be stable to about 1 % (the refinement around the
 /// best samples does the rest).
@@ -54,7 +66,8 @@ struct Row {
     triangles_in: usize,
     target: usize,
     triangles_out: usize,
-    seconds: f64,
+    /// `None` for an output made elsewhere ([`MESHLAB`]).
+    seconds: Option<f64>,
     measured: f64,
     bound: Option<f64>,
 }
@@ -66,6 +79,23 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
             continue;
         };
         measure_mesh(file, label, (runs, ratios), &mesh, &mut rows)?;
+        if file == MESHLAB.0
+            && let Some(meshlab) = load_or_skip(data, MESHLAB.1)?
+        {
+            let measured = reference_hausdorff(&mesh, &meshlab, HAUSDORFF_SAMPLES, 0).symmetric();
+            rows.push(Row {
+                file,
+                method: MESHLAB_METHOD.to_owned(),
+                ratio: meshlab.triangle_count() as f64 / mesh.triangle_count() as f64,
+                triangles_in: mesh.triangle_count(),
+                target: meshlab.triangle_count(),
+                triangles_out: meshlab.triangle_count(),
+                seconds: None,
+                measured: measured / mesh.bounding_box_diagonal(),
+                bound: None,
+            });
+            report(label, rows.last());
+        }
     }
     write_table(out, &rows)?;
     draw(out, &rows)
@@ -93,7 +123,7 @@ fn measure_mesh(
                 triangles_in: mesh.triangle_count(),
                 target,
                 triangles_out: out.mesh.triangle_count(),
-                seconds,
+                seconds: Some(seconds),
                 measured: measured / diagonal,
                 bound: Some(out.error_bound / diagonal),
             });
@@ -109,7 +139,7 @@ fn measure_mesh(
             triangles_in: mesh.triangle_count(),
             target,
             triangles_out: surface.triangle_count(),
-            seconds,
+            seconds: Some(seconds),
             measured: measured / diagonal,
             bound: None,
         });
@@ -121,11 +151,12 @@ fn measure_mesh(
 fn report(label: &str, row: Option<&Row>) {
     if let Some(r) = row {
         eprintln!(
-            "{label:<12} {:<16} ratio {:<5} {:>7} triangles  {:>8.4} s  measured {:.4} %  bound {}",
+            "{label:<12} {:<16} ratio {:<5.3} {:>7} triangles  {:>8} s  measured {:.4} %  bound {}",
             r.method,
             r.ratio,
             r.triangles_out,
-            r.seconds,
+            r.seconds
+                .map_or_else(|| "-".to_owned(), |t| format!("{t:.4}")),
             100.0 * r.measured,
             r.bound
                 .map_or_else(|| "-".to_owned(), |b| format!("{:.4} %", 100.0 * b))
@@ -144,7 +175,7 @@ fn write_table(out: &Path, rows: &[Row]) -> Result<()> {
                 r.triangles_in.to_string(),
                 r.target.to_string(),
                 r.triangles_out.to_string(),
-                format!("{:.6}", r.seconds),
+                r.seconds.map_or_else(String::new, |t| format!("{t:.6}")),
                 format!("{:.6e}", r.measured),
                 r.bound.map_or_else(String::new, |b| format!("{b:.6e}")),
             ]
@@ -167,32 +198,44 @@ fn write_table(out: &Path, rows: &[Row]) -> Result<()> {
     )
 }
 
-/// Left: measured error against time, one series per method and mesh. Right: Sphaera's
-/// bound against the measured error, with `y = x` (every point must lie above it).
+/// Left: measured error against time, one series per method and mesh. Middle: Sphaera's
+/// bound against the measured error, with `y = x` (every point must lie above it). Right:
+/// measured error against triangles kept, `MeshLab`'s output included.
 fn draw(out: &Path, rows: &[Row]) -> Result<()> {
     let mut methods: Vec<String> = PLACEMENTS
         .iter()
         .map(|(name, _)| format!("sphaera {name}"))
         .collect();
     methods.push("meshopt".to_owned());
+    methods.push(MESHLAB_METHOD.to_owned());
     let mut time_series = Vec::new();
     let mut bound_series = Vec::new();
+    let mut size_series = Vec::new();
     for &(file, label, _, _) in MESHES {
         for method in &methods {
             let of = || {
                 rows.iter()
                     .filter(|r| r.file == file && &r.method == method)
             };
+            if !of().any(|_| true) {
+                continue;
+            }
             let mut time = Series::new(&format!("{method}, {label}"));
-            time.points = of().map(|r| (r.seconds, r.measured)).collect();
+            time.points = of()
+                .filter_map(|r| r.seconds.map(|t| (t, r.measured)))
+                .collect();
+            let mut size = Series::new(&format!("{method}, {label}"));
+            size.points = of().map(|r| (r.triangles_out as f64, r.measured)).collect();
             let mut bound = Series::new(&format!("{method}, {label}"));
             bound.points = of()
                 .filter_map(|r| r.bound.map(|b| (r.measured, b)))
                 .collect();
-            // meshopt has no bound: its series stays in the list, empty (not drawn), so
-            // that every series keeps its colour in both panels.
+            // meshopt and `MeshLab` have no bound (and `MeshLab` no time): their series stay
+            // in the lists, empty (not drawn), so that every series keeps its colour in
+            // every panel.
             time_series.push(time);
             bound_series.push(bound);
+            size_series.push(size);
         }
     }
     let runs = MESHES
@@ -223,6 +266,16 @@ fn draw(out: &Path, rows: &[Row]) -> Result<()> {
                 series: &bound_series,
                 diagonal: true,
                 legend: SeriesLabelPosition::LowerRight,
+            },
+            Panel {
+                spec: ChartSpec {
+                    title: "Measured error against triangles kept",
+                    x_label: "triangles",
+                    y_label: "measured Hausdorff distance / diagonal",
+                },
+                series: &size_series,
+                diagonal: false,
+                legend: SeriesLabelPosition::LowerLeft,
             },
         ],
     )

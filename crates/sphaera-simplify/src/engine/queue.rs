@@ -26,11 +26,14 @@ pub(crate) struct Entry {
     pub checked: bool,
 }
 
-/// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated.
+/// A queued candidate: the cheapest collapse out of `vertex` when it was evaluated (its
+/// key and half-edge; the rest of its [`Entry`] is kept beside the heap, so that heap
+/// entries stay 16 bytes).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Candidate {
+    pub key: f64,
     pub vertex: u32,
-    pub entry: Entry,
+    pub halfedge: u32,
 }
 
 impl Priority for Candidate {
@@ -40,9 +43,9 @@ impl Priority for Candidate {
     /// deterministic; the half-edge never decides, as vertices are unique).
     fn priority(&self) -> Self::Key {
         (
-            Reverse(TotalF64(self.entry.key)),
+            Reverse(TotalF64(self.key)),
             Reverse(self.vertex),
-            Reverse(self.entry.halfedge.0),
+            Reverse(self.halfedge),
         )
     }
 }
@@ -57,35 +60,59 @@ impl HeapItem for Candidate {
 #[derive(Debug)]
 pub(super) struct Queue {
     heap: IndexedHeap<Candidate>,
+    /// Per vertex, the radius and topology flag of its queued candidate.
+    rest: Vec<(f64, bool)>,
 }
 
 impl Queue {
     /// The queue holding `initial[u]` for every vertex `u`.
     pub(super) fn new(initial: &[Option<Entry>]) -> Self {
+        let rest = initial
+            .iter()
+            .map(|e| e.map_or((0.0, false), |e| (e.radius, e.checked)))
+            .collect();
         let items = initial.iter().enumerate().filter_map(|(u, c)| {
             c.map(|entry| Candidate {
+                key: entry.key,
                 vertex: u as u32,
-                entry,
+                halfedge: entry.halfedge.0,
             })
         });
         Self {
             heap: IndexedHeap::from_items(initial.len(), items),
+            rest,
+        }
+    }
+
+    /// The entry of a candidate of this queue.
+    fn entry(&self, c: &Candidate) -> Entry {
+        let (radius, checked) = self
+            .rest
+            .get(c.vertex as usize)
+            .copied()
+            .unwrap_or_default();
+        Entry {
+            key: c.key,
+            radius,
+            halfedge: HalfEdgeId(c.halfedge),
+            checked,
         }
     }
 
     /// The current candidate of vertex `u`.
     pub(super) fn get(&self, u: u32) -> Option<Entry> {
-        self.heap.get(u).map(|c| c.entry)
+        self.heap.get(u).map(|c| self.entry(c))
     }
 
-    /// The first candidate, left in place.
-    pub(super) fn first(&self) -> Option<Candidate> {
-        self.heap.first().copied()
+    /// The first candidate's vertex and key, left in place.
+    pub(super) fn first(&self) -> Option<(u32, f64)> {
+        self.heap.first().map(|c| (c.vertex, c.key))
     }
 
-    /// Removes and returns the first candidate.
-    pub(super) fn pop(&mut self) -> Option<Candidate> {
-        self.heap.pop()
+    /// Removes and returns the first candidate: its vertex and entry.
+    pub(super) fn pop(&mut self) -> Option<(u32, Entry)> {
+        let c = self.heap.pop()?;
+        Some((c.vertex, self.entry(&c)))
     }
 
     /// Makes `entry` the current candidate of vertex `u` (`None` removes it).
@@ -94,7 +121,16 @@ impl Queue {
             None => {
                 self.heap.remove(u);
             }
-            Some(entry) => self.heap.set(Candidate { vertex: u, entry }),
+            Some(entry) => {
+                if let Some(r) = self.rest.get_mut(u as usize) {
+                    *r = (entry.radius, entry.checked);
+                }
+                self.heap.set(Candidate {
+                    key: entry.key,
+                    vertex: u,
+                    halfedge: entry.halfedge.0,
+                });
+            }
         }
     }
 }
@@ -131,9 +167,7 @@ mod tests {
                     .enumerate()
                     .filter_map(|(v, c)| c.map(|e| (e.key, v as u32, e.halfedge.0)))
                     .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-                let got = queue
-                    .pop()
-                    .map(|c| (c.entry.key, c.vertex, c.entry.halfedge.0));
+                let got = queue.pop().map(|(v, e)| (e.key, v, e.halfedge.0));
                 assert_eq!(got, expected);
                 if let Some((_, v, _)) = expected {
                     model[v as usize] = None;
