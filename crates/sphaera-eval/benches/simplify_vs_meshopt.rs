@@ -9,7 +9,8 @@
 //! is prepared once, outside the timing.
 //!
 //! Run with `cargo bench -p sphaera-eval --bench simplify_vs_meshopt` (append
-//! `-- bunny` for the bunny only: each dragon case takes minutes while Sphaera is slow).
+//! `-- bunny` for the bunny only: the dragon's optimal placement takes about 30 s a run,
+//! so its cases take minutes).
 //! Needs `../shared/data` (or `$SPHAERA_DATA`); without it the bench says so and exits.
 
 // A skipped case says why on the terminal.

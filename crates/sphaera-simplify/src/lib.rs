@@ -136,11 +136,11 @@
 //! meshes of bounded valence. With the default `parallel` feature the initial evaluation
 //! and every batch run on all cores (identical results without it). Measured on the
 //! 2-core reference machine against meshoptimizer in the same run (`cargo bench -p
-//! sphaera-eval --bench simplify_vs_meshopt`): 0.32 s for the 69k-triangle bunny at 10 %
-//! (meshopt 29 ms, which has no certified bound and a 1.4× larger measured error), 5.1 s
-//! for the 871k-triangle dragon at 2 % (meshopt 0.76 s), 0.39 s for the bunny's full
-//! hierarchy. Peak working memory: about 60–70 bytes per input triangle; figures and the
-//! profile are in the repository's `docs/benchmarks.md`.
+//! sphaera-eval --bench simplify_vs_meshopt`): 0.22 s for the 69k-triangle bunny at 10 %,
+//! 8.5× meshopt's time (meshopt has no certified bound, and its measured error is 1.4×
+//! larger), 4.2 s for the 871k-triangle dragon at 2 % (4.9×), 0.45 s for the bunny's full
+//! hierarchy. Peak working memory: about 60–70 bytes per input triangle. Figures, the
+//! profile and what was tried are in the repository's `docs/benchmarks.md`.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

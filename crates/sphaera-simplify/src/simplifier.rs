@@ -70,10 +70,11 @@ pub enum Order {
     /// re-evaluations per collapse, one after the other.
     Strict,
     /// Batched re-evaluation: collapses are applied while the cheapest candidate is up to
-    /// date; then every changed vertex is re-evaluated at once, on every core with the
-    /// `parallel` feature, except those whose queued radius is far behind the front,
-    /// which wait until they reach it. About 3.6 re-evaluations per collapse; the order
-    /// drifts a little from the greedy one (a changed vertex can become cheaper).
+    /// date; a stale one at the front is re-evaluated alone, and the changed vertices near
+    /// the front are re-evaluated in batches of a few hundred, on every core with the
+    /// `parallel` feature (those whose queued radius is far behind the front wait until
+    /// they reach it). About 3 re-evaluations per collapse; the order drifts a little from
+    /// the greedy one (a changed vertex can become cheaper).
     Batched,
 }
 
