@@ -588,7 +588,7 @@ pub(crate) fn run(
         let front = queue.first().map_or(f64::INFINITY, |(_, key)| key);
         stale.mark(v, true);
         for x in mesh.neighbors(v) {
-            let far = lazy && queue.get(x.0).is_some_and(|e| e.key > LAZY_FACTOR * front);
+            let far = lazy && queue.key(x.0).is_some_and(|key| key > LAZY_FACTOR * front);
             stale.mark(x, !far);
         }
         if strict {

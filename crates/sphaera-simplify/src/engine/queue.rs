@@ -100,8 +100,14 @@ impl Queue {
     }
 
     /// The current candidate of vertex `u`.
+    #[cfg(test)]
     pub(super) fn get(&self, u: u32) -> Option<Entry> {
         self.heap.get(u).map(|c| self.entry(c))
+    }
+
+    /// The key of vertex `u`'s current candidate (without reading the rest of its entry).
+    pub(super) fn key(&self, u: u32) -> Option<f64> {
+        self.heap.get(u).map(|c| c.key)
     }
 
     /// The first candidate's vertex and key, left in place.
