@@ -36,14 +36,12 @@ fn prelude_and_mesh() -> Result<()> {
 #[test]
 fn simplify_then_sweep() -> Result<()> {
     let sphere = mesh::shapes::sphere(1.0, 24)?;
-    let out: simplify::Simplified = simplify::simplify(
-        &sphere,
-        &simplify::SimplifyOptions::default().with_target_ratio(0.1),
-    )?;
+    let out: Simplified =
+        simplify::simplify(&sphere, &SimplifyOptions::default().with_target_ratio(0.1))?;
     assert!(out.mesh.triangle_count() <= sphere.triangle_count() / 10 + 1);
 
     let ha = sweep::build_hierarchy(&sphere)?;
-    let a = sweep::Sweeper::new(&ha)?;
+    let a = Sweeper::new(&ha)?;
     let mut session = a.session();
     let answer: sweep::ClosestPoint = session.closest(DVec3::new(2.0, 0.0, 0.0))?;
     assert!((answer.distance - 1.0).abs() < 1e-2);
@@ -83,14 +81,14 @@ fn medial_approximation() -> Result<()> {
 fn spheretree_build_select_evaluate_export() -> Result<()> {
     let capsule = mesh::shapes::capsule(0.5, 2.0, 12)?;
     let surface = Surface::new(&capsule)?;
-    let options = spheretree::SphereTreeOptions::default()
-        .with_method(spheretree::Method::Expand)
+    let options = SphereTreeOptions::default()
+        .with_method(Method::Expand)
         .with_depth(2)
         .with_branch(4)
         .with_samples(1_500)
         .with_initial_spheres(100)
         .with_min_spheres_per_node(30);
-    let tree: spheretree::SphereTree = spheretree::build(&surface, &options)?;
+    let tree: SphereTree = spheretree::build(&surface, &options)?;
     assert_eq!(tree.level_count(), 3);
     assert_eq!(tree.coverage().len(), 3);
     let worst = |l: usize| tree.level(l).iter().map(|n| n.error).fold(0.0, f64::max);
@@ -106,7 +104,7 @@ fn spheretree_build_select_evaluate_export() -> Result<()> {
 
     let text = spheretree::export::tree_to_json(&tree);
     assert_eq!(spheretree::export::tree_from_json(&text)?, tree);
-    let rebuilt = spheretree::SphereTree::from_levels(
+    let rebuilt = SphereTree::from_levels(
         tree.branch(),
         (0..tree.level_count())
             .map(|l| tree.level(l).to_vec())
@@ -128,7 +126,7 @@ fn errors_of_every_crate_convert_for_question_mark() {
         let capsule = mesh::shapes::capsule(0.5, 2.0, 8)?;
         simplify::simplify(
             &capsule,
-            &simplify::SimplifyOptions::default().with_target_ratio(f64::NAN),
+            &SimplifyOptions::default().with_target_ratio(f64::NAN),
         )?;
         Ok(())
     }
@@ -140,10 +138,7 @@ fn errors_of_every_crate_convert_for_question_mark() {
     fn no_branching() -> Result<()> {
         let capsule = mesh::shapes::capsule(0.5, 2.0, 8)?;
         let surface = Surface::new(&capsule)?;
-        spheretree::build(
-            &surface,
-            &spheretree::SphereTreeOptions::default().with_branch(0),
-        )?;
+        spheretree::build(&surface, &SphereTreeOptions::default().with_branch(0))?;
         Ok(())
     }
     for (what, result) in [
@@ -155,4 +150,49 @@ fn errors_of_every_crate_convert_for_question_mark() {
         let error = result.err().unwrap_or_else(|| panic!("{what}: no error"));
         assert!(!error.to_string().is_empty(), "{what}: an empty message");
     }
+}
+
+/// One error type across crates: `?` on a mesh, a simplification, a sphere-tree and a
+/// scene error in one function, each message the crate's own.
+#[test]
+fn one_error_type_across_crates() {
+    use std::sync::Arc;
+
+    fn pipeline(radius: f64, samples: usize) -> sphaera::Result<usize> {
+        let torus = mesh::shapes::torus(1.0, radius, 24)?;
+        let coarse =
+            simplify::simplify(&torus, &SimplifyOptions::default().with_target_ratio(0.5))?;
+        let options = SphereTreeOptions::default()
+            .with_depth(1)
+            .with_branch(4)
+            .with_samples(samples)
+            .with_initial_spheres(40)
+            .with_min_spheres_per_node(10);
+        let model = ObjectModel::build(
+            "torus",
+            coarse.mesh,
+            &ModelOptions::default().with_tree(options),
+        )?;
+        let mut scene = Scene::new();
+        scene.add("one", Arc::new(model), mesh::geometry::Similarity::IDENTITY);
+        let report = scene.detail(None, sphaera::scene::Tolerance::Relative(0.05))?;
+        Ok(report.triangles)
+    }
+
+    assert!(pipeline(0.3, 400).expect("a pipeline") > 0);
+    let mesh_error = pipeline(-1.0, 400).expect_err("a negative radius");
+    assert!(
+        matches!(mesh_error, sphaera::Error::Mesh(_)),
+        "{mesh_error:?}"
+    );
+    let direct = mesh::shapes::torus(1.0, -1.0, 24).expect_err("a negative radius");
+    assert_eq!(mesh_error.to_string(), direct.to_string());
+    let tree_error = pipeline(0.3, 0).expect_err("no samples");
+    assert!(
+        matches!(
+            tree_error,
+            sphaera::Error::Scene(sphaera::scene::SceneError::SphereTree(_))
+        ),
+        "{tree_error:?}"
+    );
 }

@@ -87,7 +87,7 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
 /// `tests/`, and the doctests (all run by `cargo test`); then the mesh, simplification,
-/// medial and sphere-tree crates again without their default `parallel` feature, whose
+/// medial, sphere-tree and scene crates again without their default `parallel` feature, whose
 /// results must be identical (their tests compare digests of their results with the same
 /// recorded values both ways),
 /// and the sphere-tree's export and awkward-mesh tests with its optional `parry` feature.
@@ -98,6 +98,7 @@ fn test() -> Result<()> {
         "sphaera-simplify",
         "sphaera-medial",
         "sphaera-spheretree",
+        "sphaera-scene",
     ] {
         cargo(&[
             "test",

@@ -69,6 +69,105 @@ pub enum Command {
     /// its certified bound. Pictures: the labels as grey levels seen from the view, and the
     /// silhouettes of the original and the result overlaid.
     Silhouette(SilhouetteArgs),
+    /// Model no more than a scene needs. Reads a scene file (JSON: meshes, instances with
+    /// poses, a camera), builds each mesh's sphere-tree and simplification hierarchy once,
+    /// then picks for every instance the coarsest sphere-tree level and mesh level whose
+    /// certified error meets `--tolerance` (pixels on the camera's image, a percentage of
+    /// each object, or world units), and finds every contact within `--budget` (a broad
+    /// phase, then every close pair's trees descended together, level by level). Reports
+    /// the choices, their certified errors, and the totals against full detail. With no
+    /// scene file: eight embedded bunnies going away from the camera, two of them
+    /// touching.
+    Scene(SceneArgs),
+}
+
+/// Arguments of `sphaera scene`.
+#[derive(Debug, Args)]
+pub struct SceneArgs {
+    /// The scene file (JSON, see `sphaera_scene`'s documentation); the demo scene of
+    /// embedded bunnies when omitted.
+    pub scene: Option<PathBuf>,
+
+    /// The error each instance may have: pixels on the camera's image (`2px`), a
+    /// percentage of each object's bounding-box diagonal (`0.5%`), or world units
+    /// (`0.01`). Default: `2px` with a camera, `1%` without.
+    #[arg(long, value_parser = parse_scene_tolerance, allow_hyphen_values = true)]
+    pub tolerance: Option<sphaera::scene::Tolerance>,
+
+    /// The camera, replacing the scene file's: the eye and the point looked at, six
+    /// numbers `EX,EY,EZ,TX,TY,TZ`.
+    #[arg(long, value_parser = parse_camera, allow_hyphen_values = true)]
+    pub camera: Option<[f64; 6]>,
+
+    /// The camera's vertical field of view in degrees (with `--camera`).
+    #[arg(long, default_value_t = 60.0)]
+    pub fov: f64,
+
+    /// The camera's image size in pixels, `WIDTHxHEIGHT` (with `--camera`).
+    #[arg(long, default_value = "1920x1080", value_parser = parse_image_size)]
+    pub image: (u32, u32),
+
+    /// The collision budget in the paper's cost model (2 per sphere placed, 1 per sphere
+    /// pair tested); every pair's trees are descended to their leaves when omitted.
+    #[arg(long)]
+    pub budget: Option<f64>,
+
+    /// A collision budget in milliseconds of wall time (instead of `--budget`).
+    #[arg(long, conflicts_with = "budget")]
+    pub time_budget_ms: Option<f64>,
+
+    /// Levels below the root of each sphere-tree.
+    #[arg(long, default_value_t = 3)]
+    pub depth: usize,
+
+    /// Children per sphere-tree node at most.
+    #[arg(long, default_value_t = 8)]
+    pub branch: usize,
+
+    /// Surface samples per sphere-tree.
+    #[arg(long, default_value_t = 10_000)]
+    pub samples: usize,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
+}
+
+fn parse_scene_tolerance(text: &str) -> Result<sphaera::scene::Tolerance, String> {
+    text.parse()
+        .map_err(|e: sphaera::scene::SceneError| e.to_string())
+}
+
+fn parse_camera(text: &str) -> Result<[f64; 6], String> {
+    let numbers: Vec<f64> = text
+        .split(',')
+        .map(|p| p.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("`{text}`: {e}; expected six numbers EX,EY,EZ,TX,TY,TZ"))?;
+    let array: [f64; 6] = numbers.try_into().map_err(|v: Vec<f64>| {
+        format!(
+            "`{text}`: {} numbers; expected six, EX,EY,EZ,TX,TY,TZ",
+            v.len()
+        )
+    })?;
+    if array.iter().all(|v| v.is_finite()) {
+        Ok(array)
+    } else {
+        Err(format!("`{text}`: every number must be finite"))
+    }
+}
+
+fn parse_image_size(text: &str) -> Result<(u32, u32), String> {
+    let (w, h) = text
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{text}`: expected WIDTHxHEIGHT, e.g. 1920x1080"))?;
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&v| v > 0)
+            .ok_or_else(|| format!("`{text}`: sizes must be positive whole numbers of pixels"))
+    };
+    Ok((parse(w)?, parse(h)?))
 }
 
 /// Arguments of `sphaera silhouette`.

@@ -83,7 +83,9 @@ pub mod select;
 mod tree;
 
 pub use build::{build, build_with_progress};
-pub use collide::{Budget, Collision, Contact, CostModel, Similarity, collide, overlaps};
+pub use collide::{
+    Budget, Collision, Contact, CostModel, Similarity, Traversal, TraversalStats, collide, overlaps,
+};
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};

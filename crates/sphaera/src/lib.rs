@@ -2,37 +2,128 @@
 //!
 //! Hierarchical, sphere-based approximation of triangle meshes: fast and certified distance
 //! queries, bounding sphere-trees for collision detection, tolerance-bounded and
-//! silhouette-aware simplification, and HAL trees.
+//! silhouette-aware simplification, HAL trees, and scenes modelled with no more detail
+//! than they need.
 //!
 //! This crate is the facade: it re-exports the focused Sphaera crates under short module
-//! names, and offers a [`prelude`] with the types almost every user needs. Depend on a
+//! names, one [`Error`] that every crate's error converts into (so `?` works across
+//! crates), and a [`prelude`] with the types almost every program needs. Depend on a
 //! single crate (for example `sphaera-mesh`) if that is all you use.
 //!
-//! | module | crate | what it does |
-//! |---|---|---|
-//! | [`mesh`] | `sphaera-mesh` | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, the box tree and exact closest points, the `Surface` (inside test and closest points), winding numbers, surface sampling, sampled Hausdorff distances, procedural test shapes |
-//! | `simplify` (feature `simplify`) | `sphaera-simplify` | edge-collapse simplification whose reported error bound holds in both directions (error spheres) |
-//! | `sweep` (feature `sweep`) | `sphaera-sweep` | Meshsweeper: exact and anytime closest-point queries on the simplification hierarchy, with coherent sessions, motion, polylines and certified Hausdorff distances |
-//! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
-//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection through one entry point (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), with coverage of the whole surface certified at every level, certified fit evaluation, traversal and exports |
-//! | `hal` (feature `hal`) | `sphaera-hal` | HAL trees: hierarchical approximation and localization of polygons and polylines by signed discs, adaptive approximation by widths, hierarchical point inclusion and intersection detection, for polygons, polylines and closed genus-0 meshes |
+//! | module | crate | paper | what it does |
+//! |---|---|---|---|
+//! | [`mesh`] | `sphaera-mesh` | | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, the box tree and exact closest points, the `Surface` (inside test and closest points), winding numbers, surface sampling, sampled Hausdorff distances, procedural test shapes |
+//! | `simplify` (feature `simplify`) | `sphaera-simplify` | Guéziec 2001 (error spheres) | edge-collapse simplification whose reported error bound holds in both directions, and its progressive hierarchy |
+//! | `sweep` (feature `sweep`) | `sphaera-sweep` | Guéziec 2001 (Meshsweeper) | exact and anytime closest-point queries, coherent sessions, motion, polylines and certified Hausdorff distances |
+//! | `medial` (feature `medial`) | `sphaera-medial` | Bradshaw & O'Sullivan 2004 | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
+//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | Bradshaw & O'Sullivan 2004 | sphere-trees for collision detection (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), coverage of the whole surface certified at every level, fit evaluation, interruptible traversal and exports |
+//! | `hal` (feature `hal`) | `sphaera-hal` | Veltkamp | HAL trees: hierarchical approximation and localization of polygons, polylines and closed genus-0 meshes by signed discs and balls |
+//! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | Mata, Pastor & Rodríguez | view-dependent distance-transform silhouette labels and the silhouette-preserving level of detail they guide |
+//! | `scene` (feature `scene`) | `sphaera-scene` | | object models built once per mesh, scenes of posed instances, per-instance detail from certified errors (world units, a fraction of each object, pixels on a camera), budgeted collision over a whole scene, JSON scene files |
 //!
-//! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | view-dependent distance-transform silhouette labels: camera sets with constant-time nearest views, conservative mesh mapping, exact Euclidean and chamfer distance transforms, labels for new views (the level of detail they guide is in progress) |
+//! See `docs/architecture.md` in the repository for how the crates fit together, and
+//! `docs/benchmarks.md` for every measured figure.
 //!
-//! See `docs/architecture.md` in the repository for how the crates fit together.
+//! # The library in one story
 //!
-//! # Quick start
+//! Load a mesh and inspect it:
+//!
+//! ```
+//! use sphaera::prelude::*;
+//! use sphaera::mesh::{io, topology};
+//!
+//! // Any OBJ, PLY, STL or OFF file (and glTF where supported); here, one written first.
+//! let path = std::env::temp_dir().join(format!("sphaera-story-{}.obj", std::process::id()));
+//! io::write_obj(&path, &sphaera::mesh::shapes::torus(1.0, 0.3, 48)?)?;
+//! let torus: TriMesh = io::load(&path)?;
+//! std::fs::remove_file(&path)?;
+//!
+//! let report = topology::analyze(&torus);
+//! assert!(report.is_closed && report.genus == Some(1));
+//! # Ok::<(), sphaera::Error>(())
+//! ```
+//!
+//! Simplify it with a bound that holds both ways, and check the bound against the
+//! certified Hausdorff distance:
+//!
+//! ```
+//! use sphaera::prelude::*;
+//! use sphaera::simplify::simplify;
+//! use sphaera::sweep::{HausdorffOptions, hausdorff};
+//!
+//! let torus = sphaera::mesh::shapes::torus(1.0, 0.3, 48)?;
+//! let options = SimplifyOptions::default().with_max_error(Length::RelativeToDiagonal(0.02));
+//! let coarse = simplify(&torus, &options)?;
+//! assert!(coarse.mesh.triangle_count() < torus.triangle_count() / 2);
+//! assert!(coarse.error_bound <= 0.02 * torus.bounding_box_diagonal());
+//!
+//! let measured = hausdorff(&torus, &coarse.mesh, &HausdorffOptions::default())?;
+//! assert!(measured.lower <= coarse.error_bound);
+//! # Ok::<(), sphaera::Error>(())
+//! ```
+//!
+//! Query distances:
 //!
 //! ```
 //! use sphaera::prelude::*;
 //!
-//! let torus: TriMesh = sphaera::mesh::shapes::torus(1.0, 0.25, 32)?;
-//! let report = sphaera::mesh::topology::analyze(&torus);
-//! assert!(report.is_closed);
-//! assert_eq!(report.genus, Some(1));
-//! assert!(torus.bounding_box_diagonal() > 2.0);
-//! # Ok::<(), MeshError>(())
+//! let torus = sphaera::mesh::shapes::torus(1.0, 0.3, 48)?;
+//! let tree = TriangleTree::new(&torus)?;
+//! let answer = tree.closest(DVec3::new(0.0, 0.0, 2.0))?;
+//! assert!((answer.distance - (5f64.sqrt() - 0.3)).abs() < 0.01);
+//! # Ok::<(), sphaera::Error>(())
 //! ```
+//!
+//! Build a sphere-tree whose every level covers the surface, certified:
+//!
+//! ```
+//! use sphaera::prelude::*;
+//!
+//! let torus = sphaera::mesh::shapes::torus(1.0, 0.3, 48)?;
+//! let options = SphereTreeOptions::default()
+//!     .with_depth(2).with_branch(4).with_samples(800)
+//!     .with_initial_spheres(80).with_min_spheres_per_node(20);
+//! let tree: SphereTree = sphaera::spheretree::build(&Surface::new(&torus)?, &options)?;
+//! assert_eq!(tree.level_count(), 3);
+//! assert_eq!(tree.coverage().len(), 3);
+//! # Ok::<(), sphaera::Error>(())
+//! ```
+//!
+//! Model no more than a scene needs: the coarsest levels each instance can take.
+//!
+//! ```
+//! use std::sync::Arc;
+//! use sphaera::prelude::*;
+//! use sphaera::mesh::geometry::Similarity;
+//! use sphaera::scene::{Camera, Tolerance};
+//!
+//! let torus = sphaera::mesh::shapes::torus(1.0, 0.3, 48)?;
+//! let options = ModelOptions::default().with_tree(
+//!     SphereTreeOptions::default().with_depth(2).with_branch(4).with_samples(800)
+//!         .with_initial_spheres(80).with_min_spheres_per_node(20),
+//! );
+//! let model = Arc::new(ObjectModel::build("torus", torus, &options)?);
+//! let mut scene = Scene::new();
+//! for i in 0..5 {
+//!     let pose = Similarity::from_translation(DVec3::new(0.0, 0.0, -8.0 * i as f64))?;
+//!     scene.add(format!("torus-{i}"), Arc::clone(&model), pose);
+//! }
+//! let camera = Camera::perspective(DVec3::new(0.0, 2.0, 6.0), DVec3::new(0.0, 0.0, -10.0), 50.0, 1280, 720)?;
+//! let report = scene.detail(Some(&camera), Tolerance::Pixels(1.0))?;
+//! assert!(report.triangles < report.full_triangles);
+//! // Farther away, coarser.
+//! let counts: Vec<usize> = report.instances.iter().map(|d| d.mesh.count).collect();
+//! assert!(counts.windows(2).all(|w| w[0] >= w[1]));
+//!
+//! // Contacts within a budget: none here, the tori are apart.
+//! assert!(scene.collide(&Budget::Unlimited)?.pairs.is_empty());
+//! # Ok::<(), sphaera::Error>(())
+//! ```
+//!
+//! # Errors
+//!
+//! Every crate has its own error type; [`Error`] wraps each transparently (its message is
+//! the crate's), so one function can use several crates with `?`.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]
@@ -42,6 +133,8 @@ pub use sphaera_hal as hal;
 #[cfg(feature = "medial")]
 pub use sphaera_medial as medial;
 pub use sphaera_mesh as mesh;
+#[cfg(feature = "scene")]
+pub use sphaera_scene as scene;
 #[cfg(feature = "silhouette")]
 pub use sphaera_silhouette as silhouette;
 #[cfg(feature = "simplify")]
@@ -51,7 +144,84 @@ pub use sphaera_spheretree as spheretree;
 #[cfg(feature = "sweep")]
 pub use sphaera_sweep as sweep;
 
-/// The types almost every Sphaera user needs.
+/// Any error of a Sphaera crate: each crate's error, wrapped transparently (the message
+/// and the source are the crate's), and I/O errors.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera::prelude::*;
+///
+/// fn coarse_torus() -> Result<usize, sphaera::Error> {
+///     let torus = sphaera::mesh::shapes::torus(1.0, 0.3, 24)?; // MeshError
+///     let options = SimplifyOptions::default().with_target_ratio(0.25);
+///     let coarse = sphaera::simplify::simplify(&torus, &options)?; // SimplifyError
+///     Ok(coarse.mesh.triangle_count())
+/// }
+/// assert!(coarse_torus()? < 300);
+///
+/// let error: sphaera::Error = sphaera::mesh::shapes::torus(-1.0, 0.3, 24).unwrap_err().into();
+/// assert!(matches!(error, sphaera::Error::Mesh(_)));
+/// # Ok::<(), sphaera::Error>(())
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// From `sphaera-mesh`: invalid or empty meshes, malformed files, bad transforms.
+    #[error(transparent)]
+    Mesh(#[from] sphaera_mesh::MeshError),
+    /// From `sphaera-simplify`.
+    #[cfg(feature = "simplify")]
+    #[error(transparent)]
+    Simplify(#[from] sphaera_simplify::SimplifyError),
+    /// From `sphaera-sweep`.
+    #[cfg(feature = "sweep")]
+    #[error(transparent)]
+    Sweep(#[from] sphaera_sweep::SweepError),
+    /// From `sphaera-medial`'s Delaunay tetrahedralization.
+    #[cfg(feature = "medial")]
+    #[error(transparent)]
+    Delaunay(#[from] sphaera_medial::DelaunayError),
+    /// From `sphaera-medial`'s medial-axis approximation.
+    #[cfg(feature = "medial")]
+    #[error(transparent)]
+    Medial(#[from] sphaera_medial::MedialError),
+    /// From `sphaera-spheretree`.
+    #[cfg(feature = "spheretree")]
+    #[error(transparent)]
+    SphereTree(#[from] sphaera_spheretree::SphereTreeError),
+    /// From `sphaera-hal`.
+    #[cfg(feature = "hal")]
+    #[error(transparent)]
+    Hal(#[from] sphaera_hal::HalError),
+    /// From `sphaera-silhouette`.
+    #[cfg(feature = "silhouette")]
+    #[error(transparent)]
+    Silhouette(#[from] sphaera_silhouette::SilhouetteError),
+    /// From `sphaera-scene`.
+    #[cfg(feature = "scene")]
+    #[error(transparent)]
+    Scene(#[from] sphaera_scene::SceneError),
+    /// An I/O error outside the crates' own file readers.
+    #[error(transparent)]
+    Io(#[from] std::io::Error),
+}
+
+/// `Result` with [`Error`] as its default error.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// The types almost every Sphaera program needs (those of the enabled features).
+///
+/// Names that two crates share (`Tolerance`, `Camera`) are left to their modules.
 pub mod prelude {
+    pub use sphaera_mesh::closest::TriangleTree;
     pub use sphaera_mesh::{Aabb, DVec3, Length, MeshError, Sphere, Surface, TriMesh};
+    #[cfg(feature = "scene")]
+    pub use sphaera_scene::{Budget, ModelOptions, ObjectModel, Scene};
+    #[cfg(feature = "simplify")]
+    pub use sphaera_simplify::{Hierarchy, Simplified, SimplifyOptions};
+    #[cfg(feature = "spheretree")]
+    pub use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions};
+    #[cfg(feature = "sweep")]
+    pub use sphaera_sweep::Sweeper;
 }

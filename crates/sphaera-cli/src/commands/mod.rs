@@ -5,6 +5,7 @@ mod hal;
 mod hausdorff;
 mod info;
 mod medial;
+mod scene;
 mod silhouette;
 mod simplify;
 mod spheretree;
@@ -24,5 +25,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Spheretree(args) => spheretree::run(args, cli.quiet),
         Command::Hal(args) => hal::run(args),
         Command::Silhouette(args) => silhouette::run(args, cli.quiet),
+        Command::Scene(args) => scene::run(args, cli.quiet),
     }
 }

@@ -92,7 +92,12 @@ impl Budget {
         }
     }
 
-    pub(super) fn validate(&self) -> Result<(), SphereTreeError> {
+    /// `Ok` unless a [`Budget::Cost`]'s limit or costs are NaN or negative.
+    ///
+    /// # Errors
+    ///
+    /// [`SphereTreeError::InvalidParameter`] naming the bad number.
+    pub fn validate(&self) -> Result<(), SphereTreeError> {
         if let Self::Cost { limit, model } = self {
             for (name, value) in [
                 ("limit", *limit),

@@ -217,37 +217,19 @@ pub fn collide(
 ) -> Result<Collision, SphereTreeError> {
     budget.validate()?;
     let start = Instant::now();
-    let mut sa = Side::new(a, world_from_a);
-    let mut sb = Side::new(b, world_from_b);
-    let mut stats = TraversalStats::default();
-    // Level 0, whatever the budget.
-    for i in roots(a) {
-        sa.update(i);
-        stats.updates += 1;
-    }
-    for j in roots(b) {
-        sb.update(j);
-        stats.updates += 1;
-    }
-    let mut frontier = Vec::new();
-    for i in roots(a) {
-        for j in roots(b) {
-            stats.tests += 1;
-            if touch(&sa.sphere(i), &sb.sphere(j)) {
-                frontier.push((i, j));
-            }
-        }
-    }
-    let mut level = 0;
+    let mut traversal = Traversal::new(a, world_from_a, b, world_from_b);
+    let deadline = match budget {
+        Budget::Time(limit) => Some((start, *limit)),
+        _ => None,
+    };
     let completed = loop {
-        let plan = Plan::new(a, b, &frontier);
-        if plan.is_final {
+        let Some(next) = traversal.next_level_stats() else {
             break true;
-        }
+        };
         match budget {
             Budget::Unlimited => {}
             Budget::Cost { limit, model } => {
-                if stats.cost(model) + model.cost(plan.updates, plan.tests) > *limit {
+                if traversal.stats().cost(model) + next.cost(model) > *limit {
                     break false;
                 }
             }
@@ -257,28 +239,179 @@ pub fn collide(
                 }
             }
         }
-        let deadline = match budget {
-            Budget::Time(limit) => Some((start, *limit)),
-            _ => None,
-        };
-        match descend(&mut sa, &mut sb, &frontier, &plan, deadline, &mut stats) {
-            Some(next) => {
-                frontier = next;
-                level += 1;
-            }
-            None => break false,
+        if !traversal.descend_until(deadline) {
+            break false;
         }
     };
-    let contacts = frontier
-        .iter()
-        .map(|&(i, j)| contact(&sa, &sb, i, j))
-        .collect();
     Ok(Collision {
-        contacts,
+        contacts: traversal.contacts(),
         completed,
-        level,
-        stats,
+        level: traversal.level(),
+        stats: traversal.stats(),
     })
+}
+
+/// A [`collide`] traversal driven one level at a time by its caller: for a scene of many
+/// pairs sharing one budget (`sphaera-scene` descends every pair's level `k` before any
+/// pair's level `k + 1`).
+///
+/// [`Traversal::new`] places the roots and tests the root pairs (level 0);
+/// [`Traversal::next_level_stats`] tells the work of the next level before it is done,
+/// and [`Traversal::descend`] does it. After any number of levels,
+/// [`Traversal::contacts`] is what [`collide`] would return had its budget stopped there.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::collide::{Budget, Similarity, Traversal, collide};
+/// use sphaera_spheretree::{DVec3, SphereTreeOptions, build, Surface};
+///
+/// let mesh = sphaera_mesh::shapes::capsule(0.5, 2.0, 8)?;
+/// let options = SphereTreeOptions::default()
+///     .with_depth(1)
+///     .with_branch(4)
+///     .with_samples(400)
+///     .with_initial_spheres(60)
+///     .with_min_spheres_per_node(20);
+/// let tree = build(&Surface::new(&mesh)?, &options)?;
+/// let here = Similarity::IDENTITY;
+/// let near = Similarity::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
+///
+/// let mut traversal = Traversal::new(&tree, &here, &tree, &near);
+/// assert_eq!(traversal.level(), 0);
+/// let roots = traversal.stats();
+/// let work = traversal.next_level_stats().expect("level 1 is left");
+/// assert!(traversal.descend());
+/// assert_eq!(traversal.stats().tests, roots.tests + work.tests);
+/// assert!(traversal.next_level_stats().is_none() && !traversal.descend());
+/// let exact = collide(&tree, &here, &tree, &near, &Budget::Unlimited)?;
+/// assert_eq!(traversal.contacts(), exact.contacts);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct Traversal<'t> {
+    sa: Side<'t>,
+    sb: Side<'t>,
+    /// The overlapping pairs of the current level, sorted.
+    frontier: Vec<(usize, usize)>,
+    /// The work of the next level.
+    plan: Plan,
+    level: usize,
+    stats: TraversalStats,
+}
+
+impl<'t> Traversal<'t> {
+    /// Places the roots of both trees and tests every root pair: level 0.
+    #[must_use]
+    pub fn new(
+        a: &'t SphereTree,
+        world_from_a: &'t Similarity,
+        b: &'t SphereTree,
+        world_from_b: &'t Similarity,
+    ) -> Self {
+        let mut sa = Side::new(a, world_from_a);
+        let mut sb = Side::new(b, world_from_b);
+        let mut stats = TraversalStats::default();
+        for i in roots(a) {
+            sa.update(i);
+            stats.updates += 1;
+        }
+        for j in roots(b) {
+            sb.update(j);
+            stats.updates += 1;
+        }
+        let mut frontier = Vec::new();
+        for i in roots(a) {
+            for j in roots(b) {
+                stats.tests += 1;
+                if touch(&sa.sphere(i), &sb.sphere(j)) {
+                    frontier.push((i, j));
+                }
+            }
+        }
+        let plan = Plan::new(a, b, &frontier);
+        Self {
+            sa,
+            sb,
+            frontier,
+            plan,
+            level: 0,
+            stats,
+        }
+    }
+
+    /// The level the current pairs are at (0: the roots).
+    #[must_use]
+    pub fn level(&self) -> usize {
+        self.level
+    }
+
+    /// The work done so far.
+    #[must_use]
+    pub fn stats(&self) -> TraversalStats {
+        self.stats
+    }
+
+    /// Whether the traversal is over: no pair left, or only pairs of leaves.
+    #[must_use]
+    pub fn is_complete(&self) -> bool {
+        self.plan.is_final
+    }
+
+    /// The work the next level takes (spheres to place, pairs to test), `None` when the
+    /// traversal is complete.
+    #[must_use]
+    pub fn next_level_stats(&self) -> Option<TraversalStats> {
+        (!self.plan.is_final).then_some(TraversalStats {
+            updates: self.plan.updates,
+            tests: self.plan.tests,
+        })
+    }
+
+    /// Descends one level; `false` (and nothing done) when the traversal is complete.
+    pub fn descend(&mut self) -> bool {
+        self.descend_until(None)
+    }
+
+    /// Descends one level unless the time limit `(start, limit)` passes first (looked at
+    /// every 64 pair tests): the level's partial work is then dropped, its cost kept in
+    /// the stats. `false` when nothing was descended.
+    pub fn descend_until(&mut self, deadline: Option<(Instant, Duration)>) -> bool {
+        if self.plan.is_final {
+            return false;
+        }
+        match descend(
+            &mut self.sa,
+            &mut self.sb,
+            &self.frontier,
+            &self.plan,
+            deadline,
+            &mut self.stats,
+        ) {
+            Some(next) => {
+                self.frontier = next;
+                self.level += 1;
+                self.plan = Plan::new(self.sa.tree, self.sb.tree, &self.frontier);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// The overlapping pairs of the current level, sorted by `(a, b)` (as
+    /// [`Collision::contacts`]).
+    #[must_use]
+    pub fn contacts(&self) -> Vec<Contact> {
+        self.frontier
+            .iter()
+            .map(|&(i, j)| contact(&self.sa, &self.sb, i, j))
+            .collect()
+    }
+
+    /// The number of overlapping pairs at the current level.
+    #[must_use]
+    pub fn contact_count(&self) -> usize {
+        self.frontier.len()
+    }
 }
 
 /// The work of the next level, known before it is started.

@@ -1,0 +1,153 @@
+//! End-to-end tests of `sphaera scene`.
+
+mod common;
+
+use common::{json, sphaera};
+
+#[test]
+fn the_demo_scene_chooses_coarser_levels_far_away_and_finds_the_touching_pair() {
+    let report = json(&sphaera(&[
+        "scene",
+        "--json",
+        "--samples",
+        "2000",
+        "--depth",
+        "2",
+    ]));
+    let instances = report["detail"]["instances"].as_array().expect("instances");
+    assert_eq!(instances.len(), 8);
+    let triangles: Vec<u64> = instances
+        .iter()
+        .map(|i| i["mesh"]["count"].as_u64().unwrap())
+        .collect();
+    assert!(
+        triangles[7] < triangles[2] && triangles[2] <= triangles[0],
+        "{triangles:?}"
+    );
+    for i in instances {
+        assert!(i["mesh"]["measured"].as_f64().unwrap() <= 2.0, "{i}");
+        assert_eq!(i["mesh"]["meets"], true);
+    }
+    assert_eq!(report["detail"]["unit"], "px");
+    assert!(report["detail"]["triangles"].as_u64() < report["detail"]["full_triangles"].as_u64());
+    // bunny-0 and bunny-1 touch, nothing else does.
+    let contacts = report["contacts"].as_array().expect("contacts");
+    assert_eq!(contacts.len(), 1);
+    assert_eq!(
+        (contacts[0]["a"].as_str(), contacts[0]["b"].as_str()),
+        (Some("bunny-0"), Some("bunny-1"))
+    );
+    assert_eq!(report["collision"]["completed"], true);
+    assert_eq!(report["budget"], "unlimited");
+}
+
+#[test]
+fn a_budget_and_a_world_tolerance_are_honoured() {
+    let report = json(&sphaera(&[
+        "scene",
+        "--json",
+        "--samples",
+        "2000",
+        "--depth",
+        "2",
+        "--budget",
+        "0",
+        "--tolerance",
+        "0.5",
+    ]));
+    assert_eq!(report["collision"]["level"], 0);
+    assert_eq!(report["collision"]["completed"], false);
+    assert_eq!(report["detail"]["unit"], "world");
+    assert_eq!(report["detail"]["tolerance"], "0.5");
+}
+
+#[test]
+fn a_scene_file_with_a_camera_on_the_command_line() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    sphaera_mesh_write(dir.path());
+    let scene = dir.path().join("scene.json");
+    std::fs::write(
+        &scene,
+        r#"{ "meshes": { "ball": "ball.obj" },
+             "instances": [ { "mesh": "ball" }, { "mesh": "ball", "position": [0.8, 0, 0] },
+                            { "mesh": "ball", "position": [0, 0, -50] } ] }"#,
+    )
+    .expect("write");
+    let report = json(&sphaera(&[
+        "scene",
+        "--json",
+        "--samples",
+        "1500",
+        "--depth",
+        "2",
+        scene.to_str().unwrap(),
+        "--camera",
+        "0,0,5,0,0,0",
+        "--image",
+        "800x600",
+        "--tolerance",
+        "3px",
+    ]));
+    assert_eq!(report["camera"]["width"], 800);
+    let instances = report["detail"]["instances"].as_array().expect("instances");
+    assert_eq!(instances[2]["name"], "ball-2");
+    assert!(instances[2]["mesh"]["count"].as_u64() < instances[0]["mesh"]["count"].as_u64());
+    assert_eq!(report["contacts"].as_array().map(Vec::len), Some(1));
+    // Without a camera, a tolerance in pixels is refused.
+    let output = sphaera(&[
+        "scene",
+        scene.to_str().unwrap(),
+        "--tolerance",
+        "3px",
+        "--samples",
+        "1500",
+    ]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("camera"), "{message}");
+}
+
+/// Writes `ball.obj` into `dir`.
+fn sphaera_mesh_write(dir: &std::path::Path) {
+    let ball = sphaera::mesh::shapes::sphere(0.5, 10).expect("a sphere");
+    sphaera::mesh::io::write_obj(dir.join("ball.obj"), &ball).expect("write");
+}
+
+#[test]
+fn bad_scene_files_and_arguments_give_clear_errors() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let scene = dir.path().join("scene.json");
+    std::fs::write(
+        &scene,
+        r#"{ "meshes": { "gone": "gone.obj" }, "instances": [ { "mesh": "gone" } ] }"#,
+    )
+    .expect("write");
+    let output = sphaera(&["scene", scene.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("meshes.gone") && message.contains("gone.obj"),
+        "{message}"
+    );
+    std::fs::write(
+        &scene,
+        "{ \"meshes\": {}, \"instances\": [], \"extra\": 1 }",
+    )
+    .expect("write");
+    let message =
+        String::from_utf8_lossy(&sphaera(&["scene", scene.to_str().unwrap()]).stderr).into_owned();
+    assert!(
+        message.contains("extra") && message.contains("line 1"),
+        "{message}"
+    );
+    for (flag, value, needle) in [
+        ("--tolerance", "-1px", "invalid tolerance"),
+        ("--camera", "1,2,3", "six"),
+        ("--image", "0x10", "positive"),
+    ] {
+        let output = sphaera(&["scene", flag, value]);
+        assert!(!output.status.success());
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(message.contains(needle), "{flag} {value}: {message}");
+    }
+}

@@ -1,0 +1,90 @@
+//! Errors of object models, scenes, cameras, tolerances and scene files.
+
+use std::path::PathBuf;
+
+/// Why a model, a scene or a scene file could not be made or used.
+///
+/// Messages are lowercase without a final period, so they compose into larger messages.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_scene::{SceneError, Tolerance};
+///
+/// let error = "-2px".parse::<Tolerance>().unwrap_err();
+/// assert!(matches!(error, SceneError::InvalidTolerance { .. }));
+/// assert_eq!(
+///     error.to_string(),
+///     "invalid tolerance `-2px`: must be a non-negative number of world units (`0.01`), a percentage of each object's diagonal (`0.5%`) or pixels (`2px`)"
+/// );
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// A mesh is empty or invalid, or a pose is not a similarity.
+    #[error(transparent)]
+    Mesh(#[from] sphaera_mesh::MeshError),
+    /// A model's simplification hierarchy could not be built.
+    #[error(transparent)]
+    Simplify(#[from] sphaera_simplify::SimplifyError),
+    /// A model's sphere-tree could not be built, or a collision budget is invalid.
+    #[error(transparent)]
+    SphereTree(#[from] sphaera_spheretree::SphereTreeError),
+    /// A tolerance is NaN, negative, infinite or does not parse.
+    #[error(
+        "invalid tolerance `{text}`: must be a non-negative number of world units (`0.01`), a percentage of each object's diagonal (`0.5%`) or pixels (`2px`)"
+    )]
+    InvalidTolerance {
+        /// The tolerance as given.
+        text: String,
+    },
+    /// A tolerance in pixels was asked for without a camera.
+    #[error("a tolerance in pixels needs a camera")]
+    NoCamera,
+    /// A camera parameter is out of its domain.
+    #[error("invalid camera: `{name}` ({value}) must be {requirement}")]
+    InvalidCamera {
+        /// The parameter, e.g. `"fov_y_degrees"`.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        requirement: &'static str,
+    },
+    /// An instance names a model the scene does not hold, or an index is out of range.
+    #[error("instance {index} is out of range (the scene has {count})")]
+    NoSuchInstance {
+        /// The index asked for.
+        index: usize,
+        /// The number of instances.
+        count: usize,
+    },
+    /// A scene file could not be read.
+    #[error("cannot read the scene file {}: {source}", path.display())]
+    ReadFile {
+        /// The scene file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// A scene file is not valid JSON of the scene schema (an unknown key, a missing
+    /// field, a wrong type); the message names the line and column.
+    #[error("{}: {message}", path.display())]
+    ParseFile {
+        /// The scene file.
+        path: PathBuf,
+        /// What is wrong and where (from the JSON reader).
+        message: String,
+    },
+    /// An entry of a scene file is well-formed JSON but meaningless (a NaN position, a
+    /// zero scale, an undefined mesh name, a mesh file that cannot be loaded).
+    #[error("{}: {place}: {message}", path.display())]
+    InvalidEntry {
+        /// The scene file.
+        path: PathBuf,
+        /// The entry, e.g. `instances[3] ("bunny-2")` or `meshes.bunny`.
+        place: String,
+        /// What is wrong with it.
+        message: String,
+    },
+}

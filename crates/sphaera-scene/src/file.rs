@@ -1,0 +1,349 @@
+//! Scene files: JSON naming meshes, the instances with their poses, and a camera.
+//!
+//! ```json
+//! {
+//!   "meshes": { "bunny": "meshes/bunny.obj", "link": "/abs/path/link6.stl" },
+//!   "instances": [
+//!     { "name": "front", "mesh": "bunny", "position": [0, 0, 0] },
+//!     { "mesh": "bunny", "position": [0.3, 0, -2], "rotation_degrees": [0, 90, 0], "scale": 2 },
+//!     { "mesh": "link", "quaternion": [0, 0, 0.7071068, 0.7071068] }
+//!   ],
+//!   "camera": { "eye": [0, 0.1, 1], "target": [0, 0.1, 0], "fov_y_degrees": 60,
+//!               "width": 1280, "height": 720 }
+//! }
+//! ```
+//!
+//! - `meshes` maps a name to a mesh file (any format `sphaera_mesh::io` reads), relative
+//!   to the scene file's folder unless absolute.
+//! - Each instance names its mesh and may give a `name` (default `MESH-INDEX`), a
+//!   `position` (default the origin), a rotation as `rotation_degrees` (rotations about
+//!   x, then y, then z, in degrees) or as a unit `quaternion` `[x, y, z, w]` (not both),
+//!   and a uniform `scale` (default 1).
+//! - `camera` is optional: needed for tolerances in pixels. `near` is optional.
+//!
+//! Unknown keys are errors (a misspelt `"rotation_degree"` must not be silently ignored),
+//! and every error names the file and the entry.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{DQuat, DVec3, EulerRot};
+use serde::Deserialize;
+use sphaera_mesh::geometry::Similarity;
+
+use crate::{Camera, ModelOptions, ObjectModel, Scene, SceneError};
+
+/// A scene file as written, before any mesh is read.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Mesh names and their files.
+    pub meshes: BTreeMap<String, PathBuf>,
+    /// The instances.
+    pub instances: Vec<InstanceEntry>,
+    /// The camera, if any.
+    #[serde(default)]
+    pub camera: Option<CameraEntry>,
+}
+
+/// One instance of a scene file.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InstanceEntry {
+    /// Its name (default `MESH-INDEX`).
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The name of its mesh in [`SceneFile::meshes`].
+    pub mesh: String,
+    /// Where its mesh's origin goes.
+    #[serde(default)]
+    pub position: [f64; 3],
+    /// Rotations about x, then y, then z, in degrees.
+    #[serde(default)]
+    pub rotation_degrees: Option<[f64; 3]>,
+    /// A unit quaternion `[x, y, z, w]` (normalised if it is not quite unit).
+    #[serde(default)]
+    pub quaternion: Option<[f64; 4]>,
+    /// A uniform scale (default 1).
+    #[serde(default = "one")]
+    pub scale: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// The camera of a scene file.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraEntry {
+    /// The eye.
+    pub eye: [f64; 3],
+    /// The point looked at.
+    pub target: [f64; 3],
+    /// The vertical field of view, in degrees.
+    pub fov_y_degrees: f64,
+    /// The image width in pixels.
+    pub width: u32,
+    /// The image height in pixels.
+    pub height: u32,
+    /// The near-plane distance (default 1/1000 of the eye–target distance).
+    #[serde(default)]
+    pub near: Option<f64>,
+}
+
+/// A scene read from a file, its models built.
+#[derive(Clone, Debug)]
+pub struct LoadedScene {
+    /// The instances with their poses.
+    pub scene: Scene,
+    /// The file's camera.
+    pub camera: Option<Camera>,
+    /// The models built, in the order of their names.
+    pub models: Vec<Arc<ObjectModel>>,
+}
+
+/// A checked scene file: poses and camera valid, every instance's mesh defined.
+#[derive(Clone, Debug)]
+pub struct SceneDescription {
+    path: PathBuf,
+    file: SceneFile,
+    poses: Vec<Similarity>,
+    camera: Option<Camera>,
+}
+
+impl SceneDescription {
+    /// Reads and checks a scene file; reads no mesh.
+    ///
+    /// # Errors
+    ///
+    /// [`SceneError::ReadFile`] when the file cannot be read, [`SceneError::ParseFile`]
+    /// for malformed JSON, an unknown key or a wrong type (with the line and column),
+    /// [`SceneError::InvalidEntry`] for an instance naming an undefined mesh, a
+    /// non-finite or zero pose, both rotation forms, or an invalid camera.
+    pub fn read(path: impl AsRef<Path>) -> Result<Self, SceneError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::ReadFile {
+            path: path.to_owned(),
+            source,
+        })?;
+        Self::parse(path, &text)
+    }
+
+    /// Checks the text of a scene file; `path` names it in errors and mesh paths are
+    /// relative to its folder.
+    ///
+    /// # Errors
+    ///
+    /// As [`SceneDescription::read`], without the reading.
+    pub fn parse(path: impl AsRef<Path>, text: &str) -> Result<Self, SceneError> {
+        let path = path.as_ref().to_owned();
+        let file: SceneFile = serde_json::from_str(text).map_err(|e| SceneError::ParseFile {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+        let invalid = |place: String, message: String| SceneError::InvalidEntry {
+            path: path.clone(),
+            place,
+            message,
+        };
+        let mut poses = Vec::with_capacity(file.instances.len());
+        for (index, entry) in file.instances.iter().enumerate() {
+            let place = format!("instances[{index}] ({:?})", instance_name(entry, index));
+            if !file.meshes.contains_key(&entry.mesh) {
+                let known: Vec<&str> = file.meshes.keys().map(String::as_str).collect();
+                return Err(invalid(
+                    place,
+                    format!(
+                        "mesh `{}` is not defined in `meshes` (defined: {})",
+                        entry.mesh,
+                        if known.is_empty() {
+                            "none".to_owned()
+                        } else {
+                            known.join(", ")
+                        }
+                    ),
+                ));
+            }
+            poses.push(pose(entry).map_err(|message| invalid(place, message))?);
+        }
+        let camera = file
+            .camera
+            .as_ref()
+            .map(|c| {
+                let camera = Camera::perspective(
+                    DVec3::from_array(c.eye),
+                    DVec3::from_array(c.target),
+                    c.fov_y_degrees,
+                    c.width,
+                    c.height,
+                )?;
+                match c.near {
+                    Some(near) => camera.with_near(near),
+                    None => Ok(camera),
+                }
+            })
+            .transpose()
+            .map_err(|e| invalid("camera".to_owned(), e.to_string()))?;
+        Ok(Self {
+            path,
+            file,
+            poses,
+            camera,
+        })
+    }
+
+    /// The file as written.
+    #[must_use]
+    pub fn file(&self) -> &SceneFile {
+        &self.file
+    }
+
+    /// The camera, if the file has one.
+    #[must_use]
+    pub fn camera(&self) -> Option<&Camera> {
+        self.camera.as_ref()
+    }
+
+    /// The file of mesh `name`, resolved against the scene file's folder.
+    #[must_use]
+    pub fn mesh_path(&self, name: &str) -> Option<PathBuf> {
+        let relative = self.file.meshes.get(name)?;
+        let folder = self.path.parent().unwrap_or_else(|| Path::new(""));
+        Some(folder.join(relative))
+    }
+
+    /// The names of the meshes some instance uses, sorted.
+    #[must_use]
+    pub fn used_meshes(&self) -> Vec<&str> {
+        let mut names: Vec<&str> = self
+            .file
+            .instances
+            .iter()
+            .map(|i| i.mesh.as_str())
+            .collect();
+        names.sort_unstable();
+        names.dedup();
+        names
+    }
+
+    /// Reads every used mesh, builds its model (on every core with `parallel`), and
+    /// places the instances.
+    ///
+    /// # Errors
+    ///
+    /// [`SceneError::InvalidEntry`] naming the mesh (`meshes.NAME`) and its file when it
+    /// cannot be read or its model cannot be built.
+    pub fn build(&self, options: &ModelOptions) -> Result<LoadedScene, SceneError> {
+        self.build_with(|name, path| {
+            let mesh = sphaera_mesh::io::load(path)?;
+            ObjectModel::build(name, mesh, options)
+        })
+    }
+
+    /// As [`SceneDescription::build`], with the caller building each model from its name
+    /// and file (to cache models, report progress, or read them from elsewhere).
+    ///
+    /// # Errors
+    ///
+    /// As [`SceneDescription::build`].
+    pub fn build_with<F>(&self, make: F) -> Result<LoadedScene, SceneError>
+    where
+        F: Fn(&str, &Path) -> Result<ObjectModel, SceneError> + Sync,
+    {
+        let names = self.used_meshes();
+        let make_one = |name: &&str| -> Result<Arc<ObjectModel>, SceneError> {
+            let path = self.mesh_path(name).unwrap_or_default();
+            make(name, &path)
+                .map(Arc::new)
+                .map_err(|e| SceneError::InvalidEntry {
+                    path: self.path.clone(),
+                    place: format!("meshes.{name} ({})", path.display()),
+                    message: e.to_string(),
+                })
+        };
+        #[cfg(feature = "parallel")]
+        let models: Vec<Arc<ObjectModel>> = {
+            use rayon::prelude::*;
+            names.par_iter().map(make_one).collect::<Result<_, _>>()?
+        };
+        #[cfg(not(feature = "parallel"))]
+        let models: Vec<Arc<ObjectModel>> = names.iter().map(make_one).collect::<Result<_, _>>()?;
+        let mut scene = Scene::new();
+        for (index, (entry, pose)) in self.file.instances.iter().zip(&self.poses).enumerate() {
+            let Some(k) = names.iter().position(|n| *n == entry.mesh) else {
+                continue;
+            };
+            let Some(model) = models.get(k) else {
+                continue;
+            };
+            scene.add(instance_name(entry, index), Arc::clone(model), *pose);
+        }
+        Ok(LoadedScene {
+            scene,
+            camera: self.camera,
+            models,
+        })
+    }
+}
+
+fn instance_name(entry: &InstanceEntry, index: usize) -> String {
+    entry
+        .name
+        .clone()
+        .unwrap_or_else(|| format!("{}-{index}", entry.mesh))
+}
+
+/// The pose of an instance entry, or what is wrong with it.
+fn pose(entry: &InstanceEntry) -> Result<Similarity, String> {
+    let finite = |name: &str, values: &[f64]| {
+        if values.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(format!(
+                "`{name}` has a NaN or infinite number ({values:?})"
+            ))
+        }
+    };
+    finite("position", &entry.position)?;
+    finite("scale", &[entry.scale])?;
+    if entry.scale <= 0.0 {
+        return Err(format!(
+            "`scale` must be positive (got {}); a mirror is not a scale",
+            entry.scale
+        ));
+    }
+    let rotation = match (entry.rotation_degrees, entry.quaternion) {
+        (Some(_), Some(_)) => {
+            return Err("give `rotation_degrees` or `quaternion`, not both".to_owned());
+        }
+        (Some(r), None) => {
+            finite("rotation_degrees", &r)?;
+            DQuat::from_euler(
+                EulerRot::ZYX,
+                r[2].to_radians(),
+                r[1].to_radians(),
+                r[0].to_radians(),
+            )
+        }
+        (None, Some(q)) => {
+            finite("quaternion", &q)?;
+            let q = DQuat::from_array(q);
+            let norm = q.length();
+            if !(norm > 0.5 && norm < 2.0) {
+                return Err(format!(
+                    "`quaternion` must be a unit quaternion [x, y, z, w] (its norm is {norm})"
+                ));
+            }
+            q / norm
+        }
+        (None, None) => DQuat::IDENTITY,
+    };
+    let affine = glam::DAffine3::from_scale_rotation_translation(
+        DVec3::splat(entry.scale),
+        rotation,
+        DVec3::from_array(entry.position),
+    );
+    Similarity::new(affine).map_err(|e| e.to_string())
+}

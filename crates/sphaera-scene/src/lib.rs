@@ -1,0 +1,96 @@
+//! # sphaera-scene
+//!
+//! Model no more than a scene needs. Each mesh is built once into an [`ObjectModel`]: its
+//! sphere-tree (Bradshaw and O'Sullivan, *Adaptive Medial-Axis Approximation for
+//! Sphere-Tree Construction*, 2004) and its simplification hierarchy with error spheres,
+//! every level with a certified error. A [`Scene`] places shared models with poses. Then:
+//!
+//! - [`Scene::detail`] picks, for every instance, the **coarsest** sphere-tree level and
+//!   the coarsest mesh level whose certified error meets a [`Tolerance`]: world units, a
+//!   fraction of each object's size, or pixels on a perspective [`Camera`]'s image
+//!   (certified there too, see [`Camera::pixels_per_unit`]). The [`DetailReport`] gives
+//!   each choice, its error, and the totals against full detail.
+//! - [`Scene::collide`] finds every contact within a [`Budget`]: a broad phase over the
+//!   instances' bounding spheres, then the paper's interruptible tree-against-tree
+//!   traversal for every close pair, **all pairs one level at a time**, so the answer
+//!   improves monotonically as the budget grows. Each contact carries its error bound.
+//! - [`SceneDescription`] reads a JSON scene file (meshes, instances with poses, a camera)
+//!   with errors that name the file and the entry.
+//!
+//! # Quick start
+//!
+//! ```
+//! use std::sync::Arc;
+//! use sphaera_mesh::geometry::Similarity;
+//! use sphaera_scene::{Budget, Camera, DVec3, ModelOptions, ObjectModel, Scene, Tolerance};
+//! use sphaera_spheretree::SphereTreeOptions;
+//!
+//! // Small trees keep this example fast; the defaults are depth 3, branch 8.
+//! let tree = SphereTreeOptions::default().with_depth(2).with_branch(4).with_samples(600)
+//!     .with_initial_spheres(60).with_min_spheres_per_node(20);
+//! let options = ModelOptions::default().with_tree(tree);
+//! let torus = Arc::new(ObjectModel::build("torus", sphaera_mesh::shapes::torus(1.0, 0.3, 32)?, &options)?);
+//!
+//! let mut scene = Scene::new();
+//! for i in 0..4 {
+//!     let pose = Similarity::from_translation(DVec3::new(2.5 * i as f64, 0.0, -5.0 * i as f64))?;
+//!     scene.add(format!("torus-{i}"), Arc::clone(&torus), pose);
+//! }
+//!
+//! // Two pixels on a 1280×720 image: the far tori take coarser meshes.
+//! let camera = Camera::perspective(DVec3::new(0.0, 1.0, 6.0), DVec3::new(2.0, 0.0, -5.0), 60.0, 1280, 720)?;
+//! let report = scene.detail(Some(&camera), Tolerance::Pixels(2.0))?;
+//! let triangles: Vec<usize> = report.instances.iter().map(|d| d.mesh.count).collect();
+//! assert!(triangles[3] < triangles[0] && report.triangles < report.full_triangles);
+//! assert!(report.instances.iter().all(|d| d.mesh.meets && d.mesh.measured <= 2.0));
+//! // These small trees are too coarse for two pixels up close: the finest level is
+//! // taken, and the report says so.
+//! assert!(!report.instances[0].spheres.meets && !report.all_meet);
+//!
+//! // For physics, a tolerance in world units: the tori's roots are enough at 2 units.
+//! let coarse = scene.detail(None, Tolerance::World(2.0))?;
+//! assert!(coarse.instances.iter().all(|d| d.spheres.level == 0 && d.spheres.meets));
+//!
+//! // Nothing touches: the broad phase finds no close pair.
+//! let contacts = scene.collide(&Budget::Unlimited)?;
+//! assert!(contacts.pairs.is_empty());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Errors
+//!
+//! Every fallible function returns [`SceneError`]: the crates' own errors pass through
+//! ([`SceneError::Mesh`], [`SceneError::SphereTree`], [`SceneError::Simplify`]), and scene
+//! files report the file and the entry ([`SceneError::ParseFile`] with line and column,
+//! [`SceneError::InvalidEntry`] naming `instances[3] ("name")`, `meshes.NAME` or
+//! `camera`).
+//!
+//! # See also
+//!
+//! `sphaera-spheretree` (the trees and the single-pair traversal
+//! [`sphaera_spheretree::collide::collide`]), `sphaera-simplify` (the hierarchy and its
+//! error spheres), and the `sphaera scene` command of `sphaera-cli`.
+//!
+//! # Feature flags
+#![doc = document_features::document_features!()]
+
+mod camera;
+mod collide;
+mod detail;
+mod error;
+mod file;
+mod model;
+mod scene;
+mod tolerance;
+
+pub use camera::Camera;
+pub use collide::{CollisionSummary, PairContacts, SceneCollision};
+pub use detail::{DetailReport, InstanceDetail, LevelChoice};
+pub use error::SceneError;
+pub use file::{CameraEntry, InstanceEntry, LoadedScene, SceneDescription, SceneFile};
+pub use glam::DVec3;
+pub use model::{MeshLevel, ModelOptions, ObjectModel};
+pub use scene::{Instance, Scene};
+pub use sphaera_mesh::Sphere;
+pub use sphaera_spheretree::collide::{Budget, Contact, CostModel, TraversalStats};
+pub use tolerance::Tolerance;

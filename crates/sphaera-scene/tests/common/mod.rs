@@ -1,0 +1,65 @@
+//! Models shared by the scene tests: built once, small trees so the tests stay fast.
+
+#![allow(dead_code)]
+
+use std::sync::{Arc, OnceLock};
+
+use sphaera_mesh::geometry::Similarity;
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_scene::{ModelOptions, ObjectModel, Scene};
+use sphaera_spheretree::SphereTreeOptions;
+
+/// Small sphere-trees: depth 2, branch 4.
+pub fn options() -> ModelOptions {
+    ModelOptions::default().with_tree(
+        SphereTreeOptions::default()
+            .with_depth(2)
+            .with_branch(4)
+            .with_samples(800)
+            .with_initial_spheres(80)
+            .with_min_spheres_per_node(20),
+    )
+}
+
+/// The meshes of [`models`]: a ball, a capsule, a torus and a cube, each a few hundred
+/// triangles.
+pub fn meshes() -> Vec<(&'static str, TriMesh)> {
+    vec![
+        ("ball", shapes::sphere(0.5, 10).expect("sphere")),
+        ("capsule", shapes::capsule(0.3, 1.2, 8).expect("capsule")),
+        ("torus", shapes::torus(0.6, 0.2, 14).expect("torus")),
+        ("cube", shapes::cube(0.8, 3).expect("cube")),
+    ]
+}
+
+/// One model per mesh of [`meshes`], built once for the whole test binary.
+pub fn models() -> &'static [Arc<ObjectModel>] {
+    static MODELS: OnceLock<Vec<Arc<ObjectModel>>> = OnceLock::new();
+    MODELS.get_or_init(|| {
+        meshes()
+            .into_iter()
+            .map(|(name, mesh)| Arc::new(ObjectModel::build(name, mesh, &options()).expect(name)))
+            .collect()
+    })
+}
+
+/// A pose from a translation, a rotation (axis-angle) and a scale.
+pub fn pose(translation: DVec3, axis: DVec3, angle: f64, scale: f64) -> Similarity {
+    let rotation = glam::DQuat::from_axis_angle(axis.try_normalize().unwrap_or(DVec3::Z), angle);
+    Similarity::new(glam::DAffine3::from_scale_rotation_translation(
+        DVec3::splat(scale),
+        rotation,
+        translation,
+    ))
+    .expect("a similarity")
+}
+
+/// A scene of `placements` (model index, pose).
+pub fn scene(placements: &[(usize, Similarity)]) -> Scene {
+    let mut scene = Scene::new();
+    for (k, (model, pose)) in placements.iter().enumerate() {
+        let model = &models()[model % models().len()];
+        scene.add(format!("{}-{k}", model.name()), Arc::clone(model), *pose);
+    }
+    scene
+}

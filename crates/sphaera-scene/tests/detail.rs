@@ -1,0 +1,287 @@
+//! `Scene::detail` against brute force: the chosen level meets the tolerance and every
+//! coarser level violates it; the camera's pixel bound holds for random displacements;
+//! the mesh ladder is the hierarchy's selective refinement; scaling by powers of two gives
+//! identical choices.
+
+#![allow(clippy::float_cmp)]
+
+mod common;
+
+use proptest::prelude::*;
+use sphaera_mesh::{DVec3, Sphere};
+use sphaera_scene::{Camera, LevelChoice, ObjectModel, SceneError, Tolerance};
+
+/// The camera sees `p`: beyond the near plane and within the image's corner angle.
+fn seen(camera: &Camera, p: DVec3) -> bool {
+    let v = p - camera.eye();
+    let z = v.dot(camera.forward());
+    z >= camera.near() && v.angle_between(camera.forward()) <= camera.half_diagonal_angle()
+}
+
+fn unit(v: DVec3) -> DVec3 {
+    v.try_normalize().unwrap_or(DVec3::X)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Any two seen points of a sphere `error` apart land at most `projected_error` apart.
+    #[test]
+    fn the_pixel_bound_holds_for_any_displacement(
+        eye in prop::array::uniform3(-10.0..10.0f64),
+        look in prop::array::uniform3(-1.0..1.0f64),
+        fov in 10.0..150.0f64,
+        width in 1u32..4000,
+        height in 1u32..3000,
+        center in prop::array::uniform3(-20.0..20.0f64),
+        radius in 0.01..5.0f64,
+        inside in prop::array::uniform3(-1.0..1.0f64),
+        direction in prop::array::uniform3(-1.0..1.0f64),
+        error in 1e-4..0.5f64,
+    ) {
+        let eye = DVec3::from_array(eye);
+        let camera = Camera::perspective(eye, eye + unit(DVec3::from_array(look)), fov, width, height)
+            .expect("a camera");
+        let sphere = Sphere::new(DVec3::from_array(center), radius);
+        let p = sphere.center + DVec3::from_array(inside).clamp_length_max(1.0) * radius;
+        let q = p + unit(DVec3::from_array(direction)) * error;
+        match camera.projected_error(&sphere, error) {
+            None => prop_assert!(!seen(&camera, p), "a seen point in a sphere said unseen"),
+            Some(bound) => {
+                if seen(&camera, p) && seen(&camera, q) {
+                    let (pp, _) = camera.project(p).expect("in front");
+                    let (qq, _) = camera.project(q).expect("in front");
+                    prop_assert!(
+                        pp.distance(qq) <= bound * (1.0 + 1e-9),
+                        "moved {} px, bound {bound}", pp.distance(qq)
+                    );
+                }
+            }
+        }
+    }
+
+    /// The chosen levels are the coarsest that meet the tolerance, for random poses,
+    /// tolerances and cameras.
+    #[test]
+    fn the_chosen_levels_are_the_coarsest_that_meet(
+        placements in prop::collection::vec(
+            (0usize..4, prop::array::uniform3(-20.0..20.0f64), prop::array::uniform3(-1.0..1.0f64),
+             0.0..6.3f64, -2.0..2.0f64),
+            1..12,
+        ),
+        kind in 0usize..3,
+        amount in 0.0..1.0f64,
+        eye in prop::array::uniform3(-30.0..30.0f64),
+    ) {
+        let placements: Vec<_> = placements
+            .into_iter()
+            .map(|(m, t, axis, angle, log_scale)| {
+                (m, common::pose(DVec3::from_array(t), DVec3::from_array(axis), angle, 2f64.powf(log_scale)))
+            })
+            .collect();
+        let scene = common::scene(&placements);
+        let tolerance = match kind {
+            0 => Tolerance::World(amount * 0.5),
+            1 => Tolerance::Relative(amount * 0.2),
+            _ => Tolerance::Pixels(amount * 20.0),
+        };
+        let camera = Camera::perspective(DVec3::from_array(eye), DVec3::ZERO, 60.0, 1280, 720)
+            .expect("a camera");
+        let report = scene.detail(Some(&camera), tolerance).expect("a report");
+        prop_assert_eq!(report.instances.len(), scene.len());
+        for (instance, detail) in scene.instances().iter().zip(&report.instances) {
+            let model = &instance.model;
+            let s = instance.pose.scale();
+            // Brute force: every level's error measured in the tolerance's unit.
+            let measure = |e: f64| -> Option<f64> {
+                match tolerance {
+                    Tolerance::World(_) => Some(e * s),
+                    Tolerance::Relative(_) => Some(e / model.mesh().bounding_box_diagonal()),
+                    Tolerance::Pixels(_) => camera.projected_error(
+                        &instance.pose.sphere(&model.bounding_sphere()), e * s),
+                }
+            };
+            let check = |choice: &LevelChoice, errors: &[f64], counts: &dyn Fn(usize) -> usize| {
+                let measured: Vec<Option<f64>> = errors.iter().map(|&e| measure(e)).collect();
+                // A level that cannot be seen at all meets any tolerance in pixels.
+                let meets = |l: usize| measured[l].is_none_or(|m| m <= tolerance.value());
+                let expected = (0..errors.len()).find(|&l| meets(l));
+                let level = expected.unwrap_or(errors.len() - 1);
+                choice.level == level
+                    && choice.meets == expected.is_some()
+                    && (0..level).all(|l| !meets(l))
+                    && choice.count == counts(level)
+                    && choice.error == errors[level] * s
+                    && choice.levels == errors.len()
+            };
+            let tree = model.tree();
+            prop_assert!(check(&detail.spheres, model.tree_errors(), &|l| tree.level(l).len()),
+                "{detail:?}");
+            let ladder: Vec<f64> = model.mesh_levels().iter().map(|l| l.error_bound).collect();
+            prop_assert!(check(&detail.mesh, &ladder, &|l| model.mesh_levels()[l].triangles),
+                "{detail:?}");
+            prop_assert!(detail.mesh.meets, "the input meets every tolerance");
+            let seen = camera.pixels_per_unit(&instance.pose.sphere(&model.bounding_sphere()));
+            prop_assert_eq!(detail.visible, seen.is_some());
+
+        }
+        let spheres: usize = report.instances.iter().map(|d| d.spheres.count).sum();
+        prop_assert_eq!(report.spheres, spheres);
+        let triangles: usize = report.instances.iter().map(|d| d.mesh.count).sum();
+        prop_assert_eq!(report.triangles, triangles);
+        prop_assert!(report.triangles <= report.full_triangles);
+    }
+}
+
+#[test]
+fn the_mesh_ladder_is_the_hierarchys_selective_refinement() {
+    for model in common::models() {
+        let ladder = model.mesh_levels();
+        assert!(ladder.len() >= 3, "{}: {ladder:?}", model.name());
+        for pair in ladder.windows(2) {
+            assert!(
+                pair[0].triangles < pair[1].triangles,
+                "{}: {pair:?}",
+                model.name()
+            );
+            assert!(
+                pair[0].error_bound > pair[1].error_bound,
+                "{}: {pair:?}",
+                model.name()
+            );
+        }
+        let finest = ladder.last().expect("a level");
+        assert_eq!(finest.triangles, model.mesh().triangle_count());
+        assert_eq!(finest.error_bound, 0.0);
+        for (level, entry) in ladder.iter().enumerate() {
+            assert!(entry.error_bound <= entry.requested || level == 0);
+            let mesh = model.mesh_level(level).expect("in range");
+            assert_eq!(
+                mesh.mesh.triangle_count(),
+                entry.triangles,
+                "{}",
+                model.name()
+            );
+            assert_eq!(mesh.error_bound, entry.error_bound, "{}", model.name());
+            // The certified bound holds against a sampled Hausdorff distance.
+            let measured =
+                sphaera_tests::reference_hausdorff(model.mesh(), &mesh.mesh, 2_000, 1).symmetric();
+            assert!(
+                measured <= entry.error_bound * (1.0 + 1e-9) + 1e-12,
+                "{}",
+                model.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_tolerance_in_pixels_needs_a_camera_and_bad_tolerances_are_refused() {
+    let scene = common::scene(&[(0, sphaera_mesh::geometry::Similarity::IDENTITY)]);
+    assert!(matches!(
+        scene.detail(None, Tolerance::Pixels(1.0)),
+        Err(SceneError::NoCamera)
+    ));
+    for bad in [
+        Tolerance::World(f64::NAN),
+        Tolerance::Relative(-0.1),
+        Tolerance::World(f64::INFINITY),
+    ] {
+        assert!(matches!(
+            scene.detail(None, bad),
+            Err(SceneError::InvalidTolerance { .. })
+        ));
+    }
+    // An empty scene has an empty report.
+    let empty = sphaera_scene::Scene::new()
+        .detail(None, Tolerance::World(1.0))
+        .expect("a report");
+    assert!(empty.instances.is_empty() && empty.all_meet && empty.full_triangles == 0);
+}
+
+/// Poses scaled by 2^k with the tolerance scaled alike give identical choices, with
+/// errors scaled exactly; models built on meshes scaled by 2^k have errors scaled exactly.
+#[test]
+fn scaling_by_powers_of_two_gives_identical_choices() {
+    let placements: Vec<_> = (0..8)
+        .map(|k| {
+            let t = DVec3::new(k as f64 * 1.7, (k % 3) as f64, -(k as f64));
+            (
+                k,
+                common::pose(t, DVec3::new(1.0, 2.0, 3.0), k as f64, 1.0 + k as f64 / 8.0),
+            )
+        })
+        .collect();
+    let base = common::scene(&placements);
+    let camera = Camera::perspective(DVec3::new(3.0, 2.0, 8.0), DVec3::ZERO, 50.0, 1920, 1080)
+        .expect("a camera");
+    for k in [-30i32, -1, 3, 40] {
+        let f = 2f64.powi(k);
+        let scaled_placements: Vec<_> = placements
+            .iter()
+            .map(|&(m, p)| {
+                let a = p.affine();
+                let scaled = glam::DAffine3 {
+                    matrix3: a.matrix3 * f,
+                    translation: a.translation * f,
+                };
+                (
+                    m,
+                    sphaera_mesh::geometry::Similarity::new(scaled).expect("similarity"),
+                )
+            })
+            .collect();
+        let scaled = common::scene(&scaled_placements);
+        let scaled_camera = Camera::perspective(camera.eye() * f, DVec3::ZERO, 50.0, 1920, 1080)
+            .expect("a camera")
+            .with_near(camera.near() * f)
+            .expect("near");
+        for (tolerance, scaled_tolerance, cam, scaled_cam) in [
+            (
+                Tolerance::World(0.05),
+                Tolerance::World(0.05 * f),
+                None,
+                None,
+            ),
+            (
+                Tolerance::Relative(0.01),
+                Tolerance::Relative(0.01),
+                None,
+                None,
+            ),
+            (
+                Tolerance::Pixels(1.5),
+                Tolerance::Pixels(1.5),
+                Some(&camera),
+                Some(&scaled_camera),
+            ),
+        ] {
+            let a = base.detail(cam, tolerance).expect("report");
+            let b = scaled.detail(scaled_cam, scaled_tolerance).expect("report");
+            for (x, y) in a.instances.iter().zip(&b.instances) {
+                assert_eq!(
+                    (x.spheres.level, x.mesh.level),
+                    (y.spheres.level, y.mesh.level),
+                    "2^{k} {tolerance}"
+                );
+                assert_eq!(x.mesh.error * f, y.mesh.error, "2^{k}");
+                assert_eq!(x.spheres.error * f, y.spheres.error, "2^{k}");
+            }
+        }
+    }
+    // A model of a mesh scaled by 2^k: every error scaled exactly.
+    let (name, mesh) = common::meshes().swap_remove(1);
+    let f = 2f64.powi(-12);
+    let scaled_mesh = sphaera_tests::awkward::mapped(&mesh, |p| p * f, false);
+    let a = ObjectModel::build(name, mesh, &common::options()).expect("model");
+    let b = ObjectModel::build(name, scaled_mesh, &common::options()).expect("model");
+    let scaled_errors: Vec<f64> = a.tree_errors().iter().map(|e| e * f).collect();
+    assert_eq!(scaled_errors, b.tree_errors());
+    assert_eq!(a.mesh_levels().len(), b.mesh_levels().len());
+    for (x, y) in a.mesh_levels().iter().zip(b.mesh_levels()) {
+        assert_eq!(
+            (x.triangles, x.error_bound * f),
+            (y.triangles, y.error_bound)
+        );
+    }
+}
