@@ -18,7 +18,10 @@
 //! - `silhouette_error_vs_triangles`: `silhouette/mod.rs` (levels of detail guided by
 //!   silhouette labels against unweighted ones, in image space and object space; the
 //!   Fig. 3 picture in `silhouette/picture.rs`);
-//! - `silhouette_time_vs_faces`: `silhouette/timing.rs` (the paper's Tables 1–2).
+//! - `silhouette_time_vs_faces`: `silhouette/timing.rs` (the paper's Tables 1–2);
+//! - `scene_time_vs_error`: `scene/mod.rs` (200 bodies falling into a box in rapier with
+//!   Sphaera's ball compounds, trimesh and convex-decomposition colliders; the simulation
+//!   and the measurement on the true meshes in `scene/physics.rs`).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -27,6 +30,7 @@ mod hal;
 mod hausdorff_gap;
 mod load_topology;
 mod medial_static_vs_adaptive;
+mod scene;
 mod silhouette;
 mod simplify_error;
 mod spheretree;
@@ -53,6 +57,7 @@ pub const NAMES: &[&str] = &[
     hal::NAME,
     silhouette::NAME,
     silhouette::timing::NAME,
+    scene::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -69,6 +74,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         hal::NAME => hal::run(data, out),
         silhouette::NAME => silhouette::run(data, out),
         silhouette::timing::NAME => silhouette::timing::run(data, out),
+        scene::NAME => scene::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }
