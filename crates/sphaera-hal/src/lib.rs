@@ -113,3 +113,9 @@ pub use query3::contains3_brute;
 pub use surface3::{GenusZeroSurface, RootBall};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};
 pub use tree3::{Bound3, HalTree3, Node3, SMALLEST_SPLIT_ANGLE};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -42,3 +42,9 @@ pub use medial::{
 /// The mesh a medial approximation describes (defined in `sphaera-mesh`): its inside test
 /// and exact closest points.
 pub use sphaera_mesh::Surface;
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -105,8 +105,6 @@
 //! the workspace (`sphaera-simplify`, `sphaera-sweep`, `sphaera-medial`,
 //! `sphaera-spheretree`, `sphaera-hal`, `sphaera-silhouette`) all take a [`TriMesh`].
 
-#![cfg_attr(docsrs, feature(doc_cfg))]
-
 mod aabb;
 pub mod bvh;
 pub mod closest;
@@ -134,3 +132,9 @@ pub use length::Length;
 pub use mesh::TriMesh;
 pub use sphere::Sphere;
 pub use surface::Surface;
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

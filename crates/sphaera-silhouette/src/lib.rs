@@ -132,3 +132,9 @@ pub use lod::{ContourTolerance, Extraction, ViewDependent, contour_weights};
 pub use picture::{Picture, overlay_picture, shaded_picture};
 pub use raster::FaceGrid;
 pub use views::{Projection, ViewSet};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

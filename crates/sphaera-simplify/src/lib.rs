@@ -168,3 +168,9 @@ pub use simplifier::{
     LockReport, Order, Placement, Simplified, SimplifyOptions, SimplifyProgress, simplify,
     simplify_with_progress,
 };
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

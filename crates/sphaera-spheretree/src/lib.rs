@@ -94,3 +94,9 @@ pub use options::{
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sphaera_mesh::{Sphere, Surface};
 pub use tree::{SphereTree, TreeDefect, TreeNode};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -157,3 +157,9 @@ pub use session::{Session, SessionOptions};
 /// coherent streams (all defined in `sphaera-mesh`).
 pub use sphaera_mesh::closest::{ApproxClosest, ClosestPoint, Feature, TreeCursor, TriangleTree};
 pub use sweeper::{Sweeper, build_hierarchy};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

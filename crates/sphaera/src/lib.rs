@@ -55,3 +55,9 @@ pub use sphaera_sweep as sweep;
 pub mod prelude {
     pub use sphaera_mesh::{Aabb, DVec3, Length, MeshError, Sphere, Surface, TriMesh};
 }
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
