@@ -91,7 +91,9 @@
 //! # See also
 //!
 //! [`sphaera-spheretree`](https://docs.rs/sphaera-spheretree) for 3D bounding-sphere
-//! hierarchies; the paper: R. C. Veltkamp, *Hierarchical approximation and
+//! hierarchies; [`sphaera_mesh`] for the meshes a [`GenusZeroSurface`] is made from;
+//! the facade `sphaera` (as `sphaera::hal`) and the `sphaera hal` command of
+//! `sphaera-cli`. The paper: R. C. Veltkamp, *Hierarchical approximation and
 //! localization* (Utrecht University).
 
 mod error;

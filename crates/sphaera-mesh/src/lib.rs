@@ -90,8 +90,9 @@
 //!
 //! # Performance
 //!
-//! Measured on the 2-core reference machine with criterion
-//! (`cargo bench -p sphaera-mesh --bench load_topology`; see `docs/benchmarks.md` in the
+//! Reading and topology are linear in the size of the mesh. Measured on the 2-core
+//! reference machine with criterion (2026-11-21,
+//! `cargo bench -p sphaera-mesh --bench load_topology`; see `docs/benchmarks.md` in the
 //! repository): the 871,414-triangle Stanford dragon (33 MB ASCII PLY) reads in about
 //! 0.14 s, its topology report takes about 0.16 s, and its half-edge mesh builds in about
 //! 0.11 s.

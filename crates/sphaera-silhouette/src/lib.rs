@@ -107,6 +107,9 @@
 //! silhouettes of a scanned surface, the contour region covers nearly everything and the
 //! gain is 1.0–1.3×.
 //!
+//! # Feature flags
+#![doc = document_features::document_features!()]
+//!
 //! # See also
 //!
 //! `sphaera-simplify` (the hierarchy and the static simplifier the weights feed),

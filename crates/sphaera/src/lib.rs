@@ -16,10 +16,13 @@
 //! | `medial` (feature `medial`) | `sphaera-medial` | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
 //! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | sphere-trees for collision detection through one entry point (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), with coverage of the whole surface certified at every level, certified fit evaluation, traversal and exports |
 //! | `hal` (feature `hal`) | `sphaera-hal` | HAL trees: hierarchical approximation and localization of polygons and polylines by signed discs, adaptive approximation by widths, hierarchical point inclusion and intersection detection, for polygons, polylines and closed genus-0 meshes |
+//! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | view-dependent distance-transform silhouette labels: camera sets with constant-time nearest views, conservative mesh mapping, exact Euclidean and chamfer distance transforms, labels for new views, and the silhouette-preserving level of detail they guide, with a certified bound per region |
 //!
-//! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | view-dependent distance-transform silhouette labels: camera sets with constant-time nearest views, conservative mesh mapping, exact Euclidean and chamfer distance transforms, labels for new views (the level of detail they guide is in progress) |
-//!
-//! See `docs/architecture.md` in the repository for how the crates fit together.
+//! Each module's documentation is its crate's: what it does and which paper it implements
+//! (Guéziec's Meshsweeper, Bradshaw and O'Sullivan's adaptive medial-axis sphere-trees,
+//! Veltkamp's HAL trees, Mata, Pastor and Rodríguez's distance labels), a quick start,
+//! the algorithm, errors and measured performance. See `docs/architecture.md` in the
+//! repository for how the crates fit together.
 //!
 //! # Quick start
 //!
@@ -34,8 +37,28 @@
 //! # Ok::<(), MeshError>(())
 //! ```
 //!
+//! # Errors
+//!
+//! Each module returns its own crate's error enum (`mesh::MeshError`,
+//! `simplify::SimplifyError`, `sweep::SweepError`, `medial::MedialError` and
+//! `medial::DelaunayError`, `spheretree::SphereTreeError`, `hal::HalError`,
+//! `silhouette::SilhouetteError`); each is `#[non_exhaustive]`, says what was wrong and
+//! where, and none of the crates panics on user input.
+//!
+//! # Performance
+//!
+//! The facade adds nothing at run time. Each crate's documentation gives its measured
+//! figures, and the repository's `docs/benchmarks.md` has them all, with the machine, the
+//! date and the command that made each number, beside the peer libraries measured in the
+//! same run.
+//!
 //! # Feature flags
 #![doc = document_features::document_features!()]
+//!
+//! # See also
+//!
+//! The `sphaera` command-line tool (`sphaera-cli`), one subcommand per capability, and
+//! the single crates above for users who need only one of them.
 
 #[cfg(feature = "hal")]
 pub use sphaera_hal as hal;
