@@ -84,12 +84,12 @@
 //!    region ([`reduce`]: [`reduce::merge`] combines neighbouring pairs, [`reduce::burst`]
 //!    removes spheres and grows their neighbours over the gap, [`reduce::expand_select`]
 //!    expands every sphere to a common standoff and selects a covering subset,
-//!    [`reduce::combined`] runs both and keeps the tighter). The region is divided
-//!    between the children ([`segment::divide`]): a sample covered by several goes to the
-//!    one of smallest power distance, and the dividing planes are moved (Nelder–Mead over
-//!    the power weights) to balance the children's regions, as the paper's section 3.1
-//!    asks. A child gets a positive radius and is never looser than its parent
-//!    (below).
+//!    [`reduce::combined`] runs merge and expand-select and keeps the tighter set). The
+//!    region is divided between the children ([`segment::divide`]): a sample covered by
+//!    several goes to the one of smallest power distance, and the dividing planes are
+//!    moved (Nelder–Mead over the power weights) to balance the children's regions, as
+//!    the paper's section 3.1 asks. A child gets a positive radius and is never looser
+//!    than its parent (below).
 //! 5. **Coverage.** Each finished level is certified to cover every point of every
 //!    triangle ([`cover::certify_coverage`]): triangles are split until each piece lies
 //!    in one sphere, and where none holds a piece at the resolution, the sphere needing
