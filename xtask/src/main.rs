@@ -2,8 +2,14 @@
 //!
 //! ```text
 //! cargo xtask test          every test: unit, cross-crate (`tests/`), doctests
-//! cargo xtask ci            fmt check, clippy -D warnings, tests, docs -D warnings,
-//!                           duplicate-glam check, generated-file check
+//! cargo xtask ci            fmt check, duplicate-glam check, clippy -D warnings, the
+//!                           API reference as docs.rs builds it and the whole
+//!                           workspace's docs with default features (-D warnings),
+//!                           package dry run, tests, generated-file check
+//! cargo xtask doc           the API reference of every published library crate as
+//!                           docs.rs builds it: all features, `--cfg docsrs`, -D warnings
+//! cargo xtask package       `cargo package` dry run of every crate meant for crates.io,
+//!                           and a check of what each package holds
 //! cargo xtask bench [ARGS]  the criterion benches (ARGS go to `cargo bench`)
 //! cargo xtask charts        run the sphaera-eval experiments, write docs/charts/*.svg + *.csv
 //! cargo xtask charts --check  fail if a chart or its CSV is missing, or the CSV misses
@@ -21,7 +27,27 @@ use std::{
 
 use anyhow::{Context, Result, bail};
 
-const USAGE: &str = "usage: cargo xtask <test | ci | bench [ARGS..] | charts [--check]>";
+const USAGE: &str =
+    "usage: cargo xtask <test | ci | doc | package | bench [ARGS..] | charts [--check]>";
+
+/// The crates meant for crates.io, each after the crates it depends on. Every other
+/// workspace member must say `publish = false` ([`check_publish_settings`]).
+const PUBLISHED: &[&str] = &[
+    "sphaera-mesh",
+    "sphaera-simplify",
+    "sphaera-sweep",
+    "sphaera-medial",
+    "sphaera-spheretree",
+    "sphaera-hal",
+    "sphaera-silhouette",
+    "sphaera-scene",
+    "sphaera",
+    "sphaera-cli",
+];
+
+/// The published crates without a library target. docs.rs builds library documentation
+/// only, so [`doc`] leaves them out (`ci` still checks their docs).
+const BINARY_ONLY: &[&str] = &["sphaera-cli"];
 
 fn main() -> std::process::ExitCode {
     match run() {
@@ -43,6 +69,8 @@ fn run() -> Result<()> {
     match task.as_str() {
         "test" => test(),
         "ci" => ci(),
+        "doc" => doc(),
+        "package" => package(),
         "bench" => bench(&rest),
         "charts" => charts(rest.iter().any(|a| a == "--check")),
         "" | "help" | "--help" | "-h" => {
@@ -152,10 +180,16 @@ fn ci() -> Result<()> {
         "-D",
         "warnings",
     ])?;
+    // The published crates as docs.rs documents them (every feature), then the whole
+    // workspace with default features, as a user's `cargo doc` builds it: a link that
+    // resolves only with an optional feature on fails there, and the CLI, the evaluation
+    // crate, the test helpers and this tool are documented too.
+    doc()?;
     cargo_with_env(
         &["doc", "--workspace", "--no-deps", "--locked"],
         &[("RUSTDOCFLAGS", "-D warnings")],
     )?;
+    package()?;
     test()?;
     charts(true)?;
     eprintln!("ci passed in {:.0} s", started.elapsed().as_secs_f64());
@@ -198,6 +232,211 @@ fn check_single_glam() -> Result<()> {
         );
     }
     eprintln!("  (one glam: ok)");
+    Ok(())
+}
+
+/// The API reference as docs.rs builds it: every published library crate with all its
+/// features (`all-features = true` in each crate's `package.metadata.docs.rs`) and
+/// `--cfg docsrs` (its `rustdoc-args`), warnings denied, without the dependencies' docs.
+///
+/// docs.rs documents with a nightly rustdoc; the toolchain here is stable (1.95). The
+/// only difference that could matter is a nightly feature switched on under
+/// `cfg(docsrs)`, the usual one being `#![cfg_attr(docsrs, feature(doc_cfg))]` for the
+/// "available on crate feature X only" badges. We decided against it: no crate uses
+/// `cfg(docsrs)` for anything nightly (feature-gated items say in their docs which
+/// feature they need, and every crate's docs list its features), so passing
+/// `--cfg docsrs` to the stable rustdoc through `RUSTDOCFLAGS` gives docs.rs's
+/// configuration exactly, with no `RUSTC_BOOTSTRAP=1` (which would also change the
+/// compiler's fingerprint of every dependency and rebuild them between this step and
+/// clippy). A crate that wants `doc_cfg` later must set `RUSTC_BOOTSTRAP=1` here too,
+/// since stable rustdoc refuses `#![feature]` (E0554).
+///
+/// The CLI has no library target, and docs.rs does not document binaries, so it is left
+/// out; `cargo xtask ci` documents it with the rest of the workspace.
+fn doc() -> Result<()> {
+    let mut args = vec!["doc", "--no-deps", "--all-features", "--locked"];
+    for name in PUBLISHED.iter().filter(|name| !BINARY_ONLY.contains(name)) {
+        args.extend(["-p", name]);
+    }
+    cargo_with_env(&args, &[("RUSTDOCFLAGS", "--cfg docsrs -D warnings")])
+}
+
+/// Files every package must hold.
+const PACKAGE_REQUIRED: &[&str] = &["Cargo.toml", "README.md", "LICENSE-MIT", "LICENSE-APACHE"];
+
+/// Files a package may hold besides its `src/**.rs`: the manifest (as published and as
+/// written), the lock file and VCS note cargo adds, the readme and the licence texts.
+const PACKAGE_ALLOWED: &[&str] = &[
+    "Cargo.toml",
+    "Cargo.toml.orig",
+    "Cargo.lock",
+    ".cargo_vcs_info.json",
+    "README.md",
+    "LICENSE-MIT",
+    "LICENSE-APACHE",
+];
+
+/// Data files a package may hold because its code embeds them (`include_bytes!`): the
+/// CLI's demo mesh (the low-resolution Stanford bunny, 112 KB, public domain).
+const PACKAGE_ASSETS: &[(&str, &str)] = &[("sphaera-cli", "assets/bunny_lowres.obj")];
+
+/// The largest file a package may hold: a larger one is data, not code.
+const PACKAGE_MAX_FILE_BYTES: u64 = 256 * 1024;
+
+/// Dry run of `cargo package` for every crate meant for crates.io.
+///
+/// First what each package holds, from `cargo package --list`: the readme, both licence
+/// texts (symbolic links in each crate's folder to the root's `LICENSE-MIT` and
+/// `LICENSE-APACHE`, which cargo packages as files), the sources, nothing else (no tests,
+/// benches, examples, proptest regressions or meshes: the `include` list of each
+/// manifest), and no file over 256 KiB. Then each manifest's crates.io fields
+/// (description, keywords, categories, readme; the docs.rs table of the libraries), and
+/// that every other workspace member says `publish = false`.
+///
+/// Then the packages themselves, built together (`cargo package --no-verify -p …`), so
+/// that each published manifest is written and each path dependency on a sibling
+/// resolves against the sibling's package (cargo's local overlay) rather than crates.io,
+/// where none of them is yet (cargo reads the crates.io index for the other
+/// dependencies: about 15 s here). The packages are not verified (built from the
+/// `.crate` alone): that rebuilds every dependency without the workspace's profiles, 4.5
+/// minutes on the two cores (measured once on 2026-11-27, every package built), for what
+/// `ci`'s clippy and tests already compile from the same sources. Their tests, benches
+/// and examples are not packaged: most need the unpublished `sphaera-tests` helpers or
+/// the shared meshes.
+fn package() -> Result<()> {
+    check_publish_settings()?;
+    let cargo_bin = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    for name in PUBLISHED {
+        let dir = Path::new("crates").join(name);
+        eprintln!("$ cargo package --list --allow-dirty --locked -p {name}");
+        let output = Command::new(&cargo_bin)
+            .args(["package", "--list", "--allow-dirty", "--locked", "-p", name])
+            .output()
+            .context("cannot run cargo package --list")?;
+        if !output.status.success() {
+            bail!(
+                "cargo package --list -p {name} failed: {}",
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+        let listing = String::from_utf8_lossy(&output.stdout);
+        let files: Vec<&str> = listing.lines().filter(|line| !line.is_empty()).collect();
+        let mut problems = Vec::new();
+        for required in PACKAGE_REQUIRED {
+            if !files.contains(required) {
+                problems.push(format!("{required} is missing"));
+            }
+        }
+        for file in &files {
+            let allowed = PACKAGE_ALLOWED.contains(file)
+                || (file.starts_with("src/") && file.ends_with(".rs"))
+                || PACKAGE_ASSETS.contains(&(name, file));
+            if !allowed {
+                problems.push(format!("{file} should not be packaged"));
+            }
+            // Files cargo writes itself are not in the crate's folder.
+            if let Ok(metadata) = std::fs::metadata(dir.join(file))
+                && metadata.len() > PACKAGE_MAX_FILE_BYTES
+            {
+                problems.push(format!("{file} is {} bytes", metadata.len()));
+            }
+        }
+        let manifest_path = dir.join("Cargo.toml");
+        let manifest = std::fs::read_to_string(&manifest_path)
+            .with_context(|| format!("cannot read {}", manifest_path.display()))?;
+        let mut fields = vec!["description", "keywords", "categories", "readme"];
+        if !BINARY_ONLY.contains(name) {
+            fields.extend(["[package.metadata.docs.rs]", "all-features = true"]);
+            fields.push(r#"rustdoc-args = ["--cfg", "docsrs"]"#);
+        }
+        for field in fields {
+            if !manifest
+                .lines()
+                .any(|line| line.trim_start().starts_with(field))
+            {
+                problems.push(format!("Cargo.toml lacks `{field}`"));
+            }
+        }
+        if !problems.is_empty() {
+            bail!(
+                "the package of {name} is not ready for crates.io: {}; fix `include`, the \
+                 licence links or the manifest in crates/{name}",
+                problems.join(", ")
+            );
+        }
+        eprintln!("  ({} files: ok)", files.len());
+    }
+    let mut args = vec!["package", "--no-verify", "--allow-dirty", "--locked"];
+    for name in PUBLISHED {
+        args.extend(["-p", name]);
+    }
+    eprintln!("$ cargo {}", args.join(" "));
+    let started = Instant::now();
+    let output = Command::new(&cargo_bin)
+        .args(&args)
+        .output()
+        .context("cannot run cargo package")?;
+    // Cargo names every test, bench and example that `include` leaves out; that is the
+    // intent, so those lines are counted rather than printed.
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let (left_out, rest): (Vec<&str>, Vec<&str>) = stderr.lines().partition(|line| {
+        line.starts_with("warning: ignoring ")
+            && line.ends_with("is not included in the published package")
+    });
+    for line in rest {
+        eprintln!("{line}");
+    }
+    eprintln!(
+        "  ({:.1} s, {}; {} tests, benches and examples left out as `include` says)",
+        started.elapsed().as_secs_f64(),
+        if output.status.success() {
+            "ok"
+        } else {
+            "FAILED"
+        },
+        left_out.len()
+    );
+    if !output.status.success() {
+        bail!("`cargo {}` failed ({})", args.join(" "), output.status);
+    }
+    Ok(())
+}
+
+/// Fails unless every workspace member is either in [`PUBLISHED`] or says
+/// `publish = false`, and no published crate says `publish = false`.
+fn check_publish_settings() -> Result<()> {
+    let root = std::fs::read_to_string("Cargo.toml").context("cannot read Cargo.toml")?;
+    let members_start = root
+        .find("members = [")
+        .context("no `members = [` in the root Cargo.toml")?;
+    let members_end = root[members_start..]
+        .find(']')
+        .context("the root Cargo.toml's members list is not closed")?;
+    let members = root[members_start + "members = [".len()..members_start + members_end]
+        .split(',')
+        .map(|member| member.trim().trim_matches('"'))
+        .filter(|member| !member.is_empty());
+    for member in members {
+        let path = Path::new(member).join("Cargo.toml");
+        let manifest = std::fs::read_to_string(&path)
+            .with_context(|| format!("cannot read {}", path.display()))?;
+        let name = manifest
+            .lines()
+            .find_map(|line| line.strip_prefix("name = "))
+            .map(|name| name.trim().trim_matches('"'))
+            .with_context(|| format!("no package name in {}", path.display()))?;
+        let unpublished = manifest
+            .lines()
+            .any(|line| line.trim() == "publish = false");
+        match (PUBLISHED.contains(&name), unpublished) {
+            (true, true) => bail!("{name} says `publish = false` but xtask publishes it"),
+            (false, false) => bail!(
+                "{name} is neither in xtask's PUBLISHED list nor `publish = false` in {}",
+                path.display()
+            ),
+            _ => {}
+        }
+    }
     Ok(())
 }
 

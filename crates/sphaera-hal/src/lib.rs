@@ -91,7 +91,9 @@
 //! # See also
 //!
 //! [`sphaera-spheretree`](https://docs.rs/sphaera-spheretree) for 3D bounding-sphere
-//! hierarchies; the paper: R. C. Veltkamp, *Hierarchical approximation and
+//! hierarchies; [`sphaera_mesh`] for the meshes a [`GenusZeroSurface`] is made from;
+//! the facade `sphaera` (as `sphaera::hal`) and the `sphaera hal` command of
+//! `sphaera-cli`. The paper: R. C. Veltkamp, *Hierarchical approximation and
 //! localization* (Utrecht University).
 
 mod error;
@@ -113,3 +115,9 @@ pub use query3::contains3_brute;
 pub use surface3::{GenusZeroSurface, RootBall};
 pub use tree2::{Approximation, Chain, HalTree2, Node2};
 pub use tree3::{Bound3, HalTree3, Node3, SMALLEST_SPLIT_ANGLE};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

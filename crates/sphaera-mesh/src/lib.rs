@@ -90,8 +90,9 @@
 //!
 //! # Performance
 //!
-//! Measured on the 2-core reference machine with criterion
-//! (`cargo bench -p sphaera-mesh --bench load_topology`; see `docs/benchmarks.md` in the
+//! Reading and topology are linear in the size of the mesh. Measured on the 2-core
+//! reference machine with criterion (2026-11-21,
+//! `cargo bench -p sphaera-mesh --bench load_topology`; see `docs/benchmarks.md` in the
 //! repository): the 871,414-triangle Stanford dragon (33 MB ASCII PLY) reads in about
 //! 0.14 s, its topology report takes about 0.16 s, and its half-edge mesh builds in about
 //! 0.11 s.
@@ -104,8 +105,6 @@
 //! The facade crate `sphaera` re-exports this crate as `sphaera::mesh`. Later crates of
 //! the workspace (`sphaera-simplify`, `sphaera-sweep`, `sphaera-medial`,
 //! `sphaera-spheretree`, `sphaera-hal`, `sphaera-silhouette`) all take a [`TriMesh`].
-
-#![cfg_attr(docsrs, feature(doc_cfg))]
 
 mod aabb;
 pub mod bvh;
@@ -134,3 +133,9 @@ pub use length::Length;
 pub use mesh::TriMesh;
 pub use sphere::Sphere;
 pub use surface::Surface;
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -94,3 +94,9 @@ pub use scene::{Instance, Scene};
 pub use sphaera_mesh::Sphere;
 pub use sphaera_spheretree::collide::{Budget, Contact, CostModel, TraversalStats};
 pub use tolerance::Tolerance;
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

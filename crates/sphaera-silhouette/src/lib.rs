@@ -107,6 +107,9 @@
 //! silhouettes of a scanned surface, the contour region covers nearly everything and the
 //! gain is 1.0–1.3×.
 //!
+//! # Feature flags
+#![doc = document_features::document_features!()]
+//!
 //! # See also
 //!
 //! `sphaera-simplify` (the hierarchy and the static simplifier the weights feed),
@@ -132,3 +135,9 @@ pub use lod::{ContourTolerance, Extraction, ViewDependent, contour_weights};
 pub use picture::{Picture, overlay_picture, shaded_picture};
 pub use raster::FaceGrid;
 pub use views::{Projection, ViewSet};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

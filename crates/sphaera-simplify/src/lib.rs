@@ -135,8 +135,8 @@
 //! targets pruned by a lower bound), so the whole run is `O(T log T)` for `T` triangles on
 //! meshes of bounded valence. With the default `parallel` feature the initial evaluation
 //! and every batch run on all cores (identical results without it). Measured on the
-//! 2-core reference machine against meshoptimizer in the same run (`cargo bench -p
-//! sphaera-eval --bench simplify_vs_meshopt`): 0.22 s for the 69k-triangle bunny at 10 %,
+//! 2-core reference machine against meshoptimizer in the same run (2026-11-27,
+//! `cargo bench -p sphaera-eval --bench simplify_vs_meshopt`): 0.22 s for the 69k-triangle bunny at 10 %,
 //! 8.5× meshopt's time (meshopt has no certified bound, and its measured error is 1.4×
 //! larger), 4.2 s for the 871k-triangle dragon at 2 % (4.9×), 0.45 s for the bunny's full
 //! hierarchy. Peak working memory: about 60–70 bytes per input triangle. Figures, the
@@ -147,7 +147,16 @@
 //!
 //! # See also
 //!
-//! [`sphaera_mesh::topology::HalfEdgeMesh`] (the editable mesh and its collapse records).
+//! - [`sphaera_mesh::topology::HalfEdgeMesh`]: the editable mesh and its collapse
+//!   records.
+//! - `sphaera-sweep`: Meshsweeper's closest-point queries and certified Hausdorff
+//!   distances on the [`Hierarchy`] (the Hausdorff distance measures how tight
+//!   [`Simplified::error_bound`] is).
+//! - `sphaera-silhouette`: silhouette-preserving level of detail extracted from the
+//!   [`Hierarchy`] view by view, and per-vertex weights for
+//!   [`SimplifyOptions::with_weights`].
+//! - The facade `sphaera` (as `sphaera::simplify`) and the `sphaera simplify` command of
+//!   `sphaera-cli`.
 
 mod deform;
 mod edge_radius;
@@ -168,3 +177,9 @@ pub use simplifier::{
     LockReport, Order, Placement, Simplified, SimplifyOptions, SimplifyProgress, simplify,
     simplify_with_progress,
 };
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

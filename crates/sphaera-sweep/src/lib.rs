@@ -23,6 +23,8 @@
 //!   [`Session::move_mesh`]); [`SessionOptions::with_exact_by_tree`]`(false)` answers
 //!   them the paper's way, which is how the paper's claims are tested.
 //!
+//! # Quick start
+//!
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};
 //! use sphaera_sweep::{Feature, Sweeper, Tolerance, TriangleTree, build_hierarchy};
@@ -129,8 +131,32 @@
 //! paper's way (section 3) over a Douglas–Peucker hierarchy of capsules; its module docs
 //! have a runnable example.
 //!
+//! # Errors
+//!
+//! Queries, sessions and Hausdorff distances return [`SweepError`]; nothing panics on user
+//! input. The variants met most: [`SweepError::NonFiniteQuery`] (a NaN or infinite query
+//! point, with its coordinates), [`SweepError::EmptyMesh`], [`SweepError::InvalidParameter`]
+//! (a tolerance, budget or interpolation parameter out of its domain, with its name and
+//! requirement), [`SweepError::NotRigid`] and [`SweepError::NonFinitePose`] (a mesh pose
+//! that is not a rotation and translation), [`SweepError::LengthMismatch`] and
+//! [`SweepError::InvalidVertexValue`] (per-vertex positions or displacements that do not
+//! fit the mesh), [`SweepError::InvalidPolyline`] (why a list of points is not a
+//! polyline). Building the hierarchy reports
+//! [`SimplifyError`](sphaera_simplify::SimplifyError) and building the triangle tree
+//! [`MeshError`](sphaera_mesh::MeshError), from the crates that own them.
+//!
 //! # Feature flags
 #![doc = document_features::document_features!()]
+//!
+//! # See also
+//!
+//! - [`sphaera_simplify`]: the error-sphere simplification and the progressive
+//!   [`Hierarchy`](sphaera_simplify::Hierarchy) the sessions refine.
+//! - [`sphaera_mesh`]: the [`TriangleTree`] and its closest points, and the sampled
+//!   Hausdorff distance ([`sphaera_mesh::measure`]), a cheaper lower bound.
+//! - `sphaera-spheretree` and `sphaera-medial`, which use the same exact closest points
+//!   through [`sphaera_mesh::Surface`]; the facade `sphaera` (as `sphaera::sweep`) and the
+//!   `sphaera distance` and `sphaera hausdorff` commands of `sphaera-cli`.
 
 mod answer;
 mod deformed_shape;
@@ -157,3 +183,9 @@ pub use session::{Session, SessionOptions};
 /// coherent streams (all defined in `sphaera-mesh`).
 pub use sphaera_mesh::closest::{ApproxClosest, ClosestPoint, Feature, TreeCursor, TriangleTree};
 pub use sweeper::{Sweeper, build_hierarchy};
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

@@ -123,7 +123,21 @@
 //! # Errors
 //!
 //! Every crate has its own error type; [`Error`] wraps each transparently (its message is
-//! the crate's), so one function can use several crates with `?`.
+//! the crate's), so one function can use several crates with `?`. Each crate's error is
+//! `#[non_exhaustive]`, says what was wrong and where, and none of the crates panics on
+//! user input.
+//!
+//! # Performance
+//!
+//! The facade adds nothing at run time. Each crate's documentation gives its measured
+//! figures, and the repository's `docs/benchmarks.md` has them all, with the machine, the
+//! date and the command that made each number, beside the peer libraries measured in the
+//! same run.
+//!
+//! # See also
+//!
+//! The `sphaera` command-line tool (`sphaera-cli`), one subcommand per capability, and
+//! the single crates above for users who need only one of them.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]
@@ -225,3 +239,9 @@ pub mod prelude {
     #[cfg(feature = "sweep")]
     pub use sphaera_sweep::Sweeper;
 }
+
+/// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
+/// that it stays true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

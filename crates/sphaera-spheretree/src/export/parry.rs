@@ -9,6 +9,8 @@ use crate::SphereTreeError;
 /// The spheres as a `parry3d-f64` [`Compound`] of balls, one part per sphere in the
 /// given order (use a level's spheres, or a cut's).
 ///
+/// Available with the crate's `parry` feature (off by default).
+///
 /// # Examples
 ///
 /// ```
