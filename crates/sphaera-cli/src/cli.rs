@@ -11,7 +11,9 @@ use sphaera::spheretree::Method;
 ///
 /// Every MESH argument may be omitted: the embedded low-resolution Stanford bunny
 /// (public domain, 3,674 triangles) is used instead. Supported formats: OBJ, PLY (ASCII
-/// and binary), STL (ASCII and binary), OFF.
+/// and binary), STL (ASCII and binary), OFF, glTF 2.0 (`.gltf` with its buffer files or
+/// `data:` URIs, binary `.glb`; the default scene's triangle meshes, placed by their node
+/// transforms and merged).
 #[derive(Debug, Parser)]
 #[command(name = "sphaera", version)]
 pub struct Cli {
@@ -58,7 +60,7 @@ pub enum Command {
     /// vertices, each part bounded by the intersection of two discs through its ends.
     /// Reports vertices and covering width per level, an adaptive approximation to
     /// `--tolerance`, point inclusion for a file of points; draws the approximation with
-    /// its bounding areas as SVG. A mesh file (OBJ, PLY, STL, OFF; closed, genus 0) gets
+    /// its bounding areas as SVG. A mesh file (OBJ, PLY, STL, OFF, glTF/GLB; closed, genus 0) gets
     /// the 3D tree: triangles and width per level, an adaptive approximation written as a
     /// mesh.
     Hal(HalArgs),
@@ -173,7 +175,7 @@ fn parse_image_size(text: &str) -> Result<(u32, u32), String> {
 /// Arguments of `sphaera silhouette`.
 #[derive(Debug, Args)]
 pub struct SilhouetteArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
     pub mesh: Option<PathBuf>,
 
     /// Degrees between cameras of the regular view set (it must divide 180; 15 gives 266
@@ -320,7 +322,8 @@ fn parse_direction(text: &str) -> Result<[f64; 3], String> {
 #[derive(Debug, Args)]
 pub struct HalArgs {
     /// The polygon: a text file of `x y` lines (`#` comments allowed), closed implicitly;
-    /// or a closed genus-0 mesh (`.obj`, `.ply`, `.stl`, `.off`) for the 3D tree.
+    /// or a closed genus-0 mesh (`.obj`, `.ply`, `.stl`, `.off`, `.gltf`, `.glb`) for the
+    /// 3D tree.
     pub polygon: PathBuf,
 
     /// Read the file as an open polyline (no closing edge, no inside).
@@ -354,7 +357,7 @@ pub struct HalArgs {
 /// Arguments of `sphaera spheretree`.
 #[derive(Debug, Args)]
 pub struct SpheretreeArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted. It must
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. It must
     /// enclose a volume (holes and non-manifold edges are fine; a flat sheet is not).
     pub mesh: Option<PathBuf>,
 
@@ -458,7 +461,7 @@ impl MethodArg {
 /// Arguments of `sphaera medial`.
 #[derive(Debug, Args)]
 pub struct MedialArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted. It must
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. It must
     /// enclose a volume (holes and non-manifold edges are fine; a flat sheet is not).
     pub mesh: Option<PathBuf>,
 
@@ -524,7 +527,7 @@ pub enum CoverArg {
 /// Arguments of `sphaera hausdorff`.
 #[derive(Debug, Args)]
 pub struct HausdorffArgs {
-    /// The first mesh (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    /// The first mesh (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
     pub a: Option<PathBuf>,
 
     /// The second mesh; when omitted, the first mesh simplified to 15 % of its triangles
@@ -561,7 +564,7 @@ pub struct HausdorffArgs {
 /// Arguments of `sphaera distance`.
 #[derive(Debug, Args)]
 pub struct DistanceArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
     pub mesh: Option<PathBuf>,
 
     /// A text file of query points, one `x y z` per line (spaces or commas; `#` starts a
@@ -591,7 +594,7 @@ pub struct DistanceArgs {
 /// Arguments of `sphaera simplify`.
 #[derive(Debug, Args)]
 pub struct SimplifyArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
     pub mesh: Option<PathBuf>,
 
     /// Where to write the simplified mesh (`.obj` or `.ply`, written atomically). Without
@@ -718,7 +721,7 @@ fn parse_length(text: &str) -> Result<Length, String> {
 /// Arguments of `sphaera info`.
 #[derive(Debug, Args)]
 pub struct InfoArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF); the embedded bunny when omitted.
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
     pub mesh: Option<PathBuf>,
 
     #[command(flatten)]

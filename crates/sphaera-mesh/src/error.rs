@@ -81,8 +81,9 @@ pub enum MeshError {
     /// describe invalid geometry (a NaN coordinate, an index out of range, a face with fewer
     /// than three vertices).
     ///
-    /// `location` is a 1-based line for text formats and a 0-based byte offset for binary
-    /// ones; `reason` is a structured [`crate::io::ParseReason`].
+    /// `location` is a 1-based line for text formats, a 0-based byte offset for binary
+    /// ones, a JSON line and column or the glTF object (mesh primitive, node, buffer) for
+    /// glTF; `reason` is a structured [`crate::io::ParseReason`].
     #[error(
         "malformed {format} data{} at {location}: {reason}",
         crate::io::describe_path(path.as_deref())
@@ -98,10 +99,10 @@ pub enum MeshError {
         reason: crate::io::ParseReason,
     },
     /// The mesh format of a file could not be determined: its extension is not one of
-    /// `obj`, `ply`, `stl`, `off` (in any case), and its content does not look like any of
-    /// them.
+    /// `obj`, `ply`, `stl`, `off`, `gltf`, `glb` (in any case), and its content does not
+    /// look like any of them.
     #[error(
-        "cannot tell the mesh format{}: the extension is not obj, ply, stl or off and the content is not recognised",
+        "cannot tell the mesh format{}: the extension is not obj, ply, stl, off, gltf or glb and the content is not recognised",
         crate::io::describe_path(path.as_deref())
     )]
     UnknownFormat {

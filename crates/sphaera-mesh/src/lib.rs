@@ -57,7 +57,7 @@
 //! |---|---|
 //! | crate root | [`TriMesh`] (finite `f64` positions, in-range `[u32; 3]` triangles), [`Sphere`] (the one sphere type of the workspace), [`Aabb`], [`Length`] (absolute or relative to the diagonal), [`Surface`] (a mesh with its inside test and closest points, checked for a meaningful inside), [`MeshError`] |
 //! | [`topology`] | [`topology::analyze`]: closed, manifold, oriented, genus, components, boundary loops, Euler characteristic, degenerate and duplicate triangles, for any mesh; [`topology::HalfEdgeMesh`]: editable half-edges with edge collapse and its exact inverse, vertex split; repair helpers (weld, drop degenerate / duplicate triangles, drop unreferenced vertices) that report what they changed |
-//! | [`io`] | read OBJ, PLY (ASCII, binary), STL (ASCII, binary), OFF; write OBJ and PLY (with per-vertex colours); polygons triangulated; atomic writes |
+//! | [`io`] | read OBJ, PLY (ASCII, binary), STL (ASCII, binary), OFF, glTF 2.0 (`.gltf`, `.glb`: the default scene's triangle meshes placed by their nodes, behind the default `gltf` feature); write OBJ and PLY (with per-vertex colours); polygons triangulated; atomic writes |
 //! | [`geometry`] | closest point on a triangle (with the feature hit) and on a segment, segment–segment closest points, minimum enclosing ball of points and of balls, circumspheres, ray–triangle intersection, similarity transforms (placing a mesh or spheres in a scene; rigid motions) |
 //! | [`bvh`] | the workspace's one bounding-volume hierarchy: a box tree over items, built by median splits, with a nearest-first search |
 //! | [`closest`] | exact closest points on a mesh: [`closest::TriangleTree`] and its [`closest::ClosestPoint`] with the mesh [`closest::Feature`] hit |

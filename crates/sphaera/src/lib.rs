@@ -12,7 +12,7 @@
 //!
 //! | module | crate | paper | what it does |
 //! |---|---|---|---|
-//! | [`mesh`] | `sphaera-mesh` | | indexed triangle meshes, half-edge topology, validation and repair, file I/O, geometric primitives, the box tree and exact closest points, the `Surface` (inside test and closest points), winding numbers, surface sampling, sampled Hausdorff distances, procedural test shapes |
+//! | [`mesh`] | `sphaera-mesh` | | indexed triangle meshes, half-edge topology, validation and repair, file I/O (OBJ, PLY, STL, OFF; glTF 2.0 with the default feature `gltf`), geometric primitives, the box tree and exact closest points, the `Surface` (inside test and closest points), winding numbers, surface sampling, sampled Hausdorff distances, procedural test shapes |
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | Guéziec 2001 (error spheres) | edge-collapse simplification whose reported error bound holds in both directions, and its progressive hierarchy |
 //! | `sweep` (feature `sweep`) | `sphaera-sweep` | Guéziec 2001 (Meshsweeper) | exact and anytime closest-point queries, coherent sessions, motion, polylines and certified Hausdorff distances |
 //! | `medial` (feature `medial`) | `sphaera-medial` | Bradshaw & O'Sullivan 2004 | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
@@ -32,7 +32,7 @@
 //! use sphaera::prelude::*;
 //! use sphaera::mesh::{io, topology};
 //!
-//! // Any OBJ, PLY, STL or OFF file (and glTF where supported); here, one written first.
+//! // Any OBJ, PLY, STL, OFF or glTF file; here, one written first.
 //! let path = std::env::temp_dir().join(format!("sphaera-story-{}.obj", std::process::id()));
 //! io::write_obj(&path, &sphaera::mesh::shapes::torus(1.0, 0.3, 48)?)?;
 //! let torus: TriMesh = io::load(&path)?;

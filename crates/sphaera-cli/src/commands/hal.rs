@@ -92,11 +92,13 @@ impl Refine {
     }
 }
 
-/// Mesh extensions: a 3D HAL tree; anything else is read as a polygon.
+/// Extensions a 3D approximation may be written as.
 const MESH_EXTENSIONS: &[&str] = &["obj", "ply", "stl", "off"];
 
 pub fn run(args: &HalArgs) -> Result<()> {
-    if MESH_EXTENSIONS.contains(&extension(&args.polygon).as_str()) {
+    // A mesh file (any extension the mesh reader knows, glTF included): a 3D HAL tree;
+    // anything else is read as a polygon.
+    if sphaera::mesh::io::Format::from_path(&args.polygon).is_some() {
         return run_mesh(args);
     }
     if let Some(path) = &args.output {

@@ -18,7 +18,7 @@ use crate::{
 struct Info {
     /// The file, or `<embedded bunny_lowres.obj>`.
     source: String,
-    /// `obj`, `ply`, `stl` or `off`.
+    /// `obj`, `ply`, `stl`, `off` or `gltf` (also for `.glb`).
     format: String,
     /// Vertex records in the file (before any merging).
     vertex_records: usize,
@@ -32,6 +32,12 @@ struct Info {
     non_convex_polygons: usize,
     /// Bit-identical STL corners merged on read.
     welded_on_read: usize,
+    /// glTF: triangle primitives merged into the mesh, once per node drawing them.
+    primitives_read: usize,
+    /// glTF: points and lines primitives left out, once per node drawing them.
+    primitives_skipped: usize,
+    /// glTF: primitives placed by a mirroring node transform (their winding reversed).
+    mirrored_primitives: usize,
     /// `null` for a mesh without triangles.
     bounding_box: Option<BoundingBox>,
     surface_area: f64,
@@ -116,6 +122,9 @@ impl Info {
             polygons_triangulated: load.polygons_triangulated,
             non_convex_polygons: load.non_convex_polygons,
             welded_on_read: load.welded_vertices,
+            primitives_read: load.primitives_read,
+            primitives_skipped: load.primitives_skipped,
+            mirrored_primitives: load.mirrored_primitives,
             bounding_box: (!bbox.is_empty()).then(|| BoundingBox {
                 min: bbox.min.to_array(),
                 max: bbox.max.to_array(),
@@ -210,6 +219,14 @@ impl crate::output::Report for Info {
             lines.push(format!(
                 "welded on read  {} (STL corners at identical positions)",
                 thousands(self.welded_on_read)
+            ));
+        }
+        if self.format == "gltf" {
+            lines.push(format!(
+                "glTF primitives {} triangle primitives read ({} mirrored), {} points or lines skipped",
+                thousands(self.primitives_read),
+                thousands(self.mirrored_primitives),
+                thousands(self.primitives_skipped)
             ));
         }
         lines.push(format!(

@@ -171,6 +171,9 @@ impl MeshBuilder {
             non_planar_polygons: 0,
             fan_fallbacks: 0,
             welded_vertices: 0,
+            primitives_read: 0,
+            primitives_skipped: 0,
+            mirrored_primitives: 0,
         }
     }
 }

@@ -1,4 +1,5 @@
-//! Reading and writing mesh files: OBJ, PLY, STL and OFF in; OBJ and PLY out.
+//! Reading and writing mesh files: OBJ, PLY, STL, OFF and glTF 2.0 (`.gltf`, `.glb`) in;
+//! OBJ and PLY out.
 //!
 //! # Quick start
 //!
@@ -36,10 +37,28 @@
 //! | PLY | `ascii`, `binary_little_endian`, `binary_big_endian`; `vertex` `x y z` of any numeric type (`float`, `double`, `int`, `uchar`..., and the `float32`-style names); `face` list `vertex_indices` or `vertex_index` with any count and index types | every other property (lists included) and element |
 //! | STL | ASCII and binary; positions are welded (see below) | normals, attribute bytes, solid names |
 //! | OFF | `OFF` and its `ST`/`C`/`N` prefixed variants, counts on the keyword line or the next, `#` comments | vertex colours/normals, face colours, the edge count |
+//! | glTF 2.0 | `.gltf` (JSON, buffers in `data:` URIs or in files beside it) and `.glb` (binary); the `TRIANGLES`, `TRIANGLE_STRIP` and `TRIANGLE_FAN` primitives of the default scene's meshes, placed by their nodes' transforms and merged; `POSITION` as `f32` or (normalized) 8/16-bit integers (`KHR_mesh_quantization`), `u8`/`u16`/`u32` indices or none, sparse accessors | points and lines primitives (counted), normals, texture coordinates, materials, images, cameras, animations, skins, morph targets; appearance-only extensions |
 //!
-//! [`read`] picks the format from the file extension (`obj`, `ply`, `stl`, `off`, in any
-//! case) and falls back to [`Format::sniff`]ing the content for other extensions.
-//! [`read_from_bytes`] parses a buffer in a given format.
+//! [`read`] picks the format from the file extension (`obj`, `ply`, `stl`, `off`, `gltf`,
+//! `glb`, in any case) and falls back to [`Format::sniff`]ing the content for other
+//! extensions. [`read_from_bytes`] parses a buffer in a given format.
+//!
+//! **glTF** (behind the default `gltf` feature; without it, reading glTF is a clear
+//! [`ParseReason::Unsupported`] error): one [`Format::Gltf`] covers both the JSON `.gltf`
+//! and the binary `.glb`, told apart by the `glTF` magic, as [`Format::Stl`] covers ASCII
+//! and binary STL. Every triangle primitive that the default scene (or the first scene)
+//! draws is placed by the world transform of its node (`matrix` or translation × rotation
+//! × scale, composed from the root) and merged into one mesh, each primitive instance with
+//! its own vertices, in depth-first node order; a file without scenes gives every mesh
+//! once, untransformed. A mirroring transform (negative determinant) reverses its
+//! triangles' winding so outward faces stay outward. Strips and fans become triangles by
+//! the glTF rules. [`LoadReport`] counts the primitives read, skipped (points, lines) and
+//! mirrored. Buffer files (`"uri": "mesh.bin"`, percent-decoded) are resolved relative to
+//! the glTF file by [`read`]; [`read_from_bytes`] has no folder to resolve them in and
+//! reads only `.glb` data and `data:` URIs ([`ParseReason::ExternalBuffer`] otherwise).
+//! Required extensions that change the geometry (Draco or meshopt compression, GPU
+//! instancing) are refused ([`ParseReason::UnsupportedExtension`]); `KHR_mesh_quantization`
+//! is read, appearance-only extensions are ignored.
 //!
 //! Binary STL detection: a binary STL is `84 + 50 n` bytes for `n` facets. Files of
 //! exactly that size are binary even when they start with `solid` (many exporters do
@@ -78,8 +97,10 @@
 //! # Errors and where they point
 //!
 //! A malformed file gives [`MeshError::Parse`] with the [`Format`], a [`Location`] — the
-//! 1-based **line** for text formats (OBJ, ASCII PLY and every PLY header, ASCII STL, OFF)
-//! or the 0-based **byte offset** for binary PLY and STL — and a structured
+//! 1-based **line** for text formats (OBJ, ASCII PLY and every PLY header, ASCII STL, OFF),
+//! the 0-based **byte offset** for binary PLY and STL and the GLB container, the JSON
+//! **line and column** of malformed glTF JSON, or the **glTF object** at fault
+//! ([`GltfObject`]: the mesh primitive, node or buffer) — and a structured
 //! [`ParseReason`] (expected and found counts, the offending token, the index and the vertex
 //! count...). Invalid geometry is caught while parsing, so it points at the line too:
 //! NaN or infinite coordinates ([`ParseReason::NonFiniteCoordinate`]), indices out of range
@@ -122,6 +143,8 @@
 
 mod builder;
 pub mod colormap;
+#[cfg(feature = "gltf")]
+mod gltf;
 mod obj;
 mod off;
 mod parse_error;
@@ -140,7 +163,7 @@ use std::fmt;
 use std::path::Path;
 
 pub(crate) use parse_error::describe_path;
-pub use parse_error::{Location, ParseReason};
+pub use parse_error::{GltfObject, Location, ParseReason};
 pub use write::{
     PlyEncoding, save, write_atomic, write_obj, write_obj_to, write_ply, write_ply_to,
 };
@@ -157,6 +180,8 @@ use crate::{MeshError, TriMesh};
 /// assert_eq!(Format::from_extension("PLY"), Some(Format::Ply));
 /// assert_eq!(Format::sniff(b"OFF\n3 1 0\n"), Some(Format::Off));
 /// assert_eq!(Format::Stl.to_string(), "STL");
+/// assert_eq!(Format::from_extension("glb"), Some(Format::Gltf));
+/// assert_eq!(Format::sniff(b"glTF\x02\0\0\0"), Some(Format::Gltf));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -169,17 +194,21 @@ pub enum Format {
     Stl,
     /// Object File Format (text).
     Off,
+    /// glTF 2.0, both the JSON `.gltf` and the binary `.glb` (told apart by the content's
+    /// `glTF` magic). Read only (with the default `gltf` feature).
+    Gltf,
 }
 
 impl Format {
-    /// The format an extension names (`obj`, `ply`, `stl`, `off`, in any case, without the
-    /// dot).
+    /// The format an extension names (`obj`, `ply`, `stl`, `off`, `gltf`, `glb`, in any
+    /// case, without the dot).
     pub fn from_extension(extension: &str) -> Option<Self> {
         match extension.to_ascii_lowercase().as_str() {
             "obj" => Some(Self::Obj),
             "ply" => Some(Self::Ply),
             "stl" => Some(Self::Stl),
             "off" => Some(Self::Off),
+            "gltf" | "glb" => Some(Self::Gltf),
             _ => None,
         }
     }
@@ -189,24 +218,29 @@ impl Format {
         Self::from_extension(path.extension()?.to_str()?)
     }
 
-    /// The usual (lowercase) extension.
+    /// The usual (lowercase) extension (`gltf` for glTF, whose binary files use `glb`).
     pub fn extension(self) -> &'static str {
         match self {
             Self::Obj => "obj",
             Self::Ply => "ply",
             Self::Stl => "stl",
             Self::Off => "off",
+            Self::Gltf => "gltf",
         }
     }
 
-    /// Guesses the format from the content: `ply` magic, an OFF keyword, a binary STL of
+    /// Guesses the format from the content: the GLB magic `glTF` or a JSON object with an
+    /// `"asset"` key in its first 4 KiB (glTF), `ply` magic, an OFF keyword, a binary STL of
     /// consistent size or an ASCII STL starting with `solid`, or a first statement that is
     /// an OBJ keyword (`v`, `vt`, `vn`, `f`, `o`, `g`, `s`, `mtllib`, `usemtl`).
     ///
     /// # Performance
     ///
-    /// Looks at the first few lines only.
+    /// Looks at the first few lines (and at most 4 KiB) only.
     pub fn sniff(bytes: &[u8]) -> Option<Self> {
+        if bytes.starts_with(b"glTF") || looks_like_gltf_json(bytes) {
+            return Some(Self::Gltf);
+        }
         let first = text::Lines::new(bytes, 1)
             .map(|(_, line)| text::strip_comment(line))
             .find(|line| !text::is_blank(line))
@@ -242,8 +276,18 @@ impl fmt::Display for Format {
             Self::Ply => "PLY",
             Self::Stl => "STL",
             Self::Off => "OFF",
+            Self::Gltf => "glTF",
         })
     }
+}
+
+/// Whether `bytes` look like glTF JSON: a `{` first (after a BOM and whitespace) and an
+/// `"asset"` key within the first 4 KiB.
+fn looks_like_gltf_json(bytes: &[u8]) -> bool {
+    let bytes = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let window = &bytes[..bytes.len().min(4096)];
+    window.iter().find(|b| !b.is_ascii_whitespace()) == Some(&b'{')
+        && window.windows(7).any(|w| w == b"\"asset\"")
 }
 
 /// What a reader found in a file besides the mesh.
@@ -252,10 +296,12 @@ impl fmt::Display for Format {
 pub struct LoadReport {
     /// The format read.
     pub format: Format,
-    /// Vertex records in the file: OBJ `v` lines, the PLY/OFF header count, or three per
-    /// STL facet (before welding).
+    /// Vertex records in the file: OBJ `v` lines, the PLY/OFF header count, three per
+    /// STL facet (before welding), or for glTF the `POSITION` elements of every primitive
+    /// read, once per node that draws it (so the mesh's vertex count).
     pub vertex_records: usize,
-    /// Face records in the file (before triangulation).
+    /// Face records in the file (before triangulation); for glTF, the triangles of every
+    /// primitive read (strips and fans already split), once per node that draws it.
     pub faces_in_file: usize,
     /// Faces with more than three vertices, split into triangles.
     pub polygons_triangulated: usize,
@@ -269,6 +315,14 @@ pub struct LoadReport {
     pub fan_fallbacks: usize,
     /// STL only: vertex records merged into an earlier bit-identical position.
     pub welded_vertices: usize,
+    /// glTF only: triangle primitives (`TRIANGLES`, `TRIANGLE_STRIP`, `TRIANGLE_FAN`)
+    /// merged into the mesh, once per node that draws them.
+    pub primitives_read: usize,
+    /// glTF only: points and lines primitives left out, once per node that draws them.
+    pub primitives_skipped: usize,
+    /// glTF only: primitives (of `primitives_read`) placed by a mirroring transform
+    /// (negative determinant), whose triangles were reversed to keep their orientation.
+    pub mirrored_primitives: usize,
 }
 
 /// A mesh read from a file, with the [`LoadReport`] of what was in it.
@@ -282,8 +336,8 @@ pub struct LoadedMesh {
 }
 
 /// Reads a mesh file, choosing the reader from the extension (case-insensitive `obj`,
-/// `ply`, `stl`, `off`) or, for any other extension, from the content
-/// ([`Format::sniff`]).
+/// `ply`, `stl`, `off`, `gltf`, `glb`) or, for any other extension, from the content
+/// ([`Format::sniff`]). A glTF file's separate buffer files are read from its folder.
 ///
 /// # Examples
 ///
@@ -295,7 +349,8 @@ pub struct LoadedMesh {
 /// - [`MeshError::UnknownFormat`] if neither the extension nor the content tells the
 ///   format;
 /// - [`MeshError::Parse`], with this `path`, if the file is malformed (see the module
-///   docs for the locations and reasons).
+///   docs for the locations and reasons), or if a glTF buffer file it names cannot be
+///   read ([`ParseReason::BufferFile`], at the [`GltfObject::Buffer`]).
 ///
 /// # Panics
 ///
@@ -316,7 +371,8 @@ pub fn read(path: impl AsRef<Path>) -> Result<LoadedMesh, MeshError> {
         .ok_or_else(|| MeshError::UnknownFormat {
             path: Some(path.to_path_buf()),
         })?;
-    read_from_bytes(&bytes, format).map_err(|error| match error {
+    let base = path.parent().unwrap_or(Path::new(""));
+    read_bytes(&bytes, format, Some(base)).map_err(|error| match error {
         MeshError::Parse {
             format,
             location,
@@ -361,16 +417,37 @@ pub fn load(path: impl AsRef<Path>) -> Result<TriMesh, MeshError> {
 ///
 /// # Errors
 ///
-/// [`MeshError::Parse`] (without a path) if the data are malformed.
+/// [`MeshError::Parse`] (without a path) if the data are malformed, or if glTF data name a
+/// separate buffer file ([`ParseReason::ExternalBuffer`]: there is no folder to find it
+/// in; use [`read`]).
 ///
 /// # Panics
 ///
 /// Never.
 pub fn read_from_bytes(bytes: &[u8], format: Format) -> Result<LoadedMesh, MeshError> {
+    read_bytes(bytes, format, None)
+}
+
+/// Parses a mesh from bytes; glTF buffer files are resolved in `base` (none without it).
+fn read_bytes(bytes: &[u8], format: Format, base: Option<&Path>) -> Result<LoadedMesh, MeshError> {
     match format {
         Format::Obj => obj::read_obj(bytes),
         Format::Ply => ply::read_ply(bytes),
         Format::Stl => stl::read_stl(bytes),
         Format::Off => off::read_off(bytes),
+        #[cfg(feature = "gltf")]
+        Format::Gltf => gltf::read_gltf(bytes, base),
+        #[cfg(not(feature = "gltf"))]
+        Format::Gltf => {
+            let _ = base;
+            Err(MeshError::Parse {
+                path: None,
+                format,
+                location: Location::Byte(0),
+                reason: ParseReason::Unsupported {
+                    feature: "reading glTF without the `gltf` feature of sphaera-mesh",
+                },
+            })
+        }
     }
 }

@@ -16,6 +16,15 @@ pub(super) fn parse_error(bytes: &[u8], format: Format) -> (Location, ParseReaso
     }
 }
 
+/// Every format read.
+const ALL_FORMATS: [Format; 5] = [
+    Format::Obj,
+    Format::Ply,
+    Format::Stl,
+    Format::Off,
+    Format::Gltf,
+];
+
 fn tetrahedron() -> TriMesh {
     TriMesh::new(
         vec![
@@ -348,12 +357,34 @@ fn sniffing() {
     binary[..5].copy_from_slice(b"hello");
     assert_eq!(Format::sniff(&binary), Some(Format::Stl));
     assert_eq!(Format::sniff(b"\x00\x01garbage"), None);
+    assert_eq!(Format::sniff(b"glTF\x02\x00\x00\x00"), Some(Format::Gltf));
+    assert_eq!(
+        Format::sniff(b"\xef\xbb\xbf \n{\n  \"asset\": {\"version\": \"2.0\"}}"),
+        Some(Format::Gltf)
+    );
+    assert_eq!(Format::sniff(b"{\"other\": 1}"), None);
+    for extension in ["gltf", "GLB", "Gltf"] {
+        assert_eq!(Format::from_extension(extension), Some(Format::Gltf));
+    }
+    assert_eq!(Format::Gltf.to_string(), "glTF");
+}
+
+/// Without the `gltf` feature, glTF is still recognised, and reading it is a clear error.
+#[cfg(not(feature = "gltf"))]
+#[test]
+fn gltf_without_the_feature_is_a_clear_error() {
+    let err = read_from_bytes(b"glTF\x02\0\0\0\x0c\0\0\0", Format::Gltf).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "malformed glTF data at byte offset 0: reading glTF without the `gltf` feature of sphaera-mesh is not supported"
+    );
+    assert_eq!(Format::from_extension("glb"), Some(Format::Gltf));
 }
 
 #[test]
 fn garbage_bytes_are_errors_in_every_format() {
     let garbage = b"\x00\xff\x13garbage\x89PNG\r\n\x1a\n";
-    for format in [Format::Obj, Format::Ply, Format::Stl, Format::Off] {
+    for format in ALL_FORMATS {
         assert!(read_from_bytes(garbage, format).is_err(), "{format}");
         assert!(read_from_bytes(b"", format).is_err(), "{format}");
     }
@@ -403,7 +434,7 @@ fn samples() -> Vec<(Format, Vec<u8>, bool)> {
     let header = b"solid exported by a CAD tool";
     stl_solid_binary[..header.len()].copy_from_slice(header);
     let off = b"OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 3\n".to_vec();
-    vec![
+    let samples = vec![
         (Format::Obj, obj, false),
         (Format::Ply, ply_ascii, false),
         (Format::Ply, ply_binary, true),
@@ -412,7 +443,27 @@ fn samples() -> Vec<(Format, Vec<u8>, bool)> {
         (Format::Stl, stl_binary, true),
         (Format::Off, off, false),
         (Format::Stl, stl_solid_binary, true),
-    ]
+    ];
+    #[cfg(feature = "gltf")]
+    let samples = {
+        use super::gltf::test_writer::{GltfWriter, mesh_glb, to_f32};
+        let mut samples = samples;
+        use serde_json::json;
+        // A GLB with a node transform, and a .gltf with a data URI holding a strip.
+        samples.push((
+            Format::Gltf,
+            mesh_glb(&mesh, json!({ "scale": [1.0, 2.0, 3.0] })),
+            true,
+        ));
+        let mut writer = GltfWriter::default();
+        let points: Vec<[f32; 3]> = mesh.positions().iter().map(|&p| to_f32(p)).collect();
+        let positions = writer.positions(&points);
+        writer.mesh(json!([{ "attributes": { "POSITION": positions }, "mode": 5 }]));
+        writer.node(json!({ "mesh": 0 }));
+        samples.push((Format::Gltf, writer.gltf_with_data_uri(), false));
+        samples
+    };
+    samples
 }
 
 /// Every strict prefix of a valid binary file is an error: a binary file cut short never
@@ -447,7 +498,7 @@ proptest! {
     #[test]
     fn random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..400)) {
         let _ = Format::sniff(&bytes);
-        for format in [Format::Obj, Format::Ply, Format::Stl, Format::Off] {
+        for format in ALL_FORMATS {
             let _ = read_from_bytes(&bytes, format);
         }
     }
@@ -462,13 +513,16 @@ proptest! {
                 "\n", "ply", "format", "ascii", "1.0", "binary_big_endian", "element", "vertex",
                 "face", "property", "list", "uchar", "int", "float", "x", "y", "z",
                 "vertex_indices", "end_header", "OFF", "solid", "facet", "outer", "loop",
-                "endloop", "#", "-4294967296", "99999999999",
+                "endloop", "#", "-4294967296", "99999999999", "{", "}", "[", "]", ":", ",",
+                "\"asset\"", "\"version\"", "\"2.0\"", "\"meshes\"", "\"nodes\"",
+                "\"primitives\"", "\"attributes\"", "\"POSITION\"", "\"accessors\"",
+                "\"count\"", "\"buffers\"", "\"uri\"", "\"data:,\"",
             ]),
             0..80,
         )
     ) {
         let text = words.join(" ");
-        for format in [Format::Obj, Format::Ply, Format::Stl, Format::Off] {
+        for format in ALL_FORMATS {
             let _ = read_from_bytes(text.as_bytes(), format);
         }
     }
@@ -477,7 +531,7 @@ proptest! {
     /// a strict prefix of a binary file (uncorrupted) is always an error.
     #[test]
     fn truncations_and_corruptions_never_panic(
-        sample in 0usize..8,
+        sample in 0usize..samples().len(),
         cut in 0.0f64..1.0,
         flip in prop::option::of((0.0f64..1.0, any::<u8>())),
     ) {
