@@ -33,6 +33,8 @@
 //!   `simplify_error_vs_time` experiment, the `simplify_vs_meshopt` bench);
 //! - [`query_sets`]: the seeded closest-point query sets and their generator (the
 //!   `sweep_throughput` experiment, the `sweep_vs_parry` and `polyline_vs_parry` benches);
+//! - [`rapier_shapes`]: meshes scaled to a size of 1 and sphere sets as rapier colliders
+//!   (the `scene_time_vs_error` experiment, the `scene_vs_rapier` bench);
 //! - [`peers`]: peers run as child processes, today cascading-upper-bounds in Python (the
 //!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench);
 //! - [`chart`]: SVG charts (plotters) and the CSV written beside each (every experiment);
@@ -68,3 +70,4 @@ pub mod experiments;
 pub mod methods;
 pub mod peers;
 pub mod query_sets;
+pub mod rapier_shapes;

@@ -116,6 +116,7 @@ pub struct ObjectModel {
     tree_errors: Vec<f64>,
     hierarchy: Hierarchy,
     mesh_levels: Vec<MeshLevel>,
+    mesh_errors: Vec<f64>,
 }
 
 impl ObjectModel {
@@ -131,9 +132,10 @@ impl ObjectModel {
     ///
     /// # Performance
     ///
-    /// Dominated by the sphere-tree (about a second for a 70k-triangle mesh at the default
-    /// options, see `docs/benchmarks.md`); the hierarchy and the ladder take a fraction
-    /// of that.
+    /// Dominated by the sphere-tree, whose cost follows its samples more than the
+    /// triangles: 2.8–3.2 s at the default options (10,000 samples, depth 3, branch 8) for
+    /// the shared meshes of 3,674 to 12,716 triangles, all told (`scene_time_vs_error` in
+    /// `docs/benchmarks.md`); the hierarchy and the ladder take a fraction of that.
     pub fn build(
         name: impl Into<String>,
         mesh: TriMesh,
@@ -167,6 +169,7 @@ impl ObjectModel {
         let root_bound = minimum_enclosing_ball_of_balls(&balls)?;
         let tree_errors = level_worst_errors(&tree);
         let mesh_levels = mesh_ladder(&hierarchy, options);
+        let mesh_errors = mesh_levels.iter().map(|l| l.error_bound).collect();
         Ok(Self {
             name: name.into(),
             diagonal: mesh.bounding_box_diagonal(),
@@ -177,6 +180,7 @@ impl ObjectModel {
             tree_errors,
             hierarchy,
             mesh_levels,
+            mesh_errors,
         })
     }
 
@@ -236,6 +240,12 @@ impl ObjectModel {
         &self.mesh_levels
     }
 
+    /// The certified error of each mesh ladder level, coarsest first (model units).
+    #[must_use]
+    pub fn mesh_errors(&self) -> &[f64] {
+        &self.mesh_errors
+    }
+
     /// The mesh of ladder level `level` (its vertices, triangles and radii), `None` out
     /// of range. Rebuilt from the hierarchy on each call.
     #[must_use]
@@ -255,13 +265,12 @@ impl ObjectModel {
     /// model's units); the input (error 0) meets every tolerance.
     #[must_use]
     pub fn mesh_level_for(&self, tolerance: f64) -> (usize, bool) {
-        let errors: Vec<f64> = self.mesh_levels.iter().map(|l| l.error_bound).collect();
-        coarsest_meeting(&errors, |e| e <= tolerance)
+        coarsest_meeting(&self.mesh_errors, |e| e <= tolerance)
     }
 }
 
 /// The first index whose error meets `ok`, or the last and `false`.
-pub(crate) fn coarsest_meeting(errors: &[f64], ok: impl Fn(f64) -> bool) -> (usize, bool) {
+fn coarsest_meeting(errors: &[f64], ok: impl Fn(f64) -> bool) -> (usize, bool) {
     match errors.iter().position(|&e| ok(e)) {
         Some(i) => (i, true),
         None => (errors.len().saturating_sub(1), false),

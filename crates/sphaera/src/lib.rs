@@ -158,8 +158,9 @@ pub use sphaera_spheretree as spheretree;
 #[cfg(feature = "sweep")]
 pub use sphaera_sweep as sweep;
 
-/// Any error of a Sphaera crate: each crate's error, wrapped transparently (the message
-/// and the source are the crate's), and I/O errors.
+/// Any error of a Sphaera crate: each crate's error, boxed and wrapped transparently (the
+/// message and the source are the crate's), and I/O errors. The box keeps
+/// `Result<T, sphaera::Error>` two words wide.
 ///
 /// # Examples
 ///
@@ -183,42 +184,77 @@ pub use sphaera_sweep as sweep;
 pub enum Error {
     /// From `sphaera-mesh`: invalid or empty meshes, malformed files, bad transforms.
     #[error(transparent)]
-    Mesh(#[from] sphaera_mesh::MeshError),
+    Mesh(Box<sphaera_mesh::MeshError>),
     /// From `sphaera-simplify`.
     #[cfg(feature = "simplify")]
     #[error(transparent)]
-    Simplify(#[from] sphaera_simplify::SimplifyError),
+    Simplify(Box<sphaera_simplify::SimplifyError>),
     /// From `sphaera-sweep`.
     #[cfg(feature = "sweep")]
     #[error(transparent)]
-    Sweep(#[from] sphaera_sweep::SweepError),
+    Sweep(Box<sphaera_sweep::SweepError>),
     /// From `sphaera-medial`'s Delaunay tetrahedralization.
     #[cfg(feature = "medial")]
     #[error(transparent)]
-    Delaunay(#[from] sphaera_medial::DelaunayError),
+    Delaunay(Box<sphaera_medial::DelaunayError>),
     /// From `sphaera-medial`'s medial-axis approximation.
     #[cfg(feature = "medial")]
     #[error(transparent)]
-    Medial(#[from] sphaera_medial::MedialError),
+    Medial(Box<sphaera_medial::MedialError>),
     /// From `sphaera-spheretree`.
     #[cfg(feature = "spheretree")]
     #[error(transparent)]
-    SphereTree(#[from] sphaera_spheretree::SphereTreeError),
+    SphereTree(Box<sphaera_spheretree::SphereTreeError>),
     /// From `sphaera-hal`.
     #[cfg(feature = "hal")]
     #[error(transparent)]
-    Hal(#[from] sphaera_hal::HalError),
+    Hal(Box<sphaera_hal::HalError>),
     /// From `sphaera-silhouette`.
     #[cfg(feature = "silhouette")]
     #[error(transparent)]
-    Silhouette(#[from] sphaera_silhouette::SilhouetteError),
+    Silhouette(Box<sphaera_silhouette::SilhouetteError>),
     /// From `sphaera-scene`.
     #[cfg(feature = "scene")]
     #[error(transparent)]
-    Scene(#[from] sphaera_scene::SceneError),
+    Scene(Box<sphaera_scene::SceneError>),
     /// An I/O error outside the crates' own file readers.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+}
+
+/// `From` for each boxed variant of [`Error`] (boxed so that `Result<T, Error>` stays
+/// small: the crates' errors are about 120 bytes).
+macro_rules! from_boxed {
+    ($($(#[$cfg:meta])* $variant:ident($error:ty)),* $(,)?) => {
+        $(
+            $(#[$cfg])*
+            impl From<$error> for Error {
+                fn from(error: $error) -> Self {
+                    Self::$variant(Box::new(error))
+                }
+            }
+        )*
+    };
+}
+
+from_boxed! {
+    Mesh(sphaera_mesh::MeshError),
+    #[cfg(feature = "simplify")]
+    Simplify(sphaera_simplify::SimplifyError),
+    #[cfg(feature = "sweep")]
+    Sweep(sphaera_sweep::SweepError),
+    #[cfg(feature = "medial")]
+    Delaunay(sphaera_medial::DelaunayError),
+    #[cfg(feature = "medial")]
+    Medial(sphaera_medial::MedialError),
+    #[cfg(feature = "spheretree")]
+    SphereTree(sphaera_spheretree::SphereTreeError),
+    #[cfg(feature = "hal")]
+    Hal(sphaera_hal::HalError),
+    #[cfg(feature = "silhouette")]
+    Silhouette(sphaera_silhouette::SilhouetteError),
+    #[cfg(feature = "scene")]
+    Scene(sphaera_scene::SceneError),
 }
 
 /// `Result` with [`Error`] as its default error.

@@ -9,7 +9,9 @@
 //! - **Sphaera**: a compound of balls, the sphere-tree level `Scene::detail` chooses for a
 //!   tolerance of 10 %, 5 %, 2 %, 1 % and 0.5 % of each object's size, and once for a
 //!   tolerance of 2 pixels on a camera looking at the box (each body gets the level its
-//!   distance needs: "no more than the scene needs");
+//!   distance needs: "no more than the scene needs"); and the smallest cut through each
+//!   tree meeting 10 %, 5 % and 2 % (`spheretree::cut_for_tolerance`: coarse nodes where
+//!   they are tight enough, fine ones only where needed);
 //! - rapier's **trimesh** colliders (the true meshes);
 //! - rapier's **convex decomposition** (V-HACD with parry's default parameters).
 //!
@@ -146,6 +148,36 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
             build_seconds,
         )?);
     }
+    // The smallest cut through each tree meeting the tolerance: coarser nodes where they
+    // are already tight enough, finer ones only where needed.
+    for &t in &TOLERANCES[..3] {
+        let started = Instant::now();
+        let cuts: Vec<_> = models
+            .iter()
+            .map(|m| sphaera::spheretree::cut_for_tolerance(m.tree(), t * m.diagonal()))
+            .collect();
+        let per_object: Vec<SharedShape> = models
+            .iter()
+            .zip(&cuts)
+            .map(|(m, cut)| crate::rapier_shapes::ball_compound(&cut.spheres(m.tree())))
+            .collect();
+        let shapes = starts.iter().map(|&(o, _)| per_object[o].clone()).collect();
+        let build_seconds = started.elapsed().as_secs_f64();
+        let mean = |f: &dyn Fn(usize) -> f64| {
+            starts.iter().map(|&(o, _)| f(o)).sum::<f64>() / BODIES as f64
+        };
+        let parts = mean(&|o| cuts[o].nodes.len() as f64);
+        let certified = mean(&|o| cuts[o].worst_error / models[o].diagonal());
+        rows.push(simulate(
+            &format!("sphaera cut {}%", t * 100.0),
+            &objects,
+            &starts,
+            shapes,
+            parts,
+            Some(certified),
+            build_seconds,
+        )?);
+    }
     // rapier's own colliders: the true meshes, and their convex decomposition.
     let started = Instant::now();
     let trimeshes = objects
@@ -153,19 +185,13 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
         .map(|o| SharedShape::trimesh(o.mesh.positions().to_vec(), o.mesh.triangles().to_vec()))
         .collect::<Result<Vec<_>, _>>()?;
     let build = started.elapsed().as_secs_f64();
-    let parts = starts
-        .iter()
-        .map(|&(o, _)| objects[o].mesh.triangle_count() as f64)
-        .sum::<f64>()
-        / BODIES as f64;
-    let shapes = starts.iter().map(|&(o, _)| trimeshes[o].clone()).collect();
-    rows.push(simulate(
+    let triangles = |o: usize| objects[o].mesh.triangle_count();
+    rows.push(per_object_run(
         "rapier trimesh",
         &objects,
         &starts,
-        shapes,
-        parts,
-        None,
+        &trimeshes,
+        &triangles,
         build,
     )?);
     let started = Instant::now();
@@ -174,19 +200,13 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
         .map(|o| SharedShape::convex_decomposition(o.mesh.positions(), o.mesh.triangles()))
         .collect();
     let build = started.elapsed().as_secs_f64();
-    let parts = starts
-        .iter()
-        .map(|&(o, _)| hulls[o].as_compound().map_or(1, |c| c.shapes().len()) as f64)
-        .sum::<f64>()
-        / BODIES as f64;
-    let shapes = starts.iter().map(|&(o, _)| hulls[o].clone()).collect();
-    rows.push(simulate(
+    let convex_parts = |o: usize| hulls[o].as_compound().map_or(1, |c| c.shapes().len());
+    rows.push(per_object_run(
         "rapier convex decomposition",
         &objects,
         &starts,
-        shapes,
-        parts,
-        None,
+        &hulls,
+        &convex_parts,
         build,
     )?);
     write_outputs(out, &rows)
@@ -194,18 +214,30 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
 
 /// The spheres of `level` of `model`'s tree as one compound of balls.
 fn ball_compound(model: &ObjectModel, level: usize) -> SharedShape {
-    let balls = model
-        .tree()
-        .level_spheres(level)
-        .into_iter()
-        .map(|s| {
-            (
-                Pose::from_translation(s.center),
-                SharedShape::ball(s.radius),
-            )
-        })
-        .collect();
-    SharedShape::compound(balls)
+    crate::rapier_shapes::ball_compound(&model.tree().level_spheres(level))
+}
+
+/// A run where every body of an object shares that object's collider; `parts` counts an
+/// object's triangles or convex parts.
+fn per_object_run(
+    method: &str,
+    objects: &[Object],
+    starts: &[(usize, Pose)],
+    per_object: &[SharedShape],
+    parts: &dyn Fn(usize) -> usize,
+    build_seconds: f64,
+) -> Result<Row> {
+    let mean_parts = starts.iter().map(|&(o, _)| parts(o) as f64).sum::<f64>() / BODIES as f64;
+    let shapes = starts.iter().map(|&(o, _)| per_object[o].clone()).collect();
+    simulate(
+        method,
+        objects,
+        starts,
+        shapes,
+        mean_parts,
+        None,
+        build_seconds,
+    )
 }
 
 fn simulate(
@@ -238,6 +270,9 @@ fn simulate(
         errors,
     })
 }
+
+/// One series of the chart: its legend, which rows it holds, its marker.
+type Kind<'a> = (&'a str, &'a dyn Fn(&Row) -> bool, Marker);
 
 fn write_outputs(out: &Path, rows: &[Row]) -> Result<()> {
     let header = [
@@ -273,21 +308,26 @@ fn write_outputs(out: &Path, rows: &[Row]) -> Result<()> {
     write_csv(&out.join(format!("{NAME}.csv")), &header, &lines)?;
 
     // One series per kind of collider; the Sphaera points labelled by their tolerance.
-    let kinds: [(&str, &dyn Fn(&Row) -> bool, Marker); 3] = [
+    let kinds: [Kind<'_>; 4] = [
         (
-            "Sphaera ball compounds",
-            &|r: &Row| r.method.starts_with("sphaera"),
+            "Sphaera tree level",
+            &|r: &Row| r.method.starts_with("sphaera") && !r.method.starts_with("sphaera cut"),
             Marker::Circle,
+        ),
+        (
+            "Sphaera tree cut",
+            &|r: &Row| r.method.starts_with("sphaera cut"),
+            Marker::Square,
         ),
         (
             "rapier trimesh",
             &|r: &Row| r.method == "rapier trimesh",
-            Marker::Square,
+            Marker::Triangle,
         ),
         (
-            "rapier convex decomposition",
+            "rapier convex parts",
             &|r: &Row| r.method == "rapier convex decomposition",
-            Marker::Triangle,
+            Marker::Circle,
         ),
     ];
     let panel_series = |x: &dyn Fn(&Row) -> f64| -> Vec<StyledSeries> {
@@ -314,7 +354,12 @@ fn write_outputs(out: &Path, rows: &[Row]) -> Result<()> {
                 .with_labels(
                     chosen
                         .iter()
-                        .map(|r| r.method.trim_start_matches("sphaera ").to_owned())
+                        .map(|r| {
+                            r.method
+                                .trim_start_matches("sphaera ")
+                                .trim_start_matches("cut ")
+                                .to_owned()
+                        })
                         .map(|l| {
                             if l.starts_with("rapier") {
                                 String::new()

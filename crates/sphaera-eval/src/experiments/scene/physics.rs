@@ -35,14 +35,7 @@ pub(super) struct Object {
 impl Object {
     /// `mesh` scaled to a diagonal of 1 and centred.
     pub(super) fn new(name: &str, mesh: &TriMesh) -> Result<Self> {
-        let center = mesh.bounding_box().center();
-        let scale = 1.0 / mesh.bounding_box_diagonal();
-        let positions = mesh
-            .positions()
-            .iter()
-            .map(|&p| (p - center) * scale)
-            .collect();
-        let mesh = TriMesh::new(positions, mesh.triangles().to_vec())?;
+        let mesh = crate::rapier_shapes::unit_size(mesh)?;
         let surface = Surface::new(&mesh).with_context(|| format!("{name}: no inside"))?;
         let bound = sphaera::mesh::geometry::minimum_enclosing_ball(mesh.positions())?;
         // A solid box of the mesh's extent, of density 1: the same dynamics for every
@@ -68,15 +61,8 @@ impl Object {
 pub(super) fn start_poses(objects: usize) -> Vec<(usize, Pose)> {
     let per_side = 5;
     let spacing = 1.15;
-    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut next = || {
-        // splitmix64: a fixed, portable sequence.
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64
-    };
+    let mut rng = sphaera_tests::random::SplitMix64::new(0x9e37_79b9_7f4a_7c15);
+    let mut next = || rng.unit_by_max();
     (0..BODIES)
         .map(|i| {
             let (layer, k) = (i / (per_side * per_side), i % (per_side * per_side));
