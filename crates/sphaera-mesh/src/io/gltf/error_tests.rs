@@ -117,9 +117,15 @@ fn errors_name_the_object_and_the_problem() {
         transform(json!({ "rotation": [0.0, 0.0, 0.0, 0.0] })),
         "malformed glTF data at node 0: invalid node transform: the rotation quaternion is zero"
     );
-    assert_eq!(
-        transform(json!({ "translation": [0.0, 1e39, 0.0] })),
-        "malformed glTF data at node 0: invalid node transform: a value is NaN or infinite"
+    // Beyond f32: infinite after reading, or refused by the JSON reader when serde_json's
+    // `float_roundtrip` is on (the workspace turns it on, a lone build of this crate not).
+    let beyond = transform(json!({ "translation": [0.0, 1e39, 0.0] }));
+    assert!(
+        beyond
+            == "malformed glTF data at node 0: invalid node transform: a value is NaN or infinite"
+            || (beyond.starts_with("malformed glTF data at JSON line 1")
+                && beyond.ends_with("number out of range")),
+        "{beyond}"
     );
     assert_eq!(
         transform(json!({ "matrix": [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1] })),
