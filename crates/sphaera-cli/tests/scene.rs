@@ -29,6 +29,8 @@ fn the_demo_scene_chooses_coarser_levels_far_away_and_finds_the_touching_pair() 
         assert_eq!(i["mesh"]["meets"], true);
     }
     assert_eq!(report["detail"]["unit"], "px");
+    // The smallest cuts never need more spheres than the levels.
+    assert!(report["detail"]["cut_spheres"].as_u64() <= report["detail"]["spheres"].as_u64());
     assert!(report["detail"]["triangles"].as_u64() < report["detail"]["full_triangles"].as_u64());
     // bunny-0 and bunny-1 touch, nothing else does.
     let contacts = report["contacts"].as_array().expect("contacts");

@@ -26,6 +26,25 @@ pub struct LevelChoice {
     pub meets: bool,
 }
 
+/// The smallest cut through an instance's sphere-tree that meets the tolerance: the
+/// highest nodes whose error meets it, and leaves where none does
+/// ([`sphaera_spheretree::cut_for_tolerance`]). Coarse nodes stay where they are tight
+/// enough, so it never has more spheres than a level that meets the tolerance, and
+/// often far fewer.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct CutChoice {
+    /// Its spheres.
+    pub count: usize,
+    /// The deepest level it reaches.
+    pub deepest_level: usize,
+    /// Its worst node error in the scene's units.
+    pub error: f64,
+    /// The same error in the tolerance's unit (0 when the camera cannot see it).
+    pub measured: f64,
+    /// Whether it meets the tolerance (`false` only when some leaf does not).
+    pub meets: bool,
+}
+
 /// The levels chosen for one instance.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct InstanceDetail {
@@ -40,6 +59,9 @@ pub struct InstanceDetail {
     pub visible: bool,
     /// The sphere-tree level.
     pub spheres: LevelChoice,
+    /// The smallest sphere-tree cut (a set of nodes of mixed levels), often fewer spheres
+    /// than [`InstanceDetail::spheres`] for the same tolerance.
+    pub cut: CutChoice,
     /// The mesh level.
     pub mesh: LevelChoice,
     /// The spheres of its finest sphere-tree level.
@@ -60,6 +82,8 @@ pub struct DetailReport {
     pub instances: Vec<InstanceDetail>,
     /// Spheres at the chosen levels, over all instances.
     pub spheres: usize,
+    /// Spheres of the chosen cuts, over all instances.
+    pub cut_spheres: usize,
     /// Spheres at every instance's finest level.
     pub full_spheres: usize,
     /// Triangles at the chosen levels.
@@ -118,10 +142,10 @@ impl Scene {
     ///
     /// # Performance
     ///
-    /// `O(levels)` per instance, no allocation beyond the report (the instance names):
-    /// 200 instances in 0.27 ms for a tolerance in pixels, about 1.4 µs each with its
-    /// 4 tree levels and 25 mesh levels (`cargo bench -p sphaera-eval --bench
-    /// scene_vs_rapier`, see `docs/benchmarks.md`).
+    /// `O(levels + cut)` per instance: 200 instances in 1.3 ms for a tolerance in pixels,
+    /// about 7 µs each, of which the levels (4 tree levels, 25 mesh levels) take 1.4 µs
+    /// and the smallest cut the rest (a bisection of the pixel bound, then the cut's walk)
+    /// (`cargo bench -p sphaera-eval --bench scene_vs_rapier`, see `docs/benchmarks.md`).
     pub fn detail(
         &self,
         camera: Option<&Camera>,
@@ -142,6 +166,7 @@ impl Scene {
             tolerance: tolerance.to_string(),
             unit: tolerance.unit(),
             spheres: sum(&|d| d.spheres.count),
+            cut_spheres: sum(&|d| d.cut.count),
             full_spheres: sum(&|d| d.full_spheres),
             triangles: sum(&|d| d.mesh.count),
             full_triangles: sum(&|d| d.full_triangles),
@@ -214,14 +239,84 @@ fn choose(
     let mesh = choose_level(instance, camera, tolerance, model.mesh_errors(), &|l| {
         model.mesh_levels().get(l).map_or(0, |m| m.triangles)
     });
+    let cut = choose_cut(instance, camera, tolerance);
     InstanceDetail {
         instance: index,
         name: instance.name.clone(),
         model: model.name().to_owned(),
         visible: camera.is_none_or(|c| c.pixels_per_unit(&instance.bounding_sphere()).is_some()),
         spheres,
+        cut,
         mesh,
         full_spheres: tree.level(tree.level_count().saturating_sub(1)).len(),
         full_triangles: model.mesh().triangle_count(),
+    }
+}
+
+/// The smallest cut meeting the tolerance. Its bound in the model's units is the largest
+/// error whose measure meets the tolerance: direct for world and relative tolerances,
+/// found by bisection for pixels (the projected error grows with the error), in a bracket
+/// from the projection of the ungrown and the grown bounding sphere.
+fn choose_cut(instance: &Instance, camera: Option<&Camera>, tolerance: Tolerance) -> CutChoice {
+    let model = &instance.model;
+    let tree = model.tree();
+    let scale = instance.pose.scale();
+    // An error that cannot be seen measures 0: it meets any tolerance in pixels.
+    let measured = |e: f64| measure(instance, camera, tolerance, e * scale).unwrap_or(0.0);
+    let meets = |e: f64| measured(e) <= tolerance.value();
+    let largest = model.tree_errors().iter().copied().fold(0.0, f64::max);
+    let bound = match tolerance {
+        Tolerance::World(t) => t / scale,
+        Tolerance::Relative(t) => t * model.diagonal(),
+        Tolerance::Pixels(_) if meets(largest) => largest,
+        Tolerance::Pixels(t) => {
+            // `e·k(e)` grows with `e` (`k`: pixels per unit of the sphere grown by `e`),
+            // so the threshold lies between `t / k(high)` and `high = t / k(0)`.
+            let per_unit = |e: f64| {
+                camera.and_then(|c| {
+                    let grown = instance.bounding_sphere();
+                    c.pixels_per_unit(&sphaera_mesh::Sphere::new(
+                        grown.center,
+                        grown.radius + e * scale,
+                    ))
+                })
+            };
+            let (mut low, mut high, steps) = match per_unit(0.0) {
+                Some(k) if k > 0.0 => {
+                    let high = (t / (k * scale)).min(largest);
+                    let low = per_unit(high).map_or(0.0, |k| t / (k * scale)).min(high);
+                    (low, high, 16)
+                }
+                _ => (0.0, largest, 60),
+            };
+            if meets(high) {
+                low = high;
+            }
+            // `meets(low)` holds; `meets(high)` does not, unless they are equal.
+            for _ in 0..steps {
+                let mid = 0.5 * (low + high);
+                if meets(mid) {
+                    low = mid;
+                } else {
+                    high = mid;
+                }
+            }
+            low
+        }
+    };
+    let cut = sphaera_spheretree::cut_for_tolerance(tree, bound);
+    let deepest_level = cut
+        .nodes
+        .iter()
+        .filter_map(|&i| tree.nodes().get(i))
+        .map(|n| n.level as usize)
+        .max()
+        .unwrap_or(0);
+    CutChoice {
+        count: cut.nodes.len(),
+        deepest_level,
+        error: cut.worst_error * scale,
+        measured: measured(cut.worst_error),
+        meets: meets(cut.worst_error),
     }
 }

@@ -8,8 +8,10 @@
 //! - [`Scene::detail`] picks, for every instance, the **coarsest** sphere-tree level and
 //!   the coarsest mesh level whose certified error meets a [`Tolerance`]: world units, a
 //!   fraction of each object's size, or pixels on a perspective [`Camera`]'s image
-//!   (certified there too, see [`Camera::pixels_per_unit`]). The [`DetailReport`] gives
-//!   each choice, its error, and the totals against full detail.
+//!   (certified there too, see [`Camera::pixels_per_unit`]), and the smallest cut through
+//!   the sphere-tree that meets it ([`CutChoice`]: coarse nodes where they are tight
+//!   enough, often far fewer spheres than a level). The [`DetailReport`] gives each
+//!   choice, its error, and the totals against full detail.
 //! - [`Scene::collide`] finds every contact within a [`Budget`]: a broad phase over the
 //!   instances' bounding spheres, then the paper's interruptible tree-against-tree
 //!   traversal for every close pair, **all pairs one level at a time**, so the answer
@@ -85,7 +87,7 @@ mod tolerance;
 
 pub use camera::Camera;
 pub use collide::{CollisionSummary, PairContacts, SceneCollision};
-pub use detail::{DetailReport, InstanceDetail, LevelChoice};
+pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice};
 pub use error::SceneError;
 pub use file::{CameraEntry, InstanceEntry, LoadedScene, SceneDescription, SceneFile};
 pub use glam::DVec3;

@@ -121,12 +121,27 @@ proptest! {
             prop_assert!(check(&detail.mesh, &ladder, &|l| model.mesh_levels()[l].triangles),
                 "{detail:?}");
             prop_assert!(detail.mesh.meets, "the input meets every tolerance");
+            // The smallest cut: never more spheres than a level that meets, and what it
+            // claims holds.
+            let cut = &detail.cut;
+            prop_assert!(cut.count >= 1 && cut.deepest_level < tree.level_count());
+            if detail.spheres.meets {
+                prop_assert!(cut.meets && cut.count <= detail.spheres.count, "{detail:?}");
+            }
+            if cut.meets {
+                prop_assert!(cut.measured <= tolerance.value(), "{detail:?}");
+            }
+            if detail.spheres.meets && detail.spheres.level == 0 {
+                prop_assert_eq!(cut.count, tree.level(0).len());
+            }
             let seen = camera.pixels_per_unit(&instance.pose.sphere(&model.bounding_sphere()));
             prop_assert_eq!(detail.visible, seen.is_some());
 
         }
         let spheres: usize = report.instances.iter().map(|d| d.spheres.count).sum();
         prop_assert_eq!(report.spheres, spheres);
+        let cut_spheres: usize = report.instances.iter().map(|d| d.cut.count).sum();
+        prop_assert_eq!(report.cut_spheres, cut_spheres);
         let triangles: usize = report.instances.iter().map(|d| d.mesh.count).sum();
         prop_assert_eq!(report.triangles, triangles);
         prop_assert!(report.triangles <= report.full_triangles);
@@ -266,6 +281,8 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
                 );
                 assert_eq!(x.mesh.error * f, y.mesh.error, "2^{k}");
                 assert_eq!(x.spheres.error * f, y.spheres.error, "2^{k}");
+                assert_eq!(x.cut.count, y.cut.count, "2^{k} {tolerance}");
+                assert_eq!(x.cut.error * f, y.cut.error, "2^{k}");
             }
         }
     }

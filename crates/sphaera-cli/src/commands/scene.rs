@@ -320,6 +320,11 @@ impl crate::output::Report for Report {
             saved(d.spheres, d.full_spheres)
         ));
         lines.push(format!(
+            "                {} in the smallest tree cuts meeting the tolerance ({:.1} % saved)",
+            thousands(d.cut_spheres),
+            saved(d.cut_spheres, d.full_spheres)
+        ));
+        lines.push(format!(
             "triangles       {} of {} at full detail ({:.1} % saved)",
             thousands(d.triangles),
             thousands(d.full_triangles),
