@@ -117,6 +117,8 @@ pub struct ObjectModel {
     hierarchy: Hierarchy,
     mesh_levels: Vec<MeshLevel>,
     mesh_errors: Vec<f64>,
+    #[cfg(feature = "hal")]
+    hal: Result<sphaera_hal::HalTree3, sphaera_hal::HalError>,
 }
 
 impl ObjectModel {
@@ -170,6 +172,8 @@ impl ObjectModel {
         let tree_errors = level_worst_errors(&tree);
         let mesh_levels = mesh_ladder(&hierarchy, options);
         let mesh_errors = mesh_levels.iter().map(|l| l.error_bound).collect();
+        #[cfg(feature = "hal")]
+        let hal = sphaera_hal::HalTree3::build(&mesh);
         Ok(Self {
             name: name.into(),
             diagonal: mesh.bounding_box_diagonal(),
@@ -181,6 +185,8 @@ impl ObjectModel {
             hierarchy,
             mesh_levels,
             mesh_errors,
+            #[cfg(feature = "hal")]
+            hal,
         })
     }
 
@@ -238,6 +244,18 @@ impl ObjectModel {
     #[must_use]
     pub fn mesh_levels(&self) -> &[MeshLevel] {
         &self.mesh_levels
+    }
+
+    /// The HAL tree of the mesh (feature `hal`): its hierarchy of approximating triangles
+    /// with bounding balls, for point inclusion and intersection tests; the reason when
+    /// the mesh has none (it must be closed and of genus 0).
+    ///
+    /// # Errors
+    ///
+    /// The [`sphaera_hal::HalError`] the tree's construction gave.
+    #[cfg(feature = "hal")]
+    pub fn hal_tree(&self) -> Result<&sphaera_hal::HalTree3, &sphaera_hal::HalError> {
+        self.hal.as_ref()
     }
 
     /// The certified error of each mesh ladder level, coarsest first (model units).

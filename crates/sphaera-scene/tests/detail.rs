@@ -302,3 +302,21 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
         );
     }
 }
+
+/// With the `hal` feature, a model of a closed genus-0 mesh has its HAL tree; a torus
+/// says why it has none.
+#[cfg(feature = "hal")]
+#[test]
+fn models_carry_their_hal_tree_where_the_mesh_allows_one() {
+    for model in common::models() {
+        match (model.name(), model.hal_tree()) {
+            ("torus", Err(why)) => assert!(why.to_string().contains("genus"), "{why}"),
+            ("torus", Ok(_)) => panic!("a torus has no HAL tree"),
+            (name, tree) => {
+                let tree = tree.unwrap_or_else(|e| panic!("{name}: {e}"));
+                assert!(tree.depth() > 0, "{name}");
+                assert_eq!(tree.mesh().triangle_count(), model.mesh().triangle_count());
+            }
+        }
+    }
+}
