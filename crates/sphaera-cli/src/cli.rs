@@ -118,6 +118,11 @@ pub struct SceneArgs {
     #[arg(long, conflicts_with = "budget")]
     pub time_budget_ms: Option<f64>,
 
+    /// With a camera, also choose silhouette-aware meshes: each instance's outline
+    /// within the tolerance, its interior within this many times it (at least 1).
+    #[arg(long, default_value_t = 4.0)]
+    pub silhouette: f64,
+
     /// Levels below the root of each sphere-tree.
     #[arg(long, default_value_t = 3)]
     pub depth: usize,

@@ -32,6 +32,20 @@ fn the_demo_scene_chooses_coarser_levels_far_away_and_finds_the_touching_pair() 
     // The smallest cuts never need more spheres than the levels.
     assert!(report["detail"]["cut_spheres"].as_u64() <= report["detail"]["spheres"].as_u64());
     assert!(report["detail"]["triangles"].as_u64() < report["detail"]["full_triangles"].as_u64());
+    // Silhouette-aware meshes: outlines within 2 px, interiors within 8 px (the default
+    // multiple), fewer triangles than the uniform levels.
+    let silhouette = &report["silhouette"];
+    assert_eq!(silhouette["interior_tolerance"], "8px");
+    assert_eq!(
+        silhouette["uniform_triangles"],
+        report["detail"]["triangles"]
+    );
+    assert!(silhouette["triangles"].as_u64() < silhouette["uniform_triangles"].as_u64());
+    for i in silhouette["instances"].as_array().expect("instances") {
+        assert!(i["contour_measured"].as_f64().unwrap() <= 2.0, "{i}");
+        assert!(i["interior_measured"].as_f64().unwrap() <= 8.0, "{i}");
+        assert_eq!(i["meets"], true);
+    }
     // bunny-0 and bunny-1 touch, nothing else does.
     let contacts = report["contacts"].as_array().expect("contacts");
     assert_eq!(contacts.len(), 1);
@@ -56,11 +70,15 @@ fn a_budget_and_a_world_tolerance_are_honoured() {
         "0",
         "--tolerance",
         "0.5",
+        "--silhouette",
+        "4",
     ]));
     assert_eq!(report["collision"]["level"], 0);
     assert_eq!(report["collision"]["completed"], false);
     assert_eq!(report["detail"]["unit"], "world");
     assert_eq!(report["detail"]["tolerance"], "0.5");
+    // The demo has a camera: the silhouettes are chosen for the same tolerance.
+    assert_eq!(report["silhouette"]["interior_tolerance"], "2");
 }
 
 #[test]
@@ -146,6 +164,7 @@ fn bad_scene_files_and_arguments_give_clear_errors() {
         ("--tolerance", "-1px", "invalid tolerance"),
         ("--camera", "1,2,3", "six"),
         ("--image", "0x10", "positive"),
+        ("--silhouette", "0.5", "interior 0.5"),
     ] {
         let output = sphaera(&["scene", flag, value]);
         assert!(!output.status.success());

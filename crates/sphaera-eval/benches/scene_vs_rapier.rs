@@ -14,7 +14,10 @@
 //! - `sphaera/cost_20000`: the same under a budget of 20,000 (the paper's cost model);
 //! - `rapier/balls_finest`: rapier's pipeline on compounds of the same finest-level balls;
 //! - `rapier/trimesh`: rapier's pipeline on the bunnies' triangle meshes;
-//! - `detail/pixels`: `Scene::detail` for 2 px on a 1280×720 camera (no peer).
+//! - `detail/pixels`: `Scene::detail` for 2 px on a 1280×720 camera (no peer);
+//! - `detail/silhouettes`: `Scene::silhouette_detail` for outlines within 2 px and
+//!   interiors within 8 px on the same camera (one view-dependent extraction per
+//!   instance; no peer).
 //!
 //! Run with `cargo bench -p sphaera-eval --bench scene_vs_rapier`.
 
@@ -29,7 +32,9 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use rapier3d_f64::prelude::*;
 use sphaera::mesh::geometry::Similarity;
 use sphaera::mesh::{DVec3, TriMesh, shapes};
-use sphaera::scene::{Budget, Camera, ModelOptions, ObjectModel, Scene, Tolerance};
+use sphaera::scene::{
+    Budget, Camera, ModelOptions, ObjectModel, Scene, SilhouetteDetailOptions, Tolerance,
+};
 use sphaera_eval::rapier_shapes::{ball_compound, unit_size};
 use sphaera_tests::random::SplitMix64;
 
@@ -138,6 +143,20 @@ fn bench(c: &mut Criterion) {
                 scene
                     .detail(Some(&camera), Tolerance::Pixels(2.0))
                     .expect("detail"),
+            )
+        });
+    });
+    group.sample_size(10);
+    group.bench_function("detail/silhouettes", |b| {
+        b.iter(|| {
+            black_box(
+                scene
+                    .silhouette_detail(
+                        &camera,
+                        Tolerance::Pixels(2.0),
+                        &SilhouetteDetailOptions::default(),
+                    )
+                    .expect("silhouettes"),
             )
         });
     });

@@ -178,7 +178,7 @@ impl Scene {
 
 /// An error of `world` scene units, in the tolerance's unit; `None` when the camera does
 /// not see the instance under a tolerance in pixels.
-fn measure(
+pub(crate) fn measure(
     instance: &Instance,
     camera: Option<&Camera>,
     tolerance: Tolerance,
@@ -193,8 +193,65 @@ fn measure(
     }
 }
 
+/// The largest error in the model's units whose measure meets the tolerance, where the
+/// errors that matter are at most `largest`: direct for world and relative tolerances,
+/// found by bisection for pixels (the projected error grows with the error), in a bracket
+/// from the projection of the ungrown and the grown bounding sphere.
+pub(crate) fn allowed_error(
+    instance: &Instance,
+    camera: Option<&Camera>,
+    tolerance: Tolerance,
+    largest: f64,
+) -> f64 {
+    let model = &instance.model;
+    let scale = instance.pose.scale();
+    // An error that cannot be seen measures 0: it meets any tolerance in pixels.
+    let meets = |e: f64| {
+        measure(instance, camera, tolerance, e * scale).unwrap_or(0.0) <= tolerance.value()
+    };
+    match tolerance {
+        Tolerance::World(t) => t / scale,
+        Tolerance::Relative(t) => t * model.diagonal(),
+        Tolerance::Pixels(_) if meets(largest) => largest,
+        Tolerance::Pixels(t) => {
+            // `e·k(e)` grows with `e` (`k`: pixels per unit of the sphere grown by `e`),
+            // so the threshold lies between `t / k(high)` and `high = t / k(0)`.
+            let per_unit = |e: f64| {
+                camera.and_then(|c| {
+                    let grown = instance.bounding_sphere();
+                    c.pixels_per_unit(&sphaera_mesh::Sphere::new(
+                        grown.center,
+                        grown.radius + e * scale,
+                    ))
+                })
+            };
+            let (mut low, mut high, steps) = match per_unit(0.0) {
+                Some(k) if k > 0.0 => {
+                    let high = (t / (k * scale)).min(largest);
+                    let low = per_unit(high).map_or(0.0, |k| t / (k * scale)).min(high);
+                    (low, high, 16)
+                }
+                _ => (0.0, largest, 60),
+            };
+            if meets(high) {
+                low = high;
+            }
+            // `meets(low)` holds; `meets(high)` does not, unless they are equal.
+            for _ in 0..steps {
+                let mid = 0.5 * (low + high);
+                if meets(mid) {
+                    low = mid;
+                } else {
+                    high = mid;
+                }
+            }
+            low
+        }
+    }
+}
+
 /// The coarsest of `errors` (model units, coarsest first) meeting the tolerance.
-fn choose_level(
+pub(crate) fn choose_level(
     instance: &Instance,
     camera: Option<&Camera>,
     tolerance: Tolerance,
@@ -253,57 +310,15 @@ fn choose(
     }
 }
 
-/// The smallest cut meeting the tolerance. Its bound in the model's units is the largest
-/// error whose measure meets the tolerance: direct for world and relative tolerances,
-/// found by bisection for pixels (the projected error grows with the error), in a bracket
-/// from the projection of the ungrown and the grown bounding sphere.
+/// The smallest cut meeting the tolerance.
 fn choose_cut(instance: &Instance, camera: Option<&Camera>, tolerance: Tolerance) -> CutChoice {
     let model = &instance.model;
     let tree = model.tree();
     let scale = instance.pose.scale();
-    // An error that cannot be seen measures 0: it meets any tolerance in pixels.
+    let largest = model.tree_errors().iter().copied().fold(0.0, f64::max);
+    let bound = allowed_error(instance, camera, tolerance, largest);
     let measured = |e: f64| measure(instance, camera, tolerance, e * scale).unwrap_or(0.0);
     let meets = |e: f64| measured(e) <= tolerance.value();
-    let largest = model.tree_errors().iter().copied().fold(0.0, f64::max);
-    let bound = match tolerance {
-        Tolerance::World(t) => t / scale,
-        Tolerance::Relative(t) => t * model.diagonal(),
-        Tolerance::Pixels(_) if meets(largest) => largest,
-        Tolerance::Pixels(t) => {
-            // `e·k(e)` grows with `e` (`k`: pixels per unit of the sphere grown by `e`),
-            // so the threshold lies between `t / k(high)` and `high = t / k(0)`.
-            let per_unit = |e: f64| {
-                camera.and_then(|c| {
-                    let grown = instance.bounding_sphere();
-                    c.pixels_per_unit(&sphaera_mesh::Sphere::new(
-                        grown.center,
-                        grown.radius + e * scale,
-                    ))
-                })
-            };
-            let (mut low, mut high, steps) = match per_unit(0.0) {
-                Some(k) if k > 0.0 => {
-                    let high = (t / (k * scale)).min(largest);
-                    let low = per_unit(high).map_or(0.0, |k| t / (k * scale)).min(high);
-                    (low, high, 16)
-                }
-                _ => (0.0, largest, 60),
-            };
-            if meets(high) {
-                low = high;
-            }
-            // `meets(low)` holds; `meets(high)` does not, unless they are equal.
-            for _ in 0..steps {
-                let mid = 0.5 * (low + high);
-                if meets(mid) {
-                    low = mid;
-                } else {
-                    high = mid;
-                }
-            }
-            low
-        }
-    };
     let cut = sphaera_spheretree::cut_for_tolerance(tree, bound);
     let deepest_level = cut
         .nodes

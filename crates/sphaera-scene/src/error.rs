@@ -30,6 +30,19 @@ pub enum SceneError {
     /// A model's sphere-tree could not be built, or a collision budget is invalid.
     #[error(transparent)]
     SphereTree(#[from] sphaera_spheretree::SphereTreeError),
+    /// A silhouette-aware extraction failed.
+    #[cfg(feature = "silhouette")]
+    #[error(transparent)]
+    Silhouette(#[from] sphaera_silhouette::SilhouetteError),
+    /// A model has no silhouette labels (they could not be computed with its options).
+    #[cfg(feature = "silhouette")]
+    #[error("model `{model}` has no silhouette labels: {reason}")]
+    NoSilhouetteLabels {
+        /// The model's name.
+        model: String,
+        /// Why the labelling failed.
+        reason: String,
+    },
     /// A tolerance is NaN, negative, infinite or does not parse.
     #[error(
         "invalid tolerance `{text}`: must be a non-negative number of world units (`0.01`), a percentage of each object's diagonal (`0.5%`) or pixels (`2px`)"

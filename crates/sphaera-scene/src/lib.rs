@@ -16,6 +16,10 @@
 //!   instances' bounding spheres, then the paper's interruptible tree-against-tree
 //!   traversal for every close pair, **all pairs one level at a time**, so the answer
 //!   improves monotonically as the budget grows. Each contact carries its error bound.
+//! - With the `silhouette` feature, `Scene::silhouette_detail` keeps each instance's
+//!   **outline** within the tolerance and lets its interior be coarser (a multiple of
+//!   it), from the model's silhouette labels (Mata, Pastor and Rodríguez), both regions'
+//!   errors certified.
 //! - [`SceneDescription`] reads a JSON scene file (meshes, instances with poses, a camera)
 //!   with errors that name the file and the entry.
 //!
@@ -83,6 +87,8 @@ mod error;
 mod file;
 mod model;
 mod scene;
+#[cfg(feature = "silhouette")]
+mod silhouette;
 mod tolerance;
 
 pub use camera::Camera;
@@ -91,8 +97,10 @@ pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice};
 pub use error::SceneError;
 pub use file::{CameraEntry, InstanceEntry, LoadedScene, SceneDescription, SceneFile};
 pub use glam::DVec3;
-pub use model::{MeshLevel, ModelOptions, ObjectModel};
+pub use model::{MeshLevel, ModelOptions, ObjectModel, SilhouetteOptions};
 pub use scene::{Instance, Scene};
+#[cfg(feature = "silhouette")]
+pub use silhouette::{SilhouetteChoice, SilhouetteDetailOptions, SilhouetteReport};
 pub use sphaera_mesh::Sphere;
 pub use sphaera_spheretree::collide::{Budget, Contact, CostModel, TraversalStats};
 pub use tolerance::Tolerance;

@@ -33,6 +33,47 @@ pub struct ModelOptions {
     /// The most mesh levels between the base mesh and the input (default 40; the input
     /// itself is always the finest level).
     pub mesh_ladder_levels: usize,
+    /// How the silhouette labels are computed (used with the `silhouette` feature,
+    /// ignored without it).
+    pub silhouette: SilhouetteOptions,
+}
+
+/// How an object model's silhouette labels are computed (feature `silhouette`; see
+/// `ObjectModel::silhouette_labels`): the views, the image resolution, and which
+/// silhouettes count.
+///
+/// The defaults (62 views every 30°, 128² cells, outlines only) take a fraction of the
+/// sphere-tree's time: the labels are for choosing where a view's outline runs, which a
+/// coarse grid does well.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_scene::SilhouetteOptions;
+///
+/// let options = SilhouetteOptions::default();
+/// assert_eq!((options.step_degrees, options.resolution, options.outline_only), (30.0, 128, true));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SilhouetteOptions {
+    /// The views: a latitude–longitude grid every this many degrees (must divide 180
+    /// and lie in `(0, 90]`; default 30, 62 views).
+    pub step_degrees: f64,
+    /// The cells across each view's image (default 128).
+    pub resolution: usize,
+    /// Label the distance to the outline alone (default `true`), not to the internal
+    /// silhouettes too: the contour region stays narrow, where it matters most.
+    pub outline_only: bool,
+}
+
+impl Default for SilhouetteOptions {
+    fn default() -> Self {
+        Self {
+            step_degrees: 30.0,
+            resolution: 128,
+            outline_only: true,
+        }
+    }
 }
 
 impl Default for ModelOptions {
@@ -42,6 +83,7 @@ impl Default for ModelOptions {
             simplify: SimplifyOptions::default(),
             mesh_ladder_step: std::f64::consts::SQRT_2,
             mesh_ladder_levels: 40,
+            silhouette: SilhouetteOptions::default(),
         }
     }
 }
@@ -83,7 +125,9 @@ pub struct MeshLevel {
 /// base mesh to the input, each with its certified error.
 ///
 /// Levels are numbered coarsest first, for the sphere-tree (level 0: the roots) and the
-/// mesh ladder (level 0: the base mesh; the last: the input, error 0) alike.
+/// mesh ladder (level 0: the base mesh; the last: the input, error 0) alike. With the
+/// `hal` feature a model also carries its HAL tree (`ObjectModel::hal_tree`), and with
+/// `silhouette` its silhouette labels (`ObjectModel::silhouette_labels`).
 ///
 /// # Examples
 ///
@@ -119,6 +163,8 @@ pub struct ObjectModel {
     mesh_errors: Vec<f64>,
     #[cfg(feature = "hal")]
     hal: Result<sphaera_hal::HalTree3, sphaera_hal::HalError>,
+    #[cfg(feature = "silhouette")]
+    silhouette: Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError>,
 }
 
 impl ObjectModel {
@@ -174,6 +220,8 @@ impl ObjectModel {
         let mesh_errors = mesh_levels.iter().map(|l| l.error_bound).collect();
         #[cfg(feature = "hal")]
         let hal = sphaera_hal::HalTree3::build(&mesh);
+        #[cfg(feature = "silhouette")]
+        let silhouette = silhouette_labels(&mesh, &options.silhouette);
         Ok(Self {
             name: name.into(),
             diagonal: mesh.bounding_box_diagonal(),
@@ -187,6 +235,8 @@ impl ObjectModel {
             mesh_errors,
             #[cfg(feature = "hal")]
             hal,
+            #[cfg(feature = "silhouette")]
+            silhouette,
         })
     }
 
@@ -258,6 +308,22 @@ impl ObjectModel {
         self.hal.as_ref()
     }
 
+    /// The silhouette labels of the mesh (feature `silhouette`): for each of
+    /// [`ModelOptions::silhouette`]'s views, how many image cells each vertex lies from the
+    /// silhouette (Mata, Pastor and Rodríguez). [`Scene::silhouette_detail`](crate::Scene::silhouette_detail)
+    /// uses them to keep outlines finer than interiors; the reason when the mesh has none
+    /// (bad options).
+    ///
+    /// # Errors
+    ///
+    /// The [`sphaera_silhouette::SilhouetteError`] the labelling gave.
+    #[cfg(feature = "silhouette")]
+    pub fn silhouette_labels(
+        &self,
+    ) -> Result<&sphaera_silhouette::Labels, &sphaera_silhouette::SilhouetteError> {
+        self.silhouette.as_ref()
+    }
+
     /// The certified error of each mesh ladder level, coarsest first (model units).
     #[must_use]
     pub fn mesh_errors(&self) -> &[f64] {
@@ -285,6 +351,28 @@ impl ObjectModel {
     pub fn mesh_level_for(&self, tolerance: f64) -> (usize, bool) {
         coarsest_meeting(&self.mesh_errors, |e| e <= tolerance)
     }
+}
+
+/// The labels of `mesh` for `options`' orthographic views, exact Euclidean distances.
+#[cfg(feature = "silhouette")]
+fn silhouette_labels(
+    mesh: &TriMesh,
+    options: &SilhouetteOptions,
+) -> Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError> {
+    use sphaera_silhouette::{Contours, DistanceTransform, Labels, ViewSet};
+    let views = ViewSet::regular(options.step_degrees)?;
+    let contours = if options.outline_only {
+        Contours::External
+    } else {
+        Contours::All
+    };
+    Labels::compute(
+        mesh,
+        &views,
+        options.resolution,
+        DistanceTransform::Euclidean,
+        contours,
+    )
 }
 
 /// The first index whose error meets `ok`, or the last and `false`.

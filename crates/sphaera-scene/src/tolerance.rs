@@ -48,6 +48,16 @@ impl Tolerance {
         }
     }
 
+    /// The same tolerance `k` times as large, in the same unit.
+    #[must_use]
+    pub fn scaled(self, k: f64) -> Self {
+        match self {
+            Self::World(v) => Self::World(v * k),
+            Self::Relative(v) => Self::Relative(v * k),
+            Self::Pixels(v) => Self::Pixels(v * k),
+        }
+    }
+
     /// The unit's name in reports: `"world"`, `"relative"` or `"px"`.
     #[must_use]
     pub fn unit(&self) -> &'static str {

@@ -10,7 +10,7 @@ use sphaera::mesh::geometry::Similarity;
 use sphaera::mesh::{DVec3, TriMesh};
 use sphaera::scene::{
     Budget, Camera, CollisionSummary, DetailReport, LoadedScene, ModelOptions, ObjectModel, Scene,
-    SceneDescription, Tolerance,
+    SceneDescription, SilhouetteDetailOptions, SilhouetteReport, Tolerance,
 };
 use sphaera::spheretree::SphereTreeOptions;
 
@@ -35,6 +35,9 @@ struct Report {
     camera: Option<CameraReport>,
     /// The levels chosen per instance, with their certified errors and the totals.
     detail: DetailReport,
+    /// With a camera: meshes whose outlines meet the tolerance and whose interiors meet
+    /// `--silhouette` times it, with their certified errors per region.
+    silhouette: Option<SilhouetteReport>,
     /// The collision budget: `unlimited`, `cost N` or `time N ms`.
     budget: String,
     /// What the collision query found.
@@ -83,6 +86,7 @@ struct Seconds {
     /// Reading the meshes and building their models.
     build: f64,
     detail: f64,
+    silhouette: f64,
     collide: f64,
 }
 
@@ -133,6 +137,21 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
     let detail = scene.detail(camera.as_ref(), tolerance)?;
     let detail_seconds = started.elapsed().as_secs_f64();
 
+    let started = Instant::now();
+    let silhouette = camera
+        .as_ref()
+        .map(|camera| {
+            let options = SilhouetteDetailOptions {
+                interior: args.silhouette,
+                ..SilhouetteDetailOptions::default()
+            };
+            scene
+                .silhouette_detail(camera, tolerance, &options)
+                .context("--silhouette")
+        })
+        .transpose()?;
+    let silhouette_seconds = started.elapsed().as_secs_f64();
+
     let (budget, budget_text) = match (args.budget, args.time_budget_ms) {
         (Some(cost), _) => (Budget::cost(cost), format!("cost {cost}")),
         (None, Some(ms)) => {
@@ -164,6 +183,7 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
             height: c.image_size().1,
         }),
         detail,
+        silhouette,
         budget: budget_text,
         collision: collision.summary(),
         contacts: collision
@@ -182,6 +202,7 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
         seconds: Seconds {
             build: build_seconds,
             detail: detail_seconds,
+            silhouette: silhouette_seconds,
             collide: collide_seconds,
         },
     };
@@ -336,6 +357,17 @@ impl crate::output::Report for Report {
                     .to_owned(),
             );
         }
+        if let Some(s) = &self.silhouette {
+            lines.push(format!(
+                "silhouettes     outlines within {}, interiors within {}: {} triangles, {} at uniform levels ({:.1} % fewer){}",
+                s.tolerance,
+                s.interior_tolerance,
+                thousands(s.triangles),
+                thousands(s.uniform_triangles),
+                saved(s.triangles, s.uniform_triangles),
+                if s.all_meet { "" } else { " ! not all met" }
+            ));
+        }
         let c = &self.collision;
         lines.push(format!(
             "collision       budget {}: {} pairs in contact of {} close, {} sphere contacts, level {}{}, {} spheres placed, {} pairs tested",
@@ -360,8 +392,8 @@ impl crate::output::Report for Report {
             ));
         }
         lines.push(format!(
-            "time            {:.3} s to build, {:.6} s to choose detail, {:.6} s to collide",
-            self.seconds.build, self.seconds.detail, self.seconds.collide
+            "time            {:.3} s to build, {:.6} s to choose detail, {:.6} s for silhouettes, {:.6} s to collide",
+            self.seconds.build, self.seconds.detail, self.seconds.silhouette, self.seconds.collide
         ));
         lines.join("\n") + "\n"
     }

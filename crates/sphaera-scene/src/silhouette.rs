@@ -1,0 +1,288 @@
+//! Silhouette-aware detail (feature `silhouette`): for every instance, a mesh whose
+//! outline, as the camera sees it, meets the tolerance while its interior may be coarser
+//! (Mata, Pastor and Rodríguez, section 3.3, on the certified hierarchy).
+
+use serde::Serialize;
+use sphaera_silhouette::{ContourTolerance, Interpolation, ViewDependent};
+
+use crate::detail::{allowed_error, choose_level, measure};
+use crate::{Camera, Instance, Scene, SceneError, Tolerance};
+
+/// What [`Scene::silhouette_detail`] asks for beyond the tolerance.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_scene::SilhouetteDetailOptions;
+///
+/// let options = SilhouetteDetailOptions::default();
+/// assert_eq!((options.interior, options.threshold_cells), (4.0, 2.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SilhouetteDetailOptions {
+    /// How many times the tolerance the interior may be off (at least 1; default 4). An
+    /// error inside the outline moves shading, not the outline, and shows far less.
+    pub interior: f64,
+    /// The contour region: triangles with a corner at most this many label cells from
+    /// the silhouette (default 2; the cells are those of
+    /// [`SilhouetteOptions::resolution`](crate::SilhouetteOptions::resolution)).
+    pub threshold_cells: f32,
+}
+
+impl Default for SilhouetteDetailOptions {
+    fn default() -> Self {
+        Self {
+            interior: 4.0,
+            threshold_cells: 2.0,
+        }
+    }
+}
+
+/// The silhouette-aware mesh chosen for one instance.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SilhouetteChoice {
+    /// Its index in the scene.
+    pub instance: usize,
+    /// Its name.
+    pub name: String,
+    /// Its model's name.
+    pub model: String,
+    /// Whether the camera sees its mesh's bounding sphere.
+    pub visible: bool,
+    /// The mesh's triangles.
+    pub triangles: usize,
+    /// Of which in the contour region.
+    pub contour_triangles: usize,
+    /// The certified error of the contour region, in the scene's units.
+    pub contour_error: f64,
+    /// The same in the tolerance's unit (0 when the camera cannot see it).
+    pub contour_measured: f64,
+    /// The certified error of the rest, in the scene's units.
+    pub interior_error: f64,
+    /// The same in the tolerance's unit.
+    pub interior_measured: f64,
+    /// Whether the contour region meets the tolerance and the rest its multiple.
+    pub meets: bool,
+    /// The triangles of the coarsest mesh level meeting the tolerance everywhere (what
+    /// [`Scene::detail`] chooses), for comparison.
+    pub uniform_triangles: usize,
+}
+
+/// What [`Scene::silhouette_detail`] chose, with the totals against uniform and full
+/// detail.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SilhouetteReport {
+    /// The tolerance, as text.
+    pub tolerance: String,
+    /// The unit of the measured errors: `world`, `relative` or `px`.
+    pub unit: &'static str,
+    /// The interior's multiple of the tolerance.
+    pub interior: f64,
+    /// The interior's tolerance, as text.
+    pub interior_tolerance: String,
+    /// One entry per instance, in scene order.
+    pub instances: Vec<SilhouetteChoice>,
+    /// Triangles of the silhouette-aware meshes.
+    pub triangles: usize,
+    /// Triangles of the uniform levels meeting the tolerance everywhere.
+    pub uniform_triangles: usize,
+    /// Triangles of every instance's input mesh.
+    pub full_triangles: usize,
+    /// Whether every choice meets its tolerances.
+    pub all_meet: bool,
+}
+
+impl Scene {
+    /// For each instance, the coarsest mesh whose **outline** as `camera` sees it meets
+    /// `tolerance`, while the rest may be off by `options.interior` times as much: the
+    /// view-dependent extraction of Mata, Pastor and Rodríguez from the instance's
+    /// silhouette labels ([`ObjectModel::silhouette_labels`](crate::ObjectModel::silhouette_labels)),
+    /// refined from the certified hierarchy, so both regions' errors are certified.
+    ///
+    /// The contour region is the labels' estimate of where the outline runs: labels are
+    /// computed for orthographic views and interpolated for the direction from the
+    /// instance to the camera, so for a camera close to an object (strong perspective)
+    /// the outline may run a little outside it. The region's error bound holds for the
+    /// triangles in it whatever the labels.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use sphaera_mesh::geometry::Similarity;
+    /// use sphaera_scene::{Camera, DVec3, ModelOptions, ObjectModel, Scene, SilhouetteDetailOptions, Tolerance};
+    /// use sphaera_spheretree::SphereTreeOptions;
+    ///
+    /// let tree = SphereTreeOptions::default().with_depth(1).with_branch(4).with_samples(400)
+    ///     .with_initial_spheres(40).with_min_spheres_per_node(20);
+    /// let mesh = sphaera_mesh::shapes::torus(1.0, 0.3, 48)?;
+    /// let model = Arc::new(ObjectModel::build("torus", mesh, &ModelOptions::default().with_tree(tree))?);
+    /// let mut scene = Scene::new();
+    /// scene.add("torus", model, Similarity::IDENTITY);
+    /// let camera = Camera::perspective(DVec3::new(0.0, -4.0, 3.0), DVec3::ZERO, 50.0, 1280, 720)?;
+    /// let report = scene.silhouette_detail(&camera, Tolerance::Pixels(1.0), &SilhouetteDetailOptions::default())?;
+    /// let torus = &report.instances[0];
+    /// // The outline within a pixel, the interior within four, both certified.
+    /// assert!(torus.meets && torus.contour_measured <= 1.0 && torus.interior_measured <= 4.0);
+    /// assert!(report.triangles < report.uniform_triangles);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`SceneError::InvalidTolerance`] for a bad tolerance or an interior multiple below
+    /// 1 (or not finite), a NaN threshold; [`SceneError::NoSilhouetteLabels`] for a model
+    /// whose labels could not be computed.
+    ///
+    /// # Performance
+    ///
+    /// One extraction per instance (a scan of its hierarchy, then the contour region), in
+    /// parallel with the `parallel` feature: milliseconds per instance for meshes of tens
+    /// of thousands of triangles.
+    pub fn silhouette_detail(
+        &self,
+        camera: &Camera,
+        tolerance: Tolerance,
+        options: &SilhouetteDetailOptions,
+    ) -> Result<SilhouetteReport, SceneError> {
+        let tolerance = tolerance.validated()?;
+        if !(options.interior.is_finite() && options.interior >= 1.0)
+            || options.threshold_cells.is_nan()
+        {
+            return Err(SceneError::InvalidTolerance {
+                text: format!(
+                    "interior {} (at least 1), threshold {} cells",
+                    options.interior, options.threshold_cells
+                ),
+            });
+        }
+        for instance in self.instances() {
+            if let Err(e) = instance.model.silhouette_labels() {
+                return Err(SceneError::NoSilhouetteLabels {
+                    model: instance.model.name().to_owned(),
+                    reason: e.to_string(),
+                });
+            }
+        }
+        let choose = |(index, instance): (usize, &Instance)| {
+            choose_silhouette(index, instance, camera, tolerance, options)
+        };
+        #[cfg(feature = "parallel")]
+        let instances: Result<Vec<SilhouetteChoice>, SceneError> = {
+            use rayon::prelude::*;
+            self.instances()
+                .par_iter()
+                .enumerate()
+                .map(choose)
+                .collect()
+        };
+        #[cfg(not(feature = "parallel"))]
+        let instances: Result<Vec<SilhouetteChoice>, SceneError> =
+            self.instances().iter().enumerate().map(choose).collect();
+        let instances = instances?;
+        Ok(SilhouetteReport {
+            tolerance: tolerance.to_string(),
+            unit: tolerance.unit(),
+            interior: options.interior,
+            interior_tolerance: tolerance.scaled(options.interior).to_string(),
+            triangles: instances.iter().map(|c| c.triangles).sum(),
+            uniform_triangles: instances.iter().map(|c| c.uniform_triangles).sum(),
+            full_triangles: self
+                .instances()
+                .iter()
+                .map(|i| i.model.mesh().triangle_count())
+                .sum(),
+            all_meet: instances.iter().all(|c| c.meets),
+            instances,
+        })
+    }
+}
+
+fn choose_silhouette(
+    index: usize,
+    instance: &Instance,
+    camera: &Camera,
+    tolerance: Tolerance,
+    options: &SilhouetteDetailOptions,
+) -> Result<SilhouetteChoice, SceneError> {
+    let model = &instance.model;
+    let labels = model
+        .silhouette_labels()
+        .map_err(|e| SceneError::NoSilhouetteLabels {
+            model: model.name().to_owned(),
+            reason: e.to_string(),
+        })?;
+    let scale = instance.pose.scale();
+    let largest = model.mesh_errors().first().copied().unwrap_or(0.0);
+    // The contour's allowance and the interior's (the projected error grows faster than
+    // the error, so the interior's is found as its own tolerance); `error · factor` must
+    // not round above the contour's.
+    let contour = allowed_error(instance, Some(camera), tolerance, largest);
+    let error = allowed_error(
+        instance,
+        Some(camera),
+        tolerance.scaled(options.interior),
+        largest,
+    )
+    .max(contour);
+    let mut factor = if error > 0.0 { contour / error } else { 1.0 };
+    while error * factor > contour {
+        factor = factor.next_down();
+    }
+    let direction = view_direction(instance, camera);
+    let mut lod = ViewDependent::new(model.hierarchy(), labels)?;
+    let extraction = lod.extract(
+        direction,
+        Interpolation::Average(4),
+        ContourTolerance {
+            error,
+            factor,
+            threshold: options.threshold_cells,
+        },
+    )?;
+    let measured = |e: f64| measure(instance, Some(camera), tolerance, e * scale).unwrap_or(0.0);
+    let contour_measured = measured(extraction.contour_error);
+    let interior_measured = measured(extraction.other_error);
+    let uniform = choose_level(
+        instance,
+        Some(camera),
+        tolerance,
+        model.mesh_errors(),
+        &|l| model.mesh_levels().get(l).map_or(0, |m| m.triangles),
+    );
+    Ok(SilhouetteChoice {
+        instance: index,
+        name: instance.name.clone(),
+        model: model.name().to_owned(),
+        visible: camera
+            .pixels_per_unit(&instance.bounding_sphere())
+            .is_some(),
+        triangles: extraction.simplified.mesh.triangle_count(),
+        contour_triangles: extraction.contour_triangles,
+        contour_error: extraction.contour_error * scale,
+        contour_measured,
+        interior_error: extraction.other_error * scale,
+        interior_measured,
+        meets: contour_measured <= tolerance.value()
+            && interior_measured <= tolerance.value() * options.interior,
+        uniform_triangles: uniform.count,
+    })
+}
+
+/// The direction from the instance towards the camera, in the model's frame (a mirror
+/// pose mirrors it too); the camera's backward axis when the eye is at the centre.
+fn view_direction(instance: &Instance, camera: &Camera) -> glam::DVec3 {
+    let to_model = instance.pose.affine().inverse();
+    let towards = camera.eye() - instance.bounding_sphere().center;
+    let towards = if towards.length_squared() > 0.0 {
+        towards
+    } else {
+        -camera.forward()
+    };
+    let direction = to_model.transform_vector3(towards);
+    if direction.length_squared() > 0.0 && direction.is_finite() {
+        direction.normalize()
+    } else {
+        glam::DVec3::Z
+    }
+}
