@@ -81,6 +81,104 @@ pub enum Command {
     /// scene file: eight embedded bunnies going away from the camera, two of them
     /// touching.
     Scene(SceneArgs),
+    /// Whole-robot sphere models for motion planners. Reads a URDF, loads every link's
+    /// collision (or `--visual`) meshes in the link's frame with their origins and scales
+    /// (`package://` against the URDF's folder, relative paths against the URDF), and
+    /// spherizes the links in parallel: meshes by a one-level sphere-tree whose coverage
+    /// of the surface and protrusion are certified, boxes, cylinders, spheres and
+    /// capsules analytically. Writes the spherized URDF, MoveIt's SRDF sphere
+    /// approximations, cuRobo's collision-sphere YAML or JSON (`-o`, the format from the
+    /// extension or `--format`), and reports per link the spheres, the worst and the
+    /// 95th-percentile protrusion, the coverage and the time.
+    Urdf(UrdfArgs),
+}
+
+/// Arguments of `sphaera urdf`.
+#[derive(Debug, Args)]
+pub struct UrdfArgs {
+    /// The robot's URDF.
+    pub urdf: PathBuf,
+
+    /// Spheres for the whole robot, divided across the links by size and complexity
+    /// (surface area times 1 + ¼·log2(triangles / 12)), at least one each.
+    #[arg(long, conflicts_with_all = ["spheres_per_link", "tolerance"])]
+    pub budget: Option<usize>,
+
+    /// Spheres for every link (the default: 16).
+    #[arg(long, conflicts_with = "tolerance")]
+    pub spheres_per_link: Option<usize>,
+
+    /// Spheres for one link, `NAME=N`, overriding the budget (repeat for more links).
+    #[arg(long = "per-link", value_parser = parse_link_count)]
+    pub per_link: Vec<(String, usize)>,
+
+    /// Instead of a count: as few spheres per link as keep every sphere within this of
+    /// the link's surface (certified), in the URDF's units (`0.005`) or as a percentage
+    /// of each link's bounding-box diagonal (`2%`).
+    #[arg(long, value_parser = parse_length)]
+    pub tolerance: Option<Length>,
+
+    /// Spherize the visual geometry instead of the collision geometry.
+    #[arg(long, conflicts_with = "collision")]
+    pub visual: bool,
+
+    /// Spherize the collision geometry (the default).
+    #[arg(long)]
+    pub collision: bool,
+
+    /// Where `package://NAME/...` resolves, `NAME=FOLDER` (repeat for more packages);
+    /// tried before the URDF's own folder.
+    #[arg(long = "package", value_parser = parse_package)]
+    pub packages: Vec<(String, PathBuf)>,
+
+    /// The output file; its format follows `--format`, else the extension (`.urdf`,
+    /// `.srdf`, `.yml`/`.yaml` for cuRobo, `.json`).
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    /// The output format.
+    #[arg(long, value_enum)]
+    pub format: Option<UrdfFormat>,
+
+    /// Surface samples per link's sphere-tree.
+    #[arg(long, default_value_t = 3_000)]
+    pub samples: usize,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
+}
+
+/// The formats `sphaera urdf` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum UrdfFormat {
+    /// The same URDF with each link's collision geometry replaced by its spheres.
+    Urdf,
+    /// MoveIt's SRDF `<link_sphere_approximation>` sidecar.
+    Srdf,
+    /// cuRobo's `collision_spheres` YAML.
+    Curobo,
+    /// JSON: per link the bounding sphere, the spheres and the report.
+    Json,
+}
+
+fn parse_link_count(text: &str) -> Result<(String, usize), String> {
+    let (name, count) = text
+        .rsplit_once('=')
+        .ok_or_else(|| format!("`{text}`: expected NAME=N, e.g. panda_hand=24"))?;
+    let count: usize = count
+        .trim()
+        .parse()
+        .ok()
+        .filter(|&n| n > 0)
+        .ok_or_else(|| format!("`{text}`: the count must be a positive whole number"))?;
+    Ok((name.trim().to_owned(), count))
+}
+
+fn parse_package(text: &str) -> Result<(String, PathBuf), String> {
+    let (name, folder) = text.split_once('=').ok_or_else(|| {
+        format!("`{text}`: expected NAME=FOLDER, e.g. franka_description=./franka")
+    })?;
+    Ok((name.trim().to_owned(), PathBuf::from(folder)))
 }
 
 /// Arguments of `sphaera scene`.

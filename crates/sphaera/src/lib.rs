@@ -19,6 +19,7 @@
 //! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | Bradshaw & O'Sullivan 2004 | sphere-trees for collision detection (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), coverage of the whole surface certified at every level, fit evaluation, interruptible traversal and exports |
 //! | `hal` (feature `hal`) | `sphaera-hal` | Veltkamp | HAL trees: hierarchical approximation and localization of polygons, polylines and closed genus-0 meshes by signed discs and balls |
 //! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | Mata, Pastor & Rodríguez | view-dependent distance-transform silhouette labels and the silhouette-preserving level of detail they guide |
+//! | `robot` (feature `robot`) | `sphaera-robot` | Bradshaw & O'Sullivan 2004 | URDF robots: every link spherized in its own frame with certified coverage (meshes by sphere-trees, primitives analytically), forward kinematics, the spherized URDF, MoveIt SRDF, cuRobo YAML and JSON |
 //! | `scene` (feature `scene`) | `sphaera-scene` | | object models built once per mesh, scenes of posed instances, per-instance detail from certified errors (world units, a fraction of each object, pixels on a camera), budgeted collision over a whole scene, JSON scene files |
 //!
 //! See `docs/architecture.md` in the repository for how the crates fit together, and
@@ -147,6 +148,8 @@ pub use sphaera_hal as hal;
 #[cfg(feature = "medial")]
 pub use sphaera_medial as medial;
 pub use sphaera_mesh as mesh;
+#[cfg(feature = "robot")]
+pub use sphaera_robot as robot;
 #[cfg(feature = "scene")]
 pub use sphaera_scene as scene;
 #[cfg(feature = "silhouette")]
@@ -217,6 +220,10 @@ pub enum Error {
     #[cfg(feature = "scene")]
     #[error(transparent)]
     Scene(Box<sphaera_scene::SceneError>),
+    /// From `sphaera-robot`.
+    #[cfg(feature = "robot")]
+    #[error(transparent)]
+    Robot(Box<sphaera_robot::RobotError>),
     /// An I/O error outside the crates' own file readers.
     #[error(transparent)]
     Io(#[from] std::io::Error),
@@ -255,6 +262,8 @@ from_boxed! {
     Silhouette(sphaera_silhouette::SilhouetteError),
     #[cfg(feature = "scene")]
     Scene(sphaera_scene::SceneError),
+    #[cfg(feature = "robot")]
+    Robot(sphaera_robot::RobotError),
 }
 
 /// `Result` with [`Error`] as its default error.

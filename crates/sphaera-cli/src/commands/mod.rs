@@ -9,6 +9,7 @@ mod scene;
 mod silhouette;
 mod simplify;
 mod spheretree;
+mod urdf;
 
 use anyhow::Result;
 
@@ -26,5 +27,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Hal(args) => hal::run(args),
         Command::Silhouette(args) => silhouette::run(args, cli.quiet),
         Command::Scene(args) => scene::run(args, cli.quiet),
+        Command::Urdf(args) => urdf::run(args, cli.quiet),
     }
 }

@@ -1,0 +1,196 @@
+//! `sphaera urdf`: whole-robot sphere models for motion planners.
+
+use std::time::Instant;
+
+use anyhow::{Result, bail};
+use serde::Serialize;
+use sphaera::robot::{
+    GeometrySource, LinkReport, MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions, Urdf,
+    spherize_with_progress, write_atomic,
+};
+use sphaera::spheretree::SphereTreeOptions;
+
+use crate::{
+    cli::{UrdfArgs, UrdfFormat},
+    output::{check_target, print_report, thousands},
+    progress,
+};
+
+/// Everything `sphaera urdf` reports; also its JSON schema.
+#[derive(Debug, Serialize)]
+struct Report {
+    urdf: String,
+    robot: String,
+    /// `collision` or `visual`.
+    source: GeometrySource,
+    /// `spheres per link N`, `total N` or `tolerance T` / `T%`.
+    budget: String,
+    /// Spheres over all links.
+    spheres: usize,
+    /// One entry per link with geometry, in URDF order.
+    links: Vec<LinkReport>,
+    /// Links without geometry of the chosen kind (no spheres).
+    links_without_geometry: Vec<String>,
+    /// The worst protrusion over all links (certified).
+    worst_protrusion: f64,
+    /// The file written and its format, if any.
+    output: Option<String>,
+    format: Option<PlannerFormat>,
+    seconds: f64,
+}
+
+pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
+    let format = match (args.format, &args.output) {
+        (Some(f), _) => Some(planner_format(f)),
+        (None, Some(path)) => match PlannerFormat::from_path(path) {
+            Some(f) => Some(f),
+            None => bail!(
+                "cannot write {}: the extension is not .urdf, .srdf, .yml/.yaml or .json (or give --format)",
+                path.display()
+            ),
+        },
+        (None, None) => None,
+    };
+    if let Some(path) = &args.output {
+        check_target(path)?;
+    }
+    let started = Instant::now();
+    let urdf = Urdf::read(&args.urdf)?;
+    let mut resolver = MeshResolver::new(urdf.folder());
+    for (name, folder) in &args.packages {
+        resolver = resolver.with_package(name.clone(), folder.clone());
+    }
+    let (budget, budget_text) = match (args.budget, args.spheres_per_link, args.tolerance) {
+        (Some(total), _, _) => (SphereBudget::Total(total), format!("total {total}")),
+        (None, _, Some(t)) => (
+            SphereBudget::Tolerance(t),
+            match t {
+                sphaera::mesh::Length::Absolute(v) => format!("tolerance {v}"),
+                sphaera::mesh::Length::RelativeToDiagonal(f) => {
+                    format!("tolerance {}%", f * 100.0)
+                }
+            },
+        ),
+        (None, n, None) => {
+            let n = n.unwrap_or(16);
+            (SphereBudget::PerLink(n), format!("spheres per link {n}"))
+        }
+    };
+    let mut options = SpherizeOptions::default()
+        .with_budget(budget)
+        .with_source(if args.visual {
+            GeometrySource::Visual
+        } else {
+            GeometrySource::Collision
+        })
+        .with_tree(
+            SphereTreeOptions::default()
+                .with_depth(1)
+                .with_samples(args.samples)
+                .with_initial_spheres(200),
+        );
+    for (name, count) in &args.per_link {
+        options = options.with_link(name.clone(), *count);
+    }
+    let links_with_geometry = urdf
+        .links
+        .iter()
+        .filter(|l| !options.source.elements(l).is_empty())
+        .count();
+    let bar = progress::bar(
+        quiet,
+        &format!("spherizing {links_with_geometry} links of {}", urdf.name),
+        links_with_geometry as u64,
+    );
+    let robot = spherize_with_progress(&urdf, &resolver, &options, &|p| {
+        bar.set_position(p.done as u64);
+    });
+    bar.finish_and_clear();
+    let robot = robot?;
+    if let (Some(path), Some(format)) = (&args.output, format) {
+        let text = format.render(&urdf, &robot)?;
+        write_atomic(path, &text)?;
+    }
+    let report = Report {
+        urdf: args.urdf.display().to_string(),
+        robot: robot.robot.clone(),
+        source: robot.source,
+        budget: budget_text,
+        spheres: robot.sphere_count(),
+        worst_protrusion: robot
+            .links
+            .iter()
+            .map(|l| l.report.worst_protrusion)
+            .fold(0.0, f64::max),
+        links: robot.links.iter().map(|l| l.report.clone()).collect(),
+        links_without_geometry: robot.links_without_geometry.clone(),
+        output: args.output.as_ref().map(|p| p.display().to_string()),
+        format,
+        seconds: started.elapsed().as_secs_f64(),
+    };
+    print_report(&report, args.print.json)
+}
+
+fn planner_format(format: UrdfFormat) -> PlannerFormat {
+    match format {
+        UrdfFormat::Urdf => PlannerFormat::Urdf,
+        UrdfFormat::Srdf => PlannerFormat::Srdf,
+        UrdfFormat::Curobo => PlannerFormat::Curobo,
+        UrdfFormat::Json => PlannerFormat::Json,
+    }
+}
+
+impl crate::output::Report for Report {
+    fn to_text(&self) -> String {
+        let mut lines = vec![
+            format!("urdf            {} (robot \"{}\")", self.urdf, self.robot),
+            format!(
+                "geometry        {}, {} links with geometry{}",
+                match self.source {
+                    GeometrySource::Collision => "collision",
+                    GeometrySource::Visual => "visual",
+                },
+                self.links.len(),
+                if self.links_without_geometry.is_empty() {
+                    String::new()
+                } else {
+                    format!(", {} without", self.links_without_geometry.len())
+                }
+            ),
+            format!("budget          {}", self.budget),
+            "link                       spheres   triangles  worst protrusion   p95 protrusion  coverage  seconds"
+                .to_owned(),
+        ];
+        for l in &self.links {
+            lines.push(format!(
+                "  {:<24} {:>7}  {:>10}  {:>16.6}  {:>15.6}  {:>7.3}{}  {:>7.3}",
+                l.link,
+                l.spheres,
+                thousands(l.triangles),
+                l.worst_protrusion,
+                l.p95_protrusion,
+                l.coverage,
+                if l.coverage_certified { "✓" } else { " " },
+                l.seconds
+            ));
+        }
+        lines.push(format!(
+            "spheres         {} in all; worst protrusion {:.6} (certified; ✓: coverage of every surface point certified)",
+            thousands(self.spheres),
+            self.worst_protrusion
+        ));
+        if let Some(output) = &self.output {
+            lines.push(format!(
+                "wrote           {output} ({})",
+                match self.format {
+                    Some(PlannerFormat::Urdf) => "spherized URDF",
+                    Some(PlannerFormat::Srdf) => "SRDF sphere approximations",
+                    Some(PlannerFormat::Curobo) => "cuRobo collision_spheres YAML",
+                    Some(PlannerFormat::Json) | None => "JSON",
+                }
+            ));
+        }
+        lines.push(format!("time            {:.3} s", self.seconds));
+        lines.join("\n") + "\n"
+    }
+}

@@ -1,0 +1,123 @@
+//! Errors of URDF reading, link geometry, spherization and the planner formats.
+
+use std::path::PathBuf;
+
+/// Why a robot could not be read, spherized or written.
+///
+/// Messages are lowercase without a final period and name the file, the line and the
+/// link where there is one.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_robot::{RobotError, Urdf};
+///
+/// let error = Urdf::parse("<robot name='r'><link name='a'>", "broken.urdf").unwrap_err();
+/// assert!(matches!(error, RobotError::Xml { .. }));
+/// assert!(error.to_string().starts_with("broken.urdf: malformed XML"));
+/// ```
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RobotError {
+    /// A file could not be read.
+    #[error("cannot read {}: {source}", path.display())]
+    ReadFile {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The URDF is not well-formed XML.
+    #[error("{}: malformed XML: {message}", path.display())]
+    Xml {
+        /// The URDF.
+        path: PathBuf,
+        /// What the XML reader found, with the line and column.
+        message: String,
+    },
+    /// An element or attribute of the URDF is missing or meaningless (a number that does
+    /// not parse, a zero scale, a negative radius, a joint naming an unknown link).
+    #[error("{}:{line}: {place}: {message}", path.display())]
+    Invalid {
+        /// The URDF.
+        path: PathBuf,
+        /// The line of the element.
+        line: u32,
+        /// The element, e.g. `link "panda_link6" collision[0] mesh`.
+        place: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A mesh file named by a link was not found.
+    #[error("link \"{link}\": mesh `{uri}` not found (tried {})", list(tried))]
+    MeshNotFound {
+        /// The link.
+        link: String,
+        /// The file name as the URDF gives it.
+        uri: String,
+        /// The paths tried, in order.
+        tried: Vec<PathBuf>,
+    },
+    /// A link's mesh file could not be loaded (an unknown format, a malformed file, no
+    /// triangles).
+    #[error("link \"{link}\": mesh {}: {source}", path.display())]
+    Mesh {
+        /// The link.
+        link: String,
+        /// The mesh file.
+        path: PathBuf,
+        /// Why it could not be loaded.
+        source: Box<sphaera_mesh::MeshError>,
+    },
+    /// A link's geometry could not be spherized (a flat sheet with no inside, too few
+    /// distinct points).
+    #[error("link \"{link}\": {message}")]
+    Spherize {
+        /// The link.
+        link: String,
+        /// Why, from the sphere-tree builder or the surface.
+        message: String,
+    },
+    /// An option names a link the robot does not have, or one without geometry.
+    #[error("no link \"{name}\"{}", if *without_geometry { " with geometry" } else { "" })]
+    UnknownLink {
+        /// The name given.
+        name: String,
+        /// The link exists but has no geometry of the chosen kind.
+        without_geometry: bool,
+    },
+    /// A parameter is out of its domain.
+    #[error("invalid {name} ({value}): must be {requirement}")]
+    InvalidParameter {
+        /// The parameter.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        requirement: &'static str,
+    },
+    /// A joint configuration names an unknown joint or gives a non-finite value.
+    #[error("joint \"{joint}\": {message}")]
+    Joint {
+        /// The joint.
+        joint: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// An output could not be written.
+    #[error("cannot write {}: {message}", path.display())]
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        message: String,
+    },
+}
+
+fn list(paths: &[PathBuf]) -> String {
+    paths
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
