@@ -41,6 +41,7 @@ const PUBLISHED: &[&str] = &[
     "sphaera-hal",
     "sphaera-silhouette",
     "sphaera-scene",
+    "sphaera-robot",
     "sphaera",
     "sphaera-cli",
 ];
@@ -127,6 +128,7 @@ fn test() -> Result<()> {
         "sphaera-medial",
         "sphaera-spheretree",
         "sphaera-scene",
+        "sphaera-robot",
     ] {
         cargo(&[
             "test",

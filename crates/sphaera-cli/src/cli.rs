@@ -115,7 +115,7 @@ pub struct UrdfArgs {
     /// Instead of a count: as few spheres per link as keep every sphere within this of
     /// the link's surface (certified), in the URDF's units (`0.005`) or as a percentage
     /// of each link's bounding-box diagonal (`2%`).
-    #[arg(long, value_parser = parse_length)]
+    #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     pub tolerance: Option<Length>,
 
     /// Spherize the visual geometry instead of the collision geometry.

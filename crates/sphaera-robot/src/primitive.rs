@@ -496,8 +496,11 @@ mod tests {
         }
     }
 
+    /// More spheres never make a primitive's cover looser than fewer, and a tolerance is
+    /// met with the fewest. A cylinder's cover bottoms out at `(√2 − 1)·r` (its rim: a
+    /// slab's sphere must reach the cap's edge), which the layouts reach.
     #[test]
-    fn more_spheres_are_never_looser_where_it_matters() {
+    fn more_spheres_are_never_looser_and_a_tolerance_is_met() {
         let rod = Primitive::new(
             Shape::Cylinder {
                 radius: 0.05,
@@ -505,10 +508,27 @@ mod tests {
             },
             DAffine3::IDENTITY,
         );
-        let (_, four) = rod.spherize(4);
-        let (_, forty) = rod.spherize(40);
-        assert!(forty < 0.25 * four, "{forty} against {four}");
-        let (spheres, p) = rod.spherize_within(0.005, 200);
-        assert!(p <= 0.005 && spheres.len() < 200);
+        let mut last = f64::INFINITY;
+        for count in 1..=40 {
+            let (_, p) = rod.spherize(count);
+            assert!(p <= last * (1.0 + 1e-12), "{count}: {p} after {last}");
+            last = p;
+        }
+        assert!((last - (2f64.sqrt() - 1.0) * 0.05).abs() < 1e-12, "{last}");
+        let (spheres, p) = rod.spherize_within(0.025, 200);
+        assert!(
+            p <= 0.025 && spheres.len() < 10,
+            "{} spheres, {p}",
+            spheres.len()
+        );
+        let block = Primitive::new(
+            Shape::Box {
+                half: DVec3::new(0.3, 0.1, 0.05),
+            },
+            DAffine3::IDENTITY,
+        );
+        let (_, four) = block.spherize(4);
+        let (_, forty) = block.spherize(40);
+        assert!(forty < 0.5 * four, "{forty} against {four}");
     }
 }

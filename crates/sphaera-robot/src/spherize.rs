@@ -119,6 +119,10 @@ pub struct LinkReport {
     pub budget: Option<usize>,
     /// The tolerance it was spherized to, in its units (`None` under a count).
     pub tolerance: Option<f64>,
+    /// Whether the worst protrusion meets the tolerance (`None` under a count). `false`
+    /// when even [`SpherizeOptions::max_spheres_per_link`] spheres do not: the tree's
+    /// samples and error fraction set a floor (more samples lower it).
+    pub meets_tolerance: Option<bool>,
     /// Its spheres.
     pub spheres: usize,
     /// How far any sphere reaches beyond the link's surface, at most (certified: branch
@@ -490,6 +494,10 @@ fn spherize_link(
         tolerance: match target {
             Target::Count(_) => None,
             Target::Tolerance(t) => Some(t),
+        },
+        meets_tolerance: match target {
+            Target::Count(_) => None,
+            Target::Tolerance(t) => Some(worst <= t),
         },
         spheres: spheres.len(),
         worst_protrusion: worst,

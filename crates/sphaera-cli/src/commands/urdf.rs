@@ -174,6 +174,18 @@ impl crate::output::Report for Report {
                 l.seconds
             ));
         }
+        let missed: Vec<&str> = self
+            .links
+            .iter()
+            .filter(|l| l.meets_tolerance == Some(false))
+            .map(|l| l.link.as_str())
+            .collect();
+        if !missed.is_empty() {
+            lines.push(format!(
+                "                ! the tolerance is not met by {} (at the most spheres allowed; more --samples lower the floor)",
+                missed.join(", ")
+            ));
+        }
         lines.push(format!(
             "spheres         {} in all; worst protrusion {:.6} (certified; ✓: coverage of every surface point certified)",
             thousands(self.spheres),

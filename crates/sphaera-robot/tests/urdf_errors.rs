@@ -1,0 +1,289 @@
+//! Where a URDF must not fail: every broken input is a clear error naming the link and
+//! the file (or the line), or the right answer.
+
+use std::path::Path;
+
+use sphaera_robot::{
+    Geometry, GeometrySource, LinkGeometry, MeshResolver, RobotError, SphereBudget,
+    SpherizeOptions, Urdf, spherize,
+};
+
+/// A small closed box mesh as OBJ text, `scale` times a 0.2 × 0.1 × 0.05 box.
+fn box_obj(scale: f64) -> String {
+    let mesh = sphaera_mesh::shapes::cube(1.0, 2).expect("cube");
+    let mut text = String::new();
+    for p in mesh.positions() {
+        let q = p * glam::DVec3::new(0.2, 0.1, 0.05) * scale;
+        text.push_str(&format!("v {} {} {}\n", q.x, q.y, q.z));
+    }
+    for t in mesh.triangles() {
+        text.push_str(&format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1));
+    }
+    text
+}
+
+fn robot(link_body: &str) -> String {
+    format!(
+        r#"<?xml version="1.0"?>
+<robot name="test">
+  <link name="base">
+    {link_body}
+  </link>
+</robot>
+"#
+    )
+}
+
+fn mesh_collision(filename: &str, scale: Option<&str>) -> String {
+    let scale = scale.map_or(String::new(), |s| format!(" scale=\"{s}\""));
+    format!(r#"<collision><geometry><mesh filename="{filename}"{scale}/></geometry></collision>"#)
+}
+
+fn options() -> SpherizeOptions {
+    SpherizeOptions::default().with_budget(SphereBudget::PerLink(8))
+}
+
+fn run(dir: &Path, urdf_text: &str) -> Result<sphaera_robot::RobotSpheres, RobotError> {
+    let path = dir.join("robot.urdf");
+    std::fs::write(&path, urdf_text).expect("write the URDF");
+    let urdf = Urdf::read(&path)?;
+    spherize(&urdf, &MeshResolver::new(urdf.folder()), &options())
+}
+
+#[test]
+fn a_missing_mesh_file_names_the_link_the_file_and_every_path_tried() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let error =
+        run(dir.path(), &robot(&mesh_collision("meshes/gone.stl", None))).expect_err("missing");
+    let message = error.to_string();
+    assert!(
+        matches!(error, RobotError::MeshNotFound { .. }),
+        "{message}"
+    );
+    assert!(
+        message.contains("\"base\"") && message.contains("meshes/gone.stl"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_package_path_that_resolves_nowhere_lists_what_was_tried() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let error = run(
+        dir.path(),
+        &robot(&mesh_collision("package://my_robot/meshes/base.obj", None)),
+    )
+    .expect_err("nowhere");
+    let RobotError::MeshNotFound { tried, uri, link } = &error else {
+        panic!("{error}");
+    };
+    assert_eq!(
+        (link.as_str(), uri.as_str()),
+        ("base", "package://my_robot/meshes/base.obj")
+    );
+    assert!(tried.len() >= 2, "{tried:?}");
+    assert!(error.to_string().contains("my_robot/meshes/base.obj"));
+    // Given the package's folder, it resolves.
+    let package = dir.path().join("pkg");
+    std::fs::create_dir_all(package.join("meshes")).expect("mkdir");
+    std::fs::write(package.join("meshes/base.obj"), box_obj(1.0)).expect("write");
+    let path = dir.path().join("robot.urdf");
+    let urdf = Urdf::read(&path).expect("read");
+    let resolver = MeshResolver::new(urdf.folder()).with_package("my_robot", &package);
+    let robot = spherize(&urdf, &resolver, &options()).expect("resolved");
+    assert_eq!(robot.links.len(), 1);
+}
+
+#[test]
+fn an_unknown_mesh_format_names_the_link_and_the_file() {
+    let dir = tempfile::tempdir().expect("a folder");
+    std::fs::write(dir.path().join("base.dae"), "<COLLADA/>").expect("write");
+    let error = run(dir.path(), &robot(&mesh_collision("base.dae", None))).expect_err("format");
+    let message = error.to_string();
+    assert!(matches!(error, RobotError::Mesh { .. }), "{message}");
+    assert!(
+        message.contains("\"base\"") && message.contains("base.dae"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_malformed_mesh_file_names_the_link_and_the_file() {
+    let dir = tempfile::tempdir().expect("a folder");
+    std::fs::write(dir.path().join("base.obj"), "v 0 0 0\nv 1 0 0\nf 1 2 7\n").expect("write");
+    let error = run(dir.path(), &robot(&mesh_collision("base.obj", None))).expect_err("malformed");
+    let message = error.to_string();
+    assert!(matches!(error, RobotError::Mesh { .. }), "{message}");
+    assert!(message.contains("base.obj"), "{message}");
+}
+
+#[test]
+fn a_malformed_xml_line_is_named() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let text = "<robot name=\"r\">\n  <link name=\"a\">\n    <collision>\n  </link>\n</robot>\n";
+    let error = run(dir.path(), text).expect_err("malformed");
+    let message = error.to_string();
+    assert!(matches!(error, RobotError::Xml { .. }), "{message}");
+    assert!(
+        message.contains("robot.urdf") && message.contains("4:"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_scale_of_zero_names_the_line_the_link_and_the_file() {
+    let dir = tempfile::tempdir().expect("a folder");
+    std::fs::write(dir.path().join("base.obj"), box_obj(1.0)).expect("write");
+    let error = run(
+        dir.path(),
+        &robot(&mesh_collision("base.obj", Some("1 0 1"))),
+    )
+    .expect_err("zero");
+    let message = error.to_string();
+    let RobotError::Invalid { line, .. } = &error else {
+        panic!("{message}");
+    };
+    assert_eq!(*line, 4);
+    assert!(
+        message.contains("\"base\"")
+            && message.contains("base.obj")
+            && message.contains("scale of zero"),
+        "{message}"
+    );
+}
+
+#[test]
+fn bad_numbers_radii_and_geometry_are_refused_with_the_place() {
+    for (body, needle) in [
+        (
+            r#"<collision><geometry><sphere radius="-1"/></geometry></collision>"#,
+            "must be positive",
+        ),
+        (
+            r#"<collision><geometry><box size="1 1"/></geometry></collision>"#,
+            "has 2 numbers, not 3",
+        ),
+        (
+            r#"<collision><origin xyz="0 0 nan"/><geometry><sphere radius="1"/></geometry></collision>"#,
+            "not finite",
+        ),
+        (
+            r#"<collision><geometry><cone radius="1"/></geometry></collision>"#,
+            "unknown geometry <cone>",
+        ),
+        (r#"<collision></collision>"#, "no <geometry>"),
+    ] {
+        let error = Urdf::parse(&robot(body), "r.urdf").expect_err(body);
+        let message = error.to_string();
+        assert!(
+            message.contains("link \"base\" collision[0]") && message.contains(needle),
+            "{body}: {message}"
+        );
+    }
+    let error = Urdf::parse("<model/>", "r.urdf").expect_err("not a robot");
+    assert!(error.to_string().contains("not <robot>"));
+    let joint = r#"<robot name="r"><link name="a"/><joint name="j" type="revolute"><parent link="a"/><child link="ghost"/></joint></robot>"#;
+    let error = Urdf::parse(joint, "r.urdf").expect_err("ghost");
+    assert!(
+        error.to_string().contains("\"ghost\" is not a link"),
+        "{error}"
+    );
+}
+
+/// A link without geometry is the right answer, not an error: it gets no spheres and is
+/// listed; naming it for a count is an error that says it has no geometry.
+#[test]
+fn a_link_with_no_geometry_gets_no_spheres() {
+    let text = r#"<robot name="r">
+      <link name="base"><collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
+      <link name="empty"/>
+      <joint name="j" type="fixed"><parent link="base"/><child link="empty"/></joint>
+    </robot>"#;
+    let urdf = Urdf::parse(text, "r.urdf").expect("parse");
+    let resolver = MeshResolver::new(urdf.folder());
+    let robot = spherize(&urdf, &resolver, &options()).expect("spherize");
+    assert_eq!(robot.links.len(), 1);
+    assert_eq!(robot.links_without_geometry, ["empty"]);
+    let error = spherize(&urdf, &resolver, &options().with_link("empty", 4)).expect_err("empty");
+    assert!(
+        matches!(
+            error,
+            RobotError::UnknownLink {
+                without_geometry: true,
+                ..
+            }
+        ),
+        "{error}"
+    );
+    assert!(error.to_string().contains("with geometry"));
+    let error = spherize(&urdf, &resolver, &options().with_link("nope", 4)).expect_err("nope");
+    assert!(matches!(
+        error,
+        RobotError::UnknownLink {
+            without_geometry: false,
+            ..
+        }
+    ));
+    for bad in [SphereBudget::PerLink(0), SphereBudget::Total(0)] {
+        let error = spherize(&urdf, &resolver, &options().with_budget(bad)).expect_err("zero");
+        assert!(matches!(error, RobotError::InvalidParameter { .. }));
+    }
+}
+
+/// A mesh in millimetres with a scale of 0.001 gives the spheres of the same mesh in
+/// metres (to rounding: the vertices are scaled by 0.001 either way).
+#[test]
+fn a_mesh_in_millimetres_with_a_scale_gives_the_answer_in_metres() {
+    let dir = tempfile::tempdir().expect("a folder");
+    std::fs::write(dir.path().join("metres.obj"), box_obj(1.0)).expect("write");
+    std::fs::write(dir.path().join("millimetres.obj"), box_obj(1000.0)).expect("write");
+    let metres = run(dir.path(), &robot(&mesh_collision("metres.obj", None))).expect("metres");
+    let millimetres = run(
+        dir.path(),
+        &robot(&mesh_collision(
+            "millimetres.obj",
+            Some("0.001 0.001 0.001"),
+        )),
+    )
+    .expect("millimetres");
+    let (a, b) = (&metres.links[0], &millimetres.links[0]);
+    assert_eq!(a.spheres.len(), b.spheres.len());
+    let scale = a.report.diagonal;
+    assert!((a.report.diagonal - b.report.diagonal).abs() < 1e-9 * scale);
+    assert!(
+        (a.report.worst_protrusion - b.report.worst_protrusion).abs() < 1e-6 * scale,
+        "{} against {}",
+        a.report.worst_protrusion,
+        b.report.worst_protrusion
+    );
+    assert!(b.bounding_sphere.radius < 0.2, "{:?}", b.bounding_sphere);
+}
+
+/// A mirroring scale flips the triangles, so the inside stays inside: the spheres still
+/// cover the mirrored mesh.
+#[test]
+fn a_mirroring_scale_keeps_the_inside() {
+    let dir = tempfile::tempdir().expect("a folder");
+    std::fs::write(dir.path().join("base.obj"), box_obj(1.0)).expect("write");
+    let robot_spheres = run(
+        dir.path(),
+        &robot(&mesh_collision("base.obj", Some("-1 1 1"))),
+    )
+    .expect("mirror");
+    let link = &robot_spheres.links[0];
+    assert_eq!(link.report.coverage, 1.0);
+    let urdf = Urdf::read(dir.path().join("robot.urdf")).expect("read");
+    let geometry = LinkGeometry::load(
+        &urdf.links[0],
+        GeometrySource::Collision,
+        &MeshResolver::new(urdf.folder()),
+    )
+    .expect("geometry");
+    let mesh = geometry.mesh.expect("a mesh");
+    let surface = sphaera_mesh::Surface::new(&mesh).expect("a closed mesh");
+    assert!(surface.is_inside(glam::DVec3::ZERO));
+    assert!(matches!(
+        urdf.links[0].collisions[0].geometry,
+        Geometry::Mesh { .. }
+    ));
+}
