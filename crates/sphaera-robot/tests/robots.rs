@@ -3,6 +3,8 @@
 //! collision meshes at several joint configurations (an independent dense check); frames
 //! right; budgets and tolerances honoured.
 
+#![allow(clippy::float_cmp)]
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,8 @@
 //! Where a URDF must not fail: every broken input is a clear error naming the link and
 //! the file (or the line), or the right answer.
 
+#![allow(clippy::float_cmp)]
+
 use std::path::Path;
 
 use sphaera_robot::{
