@@ -379,15 +379,12 @@ fn split_cells(shape: &Shape, lo: DVec3, hi: DVec3, count: usize) -> Vec<Sphere>
     let mut cells = vec![Cell { lo, hi }];
     let worst = |cells: &[Cell]| cells.iter().map(reach).fold(0.0, f64::max);
     let mut best = (worst(&cells), cells.clone());
-    loop {
-        let Some((index, _)) = cells
-            .iter()
-            .enumerate()
-            .map(|(i, c)| (i, reach(c)))
-            .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
-        else {
-            break;
-        };
+    while let Some((index, _)) = cells
+        .iter()
+        .enumerate()
+        .map(|(i, c)| (i, reach(c)))
+        .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
+    {
         let parent = cells.swap_remove(index);
         let children: Vec<Cell> = parent
             .halves()
