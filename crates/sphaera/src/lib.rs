@@ -121,6 +121,22 @@
 //! # Ok::<(), sphaera::Error>(())
 //! ```
 //!
+//! Spheres for a robot's motion planner: every link covered in its own frame.
+//!
+//! ```
+//! use sphaera::robot::{MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions, Urdf, spherize};
+//!
+//! let urdf = Urdf::parse(r#"<robot name="gripper">
+//!   <link name="palm"><collision><geometry><box size="0.08 0.2 0.04"/></geometry></collision></link>
+//! </robot>"#, "gripper.urdf")?;
+//! let options = SpherizeOptions::default().with_budget(SphereBudget::PerLink(12));
+//! let robot = spherize(&urdf, &MeshResolver::new(urdf.folder()), &options)?;
+//! assert!(robot.links[0].report.coverage_certified);
+//! let yaml = PlannerFormat::Curobo.render(&urdf, &robot)?; // cuRobo's collision_spheres
+//! assert!(yaml.contains("\"palm\":"));
+//! # Ok::<(), sphaera::Error>(())
+//! ```
+//!
 //! # Errors
 //!
 //! Every crate has its own error type; [`Error`] wraps each transparently (its message is
