@@ -37,11 +37,12 @@
 //!       <parent link="base"/><child link="upper"/><origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
 //!     </joint>
 //!   </robot>"#, "arm.urdf")?;
-//! // A tolerance: every link gets as few spheres as keep them within 5 mm of its surface.
-//! let options = SpherizeOptions::default().with_budget(SphereBudget::Tolerance(sphaera_mesh::Length::Absolute(0.005)));
+//! // A tolerance: every link gets as few spheres as keep them within 1 cm of its surface.
+//! let options = SpherizeOptions::default().with_budget(SphereBudget::Tolerance(sphaera_mesh::Length::Absolute(0.01)));
 //! let robot = spherize(&urdf, &MeshResolver::new(urdf.folder()), &options)?;
 //! for link in &robot.links {
-//!     assert!(link.report.worst_protrusion <= 0.005 && link.report.coverage == 1.0);
+//!     assert_eq!(link.report.meets_tolerance, Some(true));
+//!     assert!(link.report.worst_protrusion <= 0.01 && link.report.coverage == 1.0);
 //! }
 //! let yaml = PlannerFormat::Curobo.render(&urdf, &robot)?;
 //! assert!(yaml.starts_with("collision_spheres:\n  \"base\":"));

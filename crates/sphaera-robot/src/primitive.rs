@@ -211,6 +211,53 @@ impl Primitive {
         }
     }
 
+    /// A closed mesh inside the primitive whose surface is within `gap` of the
+    /// primitive's surface (link frame), with that gap: a box exactly (gap 0), a cylinder
+    /// with its vertices on the true surface (gap `r·(1 − cos(π/n))`, `n` = 96 segments
+    /// around). Spheres covering the mesh's surface, grown by the gap, cover the
+    /// primitive's. `None` for spheres and capsules, whose axis layouts are already tight.
+    #[must_use]
+    pub fn inscribed_mesh(&self) -> Option<(sphaera_mesh::TriMesh, f64)> {
+        const AROUND: usize = 96;
+        let (mesh, gap) = match self.shape {
+            Shape::Box { half } => {
+                let cube = sphaera_mesh::shapes::cube(2.0, 4).ok()?;
+                let (lo, hi) = cube.positions().iter().fold(
+                    (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+                    |(lo, hi), &p| (lo.min(p), hi.max(p)),
+                );
+                let centre = 0.5 * (lo + hi);
+                let scale = 2.0 * half / (hi - lo);
+                let positions = cube
+                    .positions()
+                    .iter()
+                    .map(|&p| (p - centre) * scale)
+                    .collect();
+                (
+                    sphaera_mesh::TriMesh::new(positions, cube.triangles().to_vec()).ok()?,
+                    0.0,
+                )
+            }
+            Shape::Cylinder {
+                radius,
+                half_length,
+            } => (
+                sphaera_mesh::shapes::cylinder(radius, 2.0 * half_length, AROUND).ok()?,
+                radius * (1.0 - (std::f64::consts::PI / AROUND as f64).cos()),
+            ),
+            Shape::Sphere { .. } | Shape::Capsule { .. } => return None,
+        };
+        let placed = mesh
+            .positions()
+            .iter()
+            .map(|&p| self.pose.transform_point3(p))
+            .collect();
+        Some((
+            sphaera_mesh::TriMesh::new(placed, mesh.triangles().to_vec()).ok()?,
+            gap,
+        ))
+    }
+
     /// `count` points spread over the primitive's surface (link frame), deterministic:
     /// for dense coverage checks.
     #[must_use]
@@ -341,16 +388,8 @@ impl Cell {
         outside && local_signed_distance(shape, s.center) <= s.radius
     }
 
-    /// The two halves across its longest side.
-    fn halves(&self) -> [Self; 2] {
-        let size = self.hi - self.lo;
-        let axis = if size.x >= size.y && size.x >= size.z {
-            DVec3::X
-        } else if size.y >= size.z {
-            DVec3::Y
-        } else {
-            DVec3::Z
-        };
+    /// The two halves across `axis`.
+    fn halves(&self, axis: DVec3) -> [Self; 2] {
         let middle = 0.5 * (self.lo + self.hi);
         let cut_hi = self.hi * (DVec3::ONE - axis) + middle * axis;
         let cut_lo = self.lo * (DVec3::ONE - axis) + middle * axis;
@@ -386,8 +425,16 @@ fn split_cells(shape: &Shape, lo: DVec3, hi: DVec3, count: usize) -> Vec<Sphere>
         .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
     {
         let parent = cells.swap_remove(index);
+        let size = parent.hi - parent.lo;
+        let axis = if size.x >= size.y && size.x >= size.z {
+            DVec3::X
+        } else if size.y >= size.z {
+            DVec3::Y
+        } else {
+            DVec3::Z
+        };
         let children: Vec<Cell> = parent
-            .halves()
+            .halves(axis)
             .into_iter()
             .filter(|c| c.may_hold_surface(shape))
             .collect();
@@ -570,8 +617,17 @@ fn cylinder_layout(radius: f64, half_length: f64, slabs: usize, g: usize) -> Vec
                 let meets_disc = nearest < radius;
                 let touches_side = farthest >= radius;
                 if meets_disc && (cap || touches_side) {
-                    let c = 0.5 * (lo + hi);
-                    spheres.push(Sphere::new(c.extend(z), cell_radius));
+                    // The box around the part of the square inside the disc: `x` reaches
+                    // as far as the smallest `|y|` of the square allows, and back.
+                    let nearest_y = 0.0f64.clamp(lo.y, hi.y);
+                    let nearest_x = 0.0f64.clamp(lo.x, hi.x);
+                    let reach_x = (radius * radius - nearest_y * nearest_y).max(0.0).sqrt();
+                    let reach_y = (radius * radius - nearest_x * nearest_x).max(0.0).sqrt();
+                    let clipped_lo = DVec2::new(lo.x.max(-reach_x), lo.y.max(-reach_y));
+                    let clipped_hi = DVec2::new(hi.x.min(reach_x), hi.y.min(reach_y));
+                    let c = 0.5 * (clipped_lo + clipped_hi);
+                    let r = 0.5 * (clipped_hi - clipped_lo).extend(depth).length();
+                    spheres.push(Sphere::new(c.extend(z), r.min(cell_radius)));
                 }
             }
         }

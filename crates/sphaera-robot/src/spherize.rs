@@ -457,13 +457,7 @@ fn spherize_link(
                 spheres.extend(fit.spheres);
             }
             Part::Primitive(p) => {
-                let (set, protrusion) = match (count, target) {
-                    (Some(n), _) => p.spherize(n),
-                    (None, Target::Tolerance(t)) => {
-                        p.spherize_within(t, options.max_spheres_per_link)
-                    }
-                    (None, Target::Count(n)) => p.spherize(n),
-                };
+                let (set, protrusion) = primitive_spheres(p, count, target, options);
                 worst = worst.max(protrusion);
                 let points = p.surface_points(500);
                 samples += points.len();
@@ -518,6 +512,55 @@ fn spherize_link(
     })
 }
 
+/// A primitive's spheres: its analytic layout, or a sphere-tree of a mesh inside it
+/// (grown by the mesh's gap, so that it covers the primitive) when that is tighter; the
+/// protrusion is exact either way (the primitive is convex).
+fn primitive_spheres(
+    primitive: &crate::Primitive,
+    count: Option<usize>,
+    target: Target,
+    options: &SpherizeOptions,
+) -> (Vec<Sphere>, f64) {
+    let tolerance = match (count, target) {
+        (None, Target::Tolerance(t)) => Some(t),
+        _ => None,
+    };
+    let analytic = match (count, target) {
+        (None, Target::Tolerance(t)) => primitive.spherize_within(t, options.max_spheres_per_link),
+        (Some(n), _) | (None, Target::Count(n)) => primitive.spherize(n),
+    };
+    if tolerance.is_some_and(|t| analytic.1 <= t) || count.is_some_and(|n| n < 4) {
+        return analytic;
+    }
+    let Some((mesh, gap)) = primitive.inscribed_mesh() else {
+        return analytic;
+    };
+    let Ok(surface) = Surface::new(&mesh) else {
+        return analytic;
+    };
+    let fit = match (count, target) {
+        (None, Target::Tolerance(t)) => mesh_spheres_within(&surface, (t - gap).max(0.0), options),
+        (Some(n), _) | (None, Target::Count(n)) => mesh_spheres(&surface, n, options),
+    };
+    let Ok(fit) = fit else {
+        return analytic;
+    };
+    let grown: Vec<Sphere> = fit
+        .spheres
+        .iter()
+        .map(|s| Sphere::new(s.center, s.radius + gap))
+        .collect();
+    let protrusion = grown
+        .iter()
+        .map(|s| primitive.protrusion(s))
+        .fold(0.0, f64::max);
+    if protrusion < analytic.1 {
+        (grown, protrusion)
+    } else {
+        analytic
+    }
+}
+
 /// A mesh part's spheres and their fit.
 struct MeshFit {
     spheres: Vec<Sphere>,
@@ -542,7 +585,7 @@ fn mesh_spheres(
         .with_depth(1)
         .with_branch(count)
         .with_error_fraction(options.tree.error_fraction.min(fraction))
-        .with_min_spheres_per_node(options.tree.min_spheres_per_node.max(3 * count));
+        .with_min_spheres_per_node(options.tree.min_spheres_per_node.max((3 * count).min(400)));
     let tree = sphaera_spheretree::build(surface, &tree_options).map_err(|e| e.to_string())?;
     let spheres = tree.level_spheres(tree.level_count().saturating_sub(1));
     let fit = evaluate_set(surface, &spheres, &EvaluationOptions::default())
