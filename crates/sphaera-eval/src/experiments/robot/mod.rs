@@ -24,7 +24,9 @@
 //! and the time — Sphaera's per link from its report (sphere-tree, certification of
 //! coverage and protrusion, the 95th-percentile estimate; links two at a time on two
 //! cores), the baseline's voxelization plus clustering on one thread, without any
-//! evaluation.
+//! evaluation (its voxelization, a winding-number inside test per voxel centre, is most
+//! of it; a flood-filling voxelizer would be faster but fails on open meshes such as
+//! `link6`, so the times say little about which method is quicker).
 //!
 //! Writes `robot_protrusion_vs_spheres.svg` (one panel per Panda link: worst protrusion
 //! in mm against the spheres produced, Sphaera solid, the baseline dashed) and `.csv`

@@ -320,3 +320,31 @@ pub fn robot_spheres(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sphaera::mesh::shapes;
+
+    #[test]
+    fn spheres_cover_every_vertex_and_repeat() -> Result<()> {
+        let mesh = shapes::torus(1.0, 0.3, 24)?;
+        let surface = Surface::new(&mesh)?;
+        let options = VoxelOptions::default().with_resolution(24);
+        let voxels = Voxels::new(&surface, &options)?;
+        // The hole of the torus stays empty.
+        assert!(voxels.occupied() < 24 * 24 * 8);
+        let spheres = voxels.spheres(12, options.lloyd_iterations)?;
+        assert_eq!(spheres.len(), 12);
+        for &p in mesh.positions() {
+            assert!(
+                spheres
+                    .iter()
+                    .any(|s| s.center.distance(p) <= s.radius + 1e-9)
+            );
+        }
+        assert_eq!(spheres, link_spheres(&surface, 12, &options)?);
+        assert!(voxels.spheres(0, 5).is_err());
+        Ok(())
+    }
+}
