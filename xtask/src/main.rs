@@ -549,6 +549,13 @@ const CHARTS: &[(&str, Coverage)] = &[
             "dragon_vrip.ply",
         ]),
     ),
+    (
+        "robot_protrusion_vs_spheres",
+        Coverage::Only(&[
+            "robots/urdf/franka_panda/panda.urdf",
+            "robots/urdf/kuka_iiwa/model.urdf",
+        ]),
+    ),
 ];
 
 /// Fails if a mesh of `../shared/data` that the chart must cover is missing from its CSV

@@ -39,7 +39,9 @@
 //!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench);
 //! - [`chart`]: SVG charts (plotters) and the CSV written beside each (every experiment);
 //! - [`experiments`]: one private module per experiment, with [`experiments::NAMES`] and
-//!   [`experiments::run`] (the binary).
+//!   [`experiments::run`] (the binary), and the voxel k-means sphere baseline
+//!   [`experiments::voxel`] (the `robot_protrusion_vs_spheres` experiment, the
+//!   `robot_spheres` bench).
 //!
 //! # Example
 //!

@@ -21,7 +21,11 @@
 //! - `silhouette_time_vs_faces`: `silhouette/timing.rs` (the paper's Tables 1–2);
 //! - `scene_time_vs_error`: `scene/mod.rs` (200 bodies falling into a box in rapier with
 //!   Sphaera's ball compounds, trimesh and convex-decomposition colliders; the simulation
-//!   and the measurement on the true meshes in `scene/physics.rs`).
+//!   and the measurement on the true meshes in `scene/physics.rs`);
+//! - `robot_protrusion_vs_spheres`: `robot/mod.rs` (the Franka Panda's and KUKA iiwa's
+//!   links spherized by Sphaera and by the voxel k-means baseline planners ship, in
+//!   [`voxel`] (`robot/voxel.rs`, public for the `robot_spheres` bench), both measured by
+//!   the same certified evaluator).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -30,12 +34,15 @@ mod hal;
 mod hausdorff_gap;
 mod load_topology;
 mod medial_static_vs_adaptive;
+mod robot;
 mod scene;
 mod silhouette;
 mod simplify_error;
 mod spheretree;
 mod sweep_coherence;
 mod sweep_throughput;
+
+pub use robot::voxel;
 
 use std::path::Path;
 
@@ -58,6 +65,7 @@ pub const NAMES: &[&str] = &[
     silhouette::NAME,
     silhouette::timing::NAME,
     scene::NAME,
+    robot::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -75,6 +83,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         silhouette::NAME => silhouette::run(data, out),
         silhouette::timing::NAME => silhouette::timing::run(data, out),
         scene::NAME => scene::run(data, out),
+        robot::NAME => robot::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }
