@@ -57,6 +57,16 @@ impl WindowBits {
     }
 
     /// Members in all.
+    /// The first word index the set can touch.
+    pub fn first_word(&self) -> usize {
+        self.first
+    }
+
+    /// One past the last word index the set can touch.
+    pub fn end_word(&self) -> usize {
+        self.first + self.words.len()
+    }
+
     pub fn count(&self) -> u32 {
         self.words.iter().map(|w| w.count_ones()).sum()
     }
