@@ -79,7 +79,7 @@ proptest! {
         let mut text = String::from("<robot name=\"r\">");
         for (i, s) in sizes.iter().enumerate() {
             text.push_str(&format!(
-                "<link name=\"l{i}\"><collision><geometry><box size=\"{s} {s} {s}\"/></geometry></collision></link>"
+                "<link name=\"l{i}\"><collision><geometry><sphere radius=\"{s}\"/></geometry></collision></link>"
             ));
         }
         text.push_str("</robot>");
@@ -94,7 +94,8 @@ proptest! {
         let budgets: Vec<usize> = robot.links.iter().filter_map(|l| l.report.budget).collect();
         prop_assert!(budgets.iter().all(|&b| b >= 1));
         prop_assert_eq!(budgets.iter().sum::<usize>(), total.max(sizes.len()));
-        // Bigger boxes never get fewer spheres.
+        // Bigger links never get fewer spheres (balls: their spherization is instant, the
+        // division is what is tested).
         for i in 0..sizes.len() {
             for j in 0..sizes.len() {
                 if sizes[i] > sizes[j] * 1.01 {
