@@ -91,6 +91,31 @@ pub enum Command {
     /// extension or `--format`), and reports per link the spheres, the worst and the
     /// 95th-percentile protrusion, the coverage and the time.
     Urdf(UrdfArgs),
+    /// One self-contained HTML page (three.js inlined, opens offline in any browser)
+    /// showing the mesh and its sphere-tree: a level slider, the spheres translucent,
+    /// each level's worst sphere in red, and every level's certified error in a side
+    /// panel. The tree is built as the main job builds it, or read with `--tree`. With
+    /// no arguments: the embedded bunny.
+    View(ViewArgs),
+}
+
+/// Arguments of `sphaera view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
+    pub mesh: Option<PathBuf>,
+
+    /// A sphere-tree of this mesh to show (`.json` from `sphaera spheretree -o`, or
+    /// `.sph`); built with the default options when omitted.
+    #[arg(long)]
+    pub tree: Option<PathBuf>,
+
+    /// The page to write (default `view.html`).
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
 }
 
 /// Arguments of `sphaera urdf`.

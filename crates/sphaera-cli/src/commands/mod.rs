@@ -10,6 +10,7 @@ mod silhouette;
 mod simplify;
 mod spheretree;
 mod urdf;
+mod view;
 
 use anyhow::Result;
 
@@ -28,5 +29,6 @@ pub fn run(cli: &Cli) -> Result<()> {
         Command::Silhouette(args) => silhouette::run(args, cli.quiet),
         Command::Scene(args) => scene::run(args, cli.quiet),
         Command::Urdf(args) => urdf::run(args, cli.quiet),
+        Command::View(args) => view::run(args, cli.quiet),
     }
 }
