@@ -12,6 +12,10 @@
 //!                           and a check of what each package holds
 //! cargo xtask bench [ARGS]  the criterion benches (ARGS go to `cargo bench`)
 //! cargo xtask charts        run the sphaera-eval experiments, write docs/charts/*.svg + *.csv
+//! cargo xtask browser-test [--update-images]
+//!                           `sphaera view` pages in headless Chromium (console errors,
+//!                           spheres drawn per level, certified errors shown, canvas not
+//!                           blank); `--update-images` refreshes the README's screenshots
 //! cargo xtask charts --check  fail if a chart or its CSV is missing, or the CSV misses
 //!                           a mesh of ../shared/data the chart must cover
 //! ```
@@ -27,8 +31,9 @@ use std::{
 
 use anyhow::{Context, Result, bail};
 
-const USAGE: &str =
-    "usage: cargo xtask <test | ci | doc | package | bench [ARGS..] | charts [--check]>";
+mod browser;
+
+const USAGE: &str = "usage: cargo xtask <test | ci | doc | package | bench [ARGS..] | charts [--check] | browser-test [--update-images]>";
 
 /// The crates meant for crates.io, each after the crates it depends on. Every other
 /// workspace member must say `publish = false` ([`check_publish_settings`]).
@@ -74,6 +79,7 @@ fn run() -> Result<()> {
         "package" => package(),
         "bench" => bench(&rest),
         "charts" => charts(rest.iter().any(|a| a == "--check")),
+        "browser-test" => browser::browser_test(rest.iter().any(|a| a == "--update-images")),
         "" | "help" | "--help" | "-h" => {
             eprintln!("{USAGE}");
             Ok(())
@@ -194,6 +200,7 @@ fn ci() -> Result<()> {
     package()?;
     test()?;
     charts(true)?;
+    browser::browser_test(false)?;
     eprintln!("ci passed in {:.0} s", started.elapsed().as_secs_f64());
     Ok(())
 }

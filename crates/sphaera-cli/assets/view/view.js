@@ -3,6 +3,20 @@
 // `#sphaera-data`, written by the CLI: typed arrays as base64 (little-endian).
 import * as THREE from "three";
 
+// Errors reported on the console (three.js reports WebGL failures there) are counted on
+// the body, where the browser test reads them.
+let consoleErrors = 0;
+const reportError = console.error.bind(console);
+console.error = (...args) => {
+  consoleErrors += 1;
+  document.body.dataset.consoleErrors = String(consoleErrors);
+  reportError(...args);
+};
+window.addEventListener("error", () => {
+  consoleErrors += 1;
+  document.body.dataset.consoleErrors = String(consoleErrors);
+});
+
 const data = JSON.parse(document.getElementById("sphaera-data").textContent);
 
 function floats(base64) {
@@ -149,5 +163,9 @@ function render() {
   renderer.render(scene, camera);
 }
 window.addEventListener("resize", render);
-showLevel(levels.length - 1);
+// `#level=K` in the address picks the level shown first (the browser test uses it).
+const asked = /level=(\d+)/.exec(window.location.hash);
+const first = asked ? Math.min(Number(asked[1]), levels.length - 1) : levels.length - 1;
+slider.value = String(first);
+showLevel(first);
 document.body.dataset.ready = "true";

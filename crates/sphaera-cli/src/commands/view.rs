@@ -37,6 +37,8 @@ const VIEW_JS: &str = include_str!("../../assets/view/view.js");
 struct Report {
     mesh: String,
     triangles: usize,
+    /// The mesh's bounding-box diagonal (the page gives errors as a percentage of it).
+    diagonal: f64,
     /// `built` (depth and branch) or the tree file read.
     tree: String,
     /// Per level: spheres and the certified worst error (`null` when the mesh has no
@@ -115,6 +117,7 @@ pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
     let report = Report {
         mesh: input.source,
         triangles: mesh.triangle_count(),
+        diagonal: mesh.bounding_box_diagonal(),
         tree: tree_source,
         levels: levels
             .iter()
