@@ -19,6 +19,9 @@ use crate::urdf::Urdf;
 pub enum SphereBudget {
     /// This many spheres in all, divided across the links with geometry by size and
     /// complexity (surface area, times `1 + ¼·log₂(triangles / 12)`), at least one each.
+    /// Within a link the count is divided among its meshes (joined) and its primitives
+    /// by area, at least one each, so a link with more parts than spheres gets one per
+    /// part.
     Total(usize),
     /// This many spheres for every link with geometry.
     PerLink(usize),
@@ -438,6 +441,7 @@ fn spherize_link(
     let mut worst: f64 = 0.0;
     let mut covered = 0usize;
     let mut samples = 0usize;
+    let mut trees_used = false;
     for (part, count) in parts.iter().zip(counts) {
         match part {
             Part::Mesh(_) => {
@@ -457,7 +461,8 @@ fn spherize_link(
                 spheres.extend(fit.spheres);
             }
             Part::Primitive(p) => {
-                let (set, protrusion) = primitive_spheres(p, count, target, options);
+                let (set, protrusion, from_tree) = primitive_spheres(p, count, target, options);
+                trees_used |= from_tree;
                 worst = worst.max(protrusion);
                 let points = p.surface_points(500);
                 samples += points.len();
@@ -501,7 +506,9 @@ fn spherize_link(
         } else {
             covered as f64 / samples as f64
         },
-        coverage_certified: options.tree.certify_coverage || link.mesh.is_none(),
+        // Primitives' own layouts cover by construction; a sphere-tree's cover is
+        // certified only when the tree certifies it.
+        coverage_certified: options.tree.certify_coverage || !(trees_used || link.mesh.is_some()),
         seconds: started.elapsed().as_secs_f64(),
     };
     Ok(LinkSpheres {
@@ -514,21 +521,23 @@ fn spherize_link(
 
 /// A primitive's spheres: its analytic layout, or a sphere-tree of a mesh inside it
 /// (grown by the mesh's gap, so that it covers the primitive) when that is tighter; the
-/// protrusion is exact either way (the primitive is convex).
+/// protrusion is exact either way (the primitive is convex). The flag says whether the
+/// sphere-tree's set was taken.
 fn primitive_spheres(
     primitive: &crate::Primitive,
     count: Option<usize>,
     target: Target,
     options: &SpherizeOptions,
-) -> (Vec<Sphere>, f64) {
+) -> (Vec<Sphere>, f64, bool) {
     let tolerance = match (count, target) {
         (None, Target::Tolerance(t)) => Some(t),
         _ => None,
     };
-    let analytic = match (count, target) {
+    let (layout, reach) = match (count, target) {
         (None, Target::Tolerance(t)) => primitive.spherize_within(t, options.max_spheres_per_link),
         (Some(n), _) | (None, Target::Count(n)) => primitive.spherize(n),
     };
+    let analytic = (layout, reach, false);
     if tolerance.is_some_and(|t| analytic.1 <= t) || count.is_some_and(|n| n < 4) {
         return analytic;
     }
@@ -555,7 +564,7 @@ fn primitive_spheres(
         .map(|s| primitive.protrusion(s))
         .fold(0.0, f64::max);
     if protrusion < analytic.1 {
-        (grown, protrusion)
+        (grown, protrusion, true)
     } else {
         analytic
     }
