@@ -31,7 +31,7 @@
 //!
 //! let urdf = Urdf::parse(r#"
 //!   <robot name="arm">
-//!     <link name="base"><collision><geometry><cylinder radius="0.1" length="0.1"/></geometry></collision></link>
+//!     <link name="base"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
 //!     <link name="upper"><collision><origin xyz="0 0 0.2"/><geometry><capsule radius="0.04" length="0.4"/></geometry></collision></link>
 //!     <joint name="shoulder" type="revolute">
 //!       <parent link="base"/><child link="upper"/><origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
