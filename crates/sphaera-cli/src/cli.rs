@@ -110,12 +110,26 @@ pub struct ViewArgs {
     #[arg(long)]
     pub tree: Option<PathBuf>,
 
+    /// Also show the mesh simplified to this fraction of its triangles, in (0, 1], with
+    /// its certified error bound (error spheres: every point of either surface is within
+    /// the bound of the other).
+    #[arg(long, value_parser = parse_view_ratio)]
+    pub simplify: Option<f64>,
+
     /// The page to write (default `view.html`).
     #[arg(long, short)]
     pub output: Option<PathBuf>,
 
     #[command(flatten)]
     pub print: OutputArgs,
+}
+
+fn parse_view_ratio(text: &str) -> Result<f64, String> {
+    text.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|r| *r > 0.0 && *r <= 1.0)
+        .ok_or_else(|| format!("`{text}`: the ratio must be a number in (0, 1]"))
 }
 
 /// Arguments of `sphaera urdf`.

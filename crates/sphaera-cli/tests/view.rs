@@ -100,6 +100,36 @@ fn the_page_holds_the_mesh_and_every_level_and_fetches_nothing() {
         !html.contains("SPHAERA_"),
         "a placeholder was left in the page"
     );
+    assert!(data["simplified"].is_null());
+
+    // With a simplification: its mesh and certified bound are in the page and the report.
+    let report = json(&sphaera(&[
+        "view",
+        &mesh,
+        "--tree",
+        &tree,
+        "--simplify",
+        "0.3",
+        "-o",
+        page.to_str().expect("utf-8"),
+        "--json",
+    ]));
+    let data = page_data(&std::fs::read_to_string(&page).expect("the page"));
+    let simplified = &data["simplified"];
+    let triangles = simplified["triangles_count"].as_u64().expect("triangles");
+    let input = data["triangles_count"].as_u64().expect("triangles");
+    assert!(triangles < input, "{triangles} of {input}");
+    assert_eq!(
+        simplified["error_bound"],
+        report["simplified"]["error_bound"]
+    );
+    assert!(report["simplified"]["error_bound"].as_f64().expect("bound") > 0.0);
+    let output = sphaera(&["view", &mesh, "--tree", &tree, "--simplify", "1.5"]);
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success() && message.contains("(0, 1]"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -50,6 +50,21 @@ const mesh = new THREE.Mesh(
 );
 scene.add(mesh);
 
+// With `--simplify`: the simplified mesh, shown instead of the input when asked for.
+let simplified = null;
+if (data.simplified) {
+  const shape = new THREE.BufferGeometry();
+  shape.setAttribute("position", new THREE.BufferAttribute(floats(data.simplified.positions), 3));
+  shape.setIndex(new THREE.BufferAttribute(integers(data.simplified.triangles), 1));
+  shape.computeVertexNormals();
+  simplified = new THREE.Mesh(
+    shape,
+    new THREE.MeshStandardMaterial({ color: 0xe0a458, roughness: 0.7, flatShading: true, side: THREE.DoubleSide }),
+  );
+  simplified.visible = false;
+  scene.add(simplified);
+}
+
 // The spheres of the level shown: one instanced mesh sized for the largest level, and
 // the level's worst sphere on its own, in red.
 const levels = data.levels.map((level) => ({ ...level, spheres: floats(level.spheres) }));
@@ -118,6 +133,22 @@ document.getElementById("show-mesh").addEventListener("change", (event) => {
   mesh.visible = event.target.checked;
   render();
 });
+if (simplified) {
+  const label = document.createElement("label");
+  const box = document.createElement("input");
+  box.type = "checkbox";
+  box.id = "show-simplified";
+  label.appendChild(box);
+  label.append(
+    ` simplified: ${data.simplified.triangles_count.toLocaleString("en")} triangles, certified bound ${percent(data.simplified.error_bound)}`,
+  );
+  document.getElementById("show-spheres").parentElement.after(label);
+  box.addEventListener("change", () => {
+    simplified.visible = box.checked;
+    mesh.visible = !box.checked && document.getElementById("show-mesh").checked;
+    render();
+  });
+}
 document.getElementById("show-spheres").addEventListener("change", (event) => {
   spheres.visible = event.target.checked;
   worst.visible = event.target.checked;

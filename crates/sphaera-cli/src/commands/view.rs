@@ -13,6 +13,7 @@ use anyhow::{Context, Result, bail};
 use base64::Engine as _;
 use serde::Serialize;
 use sphaera::mesh::{DVec3, Length, Sphere, Surface, TriMesh};
+use sphaera::simplify::{Simplified, SimplifyOptions, simplify};
 use sphaera::spheretree::export::{read_sph, tree_from_json};
 use sphaera::spheretree::{
     EvaluationOptions, SphereTreeOptions, build_with_progress, evaluate_set,
@@ -44,10 +45,19 @@ struct Report {
     /// Per level: spheres and the certified worst error (`null` when the mesh has no
     /// inside to measure against).
     levels: Vec<LevelReport>,
+    /// With `--simplify`: the simplified mesh's triangles and its certified error bound.
+    simplified: Option<SimplifiedReport>,
     output: String,
     /// The page's size in bytes.
     bytes: usize,
     seconds: f64,
+}
+
+#[derive(Clone, Copy, Debug, Serialize)]
+struct SimplifiedReport {
+    ratio: f64,
+    triangles: usize,
+    error_bound: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -111,7 +121,24 @@ pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
     };
     check_tree_fits(&mesh, &levels, &tree_source)?;
     let evaluations = evaluate(surface.as_ref(), &levels, quiet)?;
-    let page = page(&input.source, &mesh, &levels, &evaluations);
+    let simplified = match args.simplify {
+        None => None,
+        Some(ratio) => {
+            let spinner = progress::spinner(quiet, "simplifying");
+            let options = SimplifyOptions::default().with_target_ratio(ratio);
+            let result = simplify(&mesh, &options)
+                .with_context(|| format!("cannot simplify {}", input.source));
+            spinner.finish_and_clear();
+            Some((ratio, result?))
+        }
+    };
+    let page = page(
+        &input.source,
+        &mesh,
+        &levels,
+        &evaluations,
+        simplified.as_ref().map(|(_, s)| s),
+    );
     sphaera::mesh::io::write_atomic(&output, |w| std::io::Write::write_all(w, page.as_bytes()))
         .with_context(|| format!("cannot write {}", output.display()))?;
     let report = Report {
@@ -130,6 +157,11 @@ pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
                 error_upper: e.map(|e| e.upper),
             })
             .collect(),
+        simplified: simplified.as_ref().map(|(ratio, s)| SimplifiedReport {
+            ratio: *ratio,
+            triangles: s.mesh.triangle_count(),
+            error_bound: s.error_bound,
+        }),
         output: output.display().to_string(),
         bytes: page.len(),
         seconds: started.elapsed().as_secs_f64(),
@@ -236,6 +268,7 @@ fn page(
     mesh: &TriMesh,
     levels: &[Vec<Sphere>],
     evaluations: &[Option<Evaluation>],
+    simplified: Option<&Simplified>,
 ) -> String {
     let centre = mesh.bounding_box().center();
     let radius = mesh
@@ -269,6 +302,21 @@ fn page(
             error_upper: evaluation.map(|e| e.upper),
         })
         .collect();
+    let simplified = simplified.map(|s| {
+        let triangles: Vec<u8> = s
+            .mesh
+            .triangles()
+            .iter()
+            .flatten()
+            .flat_map(|i| i.to_le_bytes())
+            .collect();
+        serde_json::json!({
+            "triangles_count": s.mesh.triangle_count(),
+            "error_bound": s.error_bound,
+            "positions": f32_base64(s.mesh.positions().iter().flat_map(|&p| (p - centre).to_array())),
+            "triangles": base64_of(&triangles),
+        })
+    });
     let data = serde_json::json!({
         "name": name,
         "triangles_count": mesh.triangle_count(),
@@ -278,6 +326,7 @@ fn page(
         "positions": positions,
         "triangles": base64_of(&triangles),
         "levels": page_levels,
+        "simplified": simplified,
     });
     // `</` cannot appear in JSON's output except inside strings; escape it so that the
     // data cannot close its script element.
@@ -325,6 +374,14 @@ impl crate::output::Report for Report {
                     (Some(a), Some(b)) => format!("[{a:.6}, {b:.6}]"),
                     _ => "not measured (no inside)".to_owned(),
                 }
+            ));
+        }
+        if let Some(s) = &self.simplified {
+            lines.push(format!(
+                "simplified      {} triangles ({} of the input), certified error bound {:.6}",
+                thousands(s.triangles),
+                s.ratio,
+                s.error_bound
             ));
         }
         lines.push(format!(
