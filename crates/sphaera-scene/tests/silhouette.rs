@@ -69,7 +69,6 @@ proptest! {
             prop_assert!(choice.meets, "{choice:?}");
             prop_assert!(choice.contour_measured <= pixels);
             prop_assert!(choice.interior_measured <= pixels * interior);
-            prop_assert!(choice.contour_error <= choice.interior_error.max(choice.contour_error));
             let bound = instance.bounding_sphere();
             let check = |world: f64, measured: f64| {
                 camera.projected_error(&bound, world).unwrap_or(0.0) == measured
