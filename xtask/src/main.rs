@@ -128,6 +128,10 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 /// and the sphere-tree's export and awkward-mesh tests with its optional `parry` feature.
 fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
+    // One invocation for all of them: one build, its crates compiled in parallel. No
+    // dev-dependency of theirs asks for `parallel`, so none of them gets it
+    // (`cargo tree -e features` confirms).
+    let mut args = vec!["test", "--locked"];
     for crate_name in [
         "sphaera-mesh",
         "sphaera-simplify",
@@ -136,16 +140,10 @@ fn test() -> Result<()> {
         "sphaera-scene",
         "sphaera-robot",
     ] {
-        cargo(&[
-            "test",
-            "--locked",
-            "-p",
-            crate_name,
-            "--no-default-features",
-            "--lib",
-            "--tests",
-        ])?;
+        args.extend(["-p", crate_name]);
     }
+    args.extend(["--no-default-features", "--lib", "--tests"]);
+    cargo(&args)?;
     // The sphere-tree's parry3d export, behind its optional feature (the awkward meshes
     // write it too).
     cargo(&[

@@ -1,9 +1,13 @@
 //! End-to-end tests of `sphaera view`: the page holds the mesh and every level of the
 //! tree, fetches nothing, and bad inputs are clear errors, never a broken page.
 
+#![allow(clippy::float_cmp)] // Powers of two scale results exactly.
+
 mod common;
 
 use common::{json, sphaera};
+use sphaera::mesh::{DVec3, TriMesh, shapes};
+use sphaera_tests::brute;
 
 /// The page's data element, parsed.
 fn page_data(html: &str) -> serde_json::Value {
@@ -19,11 +23,13 @@ fn page_data(html: &str) -> serde_json::Value {
 /// A small closed mesh and a shallow tree of it, written to `dir`.
 fn mesh_and_tree(dir: &std::path::Path) -> (String, String) {
     let mesh = dir.join("ball.obj");
-    sphaera_mesh_obj(
-        &mesh,
-        &sphaera::mesh::shapes::sphere(1.0, 12).expect("sphere"),
-    );
-    let tree = dir.join("ball.json");
+    sphaera_mesh_obj(&mesh, &shapes::sphere(1.0, 12).expect("sphere"));
+    mesh_and_tree_of(dir, &mesh)
+}
+
+/// A shallow tree of the mesh in `mesh`, written to `dir`.
+fn mesh_and_tree_of(dir: &std::path::Path, mesh: &std::path::Path) -> (String, String) {
+    let tree = dir.join("tree.json");
     let output = sphaera(&[
         "spheretree",
         mesh.to_str().expect("utf-8"),
@@ -50,7 +56,7 @@ fn mesh_and_tree(dir: &std::path::Path) -> (String, String) {
     (mesh.display().to_string(), tree.display().to_string())
 }
 
-fn sphaera_mesh_obj(path: &std::path::Path, mesh: &sphaera::mesh::TriMesh) {
+fn sphaera_mesh_obj(path: &std::path::Path, mesh: &TriMesh) {
     sphaera::mesh::io::save(path, mesh).expect("save");
 }
 
@@ -90,7 +96,7 @@ fn the_page_holds_the_mesh_and_every_level_and_fetches_nothing() {
         assert!(0.0 <= lower && lower <= upper);
         assert_eq!(level["error_upper"], reported["error_upper"]);
     }
-    assert_eq!(data["triangles_count"], report["triangles"]);
+    assert_eq!(data["mesh"]["triangles_count"], report["triangles"]);
     // Self-contained: three.js inlined, no script or stylesheet from the network.
     assert!(html.contains("data:text/javascript;base64,"));
     for fetch in ["src=\"http", "href=\"http", "from \"http", "from 'http"] {
@@ -100,36 +106,327 @@ fn the_page_holds_the_mesh_and_every_level_and_fetches_nothing() {
         !html.contains("SPHAERA_"),
         "a placeholder was left in the page"
     );
-    assert!(data["simplified"].is_null());
-
-    // With a simplification: its mesh and certified bound are in the page and the report.
-    let report = json(&sphaera(&[
-        "view",
-        &mesh,
-        "--tree",
-        &tree,
-        "--simplify",
-        "0.3",
-        "-o",
-        page.to_str().expect("utf-8"),
-        "--json",
-    ]));
-    let data = page_data(&std::fs::read_to_string(&page).expect("the page"));
-    let simplified = &data["simplified"];
-    let triangles = simplified["triangles_count"].as_u64().expect("triangles");
-    let input = data["triangles_count"].as_u64().expect("triangles");
-    assert!(triangles < input, "{triangles} of {input}");
-    assert_eq!(
-        simplified["error_bound"],
-        report["simplified"]["error_bound"]
-    );
-    assert!(report["simplified"]["error_bound"].as_f64().expect("bound") > 0.0);
+    assert_eq!(data["layers"].as_array().map(Vec::len), Some(0));
+    assert!(data["distance"].is_null() && data["labels"].is_null());
     let output = sphaera(&["view", &mesh, "--tree", &tree, "--simplify", "1.5"]);
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(
         !output.status.success() && message.contains("(0, 1]"),
         "{message}"
     );
+}
+
+fn decode(value: &serde_json::Value) -> Vec<u8> {
+    use base64::Engine as _;
+    base64::engine::general_purpose::STANDARD
+        .decode(value.as_str().expect("base64"))
+        .expect("valid base64")
+}
+
+/// A mesh of the page (`positions`, `triangles`), moved back by the page's offset.
+fn page_mesh(data: &serde_json::Value, arrays: &serde_json::Value) -> TriMesh {
+    let offset: Vec<f64> = data["offset"]
+        .as_array()
+        .expect("offset")
+        .iter()
+        .map(|v| v.as_f64().expect("number"))
+        .collect();
+    let positions: Vec<DVec3> = decode(&arrays["positions"])
+        .chunks_exact(12)
+        .map(|p| {
+            let c = |k: usize| {
+                f64::from(f32::from_le_bytes(
+                    p[4 * k..4 * k + 4].try_into().expect("4 bytes"),
+                )) + offset[k]
+            };
+            DVec3::new(c(0), c(1), c(2))
+        })
+        .collect();
+    let indices: Vec<u32> = decode(&arrays["triangles"])
+        .chunks_exact(4)
+        .map(|b| u32::from_le_bytes(b.try_into().expect("4 bytes")))
+        .collect();
+    TriMesh::new(
+        positions,
+        indices
+            .chunks_exact(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+    )
+    .expect("a valid mesh")
+}
+
+/// The largest brute-force distance from `from`'s vertices to `to`.
+fn farthest_vertex(from: &TriMesh, to: &TriMesh) -> f64 {
+    from.positions()
+        .iter()
+        .map(|&p| brute::distance(to, p))
+        .fold(0.0, f64::max)
+}
+
+/// A page of the ball with every layer, and the run's report.
+fn page_with_every_layer(
+    dir: &std::path::Path,
+    mesh: &str,
+    tree: &str,
+    other: &str,
+) -> (serde_json::Value, serde_json::Value) {
+    let page = dir.join("every.html");
+    let report = json(&sphaera(&[
+        "view",
+        mesh,
+        "--tree",
+        tree,
+        "--simplify",
+        "0.3",
+        "--hal",
+        "5%",
+        "--hausdorff",
+        other,
+        "--silhouette",
+        "-q",
+        "-o",
+        page.to_str().expect("utf-8"),
+        "--json",
+    ]));
+    let data = page_data(&std::fs::read_to_string(&page).expect("the page"));
+    (report, data)
+}
+
+#[test]
+fn every_layer_is_in_the_page_as_reported_and_holds_against_brute_force() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let (mesh, tree) = mesh_and_tree(dir.path());
+    let ball = sphaera::mesh::io::read(std::path::Path::new(&mesh))
+        .expect("the ball")
+        .mesh;
+    let other_path = dir.path().join("coarse.obj");
+    let coarse = shapes::sphere(1.0, 5).expect("sphere");
+    sphaera_mesh_obj(&other_path, &coarse);
+    let (report, data) = page_with_every_layer(
+        dir.path(),
+        &mesh,
+        &tree,
+        other_path.to_str().expect("utf-8"),
+    );
+    let diagonal = ball.bounding_box_diagonal();
+    // The page's positions are f32.
+    let slack = 1e-6 * diagonal;
+
+    // Surfaces: the page's menu and the report agree, kinds in order.
+    let layers = data["layers"].as_array().expect("layers");
+    let surfaces = report["surfaces"].as_array().expect("surfaces");
+    assert_eq!(layers.len(), surfaces.len());
+    let kinds: Vec<&str> = surfaces
+        .iter()
+        .map(|s| s["kind"].as_str().expect("kind"))
+        .collect();
+    let simplified = kinds.iter().filter(|k| **k == "simplified").count();
+    assert_eq!(simplified, 2, "{kinds:?}: rungs at 50 % and 30 %");
+    assert_eq!(kinds.last(), Some(&"hal_tolerance"), "{kinds:?}");
+    assert!(
+        kinds[simplified..kinds.len() - 1]
+            .iter()
+            .all(|k| *k == "hal_level")
+    );
+    let mut previous: Option<(u64, f64)> = None;
+    for (layer, surface) in layers.iter().zip(surfaces) {
+        assert_eq!(layer["kind"], surface["kind"]);
+        assert_eq!(layer["bound"], surface["bound"]);
+        assert_eq!(layer["triangles_count"], surface["triangles"]);
+        let shape = page_mesh(&data, layer);
+        assert_eq!(
+            Some(shape.triangle_count() as u64),
+            surface["triangles"].as_u64()
+        );
+        // `null`: a HAL level's unbounded lens.
+        let bound = surface["bound"].as_f64().unwrap_or(f64::INFINITY);
+        match surface["kind"].as_str() {
+            // Error spheres: each surface lies within the bound of the other.
+            Some("simplified") => {
+                let triangles = shape.triangle_count() as u64;
+                assert!(triangles < ball.triangle_count() as u64);
+                assert!(farthest_vertex(&shape, &ball) <= bound + slack);
+                assert!(farthest_vertex(&ball, &shape) <= bound + slack);
+                if let Some((fewer, smaller)) = previous {
+                    assert!(triangles < fewer && bound >= smaller, "the rungs coarsen");
+                }
+                previous = Some((triangles, bound));
+            }
+            Some("hal_tolerance") => assert!(bound <= 0.05 * diagonal, "{bound}"),
+            _ => {}
+        }
+    }
+
+    // The distance: certified bounds that brute force cannot beat, the maximum found
+    // where the report says, a colour for every vertex.
+    let h = &report["hausdorff"];
+    let (lower, upper) = (
+        h["lower"].as_f64().expect("lower"),
+        h["upper"].as_f64().expect("upper"),
+    );
+    assert!(0.0 < lower && lower <= upper, "[{lower}, {upper}]");
+    let ball_to_coarse = farthest_vertex(&ball, &coarse);
+    assert!(ball_to_coarse <= upper && farthest_vertex(&coarse, &ball) <= upper);
+    let largest = h["largest_vertex_distance"].as_f64().expect("largest");
+    assert!(
+        (largest - ball_to_coarse).abs() <= 1e-9 * diagonal,
+        "{largest} against {ball_to_coarse}"
+    );
+    let point = |key: &str| {
+        let v: Vec<f64> = h[key]
+            .as_array()
+            .expect("a point")
+            .iter()
+            .map(|x| x.as_f64().expect("number"))
+            .collect();
+        DVec3::new(v[0], v[1], v[2])
+    };
+    let (on, to) = if h["dominating"] == "mesh_to_other" {
+        (&ball, &coarse)
+    } else {
+        (&coarse, &ball)
+    };
+    assert!(brute::distance(on, point("farthest")) <= 1e-9 * diagonal);
+    assert!((brute::distance(to, point("farthest")) - lower).abs() <= 1e-9 * diagonal);
+    assert!((point("farthest").distance(point("closest")) - lower).abs() <= 1e-9 * diagonal);
+    let distance = &data["distance"];
+    assert_eq!(
+        decode(&distance["colors"]).len(),
+        3 * ball.positions().len()
+    );
+    assert_eq!(
+        page_mesh(&data, &distance["other"]).triangle_count(),
+        coarse.triangle_count()
+    );
+    assert_eq!(distance["upper"], h["upper"]);
+
+    // Silhouette labels: a grey level per vertex per view, black on outlines.
+    let labels = &data["labels"];
+    let views = labels["count"].as_u64().expect("count") as usize;
+    assert_eq!(views, 62);
+    assert_eq!(report["silhouette"]["views"].as_u64(), Some(62));
+    let grey = decode(&labels["grey"]);
+    assert_eq!(grey.len(), views * ball.positions().len());
+    // Outline vertices sit within a cell of the outline; the farthest label is white.
+    assert!(grey.iter().min().is_some_and(|&g| g < 16) && grey.contains(&255));
+    for direction in decode(&labels["directions"]).chunks_exact(12) {
+        let c = |k: usize| f32::from_le_bytes(direction[4 * k..4 * k + 4].try_into().expect("4"));
+        let length = (c(0) * c(0) + c(1) * c(1) + c(2) * c(2)).sqrt();
+        assert!((length - 1.0).abs() < 1e-6, "{length}");
+    }
+}
+
+#[test]
+fn scaling_by_a_power_of_two_scales_every_figure_exactly() {
+    let run = |scale: f64| {
+        let dir = tempfile::tempdir().expect("a folder");
+        let ball = shapes::sphere(scale, 12).expect("sphere");
+        let mesh = dir.path().join("ball.obj");
+        sphaera_mesh_obj(&mesh, &ball);
+        let other = dir.path().join("coarse.obj");
+        sphaera_mesh_obj(&other, &shapes::sphere(scale, 5).expect("sphere"));
+        let (_, tree) = mesh_and_tree_of(dir.path(), &mesh);
+        let (report, data) = page_with_every_layer(
+            dir.path(),
+            mesh.to_str().expect("utf-8"),
+            &tree,
+            other.to_str().expect("utf-8"),
+        );
+        (report, data)
+    };
+    let (one, one_page) = run(1.0);
+    let (eight, eight_page) = run(8.0);
+    let number =
+        |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("{v} is not a number"));
+    for (a, b) in one["levels"]
+        .as_array()
+        .expect("levels")
+        .iter()
+        .zip(eight["levels"].as_array().expect("levels"))
+    {
+        assert_eq!(a["spheres"], b["spheres"]);
+        assert_eq!(8.0 * number(&a["error_upper"]), number(&b["error_upper"]));
+        assert_eq!(8.0 * number(&a["error_lower"]), number(&b["error_lower"]));
+    }
+    let (a, b) = (&one["surfaces"], &eight["surfaces"]);
+    assert_eq!(a.as_array().map(Vec::len), b.as_array().map(Vec::len));
+    for (a, b) in a
+        .as_array()
+        .expect("surfaces")
+        .iter()
+        .zip(b.as_array().expect("surfaces"))
+    {
+        assert_eq!(a["triangles"], b["triangles"]);
+        // `null`: a HAL level's unbounded lens.
+        let bound = |v: &serde_json::Value| v["bound"].as_f64().unwrap_or(f64::INFINITY);
+        assert_eq!(8.0 * bound(a), bound(b), "{a} against {b}");
+    }
+    for key in ["lower", "upper", "largest_vertex_distance"] {
+        assert_eq!(
+            8.0 * number(&one["hausdorff"][key]),
+            number(&eight["hausdorff"][key]),
+            "{key}"
+        );
+    }
+    assert_eq!(
+        one_page["distance"]["colors"],
+        eight_page["distance"]["colors"]
+    );
+    assert_eq!(one_page["labels"]["grey"], eight_page["labels"]["grey"]);
+}
+
+#[test]
+fn bad_layers_are_clear_errors_and_write_no_page() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let (mesh, tree) = mesh_and_tree(dir.path());
+    let page = dir.path().join("view.html");
+    let page_arg = page.to_str().expect("utf-8");
+    let fails_with = |args: &[&str], needle: &str| {
+        let mut all = vec!["view"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&["-o", page_arg]);
+        let output = sphaera(&all);
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success() && message.contains(needle),
+            "{args:?}: {message}"
+        );
+    };
+    // The other mesh is missing, or has no triangles.
+    let missing = dir.path().join("missing.obj");
+    fails_with(
+        &[
+            &mesh,
+            "--tree",
+            &tree,
+            "--hausdorff",
+            missing.to_str().expect("utf-8"),
+        ],
+        "missing.obj",
+    );
+    let empty = dir.path().join("empty.obj");
+    std::fs::write(&empty, "v 0 0 0\nv 1 0 0\nv 0 1 0\n").expect("write");
+    fails_with(
+        &[
+            &mesh,
+            "--tree",
+            &tree,
+            "--hausdorff",
+            empty.to_str().expect("utf-8"),
+        ],
+        "no triangles",
+    );
+    // A torus has no HAL tree (genus 1).
+    let torus = dir.path().join("torus.obj");
+    sphaera_mesh_obj(&torus, &shapes::torus(2.0, 0.5, 12).expect("torus"));
+    fails_with(
+        &[torus.to_str().expect("utf-8"), "--hal", "1%"],
+        "torus.obj",
+    );
+    // A width that is not one.
+    fails_with(&[&mesh, "--tree", &tree, "--hal", "wide"], "wide");
+    assert!(!page.exists(), "no page is written for bad input");
 }
 
 #[test]
@@ -141,11 +438,11 @@ fn bad_inputs_are_clear_errors_and_write_no_page() {
 
     // A tree for another mesh: the ball's tree does not hold a far-away cube.
     let cube = dir.path().join("cube.obj");
-    let far = sphaera::mesh::shapes::cube(1.0, 2).expect("cube");
-    let moved = sphaera::mesh::TriMesh::new(
+    let far = shapes::cube(1.0, 2).expect("cube");
+    let moved = TriMesh::new(
         far.positions()
             .iter()
-            .map(|p| *p + sphaera::mesh::DVec3::new(10.0, 0.0, 0.0))
+            .map(|p| *p + DVec3::new(10.0, 0.0, 0.0))
             .collect(),
         far.triangles().to_vec(),
     )

@@ -43,15 +43,21 @@ impl GenusZeroSurface {
     /// what was found.
     pub fn new(mesh: &TriMesh) -> Result<Self, HalError> {
         let report = analyze(mesh);
-        if report.triangle_count == 0 || !report.is_closed {
+        if report.triangle_count == 0 || report.boundary_edge_count > 0 {
             return Err(HalError::NotClosed {
                 boundary_edges: report.boundary_edge_count,
             });
         }
+        // Without a boundary a mesh fails to be closed only by being non-manifold: say so.
         if !report.is_manifold {
             return Err(HalError::NonManifold {
                 edges: report.non_manifold_edge_count,
                 vertices: report.non_manifold_vertex_count,
+            });
+        }
+        if !report.is_closed {
+            return Err(HalError::NotClosed {
+                boundary_edges: report.boundary_edge_count,
             });
         }
         if !report.is_oriented {

@@ -92,7 +92,23 @@ fn genus_zero_meshes_are_accepted_and_others_refused_by_name() {
         Err(HalError::NotClosed { boundary_edges: 3 })
     ));
 
+    // Two closed tetrahedra sharing an edge: no boundary, but that edge has four
+    // triangles; the error says non-manifold, not open.
     let t = tetrahedron();
+    let mut positions = t.positions().to_vec();
+    positions.push(DVec3::new(0.3, 0.3, -1.0));
+    positions.push(DVec3::new(-1.0, -1.0, -1.0));
+    let shared = t.triangles()[0];
+    let (a, b) = (shared[0], shared[1]);
+    let mut triangles = t.triangles().to_vec();
+    triangles.extend([[b, a, 4], [a, b, 5], [a, 4, 5], [b, 5, 4]]);
+    let pinched = TriMesh::new(positions, triangles).unwrap();
+    let error = GenusZeroSurface::new(&pinched).unwrap_err();
+    assert!(
+        matches!(error, HalError::NonManifold { edges, .. } if edges >= 1),
+        "{error}"
+    );
+
     let mut positions = t.positions().to_vec();
     positions.extend(t.positions().iter().map(|&p| p + DVec3::splat(5.0)));
     let mut triangles = t.triangles().to_vec();

@@ -509,7 +509,7 @@ struct MeshApproximation {
 
 /// The largest width among the triangles an approximation keeps: the nodes reached from
 /// the roots through refined parents and not refined themselves.
-fn kept_width(tree: &HalTree3, refine: impl Fn(&sphaera::hal::Node3) -> bool) -> f64 {
+pub(crate) fn kept_width(tree: &HalTree3, refine: impl Fn(&sphaera::hal::Node3) -> bool) -> f64 {
     let nodes = tree.nodes();
     let mut stack: Vec<u32> = tree.roots().to_vec();
     let mut largest: f64 = 0.0;

@@ -1,0 +1,213 @@
+//! The page: the template with three.js, the data and the page's script put in.
+//!
+//! Every array goes in as base64 of little-endian typed arrays (`f32` positions and
+//! spheres, `u32` triangles, `u8` colours and grey levels), positions moved so that the
+//! mesh's bounding box is centred on the origin.
+
+use base64::Engine as _;
+use serde::Serialize;
+use sphaera::mesh::io::colormap;
+use sphaera::mesh::{DVec3, Sphere, TriMesh};
+
+use super::layers::{DistanceField, LabelField, Layer, LayerKind};
+use super::tree::{Evaluation, largest};
+
+/// three.js 0.160.1 (MIT; `assets/three/LICENSE`), the single-file ES module.
+const THREE_JS: &str = include_str!("../../../assets/three/three.module.min.js");
+/// The page around the data and the scripts.
+const TEMPLATE: &str = include_str!("../../../assets/view/view.html");
+/// The page's own script.
+const VIEW_JS: &str = include_str!("../../../assets/view/view.js");
+
+/// Everything the page shows.
+pub struct Contents<'a> {
+    pub name: &'a str,
+    pub mesh: &'a TriMesh,
+    pub levels: &'a [Vec<Sphere>],
+    pub evaluations: &'a [Option<Evaluation>],
+    pub layers: &'a [Layer],
+    pub distance: Option<&'a DistanceField>,
+    pub labels: Option<&'a LabelField>,
+}
+
+#[derive(Serialize)]
+struct PageLevel {
+    count: usize,
+    /// `x, y, z, r` per sphere, f32, base64.
+    spheres: String,
+    /// The index of the sphere reaching farthest beyond the surface (certified), or the
+    /// largest sphere when the mesh has no inside to measure against.
+    worst: usize,
+    error_lower: Option<f64>,
+    error_upper: Option<f64>,
+}
+
+#[derive(Serialize)]
+struct PageMesh {
+    triangles_count: usize,
+    positions: String,
+    triangles: String,
+}
+
+#[derive(Serialize)]
+struct PageLayer {
+    kind: LayerKind,
+    label: String,
+    /// `None` when unbounded.
+    bound: Option<f64>,
+    #[serde(flatten)]
+    mesh: PageMesh,
+}
+
+fn base64_of(bytes: &[u8]) -> String {
+    base64::engine::general_purpose::STANDARD.encode(bytes)
+}
+
+fn f32_base64(values: impl Iterator<Item = f64>) -> String {
+    let bytes: Vec<u8> = values.flat_map(|v| (v as f32).to_le_bytes()).collect();
+    base64_of(&bytes)
+}
+
+/// A mesh's arrays, moved by `-centre`.
+fn page_mesh(mesh: &TriMesh, centre: DVec3) -> PageMesh {
+    let triangles: Vec<u8> = mesh
+        .triangles()
+        .iter()
+        .flatten()
+        .flat_map(|i| i.to_le_bytes())
+        .collect();
+    PageMesh {
+        triangles_count: mesh.triangle_count(),
+        positions: f32_base64(
+            mesh.positions()
+                .iter()
+                .flat_map(|&p| (p - centre).to_array()),
+        ),
+        triangles: base64_of(&triangles),
+    }
+}
+
+/// The colour scale's stops, from 0 to 1, as CSS colours.
+fn legend_stops() -> Vec<String> {
+    (0..=10)
+        .map(|k| {
+            let [r, g, b] = colormap::blue_to_red(f64::from(k) / 10.0);
+            format!("#{r:02x}{g:02x}{b:02x}")
+        })
+        .collect()
+}
+
+/// The whole page.
+pub fn page(contents: &Contents<'_>) -> String {
+    let mesh = contents.mesh;
+    let centre = mesh.bounding_box().center();
+    let radius = mesh
+        .positions()
+        .iter()
+        .map(|p| p.distance(centre))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let levels: Vec<PageLevel> = contents
+        .levels
+        .iter()
+        .zip(contents.evaluations)
+        .map(|(spheres, evaluation)| PageLevel {
+            count: spheres.len(),
+            spheres: f32_base64(spheres.iter().flat_map(|s| {
+                let c = s.center - centre;
+                [c.x, c.y, c.z, s.radius]
+            })),
+            worst: evaluation.map_or_else(|| largest(spheres), |e| e.worst),
+            error_lower: evaluation.map(|e| e.lower),
+            error_upper: evaluation.map(|e| e.upper),
+        })
+        .collect();
+    let layers: Vec<PageLayer> = contents
+        .layers
+        .iter()
+        .map(|layer| PageLayer {
+            kind: layer.kind,
+            label: layer.label.clone(),
+            bound: layer.bound.is_finite().then_some(layer.bound),
+            mesh: page_mesh(&layer.mesh, centre),
+        })
+        .collect();
+    let distance = contents.distance.map(|field| {
+        let (farthest, closest) = field.farthest();
+        let colors: Vec<u8> = field.colors().into_iter().flatten().collect();
+        let moved = |p: [f64; 3]| (DVec3::from_array(p) - centre).to_array();
+        serde_json::json!({
+            "other_name": field.other_name,
+            "other": page_mesh(&field.other, centre),
+            "colors": base64_of(&colors),
+            "lower": field.distance.lower,
+            "upper": field.distance.upper,
+            "mesh_to_other_upper": field.distance.a_to_b.upper,
+            "dominating": field.dominating(),
+            "farthest": moved(farthest),
+            "closest": moved(closest),
+            "legend": legend_stops(),
+        })
+    });
+    let labels = contents.labels.map(|field| {
+        serde_json::json!({
+            "directions": f32_base64(field.directions.iter().flatten().copied()),
+            "count": field.directions.len(),
+            "grey": base64_of(&field.grey),
+            "scale": field.scale,
+            "step_degrees": field.step_degrees,
+            "resolution": field.resolution,
+        })
+    });
+    let data = serde_json::json!({
+        "name": contents.name,
+        "diagonal": mesh.bounding_box_diagonal(),
+        "radius": radius,
+        "offset": centre.to_array(),
+        "mesh": page_mesh(mesh, centre),
+        "levels": levels,
+        "layers": layers,
+        "distance": distance,
+        "labels": labels,
+    });
+    // `</` cannot appear in JSON's output except inside strings; escape it so that the
+    // data cannot close its script element.
+    let data = data.to_string().replace("</", "<\\/");
+    fill(
+        TEMPLATE,
+        &[
+            (
+                "SPHAERA_TITLE",
+                &html_escape(&format!("sphaera view: {}", contents.name)),
+            ),
+            ("SPHAERA_THREE_BASE64", &base64_of(THREE_JS.as_bytes())),
+            ("SPHAERA_DATA", &data),
+            ("SPHAERA_VIEW_JS", VIEW_JS),
+        ],
+    )
+}
+
+/// `template` with each placeholder replaced by its value, in one pass (a value that
+/// holds a placeholder's name, such as a file name, is left as it is).
+fn fill(template: &str, values: &[(&str, &str)]) -> String {
+    let mut out =
+        String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
+    let mut rest = template;
+    while let Some((at, key, value)) = values
+        .iter()
+        .filter_map(|&(key, value)| rest.find(key).map(|at| (at, key, value)))
+        .min_by_key(|&(at, _, _)| at)
+    {
+        out.push_str(&rest[..at]);
+        out.push_str(value);
+        rest = &rest[at + key.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
+fn html_escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
