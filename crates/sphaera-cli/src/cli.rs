@@ -94,8 +94,10 @@ pub enum Command {
     /// One self-contained HTML page (three.js inlined, opens offline in any browser)
     /// showing the mesh and its sphere-tree: a level slider, the spheres translucent,
     /// each level's worst sphere in red, and every level's certified error in a side
-    /// panel. The tree is built as the main job builds it, or read with `--tree`. With
-    /// no arguments: the embedded bunny.
+    /// panel. The tree is built as the main job builds it, or read with `--tree`. Also
+    /// the rungs of a simplification (`--simplify`), HAL approximations (`--hal`), the
+    /// distance to another mesh as colours (`--hausdorff`) and silhouette labels in grey
+    /// levels (`--silhouette`). With no arguments: the embedded bunny.
     View(ViewArgs),
 }
 

@@ -123,8 +123,10 @@ fn decode(value: &serde_json::Value) -> Vec<u8> {
         .expect("valid base64")
 }
 
-/// A mesh of the page (`positions`, `triangles`), moved back by the page's offset.
+/// A mesh of the page (`positions`, `triangles`), back in the mesh's units:
+/// `offset + scale · q`.
 fn page_mesh(data: &serde_json::Value, arrays: &serde_json::Value) -> TriMesh {
+    let scale = data["scale"].as_f64().expect("scale");
     let offset: Vec<f64> = data["offset"]
         .as_array()
         .expect("offset")
@@ -135,9 +137,11 @@ fn page_mesh(data: &serde_json::Value, arrays: &serde_json::Value) -> TriMesh {
         .chunks_exact(12)
         .map(|p| {
             let c = |k: usize| {
-                f64::from(f32::from_le_bytes(
-                    p[4 * k..4 * k + 4].try_into().expect("4 bytes"),
-                )) + offset[k]
+                scale
+                    * f64::from(f32::from_le_bytes(
+                        p[4 * k..4 * k + 4].try_into().expect("4 bytes"),
+                    ))
+                    + offset[k]
             };
             DVec3::new(c(0), c(1), c(2))
         })
@@ -335,45 +339,95 @@ fn scaling_by_a_power_of_two_scales_every_figure_exactly() {
         );
         (report, data)
     };
-    let (one, one_page) = run(1.0);
-    let (eight, eight_page) = run(8.0);
     let number =
         |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("{v} is not a number"));
-    for (a, b) in one["levels"]
-        .as_array()
-        .expect("levels")
-        .iter()
-        .zip(eight["levels"].as_array().expect("levels"))
-    {
-        assert_eq!(a["spheres"], b["spheres"]);
-        assert_eq!(8.0 * number(&a["error_upper"]), number(&b["error_upper"]));
-        assert_eq!(8.0 * number(&a["error_lower"]), number(&b["error_lower"]));
-    }
-    let (a, b) = (&one["surfaces"], &eight["surfaces"]);
-    assert_eq!(a.as_array().map(Vec::len), b.as_array().map(Vec::len));
-    for (a, b) in a
-        .as_array()
-        .expect("surfaces")
-        .iter()
-        .zip(b.as_array().expect("surfaces"))
-    {
-        assert_eq!(a["triangles"], b["triangles"]);
-        // `null`: a HAL level's unbounded lens.
-        let bound = |v: &serde_json::Value| v["bound"].as_f64().unwrap_or(f64::INFINITY);
-        assert_eq!(8.0 * bound(a), bound(b), "{a} against {b}");
-    }
-    for key in ["lower", "upper", "largest_vertex_distance"] {
+    let (one, one_page) = run(1.0);
+    for power in [3, -40, 40] {
+        let factor = 2f64.powi(power);
+        let (other, other_page) = run(factor);
+        for (a, b) in one["levels"]
+            .as_array()
+            .expect("levels")
+            .iter()
+            .zip(other["levels"].as_array().expect("levels"))
+        {
+            assert_eq!(a["spheres"], b["spheres"]);
+            for key in ["error_lower", "error_upper"] {
+                assert_eq!(
+                    factor * number(&a[key]),
+                    number(&b[key]),
+                    "2^{power}: {key}"
+                );
+            }
+        }
+        let (a, b) = (&one["surfaces"], &other["surfaces"]);
+        assert_eq!(a.as_array().map(Vec::len), b.as_array().map(Vec::len));
+        for (a, b) in a
+            .as_array()
+            .expect("surfaces")
+            .iter()
+            .zip(b.as_array().expect("surfaces"))
+        {
+            assert_eq!(a["triangles"], b["triangles"]);
+            // `null`: a HAL level's unbounded lens.
+            let bound = |v: &serde_json::Value| v["bound"].as_f64().unwrap_or(f64::INFINITY);
+            assert_eq!(factor * bound(a), bound(b), "2^{power}: {a} against {b}");
+        }
+        for key in ["lower", "upper", "largest_vertex_distance"] {
+            assert_eq!(
+                factor * number(&one["hausdorff"][key]),
+                number(&other["hausdorff"][key]),
+                "2^{power}: {key}"
+            );
+        }
+        // In page units the pages are the same: positions, spheres, colours, labels.
         assert_eq!(
-            8.0 * number(&one["hausdorff"][key]),
-            number(&eight["hausdorff"][key]),
-            "{key}"
+            factor * number(&one_page["scale"]),
+            number(&other_page["scale"])
         );
+        for path in [
+            &["mesh", "positions"][..],
+            &["levels"],
+            &["layers"],
+            &["distance", "colors"],
+            &["distance", "farthest"],
+            &["distance", "other", "positions"],
+            &["labels", "grey"],
+        ] {
+            let at =
+                |page: &serde_json::Value| path.iter().fold(page.clone(), |v, k| v[*k].clone());
+            if path == ["layers"] {
+                // Layers hold bounds in mesh units; compare their arrays.
+                let strip = |v: serde_json::Value| -> Vec<(serde_json::Value, serde_json::Value)> {
+                    v.as_array()
+                        .expect("layers")
+                        .iter()
+                        .map(|l| (l["positions"].clone(), l["triangles"].clone()))
+                        .collect()
+                };
+                assert_eq!(
+                    strip(at(&one_page)),
+                    strip(at(&other_page)),
+                    "2^{power}: layers"
+                );
+            } else if path == ["levels"] {
+                let strip = |v: serde_json::Value| -> Vec<serde_json::Value> {
+                    v.as_array()
+                        .expect("levels")
+                        .iter()
+                        .map(|l| l["spheres"].clone())
+                        .collect()
+                };
+                assert_eq!(
+                    strip(at(&one_page)),
+                    strip(at(&other_page)),
+                    "2^{power}: levels"
+                );
+            } else {
+                assert_eq!(at(&one_page), at(&other_page), "2^{power}: {path:?}");
+            }
+        }
     }
-    assert_eq!(
-        one_page["distance"]["colors"],
-        eight_page["distance"]["colors"]
-    );
-    assert_eq!(one_page["labels"]["grey"], eight_page["labels"]["grey"]);
 }
 
 #[test]
@@ -489,4 +543,106 @@ fn bad_inputs_are_clear_errors_and_write_no_page() {
     );
 
     assert!(!page.exists(), "no page is written for bad input");
+}
+
+#[test]
+fn awkward_meshes_give_a_page_with_finite_page_units_or_a_clear_error() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let ball = dir.path().join("ball.obj");
+    sphaera_mesh_obj(&ball, &shapes::sphere(1.0, 8).expect("sphere"));
+    let ball = ball.to_str().expect("utf-8");
+    for (k, awkward) in sphaera_tests::awkward::all().into_iter().enumerate() {
+        let path = dir.path().join(format!("awkward{k}.obj"));
+        sphaera_mesh_obj(&path, &awkward.mesh);
+        let (_, tree) = mesh_and_tree_of(dir.path(), &path);
+        let path = path.to_str().expect("utf-8");
+        let page = dir.path().join(format!("awkward{k}.html"));
+        let page_arg = page.to_str().expect("utf-8");
+        let output = sphaera(&[
+            "view",
+            path,
+            "--tree",
+            &tree,
+            "--simplify",
+            "0.5",
+            "--hausdorff",
+            ball,
+            "--silhouette",
+            "-q",
+            "--json",
+            "-o",
+            page_arg,
+        ]);
+        let report = json(&output);
+        let data = page_data(&std::fs::read_to_string(&page).expect("the page"));
+        let positions = decode(&data["mesh"]["positions"]);
+        assert!(
+            positions
+                .chunks_exact(4)
+                .map(|b| f32::from_le_bytes(b.try_into().expect("4 bytes")))
+                .all(|q| q.is_finite() && q.abs() <= 1.0 + 1e-6),
+            "{}: page units within the unit ball",
+            awkward.name
+        );
+        assert_eq!(
+            report["triangles"].as_u64(),
+            Some(awkward.mesh.triangle_count() as u64),
+            "{}",
+            awkward.name
+        );
+        // HAL trees take closed genus-0 meshes only: a page, or an error naming the file.
+        let output = sphaera(&[
+            "view", path, "--tree", &tree, "--hal", "5%", "-q", "-o", page_arg,
+        ]);
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            output.status.success() || message.contains(path),
+            "{}: {message}",
+            awkward.name
+        );
+    }
+}
+
+#[test]
+fn a_real_scan_shows_every_layer() {
+    let Some(data) = sphaera_tests::data_dir("a_real_scan_shows_every_layer") else {
+        return;
+    };
+    // Spot the cow: a closed genus-0 scan, so every layer applies.
+    let spot = data.join("spot.obj");
+    let other = data.join("bunny_lowres.obj");
+    let dir = tempfile::tempdir().expect("a folder");
+    let (_, tree) = mesh_and_tree_of(dir.path(), &spot);
+    let page = dir.path().join("spot.html");
+    let report = json(&sphaera(&[
+        "view",
+        spot.to_str().expect("utf-8"),
+        "--tree",
+        &tree,
+        "--simplify",
+        "0.2",
+        "--hal",
+        "2%",
+        "--hausdorff",
+        other.to_str().expect("utf-8"),
+        "--silhouette",
+        "-q",
+        "--json",
+        "-o",
+        page.to_str().expect("utf-8"),
+    ]));
+    let surfaces = report["surfaces"].as_array().expect("surfaces");
+    let hal = surfaces
+        .iter()
+        .find(|s| s["kind"] == "hal_tolerance")
+        .expect("the HAL approximation");
+    let diagonal = report["diagonal"].as_f64().expect("diagonal");
+    assert!(hal["bound"].as_f64().expect("bound") <= 0.02 * diagonal);
+    assert!(surfaces.iter().any(|s| s["kind"] == "simplified"));
+    let h = &report["hausdorff"];
+    assert!(h["lower"].as_f64() <= h["upper"].as_f64());
+    assert_eq!(report["silhouette"]["views"].as_u64(), Some(62));
+    let data = page_data(&std::fs::read_to_string(&page).expect("the page"));
+    let vertices = page_mesh(&data, &data["mesh"]).positions().len();
+    assert_eq!(decode(&data["labels"]["grey"]).len(), 62 * vertices);
 }

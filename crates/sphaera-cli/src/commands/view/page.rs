@@ -1,8 +1,11 @@
 //! The page: the template with three.js, the data and the page's script put in.
 //!
 //! Every array goes in as base64 of little-endian typed arrays (`f32` positions and
-//! spheres, `u32` triangles, `u8` colours and grey levels), positions moved so that the
-//! mesh's bounding box is centred on the origin.
+//! spheres, `u32` triangles, `u8` colours and grey levels), in page units: moved so that
+//! the mesh's bounding box is centred on the origin and scaled so that the mesh reaches
+//! to radius 1. A mesh of any size (10⁻⁴⁰ or 10⁴⁰) thus keeps `f32`'s full precision, and
+//! the page of a mesh scaled by a power of two is the same page. A point `q` of the page
+//! is `offset + scale · q` of the mesh.
 
 use base64::Engine as _;
 use serde::Serialize;
@@ -68,8 +71,21 @@ fn f32_base64(values: impl Iterator<Item = f64>) -> String {
     base64_of(&bytes)
 }
 
-/// A mesh's arrays, moved by `-centre`.
-fn page_mesh(mesh: &TriMesh, centre: DVec3) -> PageMesh {
+/// Mesh coordinates to page units: `(p − centre) / scale`.
+#[derive(Clone, Copy)]
+struct Units {
+    centre: DVec3,
+    scale: f64,
+}
+
+impl Units {
+    fn point(self, p: DVec3) -> [f64; 3] {
+        ((p - self.centre) / self.scale).to_array()
+    }
+}
+
+/// A mesh's arrays, in page units.
+fn page_mesh(mesh: &TriMesh, units: Units) -> PageMesh {
     let triangles: Vec<u8> = mesh
         .triangles()
         .iter()
@@ -78,11 +94,7 @@ fn page_mesh(mesh: &TriMesh, centre: DVec3) -> PageMesh {
         .collect();
     PageMesh {
         triangles_count: mesh.triangle_count(),
-        positions: f32_base64(
-            mesh.positions()
-                .iter()
-                .flat_map(|&p| (p - centre).to_array()),
-        ),
+        positions: f32_base64(mesh.positions().iter().flat_map(|&p| units.point(p))),
         triangles: base64_of(&triangles),
     }
 }
@@ -105,8 +117,14 @@ pub fn page(contents: &Contents<'_>) -> String {
         .positions()
         .iter()
         .map(|p| p.distance(centre))
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
+        .fold(0.0, f64::max);
+    // A mesh of one point (no extent) keeps its scale.
+    let scale = if radius > 0.0 && radius.is_finite() {
+        radius
+    } else {
+        1.0
+    };
+    let units = Units { centre, scale };
     let levels: Vec<PageLevel> = contents
         .levels
         .iter()
@@ -114,8 +132,8 @@ pub fn page(contents: &Contents<'_>) -> String {
         .map(|(spheres, evaluation)| PageLevel {
             count: spheres.len(),
             spheres: f32_base64(spheres.iter().flat_map(|s| {
-                let c = s.center - centre;
-                [c.x, c.y, c.z, s.radius]
+                let [x, y, z] = units.point(s.center);
+                [x, y, z, s.radius / scale]
             })),
             worst: evaluation.map_or_else(|| largest(spheres), |e| e.worst),
             error_lower: evaluation.map(|e| e.lower),
@@ -129,16 +147,16 @@ pub fn page(contents: &Contents<'_>) -> String {
             kind: layer.kind,
             label: layer.label.clone(),
             bound: layer.bound.is_finite().then_some(layer.bound),
-            mesh: page_mesh(&layer.mesh, centre),
+            mesh: page_mesh(&layer.mesh, units),
         })
         .collect();
     let distance = contents.distance.map(|field| {
         let (farthest, closest) = field.farthest();
         let colors: Vec<u8> = field.colors().into_iter().flatten().collect();
-        let moved = |p: [f64; 3]| (DVec3::from_array(p) - centre).to_array();
+        let moved = |p: [f64; 3]| units.point(DVec3::from_array(p));
         serde_json::json!({
             "other_name": field.other_name,
-            "other": page_mesh(&field.other, centre),
+            "other": page_mesh(&field.other, units),
             "colors": base64_of(&colors),
             "lower": field.distance.lower,
             "upper": field.distance.upper,
@@ -162,9 +180,10 @@ pub fn page(contents: &Contents<'_>) -> String {
     let data = serde_json::json!({
         "name": contents.name,
         "diagonal": mesh.bounding_box_diagonal(),
-        "radius": radius,
+        "radius": 1.0,
         "offset": centre.to_array(),
-        "mesh": page_mesh(mesh, centre),
+        "scale": scale,
+        "mesh": page_mesh(mesh, units),
         "levels": levels,
         "layers": layers,
         "distance": distance,
