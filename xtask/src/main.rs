@@ -32,8 +32,9 @@ use std::{
 use anyhow::{Context, Result, bail};
 
 mod browser;
+mod python;
 
-const USAGE: &str = "usage: cargo xtask <test | ci | doc | package | bench [ARGS..] | charts [--check] | browser-test [--update-images]>";
+const USAGE: &str = "usage: cargo xtask <test | ci | doc | package | bench [ARGS..] | charts [--check] | browser-test [--update-images] | python-test>";
 
 /// The crates meant for crates.io, each after the crates it depends on. Every other
 /// workspace member must say `publish = false` ([`check_publish_settings`]).
@@ -74,6 +75,7 @@ fn run() -> Result<()> {
         .with_context(|| format!("cannot enter the project root {}", root.display()))?;
     match task.as_str() {
         "test" => test(),
+        "python-test" => python::python_test(),
         "ci" => ci(),
         "doc" => doc(),
         "package" => package(),
@@ -158,6 +160,9 @@ fn test() -> Result<()> {
         "--test",
         "awkward",
     ])?;
+    // The Python bindings, built with maturin into a virtual environment and tested with
+    // pytest against the CLI's numbers.
+    python::python_test()?;
     Ok(())
 }
 

@@ -1,0 +1,45 @@
+"""Sphaera: meshes approximated by spheres, hierarchically.
+
+Certified simplification, exact and certified closest-point distances, certified
+Hausdorff distances and sphere-trees, with numpy arrays in and out. Long computations
+release the GIL and use every core; every result pickles exactly.
+
+>>> import sphaera
+>>> mesh = sphaera.load("bunny.obj")                  # doctest: +SKIP
+>>> tree = sphaera.spheretree(mesh, depth=3)          # doctest: +SKIP
+>>> tree.levels[3].shape, tree.errors[3]              # doctest: +SKIP
+"""
+
+from ._sphaera import (
+    Distances,
+    Hausdorff,
+    Mesh,
+    SphereTree,
+    Simplified,
+    __version__,
+    distance,
+    hal,
+    hausdorff,
+    load,
+    silhouette_labels,
+    simplify,
+    spheretree,
+    urdf,
+)
+
+__all__ = [
+    "Distances",
+    "Hausdorff",
+    "Mesh",
+    "Simplified",
+    "SphereTree",
+    "__version__",
+    "distance",
+    "hal",
+    "hausdorff",
+    "load",
+    "silhouette_labels",
+    "simplify",
+    "spheretree",
+    "urdf",
+]

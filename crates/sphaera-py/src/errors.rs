@@ -1,0 +1,39 @@
+//! The library's errors as Python exceptions: `OSError` when a file could not be read or
+//! written, `ValueError` for everything else (bad input), with the library's message.
+
+use pyo3::PyErr;
+use pyo3::exceptions::{PyOSError, PyValueError};
+
+/// `OSError` when an I/O error is anywhere in `error`'s chain, else `ValueError`; the
+/// message is the library's.
+pub fn to_py(error: &(dyn std::error::Error + 'static)) -> PyErr {
+    let mut io = false;
+    let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(error);
+    while let Some(e) = cause {
+        io |= e.is::<std::io::Error>();
+        cause = e.source();
+    }
+    let message = error.to_string();
+    if io {
+        PyOSError::new_err(message)
+    } else {
+        PyValueError::new_err(message)
+    }
+}
+
+/// [`to_py`] for a `Result`'s error.
+pub trait IntoPy<T> {
+    /// The value, or the error as a Python exception.
+    fn py_err(self) -> Result<T, PyErr>;
+}
+
+impl<T, E: std::error::Error + 'static> IntoPy<T> for Result<T, E> {
+    fn py_err(self) -> Result<T, PyErr> {
+        self.map_err(|e| to_py(&e))
+    }
+}
+
+/// A `ValueError` with `message`.
+pub fn value_error(message: impl Into<String>) -> PyErr {
+    PyValueError::new_err(message.into())
+}

@@ -1,0 +1,108 @@
+//! The Python bindings' tests: `crates/sphaera-py` built into a virtual environment that
+//! this creates (`target/python-venv`, packages from PyPI pinned in
+//! `crates/sphaera-py/requirements-test.txt`) with `maturin develop`, then its pytest
+//! suite, which checks the numbers against the `sphaera` binary's (`SPHAERA_CLI`).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+
+const VENV: &str = "target/python-venv";
+const REQUIREMENTS: &str = "crates/sphaera-py/requirements-test.txt";
+
+/// Runs `program` with `args` (and `envs`), echoing the command, failing on failure.
+fn run(program: &Path, args: &[&str], envs: &[(&str, &std::ffi::OsStr)]) -> Result<()> {
+    eprintln!("$ {} {}", program.display(), args.join(" "));
+    let started = Instant::now();
+    let status = Command::new(program)
+        .args(args)
+        .envs(envs.iter().copied())
+        .status()
+        .with_context(|| format!("cannot run {}", program.display()))?;
+    eprintln!(
+        "  ({:.1} s, {})",
+        started.elapsed().as_secs_f64(),
+        if status.success() { "ok" } else { "FAILED" }
+    );
+    if !status.success() {
+        bail!(
+            "`{} {}` failed ({status})",
+            program.display(),
+            args.join(" ")
+        );
+    }
+    Ok(())
+}
+
+/// The virtual environment's Python, created (with the pinned packages) when missing.
+fn venv() -> Result<PathBuf> {
+    let python = Path::new(VENV).join("bin/python");
+    if !python.exists() {
+        let system = ["python3", "python"]
+            .into_iter()
+            .find(|name| {
+                Command::new(name)
+                    .arg("--version")
+                    .output()
+                    .is_ok_and(|o| o.status.success())
+            })
+            .context(
+                "the Python bindings' tests need Python 3.9 or later with `venv` \
+                 (on Debian or Ubuntu: `sudo apt-get install python3 python3-venv`)",
+            )?;
+        run(Path::new(system), &["-m", "venv", VENV], &[])?;
+    }
+    run(
+        &python,
+        &[
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--disable-pip-version-check",
+            "-r",
+            REQUIREMENTS,
+        ],
+        &[],
+    )?;
+    Ok(python)
+}
+
+pub fn python_test() -> Result<()> {
+    let python = venv()?;
+    let venv = std::fs::canonicalize(VENV).with_context(|| format!("cannot find {VENV}"))?;
+    let bin = venv.join("bin");
+    let path = std::env::join_paths(std::iter::once(bin.clone()).chain(std::env::split_paths(
+        &std::env::var_os("PATH").unwrap_or_default(),
+    )))
+    .context("a PATH with the virtual environment")?;
+    let envs: Vec<(&str, &std::ffi::OsStr)> = vec![
+        ("VIRTUAL_ENV", venv.as_os_str()),
+        ("PATH", path.as_os_str()),
+    ];
+    // The extension in the workspace's dev profile, sharing `target/debug`.
+    run(
+        &bin.join("maturin"),
+        &[
+            "develop",
+            "--quiet",
+            "--locked",
+            "--manifest-path",
+            "crates/sphaera-py/Cargo.toml",
+        ],
+        &envs,
+    )?;
+    // The CLI the suite compares against (built by the Rust tests already).
+    crate::cargo(&["build", "--locked", "-p", "sphaera-cli"])?;
+    let cli = std::fs::canonicalize("target/debug/sphaera")
+        .context("cannot find target/debug/sphaera")?;
+    let mut envs = envs;
+    envs.push(("SPHAERA_CLI", cli.as_os_str()));
+    run(
+        &python,
+        &["-m", "pytest", "-q", "crates/sphaera-py/tests"],
+        &envs,
+    )
+}
