@@ -39,3 +39,35 @@ pub fn bar(quiet: bool, message: &str, len: u64) -> ProgressBar {
     bar.set_message(message.to_owned());
     bar
 }
+
+/// The simplification hierarchy of `mesh` (the default options), with a bar of the
+/// triangles removed.
+///
+/// # Errors
+///
+/// As [`sphaera::simplify::Hierarchy::build`].
+pub fn hierarchy(
+    quiet: bool,
+    mesh: &sphaera::mesh::TriMesh,
+) -> Result<sphaera::simplify::Hierarchy, sphaera::simplify::SimplifyError> {
+    let triangles = mesh.triangle_count();
+    let bar = bar(
+        quiet,
+        &format!(
+            "building the hierarchy of {} triangles",
+            crate::output::thousands(triangles)
+        ),
+        triangles as u64,
+    );
+    let report_progress = |p: &sphaera::simplify::SimplifyProgress| {
+        bar.set_length(p.to_remove as u64);
+        bar.set_position(p.removed as u64);
+    };
+    let hierarchy = sphaera::simplify::Hierarchy::build_with_progress(
+        mesh,
+        &sphaera::simplify::SimplifyOptions::default(),
+        &report_progress,
+    );
+    bar.finish_and_clear();
+    hierarchy
+}

@@ -26,6 +26,43 @@ fn shape_of(array: &Bound<'_, PyAny>) -> String {
         .unwrap_or_else(|_| "?".to_owned())
 }
 
+/// `value` (an array or nested lists) as an `(n, 3)` array of `T` (numpy's `dtype`),
+/// when its dtype's kind is one of `kinds`; `None` when it is empty. `what` and `rows`
+/// name it in messages (`vertices`, `n`).
+fn three_columns<'py, T: numpy::Element>(
+    value: &Bound<'py, PyAny>,
+    kinds: &[&str],
+    dtype: &str,
+    what: &str,
+    rows: &str,
+) -> PyResult<Option<PyReadonlyArray2<'py, T>>> {
+    let (array, kind) = as_array(value)?;
+    let size: usize = array.getattr("size")?.extract()?;
+    if size == 0 {
+        return Ok(None);
+    }
+    if !kinds.contains(&kind.as_str()) {
+        let wanted = if dtype == "int64" {
+            "integers"
+        } else {
+            "numbers"
+        };
+        return Err(value_error(format!(
+            "{what} must be {wanted}, got dtype {}",
+            array.getattr("dtype")?.str()?
+        )));
+    }
+    let ndim: usize = array.getattr("ndim")?.extract()?;
+    let array = array.call_method1("astype", (dtype,))?;
+    match (ndim, array.extract::<PyReadonlyArray2<'py, T>>()) {
+        (2, Ok(view)) if view.as_array().ncols() == 3 => Ok(Some(view)),
+        _ => Err(value_error(format!(
+            "{what} must have shape ({rows}, 3), got {}",
+            shape_of(&array)
+        ))),
+    }
+}
+
 /// An `(n, 3)` array of numbers (any real dtype, or nested lists) as points.
 ///
 /// # Errors
@@ -33,35 +70,11 @@ fn shape_of(array: &Bound<'_, PyAny>) -> String {
 /// `ValueError` naming `what` for another shape or dtype, or a coordinate that is not
 /// finite (when `finite`).
 pub fn points(value: &Bound<'_, PyAny>, what: &str, finite: bool) -> PyResult<Vec<DVec3>> {
-    let (array, kind) = as_array(value)?;
-    let size: usize = array.getattr("size")?.extract()?;
-    if size == 0 {
+    let Some(view) = three_columns::<f64>(value, &["f", "i", "u", "b"], "float64", what, "n")?
+    else {
         return Ok(Vec::new());
-    }
-    if !matches!(kind.as_str(), "f" | "i" | "u" | "b") {
-        return Err(value_error(format!(
-            "{what} must be numbers, got dtype {}",
-            array.getattr("dtype")?.str()?
-        )));
-    }
-    let ndim: usize = array.getattr("ndim")?.extract()?;
-    let array = array.call_method1("astype", ("float64",))?;
-    let view: PyReadonlyArray2<'_, f64> = match (ndim, array.extract()) {
-        (2, Ok(view)) => view,
-        _ => {
-            return Err(value_error(format!(
-                "{what} must have shape (n, 3), got {}",
-                shape_of(&array)
-            )));
-        }
     };
     let view = view.as_array();
-    if view.ncols() != 3 {
-        return Err(value_error(format!(
-            "{what} must have shape (n, 3), got {}",
-            shape_of(&array)
-        )));
-    }
     let mut out = Vec::with_capacity(view.nrows());
     for (i, row) in view.rows().into_iter().enumerate() {
         let p = DVec3::new(row[0], row[1], row[2]);
@@ -83,35 +96,10 @@ pub fn points(value: &Bound<'_, PyAny>, what: &str, finite: bool) -> PyResult<Ve
 ///
 /// `ValueError` for another shape or dtype, a negative index or one past the vertices.
 pub fn triangles(value: &Bound<'_, PyAny>, vertices: usize) -> PyResult<Vec<[u32; 3]>> {
-    let (array, kind) = as_array(value)?;
-    let size: usize = array.getattr("size")?.extract()?;
-    if size == 0 {
+    let Some(view) = three_columns::<i64>(value, &["i", "u"], "int64", "faces", "m")? else {
         return Ok(Vec::new());
-    }
-    if !matches!(kind.as_str(), "i" | "u") {
-        return Err(value_error(format!(
-            "faces must be integers, got dtype {}",
-            array.getattr("dtype")?.str()?
-        )));
-    }
-    let ndim: usize = array.getattr("ndim")?.extract()?;
-    let array = array.call_method1("astype", ("int64",))?;
-    let view: PyReadonlyArray2<'_, i64> = match (ndim, array.extract()) {
-        (2, Ok(view)) => view,
-        _ => {
-            return Err(value_error(format!(
-                "faces must have shape (m, 3), got {}",
-                shape_of(&array)
-            )));
-        }
     };
     let view = view.as_array();
-    if view.ncols() != 3 {
-        return Err(value_error(format!(
-            "faces must have shape (m, 3), got {}",
-            shape_of(&array)
-        )));
-    }
     let mut out = Vec::with_capacity(view.nrows());
     for (t, row) in view.rows().into_iter().enumerate() {
         let mut triangle = [0_u32; 3];

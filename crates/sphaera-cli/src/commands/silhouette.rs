@@ -14,7 +14,6 @@ use sphaera::{
         ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage, overlay_picture,
         shaded_picture, silhouette_difference,
     },
-    simplify::{Hierarchy, SimplifyOptions, SimplifyProgress},
 };
 
 use crate::{
@@ -147,21 +146,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     let labels_seconds = started.elapsed().as_secs_f64();
 
     let started = Instant::now();
-    let bar = progress::bar(
-        quiet,
-        &format!(
-            "building the hierarchy of {} triangles",
-            thousands(mesh.triangle_count())
-        ),
-        mesh.triangle_count() as u64,
-    );
-    let report_progress = |p: &SimplifyProgress| {
-        bar.set_length(p.to_remove as u64);
-        bar.set_position(p.removed as u64);
-    };
-    let hierarchy =
-        Hierarchy::build_with_progress(mesh, &SimplifyOptions::default(), &report_progress);
-    bar.finish_and_clear();
+    let hierarchy = progress::hierarchy(quiet, mesh);
     let hierarchy = hierarchy?;
     let hierarchy_seconds = started.elapsed().as_secs_f64();
 

@@ -10,12 +10,10 @@ use sphaera::hal::HalTree3;
 use sphaera::mesh::io::colormap;
 use sphaera::mesh::{Length, TriMesh};
 use sphaera::silhouette::{Contours, DistanceTransform, Labels, ViewSet};
-use sphaera::simplify::{Hierarchy, SimplifyOptions, SimplifyProgress};
 use sphaera::sweep::{Direction, HausdorffDistance, HausdorffOptions, hausdorff_with_progress};
 
 use crate::commands::hal::kept_width;
 use crate::input::read_mesh;
-use crate::output::thousands;
 use crate::progress;
 
 /// Which kind of surface a [`Layer`] is, and so what its bound means.
@@ -44,21 +42,7 @@ pub struct Layer {
 /// The rungs of the simplification hierarchy from half the input's triangles down to
 /// `ratio`, halving each time (`ratio` itself last), each with its certified bound.
 pub fn simplification_ladder(mesh: &TriMesh, ratio: f64, quiet: bool) -> Result<Vec<Layer>> {
-    let bar = progress::bar(
-        quiet,
-        &format!(
-            "building the simplification hierarchy of {} triangles",
-            thousands(mesh.triangle_count())
-        ),
-        mesh.triangle_count() as u64,
-    );
-    let report_progress = |p: &SimplifyProgress| {
-        bar.set_length(p.to_remove as u64);
-        bar.set_position(p.removed as u64);
-    };
-    let hierarchy =
-        Hierarchy::build_with_progress(mesh, &SimplifyOptions::default(), &report_progress);
-    bar.finish_and_clear();
+    let hierarchy = progress::hierarchy(quiet, mesh);
     let hierarchy = hierarchy.context("cannot simplify the mesh")?;
     let mut fractions = Vec::new();
     let mut fraction = 0.5;
