@@ -11,7 +11,10 @@
 //!   tolerance of 2 pixels on a camera looking at the box (each body gets the level its
 //!   distance needs: "no more than the scene needs"); and the smallest cut through each
 //!   tree meeting 10 %, 5 % and 2 % (`spheretree::cut_for_tolerance`: coarse nodes where
-//!   they are tight enough, fine ones only where needed);
+//!   they are tight enough, fine ones only where needed). The default trees (depth 3)
+//!   end at about 2 %, so 1 % and 0.5 % take their finest level; depth-4 trees that
+//!   reach them have about 3,000 balls per body, which rapier could not step through in
+//!   reasonable time or memory (see `docs/benchmarks.md`);
 //! - rapier's **trimesh** colliders (the true meshes);
 //! - rapier's **convex decomposition** (V-HACD with parry's default parameters).
 //!
@@ -19,7 +22,9 @@
 //! bodies in contact, on the true meshes (`sphaera::mesh::Surface`: inside test and exact
 //! closest points): the deepest penetration of a true mesh into another or below the
 //! floor, and the mean gap between true meshes over contacts where they do not touch (the
-//! over-approximation the colliders showed). Writes `scene_time_vs_error.svg` and `.csv`.
+//! over-approximation the colliders showed). Runs whose colliders equal an earlier run's
+//! are not simulated again; they take its figures. Writes `scene_time_vs_error.svg` and
+//! `.csv`.
 
 mod physics;
 
@@ -58,6 +63,7 @@ const TOLERANCES: [f64; 5] = [0.10, 0.05, 0.02, 0.01, 0.005];
 const CAMERA_PIXELS: f64 = 2.0;
 
 /// One simulation's figures.
+#[derive(Clone)]
 struct Row {
     method: String,
     /// Colliders per body: spheres, triangles or convex parts (mean).
@@ -100,12 +106,15 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
     }
 
     let mut rows = Vec::new();
-    let mut runs: Vec<(String, Option<Tolerance>, Option<Camera>)> = TOLERANCES
+    // Runs already simulated, by their colliders, so that a run choosing the same
+    // colliders as an earlier one takes its figures.
+    let mut simulated: Vec<(String, usize)> = Vec::new();
+    let mut runs: Vec<(String, Tolerance, Option<Camera>)> = TOLERANCES
         .iter()
         .map(|&t| {
             (
                 format!("sphaera {}%", t * 100.0),
-                Some(Tolerance::Relative(t)),
+                Tolerance::Relative(t),
                 None,
             )
         })
@@ -119,11 +128,10 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
     )?;
     runs.push((
         format!("sphaera {CAMERA_PIXELS}px"),
-        Some(Tolerance::Pixels(CAMERA_PIXELS)),
+        Tolerance::Pixels(CAMERA_PIXELS),
         Some(camera),
     ));
     for (method, tolerance, camera) in runs {
-        let Some(tolerance) = tolerance else { continue };
         let started = Instant::now();
         let report = scene.detail(camera.as_ref(), tolerance)?;
         let shapes: Vec<SharedShape> = report
@@ -138,14 +146,22 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
             .map(|d| d.spheres.error)
             .sum::<f64>()
             / BODIES as f64;
-        rows.push(simulate(
-            &method,
+        let levels: Vec<usize> = report.instances.iter().map(|d| d.spheres.level).collect();
+        let key = format!("levels {levels:?}");
+        let row = Run {
+            method: &method,
+            parts: report.spheres as f64 / BODIES as f64,
+            certified: Some(certified),
+            build_seconds,
+        };
+        rows.push(simulate_once(
+            &mut simulated,
+            &rows,
+            key,
+            row,
             &objects,
             &starts,
             shapes,
-            report.spheres as f64 / BODIES as f64,
-            Some(certified),
-            build_seconds,
         )?);
     }
     // The smallest cut through each tree meeting the tolerance: coarser nodes where they
@@ -166,16 +182,22 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
         let mean = |f: &dyn Fn(usize) -> f64| {
             starts.iter().map(|&(o, _)| f(o)).sum::<f64>() / BODIES as f64
         };
-        let parts = mean(&|o| cuts[o].nodes.len() as f64);
-        let certified = mean(&|o| cuts[o].worst_error / models[o].diagonal());
-        rows.push(simulate(
-            &format!("sphaera cut {}%", t * 100.0),
+        let nodes: Vec<&[usize]> = cuts.iter().map(|c| c.nodes.as_slice()).collect();
+        let key = format!("cut {nodes:?}");
+        let row = Run {
+            method: &format!("sphaera cut {}%", t * 100.0),
+            parts: mean(&|o| cuts[o].nodes.len() as f64),
+            certified: Some(mean(&|o| cuts[o].worst_error / models[o].diagonal())),
+            build_seconds,
+        };
+        rows.push(simulate_once(
+            &mut simulated,
+            &rows,
+            key,
+            row,
             &objects,
             &starts,
             shapes,
-            parts,
-            Some(certified),
-            build_seconds,
         )?);
     }
     // rapier's own colliders: the true meshes, and their convex decomposition.
@@ -229,26 +251,61 @@ fn per_object_run(
 ) -> Result<Row> {
     let mean_parts = starts.iter().map(|&(o, _)| parts(o) as f64).sum::<f64>() / BODIES as f64;
     let shapes = starts.iter().map(|&(o, _)| per_object[o].clone()).collect();
-    simulate(
+    let run = Run {
         method,
-        objects,
-        starts,
-        shapes,
-        mean_parts,
-        None,
+        parts: mean_parts,
+        certified: None,
         build_seconds,
-    )
+    };
+    simulate(run, objects, starts, shapes)
 }
 
-fn simulate(
-    method: &str,
-    objects: &[Object],
-    starts: &[(usize, Pose)],
-    shapes: Vec<SharedShape>,
+/// What a run is, before its simulation.
+#[derive(Clone, Copy)]
+struct Run<'a> {
+    method: &'a str,
     parts: f64,
     certified: Option<f64>,
     build_seconds: f64,
+}
+
+/// Simulates `run`, unless a run with the same colliders (`key`) was simulated before, in
+/// which case that run's figures are taken under this run's name.
+fn simulate_once(
+    simulated: &mut Vec<(String, usize)>,
+    rows: &[Row],
+    key: String,
+    run: Run<'_>,
+    objects: &[Object],
+    starts: &[(usize, Pose)],
+    shapes: Vec<SharedShape>,
 ) -> Result<Row> {
+    if let Some(&(_, earlier)) = simulated.iter().find(|(k, _)| *k == key) {
+        let mut row = rows[earlier].clone();
+        eprintln!(
+            "{}: the same colliders as {}, not simulated again",
+            run.method, row.method
+        );
+        run.method.clone_into(&mut row.method);
+        row.build_seconds = run.build_seconds;
+        return Ok(row);
+    }
+    simulated.push((key, rows.len()));
+    simulate(run, objects, starts, shapes)
+}
+
+fn simulate(
+    run: Run<'_>,
+    objects: &[Object],
+    starts: &[(usize, Pose)],
+    shapes: Vec<SharedShape>,
+) -> Result<Row> {
+    let Run {
+        method,
+        parts,
+        certified,
+        build_seconds,
+    } = run;
     let run = physics::simulate(objects, starts, shapes)?;
     let errors = physics::measure(objects, starts, &run)?;
     eprintln!(
@@ -335,13 +392,30 @@ fn write_outputs(out: &Path, rows: &[Row]) -> Result<()> {
             .iter()
             .enumerate()
             .map(|(k, (name, keep, marker))| {
-                let chosen: Vec<&Row> = rows.iter().filter(|r| keep(r)).collect();
+                // One point per distinct figure: runs that took an earlier run's figures
+                // share its point, labelled with every run's name.
+                let mut points: Vec<((f64, f64), String)> = Vec::new();
+                for r in rows.iter().filter(|r| keep(r)) {
+                    // A zero error is drawn at 10⁻³ % so it shows on the log axis.
+                    let point = ((100.0 * x(r)).max(1e-3), r.step_ms);
+                    let label = if r.method.starts_with("rapier") {
+                        String::new()
+                    } else {
+                        r.method
+                            .trim_start_matches("sphaera ")
+                            .trim_start_matches("cut ")
+                            .to_owned()
+                    };
+                    match points.iter_mut().find(|(p, _)| *p == point) {
+                        Some((_, shared)) => {
+                            shared.push_str(", ");
+                            shared.push_str(&label);
+                        }
+                        None => points.push((point, label)),
+                    }
+                }
                 let mut series = Series::new(name);
-                // A zero error is drawn at 10⁻³ % so it shows on the log axis.
-                series.points = chosen
-                    .iter()
-                    .map(|r| ((100.0 * x(r)).max(1e-3), r.step_ms))
-                    .collect();
+                series.points = points.iter().map(|&(p, _)| p).collect();
                 StyledSeries::new(
                     series,
                     Style {
@@ -351,24 +425,7 @@ fn write_outputs(out: &Path, rows: &[Row]) -> Result<()> {
                         line: false,
                     },
                 )
-                .with_labels(
-                    chosen
-                        .iter()
-                        .map(|r| {
-                            r.method
-                                .trim_start_matches("sphaera ")
-                                .trim_start_matches("cut ")
-                                .to_owned()
-                        })
-                        .map(|l| {
-                            if l.starts_with("rapier") {
-                                String::new()
-                            } else {
-                                l
-                            }
-                        })
-                        .collect(),
-                )
+                .with_labels(points.into_iter().map(|(_, l)| l).collect())
             })
             .collect()
     };
