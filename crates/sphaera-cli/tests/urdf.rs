@@ -109,6 +109,19 @@ fn bad_arguments_and_files_give_clear_errors() {
         (vec!["--per-link", "a=zero"], "positive whole number"),
         (vec!["-o", "out.txt"], "extension"),
         (vec!["--tolerance", "-1"], "non-negative"),
+        (vec!["-o", fine], "it is the input URDF"),
+        (
+            vec!["--budget", "18446744073709551615"],
+            "at most 10,000 per link",
+        ),
+        (
+            vec!["--spheres-per-link", "1000000000"],
+            "at most 10,000 per link",
+        ),
+        (
+            vec!["--visual"],
+            "no link of robot \"r\" has visual geometry",
+        ),
     ] {
         let mut all = vec!["urdf", fine];
         all.extend(args.iter().copied());
@@ -119,8 +132,15 @@ fn bad_arguments_and_files_give_clear_errors() {
             "{args:?}: {message}"
         );
     }
-    // A sphere link is its own single sphere.
+    // The input is left as it was when -o names it.
+    assert!(
+        std::fs::read_to_string(fine)
+            .expect("read")
+            .starts_with("<robot name=\"r\">")
+    );
+    // A sphere link is its own single sphere, its coverage full.
     let report = json(&sphaera(&["urdf", fine, "--json"]));
     assert_eq!(report["spheres"], 1);
     assert_eq!(report["worst_protrusion"], 0.0);
+    assert_eq!(report["links"][0]["coverage"], 1.0, "{report}");
 }

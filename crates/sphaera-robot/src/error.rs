@@ -104,6 +104,17 @@ pub enum RobotError {
         /// What is wrong.
         message: String,
     },
+    /// No link of the robot has geometry of the kind asked for: the output would be empty.
+    #[error(
+        "no link of robot \"{robot}\" has {} geometry, so there is nothing to spherize",
+        kind.name()
+    )]
+    NoGeometry {
+        /// The robot's name.
+        robot: String,
+        /// The kind of geometry asked for.
+        kind: crate::GeometrySource,
+    },
     /// An output could not be written.
     #[error("cannot write {}: {message}", path.display())]
     Write {

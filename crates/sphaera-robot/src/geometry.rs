@@ -216,6 +216,15 @@ impl LinkGeometry {
                             path: path.clone(),
                             source: Box::new(source),
                         })?;
+                    // A file of no triangles (an STL of only its header) must not drop
+                    // the link silently: a planner would never see it.
+                    if mesh.triangle_count() == 0 {
+                        return Err(RobotError::Mesh {
+                            link: link.name.clone(),
+                            path,
+                            source: Box::new(sphaera_mesh::MeshError::EmptyMesh),
+                        });
+                    }
                     append(&mut positions, &mut triangles, &mesh, pose, *scale).map_err(
                         |source| RobotError::Mesh {
                             link: link.name.clone(),

@@ -105,8 +105,8 @@ pub use geometry::{GeometrySource, LinkGeometry, MeshResolver};
 pub use primitive::{Primitive, Shape};
 pub use sphaera_mesh::{Length, Sphere};
 pub use spherize::{
-    LinkReport, LinkSpheres, RobotSpheres, SphereBudget, SpherizeOptions, SpherizeProgress,
-    spherize, spherize_geometry, spherize_with_progress,
+    LinkReport, LinkSpheres, MAX_SPHERES_PER_LINK, RobotSpheres, SphereBudget, SpherizeOptions,
+    SpherizeProgress, spherize, spherize_geometry, spherize_with_progress,
 };
 pub use urdf::{Element, Geometry, Joint, JointKind, Link, Mimic, Origin, Urdf};
 

@@ -264,6 +264,21 @@ pub fn spherize_geometry(
     validate(options)?;
     let (with, without): (Vec<LinkGeometry>, Vec<LinkGeometry>) =
         geometry.into_iter().partition(|g| !g.is_empty());
+    if with.is_empty() {
+        return Err(RobotError::NoGeometry {
+            robot: robot.to_owned(),
+            kind: options.source,
+        });
+    }
+    if let SphereBudget::Total(n) = options.budget
+        && n / with.len() > MAX_SPHERES_PER_LINK
+    {
+        return Err(RobotError::InvalidParameter {
+            name: "total sphere count",
+            value: n as f64,
+            requirement: "at most 10,000 per link with geometry",
+        });
+    }
     for name in options.per_link.keys() {
         if !with.iter().any(|g| &g.link == name) {
             return Err(RobotError::UnknownLink {
@@ -299,12 +314,33 @@ pub fn spherize_geometry(
     })
 }
 
+/// The most spheres [`spherize`] gives one link: planners use tens; ten thousand is far
+/// past any use, and far less than would exhaust memory or time.
+pub const MAX_SPHERES_PER_LINK: usize = 10_000;
+
 fn validate(options: &SpherizeOptions) -> Result<(), RobotError> {
     let zero = |value: usize| RobotError::InvalidParameter {
         name: "sphere count",
         value: value as f64,
         requirement: "at least 1",
     };
+    let too_many = [
+        match options.budget {
+            SphereBudget::PerLink(n) => n,
+            _ => 0,
+        },
+        options.max_spheres_per_link,
+    ]
+    .into_iter()
+    .chain(options.per_link.values().copied())
+    .find(|&n| n > MAX_SPHERES_PER_LINK);
+    if let Some(n) = too_many {
+        return Err(RobotError::InvalidParameter {
+            name: "sphere count",
+            value: n as f64,
+            requirement: "at most 10,000 per link",
+        });
+    }
     match options.budget {
         SphereBudget::Total(0) | SphereBudget::PerLink(0) => return Err(zero(0)),
         SphereBudget::Tolerance(length)
@@ -466,9 +502,15 @@ fn spherize_link(
                 worst = worst.max(protrusion);
                 let points = p.surface_points(500);
                 samples += points.len();
+                // The points lie on the surface the spheres are fitted to (a sphere link's
+                // sphere is the link itself): a relative slack of 10⁻⁹ keeps rounding from
+                // counting them out.
                 covered += points
                     .iter()
-                    .filter(|&&q| set.iter().any(|s| s.center.distance(q) <= s.radius))
+                    .filter(|&&q| {
+                        set.iter()
+                            .any(|s| s.center.distance(q) <= s.radius * (1.0 + 1e-9))
+                    })
                     .count();
                 spheres.extend(set);
             }
@@ -476,7 +518,9 @@ fn spherize_link(
     }
     let bounding_sphere =
         minimum_enclosing_ball_of_balls(&spheres).map_err(|e| fail(e.to_string()))?;
-    let p95 = percentile_protrusion(&spheres, surface.as_ref(), &link.primitives, 0.95);
+    // A quantile never exceeds the maximum; rounding in the sampled distances could make
+    // it (1e-17 above an exact 0 on a sphere link).
+    let p95 = percentile_protrusion(&spheres, surface.as_ref(), &link.primitives, 0.95).min(worst);
     let report = LinkReport {
         link: link.link.clone(),
         files: link.files.iter().map(|p| p.display().to_string()).collect(),

@@ -234,7 +234,9 @@ impl Urdf {
     /// [`RobotError::Xml`] for malformed XML (with the line and column);
     /// [`RobotError::Invalid`] for a root element other than `<robot>`, a missing or
     /// unparsable attribute, a zero, negative or non-finite size, radius or scale, two
-    /// links or joints of one name, or a joint naming a link the robot does not have.
+    /// links or joints of one name, a joint naming a link the robot does not have, no
+    /// link, or links and joints that are not one tree (more than one root, a link with
+    /// two parents, a cycle).
     pub fn parse(text: &str, path: impl AsRef<Path>) -> Result<Self, RobotError> {
         let path = path.as_ref().to_path_buf();
         let document = roxmltree::Document::parse(text).map_err(|e| RobotError::Xml {
@@ -274,6 +276,7 @@ impl Urdf {
             text: text.to_owned(),
         };
         urdf.check_names()?;
+        urdf.check_tree()?;
         Ok(urdf)
     }
 
@@ -317,6 +320,53 @@ impl Urdf {
     #[must_use]
     pub fn folder(&self) -> &Path {
         self.path.parent().unwrap_or_else(|| Path::new(""))
+    }
+
+    /// Refuses a robot whose links and joints are not one tree: no link, more than one
+    /// root, a link with two parents, or links cut off from the root by a cycle.
+    fn check_tree(&self) -> Result<(), RobotError> {
+        if self.links.is_empty() {
+            return Err(RobotError::Invalid {
+                path: self.path.clone(),
+                line: 1,
+                place: "robot".to_owned(),
+                message: "the robot has no <link>".to_owned(),
+            });
+        }
+        let root = self.root()?;
+        let mut reached = std::collections::BTreeSet::from([root]);
+        let mut frontier = vec![root];
+        while let Some(parent) = frontier.pop() {
+            for joint in self.joints.iter().filter(|j| j.parent == parent) {
+                if !reached.insert(joint.child.as_str()) {
+                    return Err(RobotError::Invalid {
+                        path: self.path.clone(),
+                        line: joint.line,
+                        place: format!("joint \"{}\"", joint.name),
+                        message: format!(
+                            "link \"{}\" is reached twice: it has two parents, or the joints form a cycle",
+                            joint.child
+                        ),
+                    });
+                }
+                frontier.push(joint.child.as_str());
+            }
+        }
+        if let Some(link) = self
+            .links
+            .iter()
+            .find(|l| !reached.contains(l.name.as_str()))
+        {
+            return Err(RobotError::Invalid {
+                path: self.path.clone(),
+                line: link.line,
+                place: format!("link \"{}\"", link.name),
+                message: format!(
+                    "it is not connected to the root link \"{root}\": the joints above it form a cycle"
+                ),
+            });
+        }
+        Ok(())
     }
 
     fn check_names(&self) -> Result<(), RobotError> {
@@ -538,10 +588,19 @@ impl Reader<'_, '_> {
                 radius: self.positive(shape, "radius", &place)?,
                 length: self.positive(shape, "length", &place)?,
             },
-            "capsule" => Geometry::Capsule {
-                radius: self.positive(shape, "radius", &place)?,
-                length: self.number(shape, "length", &place)?.max(0.0),
-            },
+            "capsule" => {
+                let radius = self.positive(shape, "radius", &place)?;
+                // A length of 0 is a sphere; a negative one is a mistake.
+                let length = self.number(shape, "length", &place)?;
+                if length < 0.0 {
+                    return Err(self.invalid(
+                        shape,
+                        &place,
+                        format!("`length=\"{length}\"` must not be negative"),
+                    ));
+                }
+                Geometry::Capsule { radius, length }
+            }
             "sphere" => Geometry::Sphere {
                 radius: self.positive(shape, "radius", &place)?,
             },

@@ -81,6 +81,12 @@ proptest! {
             text.push_str(&format!(
                 "<link name=\"l{i}\"><collision><geometry><sphere radius=\"{s}\"/></geometry></collision></link>"
             ));
+            // One tree: every link hangs from the first.
+            if i > 0 {
+                text.push_str(&format!(
+                    "<joint name=\"j{i}\" type=\"fixed\"><parent link=\"l0\"/><child link=\"l{i}\"/></joint>"
+                ));
+            }
         }
         text.push_str("</robot>");
         let geometry: Vec<LinkGeometry> = Urdf::parse(&text, "r.urdf")

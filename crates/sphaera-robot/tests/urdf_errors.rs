@@ -289,3 +289,152 @@ fn a_mirroring_scale_keeps_the_inside() {
         Geometry::Mesh { .. }
     ));
 }
+
+/// A mesh file of no triangles (an STL of only its 84-byte header) is an error naming
+/// the link and the file: dropping the link would hide it from the planner.
+#[test]
+fn an_empty_mesh_file_names_the_link_and_the_file() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let mut header = vec![0u8; 84];
+    header[..5].copy_from_slice(b"empty");
+    std::fs::write(dir.path().join("empty.stl"), header).expect("write the STL");
+    let error = run(dir.path(), &robot(&mesh_collision("empty.stl", None))).expect_err("empty");
+    let message = error.to_string();
+    assert!(
+        matches!(error, RobotError::Mesh { .. })
+            && message.contains("link \"base\"")
+            && message.contains("empty.stl")
+            && message.contains("no triangles"),
+        "{message}"
+    );
+}
+
+/// Links and joints must form one tree: an empty robot, two roots, a link with two
+/// parents and a cycle cut off from the root are each refused, naming the place.
+#[test]
+fn links_and_joints_that_are_not_one_tree_are_refused() {
+    let joint = |name: &str, parent: &str, child: &str| {
+        format!(
+            r#"<joint name="{name}" type="fixed"><parent link="{parent}"/><child link="{child}"/></joint>"#
+        )
+    };
+    let links = |names: &[&str]| {
+        names
+            .iter()
+            .map(|n| format!(r#"<link name="{n}"/>"#))
+            .collect::<String>()
+    };
+    for (body, needle) in [
+        (String::new(), "the robot has no <link>".to_owned()),
+        (
+            links(&["a", "b"]),
+            "exactly one root link (one that is no joint's child); found a, b".to_owned(),
+        ),
+        (
+            format!(
+                "{}{}{}{}",
+                links(&["a", "b", "c"]),
+                joint("j1", "a", "b"),
+                joint("j2", "a", "c"),
+                joint("j3", "b", "c")
+            ),
+            "link \"c\" is reached twice".to_owned(),
+        ),
+        (
+            format!(
+                "{}{}{}",
+                links(&["a", "b", "c"]),
+                joint("j1", "b", "c"),
+                joint("j2", "c", "b")
+            ),
+            "link \"b\": it is not connected to the root link \"a\"".to_owned(),
+        ),
+    ] {
+        let text = format!(r#"<robot name="r">{body}</robot>"#);
+        let error = Urdf::parse(&text, "r.urdf").expect_err(&text);
+        let message = error.to_string();
+        assert!(
+            message.starts_with("r.urdf:") && message.contains(&needle),
+            "{text}: {message}"
+        );
+    }
+}
+
+/// A negative capsule length is refused (0 is a sphere, and accepted).
+#[test]
+fn a_negative_capsule_length_is_refused() {
+    let capsule = |length: &str| {
+        robot(&format!(
+            r#"<collision><geometry><capsule radius="0.1" length="{length}"/></geometry></collision>"#
+        ))
+    };
+    let message = Urdf::parse(&capsule("-0.2"), "r.urdf")
+        .expect_err("negative")
+        .to_string();
+    assert!(
+        message.contains("link \"base\" collision[0] capsule")
+            && message.contains("must not be negative"),
+        "{message}"
+    );
+    Urdf::parse(&capsule("0"), "r.urdf").expect("a capsule of length 0 is a sphere");
+}
+
+/// No geometry of the kind asked for is an error (the output would be empty), and so are
+/// sphere counts past [`sphaera_robot::MAX_SPHERES_PER_LINK`], which would exhaust time
+/// and memory.
+#[test]
+fn no_geometry_and_huge_counts_are_refused() {
+    let text = robot(r#"<collision><geometry><box size="0.4 0.4 0.4"/></geometry></collision>"#);
+    let urdf = Urdf::parse(&text, "r.urdf").expect("parse");
+    let resolver = MeshResolver::new(urdf.folder());
+    let visual = options().with_source(GeometrySource::Visual);
+    let error = spherize(&urdf, &resolver, &visual).expect_err("no visual geometry");
+    assert_eq!(
+        error.to_string(),
+        "no link of robot \"test\" has visual geometry, so there is nothing to spherize"
+    );
+    for budget in [
+        SphereBudget::PerLink(1_000_000_000),
+        SphereBudget::Total(usize::MAX),
+    ] {
+        let error = spherize(&urdf, &resolver, &options().with_budget(budget)).expect_err("huge");
+        assert!(
+            matches!(error, RobotError::InvalidParameter { .. })
+                && error.to_string().contains("at most 10,000 per link"),
+            "{error}"
+        );
+    }
+    let error = spherize(&urdf, &resolver, &options().with_link("base", 20_000)).expect_err("huge");
+    assert!(error.to_string().contains("at most 10,000"), "{error}");
+}
+
+/// Primitives whose spheres lie exactly on their surface (a sphere link is its own
+/// sphere) report the coverage they have, 1, not a figure lowered by rounding, and a
+/// 95th percentile no larger than the worst protrusion.
+#[test]
+fn primitives_on_their_own_surface_report_full_coverage() {
+    for geometry in [
+        r#"<sphere radius="0.1"/>"#,
+        r#"<sphere radius="0.000001"/>"#,
+        r#"<capsule radius="0.05" length="0"/>"#,
+        r#"<cylinder radius="0.2" length="0.002"/>"#,
+    ] {
+        let text = robot(&format!(
+            "<collision><geometry>{geometry}</geometry></collision>"
+        ));
+        let urdf = Urdf::parse(&text, "r.urdf").expect("parse");
+        let robot = spherize(&urdf, &MeshResolver::new(urdf.folder()), &options()).expect(geometry);
+        let report = &robot.links[0].report;
+        assert!(
+            report.coverage == 1.0 && report.coverage_certified,
+            "{geometry}: coverage {}",
+            report.coverage
+        );
+        assert!(
+            report.p95_protrusion <= report.worst_protrusion,
+            "{geometry}: {} > {}",
+            report.p95_protrusion,
+            report.worst_protrusion
+        );
+    }
+}

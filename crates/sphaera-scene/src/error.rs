@@ -64,6 +64,16 @@ pub enum SceneError {
         /// What it must be.
         requirement: &'static str,
     },
+    /// An option is out of its domain, e.g. a silhouette-aware interior multiple below 1.
+    #[error("invalid option: `{name}` ({value}) must be {requirement}")]
+    InvalidOption {
+        /// The option, e.g. `"interior"`.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+        /// What it must be.
+        requirement: &'static str,
+    },
     /// An instance names a model the scene does not hold, or an index is out of range.
     #[error("instance {index} is out of range (the scene has {count})")]
     NoSuchInstance {

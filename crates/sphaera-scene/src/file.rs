@@ -1,28 +1,5 @@
-//! Scene files: JSON naming meshes, the instances with their poses, and a camera.
-//!
-//! ```json
-//! {
-//!   "meshes": { "bunny": "meshes/bunny.obj", "link": "/abs/path/link6.stl" },
-//!   "instances": [
-//!     { "name": "front", "mesh": "bunny", "position": [0, 0, 0] },
-//!     { "mesh": "bunny", "position": [0.3, 0, -2], "rotation_degrees": [0, 90, 0], "scale": 2 },
-//!     { "mesh": "link", "quaternion": [0, 0, 0.7071068, 0.7071068] }
-//!   ],
-//!   "camera": { "eye": [0, 0.1, 1], "target": [0, 0.1, 0], "fov_y_degrees": 60,
-//!               "width": 1280, "height": 720 }
-//! }
-//! ```
-//!
-//! - `meshes` maps a name to a mesh file (any format `sphaera_mesh::io` reads), relative
-//!   to the scene file's folder unless absolute.
-//! - Each instance names its mesh and may give a `name` (default `MESH-INDEX`), a
-//!   `position` (default the origin), a rotation as `rotation_degrees` (rotations about
-//!   x, then y, then z, in degrees) or as a unit `quaternion` `[x, y, z, w]` (not both),
-//!   and a uniform `scale` (default 1).
-//! - `camera` is optional: needed for tolerances in pixels. `near` is optional.
-//!
-//! Unknown keys are errors (a misspelt `"rotation_degree"` must not be silently ignored),
-//! and every error names the file and the entry.
+//! Scene files: JSON naming meshes, the instances with their poses, and a camera. The
+//! format is documented in the crate docs, section "Scene files".
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -38,7 +15,8 @@ use crate::{Camera, ModelOptions, ObjectModel, Scene, SceneError};
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
-    /// Mesh names and their files.
+    /// Mesh names and their files (a name given twice is an error).
+    #[serde(deserialize_with = "unique_names")]
     pub meshes: BTreeMap<String, PathBuf>,
     /// The instances.
     pub instances: Vec<InstanceEntry>,
@@ -346,4 +324,35 @@ fn pose(entry: &InstanceEntry) -> Result<Similarity, String> {
         DVec3::from_array(entry.position),
     );
     Similarity::new(affine).map_err(|e| e.to_string())
+}
+
+/// A JSON object of mesh names and files, refusing a name given twice: JSON allows it,
+/// but the later file would silently replace the earlier.
+fn unique_names<'de, D>(deserializer: D) -> Result<BTreeMap<String, PathBuf>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+{
+    struct Names;
+    impl<'de> serde::de::Visitor<'de> for Names {
+        type Value = BTreeMap<String, PathBuf>;
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("an object of mesh names and their files")
+        }
+        fn visit_map<A>(self, mut map: A) -> Result<Self::Value, A::Error>
+        where
+            A: serde::de::MapAccess<'de>,
+        {
+            let mut names = BTreeMap::new();
+            while let Some((name, file)) = map.next_entry::<String, PathBuf>()? {
+                if names.contains_key(&name) {
+                    return Err(serde::de::Error::custom(format_args!(
+                        "mesh name `{name}` is given twice"
+                    )));
+                }
+                names.insert(name, file);
+            }
+            Ok(names)
+        }
+    }
+    deserializer.deserialize_map(Names)
 }

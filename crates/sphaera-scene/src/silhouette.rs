@@ -146,14 +146,18 @@ impl Scene {
         options: &SilhouetteDetailOptions,
     ) -> Result<SilhouetteReport, SceneError> {
         let tolerance = tolerance.validated()?;
-        if !(options.interior.is_finite() && options.interior >= 1.0)
-            || options.threshold_cells.is_nan()
-        {
-            return Err(SceneError::InvalidTolerance {
-                text: format!(
-                    "interior {} (at least 1), threshold {} cells",
-                    options.interior, options.threshold_cells
-                ),
+        if !(options.interior.is_finite() && options.interior >= 1.0) {
+            return Err(SceneError::InvalidOption {
+                name: "interior",
+                value: options.interior,
+                requirement: "a finite multiple of the tolerance of at least 1",
+            });
+        }
+        if options.threshold_cells.is_nan() {
+            return Err(SceneError::InvalidOption {
+                name: "threshold_cells",
+                value: f64::from(options.threshold_cells),
+                requirement: "a number of label cells",
             });
         }
         for instance in self.instances() {

@@ -162,6 +162,17 @@ fn unknown_keys_are_errors_with_their_line() {
 }
 
 #[test]
+fn a_mesh_name_given_twice_is_an_error_with_its_line() {
+    let text = "{ \"meshes\": {\n \"ball\": \"meshes/ball.obj\",\n \"ball\": \"meshes/torus.obj\" },\n \"instances\": [] }";
+    let (error, message) = error_of(text);
+    assert!(matches!(error, SceneError::ParseFile { .. }), "{error:?}");
+    assert!(
+        message.contains("mesh name `ball` is given twice") && message.contains("line 3"),
+        "{message}"
+    );
+}
+
+#[test]
 fn nan_and_infinite_numbers_are_refused() {
     // JSON has no NaN: the reader refuses the literal, and numbers beyond f64.
     for text in [

@@ -209,11 +209,15 @@ fn bad_options_are_refused_with_the_reason() {
         let error = scene
             .silhouette_detail(&camera, Tolerance::Pixels(1.0), &bad)
             .expect_err("refused");
-        assert!(
-            matches!(error, SceneError::InvalidTolerance { .. }),
-            "{error}"
-        );
+        assert!(matches!(error, SceneError::InvalidOption { .. }), "{error}");
     }
+    assert_eq!(
+        scene
+            .silhouette_detail(&camera, Tolerance::Pixels(1.0), &options(0.5))
+            .expect_err("refused")
+            .to_string(),
+        "invalid option: `interior` (0.5) must be a finite multiple of the tolerance of at least 1"
+    );
     let error = scene
         .silhouette_detail(&camera, Tolerance::Pixels(f64::NAN), &options(2.0))
         .expect_err("NaN");

@@ -154,12 +154,14 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
 
     let (budget, budget_text) = match (args.budget, args.time_budget_ms) {
         (Some(cost), _) => (Budget::cost(cost), format!("cost {cost}")),
-        (None, Some(ms)) => {
-            let time = Duration::try_from_secs_f64(ms / 1e3).map_err(|_| {
-                anyhow::anyhow!("--time-budget-ms {ms}: must be a non-negative number")
-            })?;
-            (Budget::Time(time), format!("time {ms} ms"))
+        (None, Some(ms)) if ms.is_nan() || ms < 0.0 => {
+            anyhow::bail!("--time-budget-ms {ms}: must be a non-negative number of milliseconds")
         }
+        (None, Some(ms)) => match Duration::try_from_secs_f64(ms / 1e3) {
+            Ok(time) => (Budget::Time(time), format!("time {ms} ms")),
+            // Longer than any run could take (infinity included): no limit.
+            Err(_) => (Budget::Unlimited, format!("time {ms} ms (no limit)")),
+        },
         (None, None) => (Budget::Unlimited, "unlimited".to_owned()),
     };
     let started = Instant::now();
@@ -341,9 +343,11 @@ impl crate::output::Report for Report {
             saved(d.spheres, d.full_spheres)
         ));
         lines.push(format!(
-            "                {} in the smallest tree cuts meeting the tolerance ({:.1} % saved)",
+            "                {} in the smallest tree cuts for the tolerance ({:.1} % saved; {} of {} instances' cuts meet it)",
             thousands(d.cut_spheres),
-            saved(d.cut_spheres, d.full_spheres)
+            saved(d.cut_spheres, d.full_spheres),
+            d.instances.iter().filter(|i| i.cut.meets).count(),
+            d.instances.len()
         ));
         lines.push(format!(
             "triangles       {} of {} at full detail ({:.1} % saved)",

@@ -53,6 +53,13 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
     };
     if let Some(path) = &args.output {
         check_target(path)?;
+        let same = |a: &std::path::Path, b: &std::path::Path| matches!((a.canonicalize(), b.canonicalize()), (Ok(a), Ok(b)) if a == b);
+        if same(path, &args.urdf) {
+            bail!(
+                "cannot write {}: it is the input URDF, which the output would replace (give another -o)",
+                path.display()
+            );
+        }
     }
     let started = Instant::now();
     let urdf = Urdf::read(&args.urdf)?;

@@ -170,6 +170,13 @@ pub use write::{
 
 use crate::{MeshError, TriMesh};
 
+/// The most vertices a glTF scene may place: 2²⁶ (67 million, about 3 GB with their
+/// triangles), 77 times the 871k-vertex dragon scan. Instancing (many nodes drawing one
+/// mesh) multiplies a file's vertices, so without a limit a file of a few kilobytes
+/// could ask for more memory than the machine has; beyond it the reader refuses the
+/// file with [`ParseReason::TooManyPlacedVertices`] before reading any data.
+pub const MAX_PLACED_VERTICES: u64 = 1 << 26;
+
 /// A mesh file format.
 ///
 /// # Examples

@@ -394,6 +394,18 @@ pub enum ParseReason {
         /// Index of the node.
         node: usize,
     },
+    /// A glTF scene places more vertices than [`crate::io::MAX_PLACED_VERTICES`]:
+    /// instancing (many nodes drawing one mesh) multiplies a file's vertices, so a small
+    /// file could otherwise ask for more memory than the machine has.
+    #[error(
+        "the scene places {count} vertices (its nodes draw their meshes that often); at most {limit} are read"
+    )]
+    TooManyPlacedVertices {
+        /// The vertices the scene's nodes would place.
+        count: u64,
+        /// The most that are read.
+        limit: u64,
+    },
     /// A glTF buffer has no data: no `uri`, and no binary chunk to stand for it.
     #[error("the buffer has no `uri` and the file has no binary chunk for it")]
     BufferWithoutData,

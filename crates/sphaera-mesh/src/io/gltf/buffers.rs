@@ -5,6 +5,7 @@
 //! stored in buffers) are missing still loads its meshes.
 
 use std::borrow::Cow;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use ::gltf::json;
@@ -74,7 +75,7 @@ impl<'a> Buffers<'a> {
         }
         let at = |reason| error(Location::Gltf(GltfObject::Buffer(index)), reason);
         let data: Cow<'a, [u8]> = match (&buffer.uri, self.bin) {
-            (Some(uri), _) => self.resolve(uri).map_err(at)?,
+            (Some(uri), _) => self.resolve(uri, buffer.byte_length.0).map_err(at)?,
             (None, Some(bin)) if index == 0 => Cow::Borrowed(bin),
             (None, _) => return Err(at(ParseReason::BufferWithoutData)),
         };
@@ -91,8 +92,10 @@ impl<'a> Buffers<'a> {
         Ok(())
     }
 
-    /// The bytes a buffer URI names: a `data:` URI decoded, or a file read.
-    fn resolve(&self, uri: &str) -> Result<Cow<'a, [u8]>, ParseReason> {
+    /// The bytes a buffer URI names: a `data:` URI decoded, or the first `byte_length`
+    /// bytes of a file read (a regular file: a device such as `/dev/zero` or a folder is
+    /// refused, and a file longer than its buffer is not read past it).
+    fn resolve(&self, uri: &str, byte_length: u64) -> Result<Cow<'a, [u8]>, ParseReason> {
         let invalid = |problem| ParseReason::InvalidUri {
             uri: token_text(uri.as_bytes()),
             problem,
@@ -122,13 +125,23 @@ impl<'a> Buffers<'a> {
         let relative =
             String::from_utf8(decoded).map_err(|_| invalid("the path is not UTF-8 text"))?;
         let path: PathBuf = base.join(relative);
-        std::fs::read(&path)
-            .map(Cow::Owned)
+        let file = std::fs::File::open(&path).map_err(|source| ParseReason::BufferFile {
+            uri: token_text(uri.as_bytes()),
+            path: path.clone(),
+            kind: source.kind(),
+        })?;
+        if !file.metadata().is_ok_and(|m| m.is_file()) {
+            return Err(invalid("the path names a folder or a device, not a file"));
+        }
+        let mut data = Vec::new();
+        file.take(byte_length)
+            .read_to_end(&mut data)
             .map_err(|source| ParseReason::BufferFile {
                 uri: token_text(uri.as_bytes()),
                 path,
                 kind: source.kind(),
-            })
+            })?;
+        Ok(Cow::Owned(data))
     }
 }
 

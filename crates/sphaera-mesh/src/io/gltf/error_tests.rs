@@ -41,6 +41,60 @@ fn a_missing_buffer_file_names_the_file_and_the_buffer() {
     ));
 }
 
+/// A file of a few hundred bytes whose nodes draw one mesh of 2²⁴ zeros five times would
+/// place 84 million vertices (2 GB): it is refused before any data are read, with an
+/// error naming the count and the limit.
+#[test]
+fn instancing_cannot_place_more_vertices_than_the_limit() {
+    let mut writer = GltfWriter::default();
+    let zeros = writer.accessor(json!({ "componentType": F32, "count": 1 << 24, "type": "VEC3" }));
+    writer.mesh(json!([{ "attributes": { "POSITION": zeros } }]));
+    for _ in 0..5 {
+        writer.node(json!({ "mesh": 0 }));
+    }
+    let bytes = writer.glb();
+    assert!(bytes.len() < 1_000, "{} bytes", bytes.len());
+    let (location, reason) = parse_error(&bytes);
+    assert_eq!(location, Location::Gltf(super::super::GltfObject::Node(4)));
+    assert!(
+        matches!(
+            reason,
+            ParseReason::TooManyPlacedVertices { count, limit }
+                if count == 5 << 24 && limit == super::super::MAX_PLACED_VERTICES
+        ),
+        "{reason:?}"
+    );
+    assert_eq!(
+        glb_message(&writer),
+        "malformed glTF data at node 4: the scene places 83886080 vertices (its nodes draw their meshes that often); at most 67108864 are read"
+    );
+}
+
+/// A buffer URI naming a folder (or a device such as `/dev/zero`, which never ends) is
+/// refused; a buffer file longer than its `byteLength` is read up to it.
+#[test]
+fn buffer_files_are_regular_files_read_up_to_their_length() {
+    let writer = triangle_in_node(json!({}));
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("folder.bin")).unwrap();
+    let gltf = dir.path().join("scene.gltf");
+    std::fs::write(&gltf, writer.gltf_with_file("folder.bin")).unwrap();
+    let message = read(&gltf).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        format!(
+            "malformed glTF data in {} at buffer 0: invalid buffer uri `folder.bin`: the path names a folder or a device, not a file",
+            gltf.display()
+        )
+    );
+    let mut longer = writer.bin.clone();
+    longer.extend_from_slice(&[0xff; 64]);
+    std::fs::write(dir.path().join("longer.bin"), &longer).unwrap();
+    std::fs::write(&gltf, writer.gltf_with_file("longer.bin")).unwrap();
+    let mesh = read(&gltf).unwrap();
+    assert_eq!(mesh, read_from_bytes(&writer.glb(), Format::Gltf).unwrap());
+}
+
 #[test]
 fn errors_name_the_object_and_the_problem() {
     let message = |writer: &GltfWriter| glb_message(writer);
@@ -91,8 +145,9 @@ fn errors_name_the_object_and_the_problem() {
         message(&writer),
         "malformed glTF data at node 8: vertex 0 has a non-finite x coordinate (NaN)"
     );
-    // Instancing that would pass u32 indices is refused before any data are read (2²⁴
-    // zero vertices drawn 300 times), and so is an accessor of too many zeros.
+    // Instancing past the limit on placed vertices is refused before any data are read
+    // (2²⁴ zero vertices drawn 300 times: the fifth node passes it), and so is an
+    // accessor of too many zeros.
     let mut writer = GltfWriter::default();
     let zeros = writer.accessor(json!({
         "componentType": F32, "count": 1 << 24, "type": "VEC3", "min": [0, 0, 0], "max": [0, 0, 0],
@@ -103,7 +158,7 @@ fn errors_name_the_object_and_the_problem() {
     }
     assert_eq!(
         message(&writer),
-        "malformed glTF data at node 255: 4294967296 vertices are more than a u32 index can address"
+        "malformed glTF data at node 4: the scene places 83886080 vertices (its nodes draw their meshes that often); at most 67108864 are read"
     );
     writer.nodes.truncate(1);
     writer.accessors[0]["count"] = json!((1 << 24) + 3);

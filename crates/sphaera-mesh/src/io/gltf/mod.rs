@@ -248,7 +248,8 @@ impl Reader<'_, '_> {
     }
 
     /// Refuses, before any data are read, instances whose vertices (by their accessors'
-    /// counts) would not fit `u32` indices: instancing multiplies a file's vertices.
+    /// counts) are more than [`super::MAX_PLACED_VERTICES`]: instancing multiplies a
+    /// file's vertices.
     fn check_vertex_count(&self, instances: &[Instance]) -> Result<(), MeshError> {
         let root = self.root;
         let mut total = 0u64;
@@ -270,10 +271,13 @@ impl Reader<'_, '_> {
                     total = total.saturating_add(count);
                 }
             }
-            if total > u64::from(u32::MAX) {
+            if total > super::MAX_PLACED_VERTICES {
                 return Err(error(
                     instance.at,
-                    ParseReason::TooManyVertices { count: total },
+                    ParseReason::TooManyPlacedVertices {
+                        count: total,
+                        limit: super::MAX_PLACED_VERTICES,
+                    },
                 ));
             }
         }
