@@ -16,9 +16,10 @@
 //!
 //! Run with `cargo bench -p sphaera-eval --bench robot_spheres` (about five minutes:
 //! every iteration takes seconds, and criterion takes at least ten samples). On the
-//! shared 2-core machine (2026-11-27), medians: Panda 4.59 s on one thread, 3.33 s on
-//! two; KUKA 6.34 s and 3.90 s; the voxel k-means baseline on the Panda 4.82 s on one
-//! thread, most of it the winding-number inside test of every voxel centre.
+//! 2-core reference machine, otherwise idle (2026-11-28), medians: Panda 2.87 s on one
+//! thread, 1.64 s on two; KUKA 4.39 s and 2.53 s; the voxel k-means baseline on the Panda
+//! 4.15 s on one thread, most of it the winding-number inside test of every voxel centre.
+//! Figures and history: `docs/benchmarks.md`, "Time for a whole robot".
 
 // A bench reports what it measured on the terminal.
 #![allow(clippy::print_stderr)]

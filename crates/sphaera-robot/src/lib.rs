@@ -75,9 +75,9 @@
 //! # Performance
 //!
 //! Measured on the 2-core reference machine (`cargo bench -p sphaera-eval --bench
-//! robot_spheres`, 2026-11-27): the whole Franka Panda (eleven collision meshes) at 40
-//! spheres per link in 3.1–3.7 s on one thread and 1.8 s on two; the KUKA iiwa (eight
-//! binary STLs of up to 3,038 triangles) in 4.9 s and 2.8 s. At 40 spheres per link the
+//! robot_spheres`, 2026-11-28): the whole Franka Panda (eleven collision meshes) at 40
+//! spheres per link in 2.9 s on one thread and 1.6 s on two; the KUKA iiwa (eight
+//! binary STLs of up to 3,038 triangles) in 4.4 s and 2.5 s. At 40 spheres per link the
 //! certified worst protrusion is 0.38–0.67 of a voxel k-means baseline's on the Panda's
 //! links (3.6–6.3 % of each link's diagonal), and 0.43–0.91 on the KUKA's
 //! (`robot_protrusion_vs_spheres` in the repository's `docs/benchmarks.md`).

@@ -320,3 +320,68 @@ fn models_carry_their_hal_tree_where_the_mesh_allows_one() {
         }
     }
 }
+
+/// The same scene gets the same detail on one thread and on two (and, through `cargo
+/// xtask test`, without the `parallel` feature: the digest is recorded), models and all.
+#[test]
+fn the_same_detail_on_any_number_of_threads() {
+    let placements: Vec<_> = (0..12)
+        .map(|k| {
+            let t = DVec3::new(0.6 * (k % 4) as f64, 0.4 * (k / 4) as f64, -1.5 * k as f64);
+            (
+                k,
+                common::pose(t, DVec3::new(2.0, 1.0, k as f64), 0.5 * k as f64, 1.0),
+            )
+        })
+        .collect();
+    let scene = common::scene(&placements);
+    let camera = Camera::perspective(
+        DVec3::new(1.0, 1.0, 4.0),
+        DVec3::new(1.0, 0.5, -8.0),
+        55.0,
+        1280,
+        720,
+    )
+    .expect("a camera");
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool")
+            .install(|| {
+                scene
+                    .detail(Some(&camera), Tolerance::Pixels(1.5))
+                    .expect("detail")
+            })
+    };
+    let one = run(1);
+    assert_eq!(one, run(2));
+    let mut digest: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut mix = |x: u64| {
+        digest ^= x;
+        digest = digest.wrapping_mul(0x0100_0000_01b3);
+    };
+    for d in &one.instances {
+        for choice in [&d.spheres, &d.mesh] {
+            mix(choice.level as u64);
+            mix(choice.count as u64);
+            mix(choice.error.to_bits());
+            mix(choice.measured.to_bits());
+        }
+        mix(d.cut.count as u64);
+        mix(d.cut.error.to_bits());
+        mix(d.cut.measured.to_bits());
+    }
+    assert!(
+        one.triangles < one.full_triangles,
+        "{} of {} triangles, all meet: {}",
+        one.triangles,
+        one.full_triangles,
+        one.all_meet
+    );
+    assert_eq!(
+        digest, 0xa855_7c4e_1cb2_1d8d,
+        "digest {digest:#018x}, {} spheres, {} triangles",
+        one.spheres, one.triangles
+    );
+}
