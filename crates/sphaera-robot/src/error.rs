@@ -126,6 +126,9 @@ pub enum RobotError {
 }
 
 fn list(paths: &[PathBuf]) -> String {
+    if paths.is_empty() {
+        return "nothing: the URI names no file".to_owned();
+    }
     paths
         .iter()
         .map(|p| p.display().to_string())

@@ -87,6 +87,10 @@ impl MeshResolver {
     #[must_use]
     pub fn candidates(&self, uri: &str) -> Vec<PathBuf> {
         if let Some(rest) = uri.strip_prefix("package://") {
+            if rest.is_empty() {
+                // `package://` alone names no file: nothing to try.
+                return Vec::new();
+            }
             let (package, inner) = rest.split_once('/').unwrap_or((rest, ""));
             let mut paths: Vec<PathBuf> = self
                 .packages

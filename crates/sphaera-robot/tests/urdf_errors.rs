@@ -92,8 +92,14 @@ fn a_package_path_that_resolves_nowhere_lists_what_was_tried() {
     let path = dir.path().join("robot.urdf");
     let urdf = Urdf::read(&path).expect("read");
     let resolver = MeshResolver::new(urdf.folder()).with_package("my_robot", &package);
-    let robot = spherize(&urdf, &resolver, &options()).expect("resolved");
-    assert_eq!(robot.links.len(), 1);
+    let spheres = spherize(&urdf, &resolver, &options()).expect("resolved");
+    assert_eq!(spheres.links.len(), 1);
+    // `package://` alone names no file, and the error says so.
+    let error = run(dir.path(), &robot(&mesh_collision("package://", None))).expect_err("empty");
+    assert_eq!(
+        error.to_string(),
+        "link \"base\": mesh `package://` not found (tried nothing: the URI names no file)"
+    );
 }
 
 #[test]
