@@ -218,7 +218,8 @@ pub enum UrdfFormat {
     Srdf,
     /// cuRobo's `collision_spheres` YAML.
     Curobo,
-    /// JSON: per link the bounding sphere, the spheres and the report.
+    /// JSON: per link a tree (the bounding sphere, groups of nearby spheres, the
+    /// spheres; each encloses its children) and the report.
     Json,
 }
 

@@ -149,8 +149,8 @@ struct JsonRobot<'a> {
 #[derive(Serialize)]
 struct JsonLink<'a> {
     link: &'a str,
-    /// The levels, coarsest first: the bounding sphere, then the spheres.
-    levels: [Vec<JsonSphere>; 2],
+    /// The levels of the link's tree, coarsest first (see [`json`]).
+    levels: Vec<Vec<JsonSphere>>,
     report: &'a LinkReport,
 }
 
@@ -158,19 +158,125 @@ struct JsonLink<'a> {
 struct JsonSphere {
     center: [f64; 3],
     radius: f64,
+    /// Its children in the next level, `[first, end)`; absent at the last level.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    children: Option<[usize; 2]>,
 }
 
-impl From<&Sphere> for JsonSphere {
-    fn from(s: &Sphere) -> Self {
+impl JsonSphere {
+    fn new(s: &Sphere, children: Option<[usize; 2]>) -> Self {
         Self {
             center: s.center.to_array(),
             radius: s.radius,
+            children,
         }
     }
 }
 
-/// JSON: the robot, then per link its levels (the bounding sphere, then the spheres,
-/// each `{"center": [x, y, z], "radius": r}`) and its report.
+/// The levels of one link's tree, coarsest first: its bounding sphere; with more than
+/// eight spheres, about `√n` groups of nearby spheres, each the smallest ball enclosing
+/// its group; then the spheres, ordered group by group. Each sphere names its children's
+/// range in the next level and encloses them, so a planner that finds a sphere clear of
+/// an obstacle may skip its children.
+fn link_levels(link: &crate::LinkSpheres) -> Vec<Vec<JsonSphere>> {
+    let spheres = &link.spheres;
+    let root = |children: usize| vec![JsonSphere::new(&link.bounding_sphere, Some([0, children]))];
+    let leaves = |order: &[usize]| -> Vec<JsonSphere> {
+        order
+            .iter()
+            .map(|&i| JsonSphere::new(&spheres[i], None))
+            .collect()
+    };
+    let groups = group_spheres(spheres);
+    let enclosing: Option<Vec<Sphere>> = groups
+        .iter()
+        .map(|g| {
+            let members: Vec<Sphere> = g.iter().map(|&i| spheres[i]).collect();
+            sphaera_mesh::geometry::minimum_enclosing_ball_of_balls(&members).ok()
+        })
+        .collect();
+    match enclosing {
+        Some(enclosing) if groups.len() > 1 => {
+            let mut middle = Vec::with_capacity(groups.len());
+            let mut order = Vec::with_capacity(spheres.len());
+            for (group, ball) in groups.iter().zip(&enclosing) {
+                middle.push(JsonSphere::new(
+                    ball,
+                    Some([order.len(), order.len() + group.len()]),
+                ));
+                order.extend_from_slice(group);
+            }
+            vec![root(middle.len()), middle, leaves(&order)]
+        }
+        _ => {
+            let order: Vec<usize> = (0..spheres.len()).collect();
+            vec![root(order.len()), leaves(&order)]
+        }
+    }
+}
+
+/// About `√n` groups of nearby spheres (indices, ascending within a group), by k-means on
+/// their centres from a farthest-point start; one group for eight spheres or fewer.
+/// Deterministic: ties go to the lower index.
+fn group_spheres(spheres: &[Sphere]) -> Vec<Vec<usize>> {
+    let n = spheres.len();
+    if n <= 8 {
+        return vec![(0..n).collect()];
+    }
+    let k = (n as f64).sqrt().round() as usize;
+    let nearest = |p: glam::DVec3, centres: &[glam::DVec3]| -> usize {
+        let mut best = 0;
+        for (j, c) in centres.iter().enumerate() {
+            if p.distance_squared(*c) < p.distance_squared(centres[best]) {
+                best = j;
+            }
+        }
+        best
+    };
+    let mut centres = vec![spheres[0].center];
+    while centres.len() < k {
+        let mut far = (0, -1.0);
+        for (i, s) in spheres.iter().enumerate() {
+            let d = s
+                .center
+                .distance_squared(centres[nearest(s.center, &centres)]);
+            if d > far.1 {
+                far = (i, d);
+            }
+        }
+        centres.push(spheres[far.0].center);
+    }
+    let mut assignment = vec![0; n];
+    for _ in 0..20 {
+        for (a, s) in assignment.iter_mut().zip(spheres) {
+            *a = nearest(s.center, &centres);
+        }
+        let mut sums = vec![(glam::DVec3::ZERO, 0usize); k];
+        for (&a, s) in assignment.iter().zip(spheres) {
+            sums[a].0 += s.center;
+            sums[a].1 += 1;
+        }
+        for (c, (sum, count)) in centres.iter_mut().zip(sums) {
+            if count > 0 {
+                *c = sum / count as f64;
+            }
+        }
+    }
+    let mut groups = vec![Vec::new(); k];
+    for (i, &a) in assignment.iter().enumerate() {
+        groups[a].push(i);
+    }
+    groups.retain(|g| !g.is_empty());
+    groups
+}
+
+/// JSON: the robot, then per link its `levels` and its `report`. The levels are the
+/// link's tree, coarsest first, each a list of `{"center": [x, y, z], "radius": r,
+/// "children": [first, end]}`: the bounding sphere; with more than eight spheres, about
+/// `√n` groups of nearby spheres, each the smallest ball enclosing its group; then the
+/// spheres themselves (without `children`), ordered group by group. Every sphere encloses
+/// its children, so a planner that finds one clear of an obstacle may skip them; the last
+/// level covers the link (certified).
 #[must_use]
 pub fn json(robot: &RobotSpheres) -> String {
     let document = JsonRobot {
@@ -182,10 +288,7 @@ pub fn json(robot: &RobotSpheres) -> String {
             .iter()
             .map(|l| JsonLink {
                 link: &l.link,
-                levels: [
-                    vec![JsonSphere::from(&l.bounding_sphere)],
-                    l.spheres.iter().map(JsonSphere::from).collect(),
-                ],
+                levels: link_levels(l),
                 report: &l.report,
             })
             .collect(),

@@ -20,8 +20,9 @@
 //! the robot's forward kinematics ([`Urdf::link_poses`]) cover the posed robot at any
 //! joint configuration. The results go out in the planners' formats
 //! ([`PlannerFormat`]): the spherized URDF, MoveIt's SRDF sidecar, cuRobo's
-//! `collision_spheres` YAML, or JSON with a bounding sphere per link above its spheres
-//! and a report per link (spheres, worst protrusion, 95th-percentile protrusion,
+//! `collision_spheres` YAML, or JSON with a tree per link (its bounding sphere, groups
+//! of nearby spheres, then the spheres, each enclosing its children, for planners that
+//! stop early) and a report per link (spheres, worst protrusion, 95th-percentile protrusion,
 //! coverage, time).
 //!
 //! # Quick start

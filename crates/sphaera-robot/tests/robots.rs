@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DQuat, DVec3, EulerRot};
 use sphaera_robot::{
-    Geometry, GeometrySource, MeshResolver, PlannerFormat, RobotSpheres, SphereBudget,
+    Geometry, GeometrySource, MeshResolver, PlannerFormat, RobotSpheres, Sphere, SphereBudget,
     SpherizeOptions, Urdf, spherize,
 };
 use sphaera_tests::SplitMix64;
@@ -61,7 +61,7 @@ fn link_points(urdf: &Urdf, link: &str) -> Vec<DVec3> {
     points
 }
 
-fn covered(spheres: &[sphaera_robot::Sphere], p: DVec3) -> bool {
+fn covered(spheres: &[Sphere], p: DVec3) -> bool {
     spheres
         .iter()
         .any(|s| s.center.distance(p) <= s.radius * (1.0 + 1e-9) + 1e-12)
@@ -92,10 +92,10 @@ fn posed_spheres_cover_the_posed_robot_at_any_configuration() {
             let poses = urdf.link_poses(q).expect("forward kinematics");
             for link in &robot.links {
                 let pose = poses[&link.link];
-                let posed: Vec<sphaera_robot::Sphere> = link
+                let posed: Vec<Sphere> = link
                     .spheres
                     .iter()
-                    .map(|s| sphaera_robot::Sphere::new(pose.transform_point3(s.center), s.radius))
+                    .map(|s| Sphere::new(pose.transform_point3(s.center), s.radius))
                     .collect();
                 let points = link_points(&urdf, &link.link);
                 assert!(!points.is_empty(), "{name} {}", link.link);
@@ -232,13 +232,60 @@ fn every_format_reads_back_with_the_same_spheres() {
     assert_eq!(links.len(), robot.links.len());
     for (entry, link) in links.iter().zip(&robot.links) {
         assert_eq!(entry["link"], link.link.as_str());
-        let levels = entry["levels"].as_array().expect("levels");
-        assert_eq!(levels[0].as_array().map(Vec::len), Some(1));
-        assert_eq!(levels[1].as_array().map(Vec::len), Some(link.spheres.len()));
-        // The bounding sphere holds every sphere.
-        let b = &link.bounding_sphere;
-        for s in &link.spheres {
-            assert!(b.center.distance(s.center) + s.radius <= b.radius * (1.0 + 1e-9));
+        let levels: Vec<Vec<(Sphere, Option<[usize; 2]>)>> = entry["levels"]
+            .as_array()
+            .expect("levels")
+            .iter()
+            .map(|level| {
+                level
+                    .as_array()
+                    .expect("a level")
+                    .iter()
+                    .map(|s| {
+                        let c = &s["center"];
+                        let at = |k: usize| c[k].as_f64().expect("a coordinate");
+                        let sphere = Sphere::new(
+                            DVec3::new(at(0), at(1), at(2)),
+                            s["radius"].as_f64().expect("radius"),
+                        );
+                        let children = s
+                            .get("children")
+                            .map(|r| [0, 1].map(|k| r[k].as_u64().expect("an index") as usize));
+                        (sphere, children)
+                    })
+                    .collect()
+            })
+            .collect();
+        // The bounding sphere, groups when there are more than eight spheres, then the
+        // spheres themselves, in some order.
+        assert_eq!(levels[0].len(), 1);
+        assert_eq!(levels.len(), if link.spheres.len() > 8 { 3 } else { 2 });
+        let last = levels.last().expect("the spheres");
+        assert!(last.iter().all(|(_, c)| c.is_none()));
+        let key = |s: &Sphere| (s.center.to_array().map(f64::to_bits), s.radius.to_bits());
+        let mut written: Vec<_> = last.iter().map(|(s, _)| key(s)).collect();
+        let mut spheres: Vec<_> = link.spheres.iter().map(key).collect();
+        written.sort_unstable();
+        spheres.sort_unstable();
+        assert_eq!(written, spheres);
+        // Each level's children ranges tile the next level, and every sphere encloses its
+        // children (brute force).
+        for pair in levels.windows(2) {
+            let mut next = 0;
+            for (parent, children) in &pair[0] {
+                let [first, end] = children.expect("children");
+                assert!(first == next && end > first && end <= pair[1].len());
+                next = end;
+                for (child, _) in &pair[1][first..end] {
+                    assert!(
+                        parent.center.distance(child.center) + child.radius
+                            <= parent.radius * (1.0 + 1e-9),
+                        "{}: a child sticks out of its parent",
+                        link.link
+                    );
+                }
+            }
+            assert_eq!(next, pair[1].len());
         }
         assert_eq!(entry["report"]["spheres"], link.spheres.len());
     }
