@@ -275,7 +275,7 @@ pub struct SceneArgs {
     pub budget: Option<f64>,
 
     /// A collision budget in milliseconds of wall time (instead of `--budget`).
-    #[arg(long, conflicts_with = "budget")]
+    #[arg(long, conflicts_with = "budget", allow_hyphen_values = true)]
     pub time_budget_ms: Option<f64>,
 
     /// With a camera, also choose silhouette-aware meshes: each instance's outline

@@ -164,11 +164,23 @@ fn bad_scene_files_and_arguments_give_clear_errors() {
         ("--tolerance", "-1px", "invalid tolerance"),
         ("--camera", "1,2,3", "six"),
         ("--image", "0x10", "positive"),
-        ("--silhouette", "0.5", "interior 0.5"),
+        ("--silhouette", "0.5", "invalid option: `interior` (0.5)"),
+        (
+            "--time-budget-ms",
+            "-1",
+            "must be a non-negative number of milliseconds",
+        ),
     ] {
         let output = sphaera(&["scene", flag, value]);
         assert!(!output.status.success());
         let message = String::from_utf8_lossy(&output.stderr);
         assert!(message.contains(needle), "{flag} {value}: {message}");
     }
+    // A time budget longer than any run is no limit, not an error.
+    let output = sphaera(&["scene", "--time-budget-ms", "1e300"]);
+    let message = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success() && message.contains("(no limit)"),
+        "{message}"
+    );
 }

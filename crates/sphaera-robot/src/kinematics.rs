@@ -83,15 +83,7 @@ impl Urdf {
                 };
                 let pose = parent_pose * joint.origin.affine() * motion;
                 if poses.insert(joint.child.clone(), pose).is_some() {
-                    return Err(RobotError::Invalid {
-                        path: self.path.clone(),
-                        line: joint.line,
-                        place: format!("joint \"{}\"", joint.name),
-                        message: format!(
-                            "link \"{}\" is reached twice: the joints form a cycle or a link has two parents",
-                            joint.child
-                        ),
-                    });
+                    return Err(self.reached_twice(joint));
                 }
                 frontier.push(joint.child.clone());
             }

@@ -339,15 +339,7 @@ impl Urdf {
         while let Some(parent) = frontier.pop() {
             for joint in self.joints.iter().filter(|j| j.parent == parent) {
                 if !reached.insert(joint.child.as_str()) {
-                    return Err(RobotError::Invalid {
-                        path: self.path.clone(),
-                        line: joint.line,
-                        place: format!("joint \"{}\"", joint.name),
-                        message: format!(
-                            "link \"{}\" is reached twice: it has two parents, or the joints form a cycle",
-                            joint.child
-                        ),
-                    });
+                    return Err(self.reached_twice(joint));
                 }
                 frontier.push(joint.child.as_str());
             }
@@ -367,6 +359,20 @@ impl Urdf {
             });
         }
         Ok(())
+    }
+
+    /// The error for a link reached a second time, through `joint`, walking down from
+    /// the root.
+    pub(crate) fn reached_twice(&self, joint: &Joint) -> RobotError {
+        RobotError::Invalid {
+            path: self.path.clone(),
+            line: joint.line,
+            place: format!("joint \"{}\"", joint.name),
+            message: format!(
+                "link \"{}\" is reached twice: it has two parents, or the joints form a cycle",
+                joint.child
+            ),
+        }
     }
 
     fn check_names(&self) -> Result<(), RobotError> {
