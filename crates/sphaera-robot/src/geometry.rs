@@ -83,9 +83,24 @@ impl MeshResolver {
         self
     }
 
-    /// The paths `uri` may name, in the order they are tried.
+    /// The paths `uri` may name, in the order they are tried. A `package://` or
+    /// `file://` URI with percent-escapes (`%20`) is tried as written, then decoded, as
+    /// ROS's resource retriever reads it.
     #[must_use]
     pub fn candidates(&self, uri: &str) -> Vec<PathBuf> {
+        let mut paths = self.candidates_as_written(uri);
+        let is_uri = uri.starts_with("package://") || uri.starts_with("file://");
+        if let Some(decoded) = percent_decoded(uri).filter(|d| is_uri && d != uri) {
+            for path in self.candidates_as_written(&decoded) {
+                if !paths.contains(&path) {
+                    paths.push(path);
+                }
+            }
+        }
+        paths
+    }
+
+    fn candidates_as_written(&self, uri: &str) -> Vec<PathBuf> {
         if let Some(rest) = uri.strip_prefix("package://") {
             if rest.is_empty() {
                 // `package://` alone names no file: nothing to try.
@@ -134,6 +149,25 @@ impl MeshResolver {
                 tried: candidates,
             })
     }
+}
+
+/// `text` with its percent-escapes decoded; `None` for a malformed escape or bytes that
+/// are not UTF-8.
+fn percent_decoded(text: &str) -> Option<String> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while let Some(&b) = bytes.get(i) {
+        if b == b'%' {
+            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
 }
 
 /// One link's geometry, in the link's frame.

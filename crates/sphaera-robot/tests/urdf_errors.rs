@@ -444,3 +444,33 @@ fn primitives_on_their_own_surface_report_full_coverage() {
         );
     }
 }
+
+/// A `package://` or `file://` URI with percent-escapes names the decoded path (ROS's
+/// resource retriever decodes them); a file whose name holds a literal `%20` is still
+/// found as written, and a plain relative path is never decoded.
+#[test]
+fn percent_escapes_in_mesh_uris_are_decoded() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let folder = dir.path().join("my meshes");
+    std::fs::create_dir_all(&folder).expect("mkdir");
+    std::fs::write(folder.join("bøx é.obj"), box_obj(1.0)).expect("write");
+    let encoded = "package://pkg/my%20meshes/b%C3%B8x%20%C3%A9.obj";
+    let spheres = run(dir.path(), &robot(&mesh_collision(encoded, None))).expect("decoded");
+    assert_eq!(spheres.links.len(), 1);
+    let resolver = MeshResolver::new(dir.path());
+    let tried = resolver.candidates(encoded);
+    assert!(tried.contains(&folder.join("bøx é.obj")), "{tried:?}");
+    assert!(
+        tried[0].to_string_lossy().contains("%20"),
+        "as written first: {tried:?}"
+    );
+    // A literal `%20` in a file name, as written.
+    std::fs::write(dir.path().join("a%20b.obj"), box_obj(1.0)).expect("write");
+    run(dir.path(), &robot(&mesh_collision("a%20b.obj", None))).expect("literal");
+    assert_eq!(
+        resolver.candidates("a%20b.obj"),
+        [dir.path().join("a%20b.obj")]
+    );
+    // A malformed escape is tried as written only.
+    assert_eq!(resolver.candidates("file:///x%zz.obj").len(), 1);
+}
