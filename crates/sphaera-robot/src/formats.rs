@@ -173,14 +173,27 @@ impl JsonSphere {
     }
 }
 
-/// The levels of one link's tree, coarsest first: its bounding sphere; with more than
+/// The levels of one link's tree, coarsest first: its bounding sphere (grown to enclose
+/// the next level where needed); with more than
 /// eight spheres, about `√n` groups of nearby spheres, each the smallest ball enclosing
 /// its group; then the spheres, ordered group by group. Each sphere names its children's
 /// range in the next level and encloses them, so a planner that finds a sphere clear of
 /// an obstacle may skip its children.
 fn link_levels(link: &crate::LinkSpheres) -> Vec<Vec<JsonSphere>> {
     let spheres = &link.spheres;
-    let root = |children: usize| vec![JsonSphere::new(&link.bounding_sphere, Some([0, children]))];
+    // The bounding sphere, grown where needed to enclose the next level (a group's
+    // smallest ball may reach past the smallest ball of all the spheres).
+    let root = |next: &[JsonSphere]| {
+        let b = &link.bounding_sphere;
+        let radius = next
+            .iter()
+            .map(|s| b.center.distance(glam::DVec3::from_array(s.center)) + s.radius)
+            .fold(b.radius, f64::max);
+        vec![JsonSphere::new(
+            &Sphere::new(b.center, radius),
+            Some([0, next.len()]),
+        )]
+    };
     let leaves = |order: &[usize]| -> Vec<JsonSphere> {
         order
             .iter()
@@ -192,7 +205,13 @@ fn link_levels(link: &crate::LinkSpheres) -> Vec<Vec<JsonSphere>> {
         .iter()
         .map(|g| {
             let members: Vec<Sphere> = g.iter().map(|&i| spheres[i]).collect();
-            sphaera_mesh::geometry::minimum_enclosing_ball_of_balls(&members).ok()
+            let ball = sphaera_mesh::geometry::minimum_enclosing_ball_of_balls(&members).ok()?;
+            // Enclosing as a planner computes it, whatever the solver's rounding.
+            let radius = members
+                .iter()
+                .map(|m| ball.center.distance(m.center) + m.radius)
+                .fold(ball.radius, f64::max);
+            Some(Sphere::new(ball.center, radius))
         })
         .collect();
     match enclosing {
@@ -206,11 +225,12 @@ fn link_levels(link: &crate::LinkSpheres) -> Vec<Vec<JsonSphere>> {
                 ));
                 order.extend_from_slice(group);
             }
-            vec![root(middle.len()), middle, leaves(&order)]
+            vec![root(&middle), middle, leaves(&order)]
         }
         _ => {
             let order: Vec<usize> = (0..spheres.len()).collect();
-            vec![root(order.len()), leaves(&order)]
+            let last = leaves(&order);
+            vec![root(&last), last]
         }
     }
 }
@@ -272,11 +292,12 @@ fn group_spheres(spheres: &[Sphere]) -> Vec<Vec<usize>> {
 
 /// JSON: the robot, then per link its `levels` and its `report`. The levels are the
 /// link's tree, coarsest first, each a list of `{"center": [x, y, z], "radius": r,
-/// "children": [first, end]}`: the bounding sphere; with more than eight spheres, about
-/// `√n` groups of nearby spheres, each the smallest ball enclosing its group; then the
-/// spheres themselves (without `children`), ordered group by group. Every sphere encloses
-/// its children, so a planner that finds one clear of an obstacle may skip them; the last
-/// level covers the link (certified).
+/// "children": [first, end]}`: the bounding sphere (grown where needed to enclose the
+/// groups); with more than eight spheres, about `√n` groups of nearby spheres, each the
+/// smallest ball enclosing its group; then the spheres themselves (without `children`),
+/// ordered group by group. Every sphere encloses its children, checked as a planner
+/// computes it (`|c − c'| + r' ≤ r`), so a planner that finds one clear of an obstacle
+/// may skip them; the last level covers the link (certified).
 #[must_use]
 pub fn json(robot: &RobotSpheres) -> String {
     let document = JsonRobot {

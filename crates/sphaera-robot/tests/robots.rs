@@ -277,9 +277,9 @@ fn every_format_reads_back_with_the_same_spheres() {
                 assert!(first == next && end > first && end <= pair[1].len());
                 next = end;
                 for (child, _) in &pair[1][first..end] {
+                    // Exactly: every radius is computed so.
                     assert!(
-                        parent.center.distance(child.center) + child.radius
-                            <= parent.radius * (1.0 + 1e-9),
+                        parent.center.distance(child.center) + child.radius <= parent.radius,
                         "{}: a child sticks out of its parent",
                         link.link
                     );
