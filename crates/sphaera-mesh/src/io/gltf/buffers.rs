@@ -125,22 +125,20 @@ impl<'a> Buffers<'a> {
         let relative =
             String::from_utf8(decoded).map_err(|_| invalid("the path is not UTF-8 text"))?;
         let path: PathBuf = base.join(relative);
-        let file = std::fs::File::open(&path).map_err(|source| ParseReason::BufferFile {
+        let failed = |source: std::io::Error| ParseReason::BufferFile {
             uri: token_text(uri.as_bytes()),
             path: path.clone(),
             kind: source.kind(),
-        })?;
-        if !file.metadata().is_ok_and(|m| m.is_file()) {
+        };
+        // Looked at before opening: opening a named pipe would wait for a writer.
+        if !std::fs::metadata(&path).map_err(failed)?.is_file() {
             return Err(invalid("the path names a folder or a device, not a file"));
         }
+        let file = std::fs::File::open(&path).map_err(failed)?;
         let mut data = Vec::new();
         file.take(byte_length)
             .read_to_end(&mut data)
-            .map_err(|source| ParseReason::BufferFile {
-                uri: token_text(uri.as_bytes()),
-                path,
-                kind: source.kind(),
-            })?;
+            .map_err(failed)?;
         Ok(Cow::Owned(data))
     }
 }

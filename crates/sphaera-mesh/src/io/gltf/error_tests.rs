@@ -70,7 +70,7 @@ fn instancing_cannot_place_more_vertices_than_the_limit() {
     );
 }
 
-/// A buffer URI naming a folder (or a device such as `/dev/zero`, which never ends) is
+/// A buffer URI naming a folder, a named pipe or a device such as `/dev/zero` (which never ends) is
 /// refused; a buffer file longer than its `byteLength` is read up to it.
 #[test]
 fn buffer_files_are_regular_files_read_up_to_their_length() {
@@ -87,6 +87,20 @@ fn buffer_files_are_regular_files_read_up_to_their_length() {
             gltf.display()
         )
     );
+    // A named pipe is refused before it is opened (opening it would wait for a writer).
+    #[cfg(unix)]
+    {
+        let pipe = dir.path().join("pipe.bin");
+        let made = std::process::Command::new("mkfifo").arg(&pipe).status();
+        if made.is_ok_and(|s| s.success()) {
+            std::fs::write(&gltf, writer.gltf_with_file("pipe.bin")).unwrap();
+            let message = read(&gltf).unwrap_err().to_string();
+            assert!(
+                message.contains("a folder or a device, not a file"),
+                "{message}"
+            );
+        }
+    }
     let mut longer = writer.bin.clone();
     longer.extend_from_slice(&[0xff; 64]);
     std::fs::write(dir.path().join("longer.bin"), &longer).unwrap();
