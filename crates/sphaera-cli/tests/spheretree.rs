@@ -103,6 +103,15 @@ fn spheretree_bad_input_is_a_clear_error() {
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("error_fraction"));
 
+    // A typo of a depth is refused at once, not run for hours.
+    let output = sphaera(&["spheretree", "--depth", "1000"]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("depth") && message.contains("at most 24"),
+        "{message}"
+    );
+
     let output = sphaera(&["spheretree", "-o", "tree.txt"]);
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("unknown output format"));

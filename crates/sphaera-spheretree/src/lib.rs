@@ -217,7 +217,8 @@ pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
 pub use options::{
-    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTreeOptions, SphereTreeProgress,
+    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_MEDIAL_DEPTH, Method, SphereTreeOptions,
+    SphereTreeProgress,
 };
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sphaera_mesh::{Sphere, Surface};

@@ -11,6 +11,12 @@ use crate::reduce::Reducer;
 /// one-sample leaves.
 pub const MAX_BASELINE_DEPTH: usize = 20;
 
+/// The deepest tree a medial method builds. Every node keeps at least one surface sample,
+/// so even two children per node and ten million samples are used up by depth 24; past a
+/// few levels more than the samples support, the leaves stop getting tighter and each
+/// level only costs time (`--depth 1000` would run for hours).
+pub const MAX_MEDIAL_DEPTH: usize = 24;
+
 /// The most surface samples a baseline method accepts (each costs about 100 bytes per
 /// level).
 pub const MAX_BASELINE_SAMPLES: usize = 10_000_000;
@@ -164,8 +170,8 @@ pub struct SphereTreeOptions {
     /// Children per node at most (default 8). For [`Method::Grid`], the growth of the
     /// occupied cell count per level; [`Method::Octree`] always splits a cell in 8.
     pub branch: usize,
-    /// Levels below the root (default 3; at most [`MAX_BASELINE_DEPTH`] for the
-    /// baselines).
+    /// Levels below the root (default 3; at most [`MAX_MEDIAL_DEPTH`] for the medial
+    /// methods and [`MAX_BASELINE_DEPTH`] for the baselines).
     pub depth: usize,
     /// Surface samples standing for the surface (default 10,000; the paper used
     /// 5,000–10,000; at most [`MAX_BASELINE_SAMPLES`] for the baselines).
@@ -315,6 +321,13 @@ impl SphereTreeOptions {
             })
         };
         if self.method.is_medial() {
+            if self.depth > MAX_MEDIAL_DEPTH {
+                return bad(
+                    "depth",
+                    self.depth as f64,
+                    "at most 24 for the medial methods",
+                );
+            }
             if self.branch == 0 {
                 return bad("branch", 0.0, "at least 1");
             }
@@ -392,6 +405,11 @@ mod tests {
                 name: "error_fraction",
                 ..
             })
+        ));
+        // The medial methods bound their depth too.
+        assert!(matches!(
+            medial.clone().with_depth(MAX_MEDIAL_DEPTH + 1).validate(),
+            Err(SphereTreeError::InvalidParameter { name: "depth", .. })
         ));
         // A baseline ignores the medial options, and bounds its depth.
         assert!(
