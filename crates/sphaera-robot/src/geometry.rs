@@ -90,7 +90,8 @@ impl MeshResolver {
     pub fn candidates(&self, uri: &str) -> Vec<PathBuf> {
         let mut paths = self.candidates_as_written(uri);
         let is_uri = uri.starts_with("package://") || uri.starts_with("file://");
-        if let Some(decoded) = percent_decoded(uri).filter(|d| is_uri && d != uri) {
+        let decoded = sphaera_mesh::io::percent_decode(uri).and_then(|d| String::from_utf8(d).ok());
+        if let Some(decoded) = decoded.filter(|d| is_uri && d != uri) {
             for path in self.candidates_as_written(&decoded) {
                 if !paths.contains(&path) {
                     paths.push(path);
@@ -149,25 +150,6 @@ impl MeshResolver {
                 tried: candidates,
             })
     }
-}
-
-/// `text` with its percent-escapes decoded; `None` for a malformed escape or bytes that
-/// are not UTF-8.
-fn percent_decoded(text: &str) -> Option<String> {
-    let bytes = text.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while let Some(&b) = bytes.get(i) {
-        if b == b'%' {
-            let hex = std::str::from_utf8(bytes.get(i + 1..i + 3)?).ok()?;
-            out.push(u8::from_str_radix(hex, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(b);
-            i += 1;
-        }
-    }
-    String::from_utf8(out).ok()
 }
 
 /// One link's geometry, in the link's frame.

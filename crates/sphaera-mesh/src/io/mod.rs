@@ -152,6 +152,7 @@ mod ply;
 mod polygon;
 mod stl;
 mod text;
+mod uri;
 mod write;
 
 #[cfg(test)]
@@ -164,6 +165,7 @@ use std::path::Path;
 
 pub(crate) use parse_error::describe_path;
 pub use parse_error::{GltfObject, Location, ParseReason};
+pub use uri::percent_decode;
 pub use write::{
     PlyEncoding, save, write_atomic, write_obj, write_obj_to, write_ply, write_ply_to,
 };

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use ::gltf::json;
 
 use super::super::parse_error::token_text;
-use super::super::{GltfObject, Location, ParseReason};
+use super::super::{GltfObject, Location, ParseReason, percent_decode};
 use super::error;
 use crate::MeshError;
 
@@ -156,25 +156,6 @@ fn has_scheme(uri: &str) -> bool {
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'))
 }
 
-/// Decodes `%XX` escapes; `None` if an escape is incomplete or not hexadecimal.
-pub(super) fn percent_decode(text: &str) -> Option<Vec<u8>> {
-    let bytes = text.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while let Some(&b) = bytes.get(i) {
-        if b == b'%' {
-            let hex = bytes.get(i + 1..i + 3)?;
-            let text = std::str::from_utf8(hex).ok()?;
-            out.push(u8::from_str_radix(text, 16).ok()?);
-            i += 3;
-        } else {
-            out.push(b);
-            i += 1;
-        }
-    }
-    Some(out)
-}
-
 /// Decodes base64 (the standard alphabet, or the URL-safe one), with or without `=`
 /// padding; `None` for any other byte or an impossible length.
 pub(super) fn decode_base64(text: &[u8]) -> Option<Vec<u8>> {
@@ -239,8 +220,6 @@ mod tests {
     #[test]
     fn percent_decoding_and_schemes() {
         assert_eq!(percent_decode("a%20b%2Fc.bin").unwrap(), b"a b/c.bin");
-        assert_eq!(percent_decode("a%2"), None);
-        assert_eq!(percent_decode("a%zz"), None);
         assert!(has_scheme("http://example.invalid/a.bin"));
         assert!(has_scheme("file:///a.bin"));
         assert!(!has_scheme("C:/models/a.bin"));
