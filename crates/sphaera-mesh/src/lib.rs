@@ -61,6 +61,7 @@
 //! | [`geometry`] | closest point on a triangle (with the feature hit) and on a segment, segment–segment closest points, minimum enclosing ball of points and of balls, circumspheres, ray–triangle intersection, similarity transforms (placing a mesh or spheres in a scene; rigid motions) |
 //! | [`bvh`] | the workspace's one bounding-volume hierarchy: a box tree over items, built by median splits, with a nearest-first search |
 //! | [`closest`] | exact closest points on a mesh: [`closest::TriangleTree`] and its [`closest::ClosestPoint`] with the mesh [`closest::Feature`] hit |
+//! | [`surface`] | [`Surface`]: a mesh as the boundary of a solid, its inside test, closest points and signed closest points ([`Surface::signed_closest`]: exact pseudo-normal test on a certified embedded solid, certified winding number otherwise), the embedded-solid certificate and its [`surface::EmbeddingDefect`] |
 //! | [`heap`] | priority queues with one convention (the highest [`heap::Priority`] first): a binary max-heap and an indexed heap of one item per id |
 //! | [`winding`] | generalized winding number, brute force and hierarchically accelerated (Barill et al. 2018), ray-parity reference, a solidity check |
 //! | [`sampling`] | seeded area-weighted random and Poisson-disk (sample elimination, Yuksel 2015) surface samples |
@@ -119,7 +120,7 @@ mod mesh;
 pub mod sampling;
 pub mod shapes;
 mod sphere;
-mod surface;
+pub mod surface;
 #[cfg(test)]
 mod test_meshes;
 pub mod topology;

@@ -406,8 +406,24 @@ impl TriangleTree {
         Ok(search.best_squared.sqrt())
     }
 
+    /// The box tree over the triangles (its [`BoxTree::order`] maps tree positions to
+    /// mesh triangles).
+    pub(crate) fn boxes(&self) -> &BoxTree {
+        &self.boxes
+    }
+
+    /// The triangles' corners, in tree order.
+    pub(crate) fn corners(&self) -> &[[DVec3; 3]] {
+        &self.corners
+    }
+
+    /// The triangles' vertex indices, in tree order.
+    pub(crate) fn vertices(&self) -> &[[u32; 3]] {
+        &self.vertices
+    }
+
     /// The answer on the triangle at tree position `i`.
-    fn answer_at(&self, i: usize, p: DVec3) -> ClosestPoint {
+    pub(crate) fn answer_at(&self, i: usize, p: DVec3) -> ClosestPoint {
         let [a, b, c] = self.corners[i];
         let hit = closest_point_on_triangle(p, &Triangle::new(a, b, c));
         self.answer(i, p, &hit)

@@ -113,7 +113,7 @@
 //! mesh and a report of what changed.
 
 mod collapse;
-mod edge_table;
+pub(crate) mod edge_table;
 mod halfedge;
 mod halfedge_queries;
 #[cfg(test)]
