@@ -9,6 +9,7 @@ use sphaera_mesh::sampling;
 use crate::SphereTreeError;
 use crate::baseline;
 use crate::evaluate::{EvaluationOptions, sphere_error};
+use crate::minimax::minimax_tree;
 use crate::options::{Method, SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{
     Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
@@ -96,25 +97,40 @@ pub fn build_with_progress(
     progress: &(dyn Fn(&SphereTreeProgress) + Sync),
 ) -> Result<SphereTree, SphereTreeError> {
     options.validate()?;
-    let medial = |reducer| posed_medial_tree(surface, options, reducer, progress);
-    match options.method {
+    if !surface.has_inside() && options.method.resolved() != Method::Minimax {
+        return Err(SphereTreeError::NeedsInside {
+            method: options.method.name(),
+        });
+    }
+    let medial = |reducer| {
+        posed_tree(surface, options, &|canonical, tolerance| {
+            let _ = tolerance;
+            medial_tree(canonical, options, reducer, progress)
+        })
+    };
+    match options.method.resolved() {
         Method::Merge => medial(Reducer::Merge),
         Method::Burst => medial(Reducer::Burst),
         Method::Expand => medial(Reducer::Expand),
         Method::Combined => medial(Reducer::Combined),
-        Method::Auto => medial(Reducer::ExpandThenMerge),
         Method::Octree => baseline::octree(surface, options, progress),
         Method::Grid => baseline::grid(surface, options, progress),
         Method::Hubbard => baseline::hubbard(surface, options, progress),
+        Method::Minimax | Method::Auto => posed_tree(surface, options, &|canonical, tolerance| {
+            minimax_tree(canonical, options, tolerance, progress)
+        }),
     }
 }
 
-/// The adaptive medial construction, run in the mesh's canonical pose and brought back:
-/// a tree that moves, turns and scales with the mesh.
+/// A construction in a (canonical) surface, given the tolerance in its units.
+type Construction<'a> = dyn Fn(&Surface, Option<f64>) -> Result<SphereTree, SphereTreeError> + 'a;
+
+/// A construction run in the mesh's canonical pose and brought back: a tree that moves,
+/// turns and scales with the mesh.
 ///
-/// Sampling, the medial axis and the reducers decide by comparing numbers, and on
-/// degenerate input (flat faces, cospherical samples, symmetric parts) rounding noise
-/// decides; that noise changes when the mesh is moved, turned or rescaled. In the
+/// Sampling, the medial axis, the searches and the reducers decide by comparing numbers,
+/// and on degenerate input (flat faces, cospherical samples, symmetric parts) rounding
+/// noise decides; that noise changes when the mesh is moved, turned or rescaled. In the
 /// canonical pose ([`CanonicalPose`]: a frame built from the mesh's own vertices, the
 /// coordinates snapped to a grid far coarser than rounding and far finer than any
 /// triangle) a mesh and any similarity transform of it are almost always the same
@@ -122,20 +138,41 @@ pub fn build_with_progress(
 /// tolerances, the coverage resolution) is taken relative to the canonical mesh's
 /// diagonal, which does not turn with the mesh.
 ///
-/// Each node's eq. 2 error is brought back with the snapping's displacement added (the
-/// distance from a sphere to the surface changes by at most that much), and the coverage
-/// certificate is computed on the mesh itself.
-fn posed_medial_tree(
+/// `construct` builds in the canonical surface (a solid or a shell, as `surface` is),
+/// given the tolerance in canonical units less the snapping's displacement. Each node's
+/// eq. 2 error is brought back with that displacement added (the distance from a sphere
+/// to the surface changes by at most that much), and the coverage certificate is
+/// computed on the mesh itself.
+fn posed_tree(
     surface: &Surface,
     options: &SphereTreeOptions,
-    reducer: Reducer,
-    progress: &(dyn Fn(&SphereTreeProgress) + Sync),
+    construct: &Construction<'_>,
 ) -> Result<SphereTree, SphereTreeError> {
     let mesh = surface.mesh();
     let pose = CanonicalPose::of(mesh);
-    let canonical = Surface::new(&pose.canonical_mesh(mesh)?)?;
-    let mut tree = medial_tree(&canonical, options, reducer, progress)?;
+    let canonical_mesh = pose.canonical_mesh(mesh)?;
+    let canonical = if surface.has_inside() {
+        Surface::solid_or_shell(&canonical_mesh)?
+    } else {
+        Surface::shell(&canonical_mesh)?
+    };
     let slack = pose.displacement(mesh);
+    let tolerance = match options.tolerance {
+        Some(t) => {
+            let wanted = t.resolve(surface.diagonal());
+            let room = wanted - slack;
+            if room.is_nan() || room <= 0.0 {
+                return Err(SphereTreeError::InvalidParameter {
+                    name: "tolerance",
+                    value: wanted,
+                    requirement: "larger than the rounding of the mesh's coordinates",
+                });
+            }
+            Some(room / pose.size())
+        }
+        None => None,
+    };
+    let mut tree = construct(&canonical, tolerance)?;
     for node in &mut tree.nodes {
         node.sphere = pose.sphere_from_canonical(&node.sphere);
         node.error = pose.length_from_canonical(node.error) + slack;
@@ -208,7 +245,7 @@ fn medial_tree(
             let outcome = medial.refine_region(region, &goal)?;
             problems.push(Some(candidates(region, &outcome.spheres)));
         }
-        let mut reduced = reduce_all(
+        let reduced = reduce_all(
             surface,
             &samples,
             &regions,
@@ -218,28 +255,6 @@ fn medial_tree(
             options.branch,
         )?;
         let limits = certified_lower_bounds(surface, &nodes[parents.clone()], &reduced)?;
-        if reducer == Reducer::ExpandThenMerge {
-            // Merge where expand-select's children are looser than their parent.
-            for (k, parent) in parents.clone().enumerate() {
-                let Some(candidates) = &problems[k] else {
-                    continue;
-                };
-                if crate::reduce::worst(&reduced[k]) <= limits[k] {
-                    continue;
-                }
-                let region = &regions[parent];
-                let merged = reduce_region(
-                    surface,
-                    &samples_of(&samples, region),
-                    candidates,
-                    Reducer::Merge,
-                    options.branch,
-                )?;
-                if crate::reduce::worst(&merged) < crate::reduce::worst(&reduced[k]) {
-                    reduced[k] = merged;
-                }
-            }
-        }
         let divisions = divide_all(&samples, &regions, parents.clone(), &reduced, options);
         for (((parent, fitted), groups), limit) in
             parents.clone().zip(reduced).zip(divisions).zip(limits)
@@ -412,7 +427,7 @@ fn certified_lower_bounds(
 /// The error of `sphere` at one point (a true value, so a lower bound on its certified
 /// error): the point of the sphere farthest out past the surface point nearest its centre,
 /// its distance to the surface when it lies outside the object, else 0.
-fn probe_error(surface: &Surface, sphere: &Sphere) -> f64 {
+pub(crate) fn probe_error(surface: &Surface, sphere: &Sphere) -> f64 {
     let Ok(nearest) = surface.closest(sphere.center) else {
         return 0.0;
     };

@@ -34,7 +34,11 @@ type Piece = [DVec3; 3];
 
 /// Certifies every level of `tree` ([`certify_coverage`] per level, at `resolution`),
 /// raising each grown node's error bound by its growth, and records the certificates
-/// in the tree.
+/// in the tree. A level is certified as the cut at its depth
+/// ([`SphereTree::cut_at`](crate::SphereTree::cut_at)): its nodes and the leaves above it,
+/// which together stand for the whole surface in a tree whose leaves are not all at the
+/// deepest level (a tree built to a tolerance); in a tree built to a depth, the level
+/// itself.
 pub(crate) fn certify_tree(
     surface: &sphaera_mesh::Surface,
     tree: &mut crate::SphereTree,
@@ -42,19 +46,14 @@ pub(crate) fn certify_tree(
 ) {
     let mut certificates = Vec::with_capacity(tree.level_count());
     for level in 0..tree.level_count() {
-        let (Some(&start), Some(&end)) = (
-            tree.level_starts.get(level),
-            tree.level_starts.get(level + 1),
-        ) else {
-            break;
-        };
-        let nodes = &mut tree.nodes[start..end];
-        let mut spheres: Vec<Sphere> = nodes.iter().map(|n| n.sphere).collect();
+        let cut = tree.cut_at(level);
+        let mut spheres: Vec<Sphere> = cut.iter().map(|&i| tree.nodes[i].sphere).collect();
         let (certificate, growth) = certify_coverage(surface.mesh(), &mut spheres, resolution);
-        for ((node, sphere), g) in nodes.iter_mut().zip(spheres).zip(growth) {
+        for ((&index, sphere), g) in cut.iter().zip(spheres).zip(growth) {
             if g > 0.0 {
                 // Eq. 2 is the radius plus a term of the centre alone, and the centre
                 // did not move: the bound grows by exactly the growth.
+                let node = &mut tree.nodes[index];
                 node.error += g;
                 node.sphere = sphere;
             }

@@ -95,4 +95,40 @@ pub enum SphereTreeError {
     /// do not match, a wrong format tag or version).
     #[error("invalid sphere-tree: {0}")]
     InvalidTree(TreeDefect),
+    /// One of the paper's medial methods (or a baseline) was asked to build on a shell, a
+    /// surface without inside ([`Surface::shell`](sphaera_mesh::Surface::shell)): their
+    /// spheres sit on the medial axis of a solid. The minimax method (the default) covers
+    /// shells.
+    #[error(
+        "the {method} method needs a solid, and the surface has no inside (a sheet or an \
+         open patch): use the minimax method (auto)"
+    )]
+    NeedsInside {
+        /// The method asked for.
+        method: &'static str,
+    },
+    /// A tolerance tree would need more nodes than a tree may have
+    /// ([`MAX_TREE_NODES`](crate::MAX_TREE_NODES)) or deeper levels than
+    /// [`MAX_MEDIAL_DEPTH`](crate::MAX_MEDIAL_DEPTH) to meet the tolerance: it is far below
+    /// the mesh's size (or the surface has parts that no sphere of that error can cover
+    /// at that count, such as a sheet asked for a tiny tolerance).
+    #[error(
+        "cannot meet the tolerance {tolerance}: after {spheres} spheres and {levels} levels \
+         the worst leaf is still {worst} (at most {limit} nodes and {depth} levels; ask \
+         for a larger tolerance)"
+    )]
+    ToleranceUnreachable {
+        /// The tolerance asked for (in the mesh's units).
+        tolerance: f64,
+        /// The worst certified leaf error reached.
+        worst: f64,
+        /// Spheres (nodes) built when the construction stopped.
+        spheres: usize,
+        /// Levels built.
+        levels: usize,
+        /// The node limit.
+        limit: usize,
+        /// The depth limit.
+        depth: usize,
+    },
 }

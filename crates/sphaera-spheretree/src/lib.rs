@@ -202,6 +202,7 @@ pub mod cover;
 mod error;
 pub mod evaluate;
 pub mod export;
+pub mod minimax;
 mod options;
 pub mod reduce;
 pub mod segment;
@@ -216,9 +217,10 @@ pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
 pub use glam::DVec3;
+pub use minimax::MAX_TREE_NODES;
 pub use options::{
-    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_MEDIAL_DEPTH, Method, SphereTreeOptions,
-    SphereTreeProgress,
+    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH, Method,
+    SphereTreeOptions, SphereTreeProgress,
 };
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sphaera_mesh::{Sphere, Surface};

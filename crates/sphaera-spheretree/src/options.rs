@@ -17,26 +17,38 @@ pub const MAX_BASELINE_DEPTH: usize = 20;
 /// level only costs time (`--depth 1000` would run for hours).
 pub const MAX_MEDIAL_DEPTH: usize = 24;
 
+/// The most children per node (the most spheres of a one-level tree) the minimax method
+/// builds: each child is fitted to its own pieces, and the region is split into about 400
+/// pieces per child before it is divided.
+pub const MAX_BRANCH: usize = 10_000;
+
 /// The most surface samples a baseline method accepts (each costs about 100 bytes per
 /// level).
 pub const MAX_BASELINE_SAMPLES: usize = 10_000_000;
 
-/// How a sphere-tree is built: the paper's adaptive medial construction with one of its
-/// reducers, or one of the classic methods it compares against.
+/// How a sphere-tree is built: the minimax construction (the default), the paper's
+/// adaptive medial construction with one of its reducers, or one of the classic methods
+/// the paper compares against.
 ///
 /// Every method gives a [`SphereTree`](crate::SphereTree) of the same structure: the
-/// root is the minimum enclosing ball of the mesh's vertices, the surface is represented
-/// by the same Poisson-disk samples, every node's region (its samples) is partitioned
-/// between its children, and every sample of a node's region lies inside one of its
-/// children. Node errors are the paper's eq. 2 ([`TreeNode::error`](crate::TreeNode::error))
-/// for every method; the certified error of a level comes from
-/// [`evaluate_set`](crate::evaluate_set).
+/// root is the minimum enclosing ball of the mesh's vertices, every node's region (its
+/// part of the surface) is partitioned between its children, and every node's sphere
+/// covers its region. Node errors are the paper's eq. 2
+/// ([`TreeNode::error`](crate::TreeNode::error)); the certified error of a level comes
+/// from [`evaluate_set`](crate::evaluate_set).
 ///
-/// The medial methods ([`Method::is_medial`]) refine the adaptive medial approximation
-/// in each node's region (section 4 of the paper, `sphaera-medial`) and reduce its
-/// spheres to at most `branch` children; their coverage of the whole surface is
-/// certified at every level ([`SphereTreeOptions::certify_coverage`]). The baselines are
-/// the classic methods as published: their coverage is measured, not certified.
+/// - [`Method::Minimax`] (and [`Method::Auto`], which chooses it) represents each region
+///   exactly by triangle pieces and chooses the children that make the worst child's
+///   error least ([`crate::minimax`]); it covers the surface exactly by construction,
+///   builds to a depth, a budget (a one-level tree of `branch` spheres) or a tolerance
+///   ([`SphereTreeOptions::tolerance`]), and handles shells (sheets without inside).
+/// - The paper's medial methods ([`Method::is_medial`]) refine the adaptive medial
+///   approximation in each node's region (section 4 of the paper, `sphaera-medial`) and
+///   reduce its spheres to at most `branch` children; their coverage of the whole surface
+///   is certified at every level ([`SphereTreeOptions::certify_coverage`]). They need a
+///   solid.
+/// - The baselines are the classic methods as published: their coverage is measured, not
+///   certified.
 ///
 /// # Examples
 ///
@@ -44,9 +56,11 @@ pub const MAX_BASELINE_SAMPLES: usize = 10_000_000;
 /// use sphaera_spheretree::Method;
 ///
 /// assert_eq!(Method::default(), Method::Auto);
+/// assert_eq!(Method::Auto.resolved(), Method::Minimax);
 /// assert_eq!(Method::from_name("expand"), Some(Method::Expand));
 /// assert!(Method::Expand.is_medial() && !Method::Octree.is_medial());
-/// assert_eq!(Method::ALL.len(), 8);
+/// assert!(Method::Minimax.certifies_coverage() && !Method::Octree.certifies_coverage());
+/// assert_eq!(Method::ALL.len(), 9);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -64,11 +78,14 @@ pub enum Method {
     /// Both merge and expand-select per node, keeping the tighter set
     /// ([`reduce::combined`](crate::reduce::combined)); the paper's best method.
     Combined,
-    /// The default: expand-select per node, falling back on merge (keeping the tighter)
-    /// only where expand-select's children are looser than their parent — the paper's
-    /// combination at the cost of expand-select alone, since expand-select with the
-    /// standoff search fails rarely (on every mesh measured, including the thin and thick
-    /// tubes the paper names, it was the tighter of the two).
+    /// The minimax construction ([`crate::minimax`]): each region, represented exactly by
+    /// triangle pieces, divided between the children whose worst eq. 2 error is least
+    /// (a search over medial candidates, then every centre moved off them on the exact
+    /// surface). The tightest and fastest method here; the only one that builds to a
+    /// tolerance and the only one for shells.
+    Minimax,
+    /// The default: the best method for the surface, today always [`Method::Minimax`]
+    /// (the paper's methods remain available by name).
     #[default]
     Auto,
     /// The octree (Palmer and Grimsdale, Hubbard, O'Sullivan and Dingliana; section 2 of
@@ -95,19 +112,20 @@ pub enum Method {
 }
 
 impl Method {
-    /// Every method, the medial ones first.
-    pub const ALL: [Self; 8] = [
+    /// Every method: the paper's medial ones, minimax and the default, the baselines.
+    pub const ALL: [Self; 9] = [
         Self::Merge,
         Self::Burst,
         Self::Expand,
         Self::Combined,
+        Self::Minimax,
         Self::Auto,
         Self::Octree,
         Self::Grid,
         Self::Hubbard,
     ];
 
-    /// The method's name, as the CLI and the reports spell it (`"merge"`, `"expand"`,
+    /// The method's name, as the CLI and the reports spell it (`"merge"`, `"minimax"`,
     /// `"octree"`, …).
     #[must_use]
     pub fn name(self) -> &'static str {
@@ -116,6 +134,7 @@ impl Method {
             Self::Burst => "burst",
             Self::Expand => "expand",
             Self::Combined => "combined",
+            Self::Minimax => "minimax",
             Self::Auto => "auto",
             Self::Octree => "octree",
             Self::Grid => "grid",
@@ -129,11 +148,27 @@ impl Method {
         Self::ALL.into_iter().find(|m| m.name() == name)
     }
 
-    /// Whether the method refines the adaptive medial approximation (and so certifies
-    /// its coverage of the surface), rather than being a baseline.
+    /// The method [`Method::Auto`] stands for; any other method itself.
+    #[must_use]
+    pub fn resolved(self) -> Self {
+        match self {
+            Self::Auto => Self::Minimax,
+            other => other,
+        }
+    }
+
+    /// Whether the method is one of the paper's, refining the adaptive medial
+    /// approximation (merge, burst, expand, combined).
     #[must_use]
     pub fn is_medial(self) -> bool {
         self.reducer().is_some()
+    }
+
+    /// Whether the method certifies that every level covers the whole surface (the
+    /// medial methods and minimax; not the baselines).
+    #[must_use]
+    pub fn certifies_coverage(self) -> bool {
+        self.is_medial() || self.resolved() == Self::Minimax
     }
 
     /// The reducer of a medial method.
@@ -143,8 +178,7 @@ impl Method {
             Self::Burst => Some(Reducer::Burst),
             Self::Expand => Some(Reducer::Expand),
             Self::Combined => Some(Reducer::Combined),
-            Self::Auto => Some(Reducer::ExpandThenMerge),
-            Self::Octree | Self::Grid | Self::Hubbard => None,
+            Self::Minimax | Self::Auto | Self::Octree | Self::Grid | Self::Hubbard => None,
         }
     }
 }
@@ -204,6 +238,15 @@ pub struct SphereTreeOptions {
     /// which gives about 2,500 medial spheres on the low-res bunny, the size the paper
     /// used for Hubbard's method there).
     pub forming_points: usize,
+    /// [`Method::Minimax`] (and [`Method::Auto`]): build until every leaf's certified
+    /// error is at most this (absolute, or a fraction of the bounding-box diagonal),
+    /// refining only the nodes that exceed it, each into the fewest children (at most
+    /// `branch`) that meet it, as deep as needed; `depth` is then not used (default
+    /// `None`: every node divided to `depth`). A tolerance that would need more than
+    /// [`MAX_TREE_NODES`](crate::MAX_TREE_NODES) nodes or
+    /// [`MAX_MEDIAL_DEPTH`] levels is refused
+    /// ([`SphereTreeError::ToleranceUnreachable`]).
+    pub tolerance: Option<Length>,
 }
 
 impl Default for SphereTreeOptions {
@@ -221,6 +264,7 @@ impl Default for SphereTreeOptions {
             certify_coverage: true,
             coverage_resolution: Length::RelativeToDiagonal(1e-3),
             forming_points: 600,
+            tolerance: None,
         }
     }
 }
@@ -311,6 +355,28 @@ impl SphereTreeOptions {
         self
     }
 
+    /// Built until every leaf's certified error meets `tolerance`
+    /// ([`SphereTreeOptions::tolerance`]; minimax only).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{Length, Surface, shapes};
+    /// use sphaera_spheretree::{SphereTreeOptions, build};
+    ///
+    /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
+    /// let options = SphereTreeOptions::default().with_tolerance(Length::RelativeToDiagonal(0.02));
+    /// let tree = build(&surface, &options)?;
+    /// let tolerance = 0.02 * surface.diagonal();
+    /// assert!(tree.leaves().iter().all(|&leaf| tree.nodes()[leaf].error <= tolerance));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn with_tolerance(mut self, tolerance: Length) -> Self {
+        self.tolerance = Some(tolerance);
+        self
+    }
+
     /// Checks the options the method uses.
     pub(crate) fn validate(&self) -> Result<(), SphereTreeError> {
         let bad = |name: &'static str, value: f64, requirement: &'static str| {
@@ -320,6 +386,35 @@ impl SphereTreeOptions {
                 requirement,
             })
         };
+        if let Some(tolerance) = self.tolerance {
+            let value = tolerance.value();
+            if !(value > 0.0 && value.is_finite()) {
+                return bad("tolerance", value, "positive and finite");
+            }
+            if self.method.resolved() != Method::Minimax {
+                return bad(
+                    "tolerance",
+                    value,
+                    "used only by the minimax method (auto): the others build to a depth",
+                );
+            }
+        }
+        if self.method.resolved() == Method::Minimax {
+            if self.depth > MAX_MEDIAL_DEPTH {
+                return bad("depth", self.depth as f64, "at most 24");
+            }
+            if self.branch == 0 {
+                return bad("branch", 0.0, "at least 1");
+            }
+            if self.branch > MAX_BRANCH {
+                return bad("branch", self.branch as f64, "at most 10,000");
+            }
+            let resolution = self.coverage_resolution.value();
+            if !(resolution > 0.0 && resolution.is_finite()) {
+                return bad("coverage_resolution", resolution, "positive and finite");
+            }
+            return Ok(());
+        }
         if self.method.is_medial() {
             if self.depth > MAX_MEDIAL_DEPTH {
                 return bad(
@@ -391,14 +486,51 @@ mod tests {
         assert_eq!(Method::from_name("nope"), None);
         assert_eq!(
             Method::ALL.iter().filter(|m| m.is_medial()).count(),
-            5,
-            "four reducers and their default combination"
+            4,
+            "the paper's four reducers"
+        );
+        assert_eq!(
+            Method::ALL
+                .iter()
+                .filter(|m| m.certifies_coverage())
+                .count(),
+            6,
+            "the reducers, minimax and the default"
         );
     }
 
     #[test]
     fn each_method_checks_what_it_uses() {
-        let medial = SphereTreeOptions::default().with_error_fraction(2.0);
+        // Minimax (the default) ignores the medial options, checks its own.
+        let bad_fraction = SphereTreeOptions::default().with_error_fraction(2.0);
+        assert!(bad_fraction.validate().is_ok());
+        assert!(matches!(
+            SphereTreeOptions::default()
+                .with_branch(MAX_BRANCH + 1)
+                .validate(),
+            Err(SphereTreeError::InvalidParameter { name: "branch", .. })
+        ));
+        assert!(matches!(
+            SphereTreeOptions::default()
+                .with_tolerance(Length::RelativeToDiagonal(f64::NAN))
+                .validate(),
+            Err(SphereTreeError::InvalidParameter {
+                name: "tolerance",
+                ..
+            })
+        ));
+        // A tolerance is minimax's alone.
+        assert!(matches!(
+            SphereTreeOptions::default()
+                .with_method(Method::Merge)
+                .with_tolerance(Length::RelativeToDiagonal(0.01))
+                .validate(),
+            Err(SphereTreeError::InvalidParameter {
+                name: "tolerance",
+                ..
+            })
+        ));
+        let medial = bad_fraction.with_method(Method::Expand);
         assert!(matches!(
             medial.validate(),
             Err(SphereTreeError::InvalidParameter {

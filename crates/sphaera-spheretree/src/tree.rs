@@ -261,6 +261,68 @@ impl SphereTree {
         &self.coverage
     }
 
+    /// The leaves (nodes without children), by index, ascending: the finest spheres of
+    /// every part of the surface. For a tree built to a tolerance they are the spheres
+    /// that meet it.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{Surface, shapes};
+    /// use sphaera_spheretree::{SphereTreeOptions, build};
+    ///
+    /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
+    /// let tree = build(&surface, &SphereTreeOptions::default().with_depth(2).with_branch(4))?;
+    /// assert_eq!(tree.leaves().len(), tree.level(2).len());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn leaves(&self) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| self.nodes[i].children.is_empty())
+            .collect()
+    }
+
+    /// The cut at depth `level`: the nodes of that level and the leaves above it, by
+    /// index, ascending. It covers what the whole tree covers, at the detail of `level`
+    /// where the tree reaches that deep: what a traversal that stops at `level` tests.
+    /// In a tree whose every node above the deepest level has children (a tree built to a
+    /// depth) it is the level itself; in a tree built to a tolerance, shallower leaves
+    /// stand in where no deeper node was needed. Beyond the deepest level, the leaves.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{Length, Surface, shapes};
+    /// use sphaera_spheretree::{SphereTreeOptions, build};
+    ///
+    /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
+    /// let tree = build(&surface, &SphereTreeOptions::default().with_depth(2).with_branch(4))?;
+    /// let cut: Vec<usize> = tree.cut_at(1);
+    /// assert_eq!(cut.len(), tree.level(1).len());
+    /// assert_eq!(tree.cut_at(7), tree.leaves());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn cut_at(&self, level: usize) -> Vec<usize> {
+        (0..self.nodes.len())
+            .filter(|&i| {
+                let node = &self.nodes[i];
+                let depth = node.level as usize;
+                depth == level || (depth < level && node.children.is_empty())
+            })
+            .collect()
+    }
+
+    /// The spheres of [`SphereTree::cut_at`]`(level)`.
+    #[must_use]
+    pub fn cut_spheres(&self, level: usize) -> Vec<Sphere> {
+        self.cut_at(level)
+            .into_iter()
+            .map(|i| self.nodes[i].sphere)
+            .collect()
+    }
+
     /// The children of node `index`.
     #[must_use]
     pub fn children(&self, index: usize) -> &[TreeNode] {

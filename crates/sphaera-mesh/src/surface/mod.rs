@@ -95,6 +95,9 @@ pub use signed::{SideMethod, SignedClosest};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, thiserror::Error)]
 #[non_exhaustive]
 pub enum EmbeddingDefect {
+    /// The surface is a shell ([`Surface::shell`]): it bounds no solid.
+    #[error("the surface is a shell, without an inside")]
+    Shell,
     /// A coordinate is outside the range where the exact predicates stay exact: non-zero
     /// magnitudes must lie in `[2^-250, 2^250]` (about `5.5e-76` to `1.8e75`).
     #[error("vertex {vertex} has a coordinate beyond the range of exact predicates")]
@@ -200,6 +203,8 @@ pub struct Surface {
     embedding: Result<(), EmbeddingDefect>,
     /// The vertices' pseudo-normals (empty unless certified).
     normals: pseudo_normal::VertexNormals,
+    /// Whether the mesh bounds a solid; a shell ([`Surface::shell`]) has no inside.
+    solid: bool,
 }
 
 impl Surface {
@@ -245,6 +250,95 @@ impl Surface {
     /// others an `O(n log n)` contact search over the closest-point tree (parallel with
     /// the `parallel` feature) and two certified winding numbers per component.
     pub fn from_mesh(mesh: TriMesh) -> Result<Self, MeshError> {
+        let mut surface = Self::prepare(mesh)?;
+        surface.check_inside()?;
+        surface.certify();
+        Ok(surface)
+    }
+
+    /// Prepares a copy of `mesh` as a **shell**: a surface without an inside (a sign, a
+    /// cloth, a plate modelled as one sheet, an open patch), every point of space lying
+    /// outside it. Closest points are those of [`Surface::new`]; [`Surface::is_inside`],
+    /// [`Surface::is_inside_certified`] and [`Surface::signed_closest`] answer "outside"
+    /// everywhere, so a sphere's error (how far it reaches from the surface) counts every
+    /// point of it. Use [`Surface::solid_or_shell`] to take the solid when there is one.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, Surface, TriMesh};
+    ///
+    /// // A unit square in the plane z = 0: no inside, so Surface::new refuses it.
+    /// let square = TriMesh::new(
+    ///     vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+    ///     vec![[0, 1, 2], [0, 2, 3]],
+    /// )?;
+    /// assert!(Surface::new(&square).is_err());
+    /// let shell = Surface::shell(&square)?;
+    /// assert!(!shell.has_inside());
+    /// let below = shell.signed_closest(DVec3::new(0.5, 0.5, -0.25))?;
+    /// assert!(!below.inside && below.signed_distance() == 0.25);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::EmptyMesh`] for a mesh without triangles.
+    pub fn shell(mesh: &TriMesh) -> Result<Self, MeshError> {
+        let mut surface = Self::prepare(mesh.clone())?;
+        surface.solid = false;
+        surface.embedding = Err(EmbeddingDefect::Shell);
+        Ok(surface)
+    }
+
+    /// Prepares a copy of `mesh` as a solid when it has a meaningful inside (as
+    /// [`Surface::new`]), else as a shell ([`Surface::shell`]): the choice of a caller that
+    /// must handle flat sheets and open patches as well as solids.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, Surface, TriMesh, shapes};
+    ///
+    /// assert!(Surface::solid_or_shell(&shapes::cube(1.0, 1)?)?.has_inside());
+    /// let sheet = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]])?;
+    /// assert!(!Surface::solid_or_shell(&sheet)?.has_inside());
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::EmptyMesh`] for a mesh without triangles.
+    pub fn solid_or_shell(mesh: &TriMesh) -> Result<Self, MeshError> {
+        let mut surface = Self::prepare(mesh.clone())?;
+        match surface.check_inside() {
+            Ok(()) => surface.certify(),
+            Err(MeshError::NoInside { .. }) => {
+                surface.solid = false;
+                surface.embedding = Err(EmbeddingDefect::Shell);
+            }
+            Err(e) => return Err(e),
+        }
+        Ok(surface)
+    }
+
+    /// Whether the surface bounds a solid (it was prepared by [`Surface::new`], or by
+    /// [`Surface::solid_or_shell`] from a mesh with an inside); `false` for a shell.
+    #[must_use]
+    pub fn has_inside(&self) -> bool {
+        self.solid
+    }
+
+    /// The embedded-solid certificate and, when it holds, the pseudo-normals.
+    fn certify(&mut self) {
+        self.embedding = embedding::certify(&self.mesh, &self.tree, &self.winding, self.scale);
+        if self.embedding.is_ok() {
+            self.normals = pseudo_normal::VertexNormals::new(&self.mesh);
+        }
+    }
+
+    /// The trees and measures of `mesh`, not yet checked for an inside or certified.
+    fn prepare(mesh: TriMesh) -> Result<Self, MeshError> {
         // The two trees are independent: built side by side with `parallel`.
         #[cfg(feature = "parallel")]
         let (winding, tree) =
@@ -255,7 +349,7 @@ impl Surface {
         let diagonal = mesh.bounding_box_diagonal();
         let bounds = mesh.bounding_box();
         let scale = bounds.min.abs().max(bounds.max.abs()).max_element();
-        let mut surface = Self {
+        Ok(Self {
             mesh,
             winding,
             tree,
@@ -263,14 +357,8 @@ impl Surface {
             scale,
             embedding: Ok(()),
             normals: pseudo_normal::VertexNormals::default(),
-        };
-        surface.check_inside()?;
-        surface.embedding =
-            embedding::certify(&surface.mesh, &surface.tree, &surface.winding, scale);
-        if surface.embedding.is_ok() {
-            surface.normals = pseudo_normal::VertexNormals::new(&surface.mesh);
-        }
-        Ok(surface)
+            solid: true,
+        })
     }
 
     /// Probes pairs of points just inside and just outside the surface (along the normals
@@ -309,10 +397,10 @@ impl Surface {
         &self.mesh
     }
 
-    /// Whether `p` is inside (generalized winding number above ½).
+    /// Whether `p` is inside (generalized winding number above ½; never for a shell).
     #[must_use]
     pub fn is_inside(&self, p: DVec3) -> bool {
-        self.winding.is_inside(p)
+        self.solid && self.winding.is_inside(p)
     }
 
     /// [`Surface::is_inside`] with the answer of the exact generalized winding number
@@ -337,7 +425,7 @@ impl Surface {
     /// the surface.
     #[must_use]
     pub fn is_inside_certified(&self, p: DVec3) -> bool {
-        self.winding.is_inside_certified(p)
+        self.solid && self.winding.is_inside_certified(p)
     }
 
     /// The bounding-box diagonal of the mesh.
@@ -516,6 +604,7 @@ impl Surface {
             (self.tree.closest(p)?, None)
         };
         let (inside, method) = match side {
+            _ if !self.solid => (false, SideMethod::Shell),
             Some(inside) => (inside, SideMethod::PseudoNormal),
             None if certified => (
                 self.winding.is_inside_certified(p),

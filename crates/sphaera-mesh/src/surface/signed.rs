@@ -112,6 +112,9 @@ pub enum SideMethod {
     /// [`Surface::signed_closest_approx`](crate::Surface::signed_closest_approx) only: not
     /// certified near the surface.
     FastWinding,
+    /// The surface is a shell ([`Surface::shell`](crate::Surface::shell)): it has no
+    /// inside, and every point is outside.
+    Shell,
 }
 
 /// The closest point of `tree` to `p` (the answer of [`TriangleTree::closest`], bit for

@@ -108,6 +108,15 @@ impl Search<'_> {
         let point = self.center + self.radius * patch.direction;
         // The parent's probe bounds the distance (the distance is 1-Lipschitz), which
         // prunes the descent from the start; the answer is the same.
+        // On a certified embedded solid the side comes with the closest point at the cost
+        // of the closest point alone (the pseudo-normal test); elsewhere the side is asked
+        // of the certified winding number only where it is needed and not inherited.
+        if self.surface.is_embedded_solid() {
+            let signed = self.surface.signed_closest(point)?;
+            let distance = signed.closest.distance;
+            let inside = (distance > self.guard).then_some(signed.inside);
+            return Ok(self.record(patch, point, signed.closest.point, distance, inside));
+        }
         let bound = parent.map(|p| (p.distance + point.distance(p.point)) * (1.0 + 1e-9));
         let closest = match bound {
             Some(bound) => match self.surface.tree().closest_within(point, bound)? {
@@ -117,8 +126,11 @@ impl Search<'_> {
             None => self.surface.closest(point)?,
         };
         let distance = closest.distance;
+        // A probe in the clear ball of its parent's probe, or with its parent's probe in
+        // its own clear ball, is on the parent's side: the segment between them crosses
+        // no surface.
         let inherited = parent.and_then(|p| {
-            let clear = p.distance - self.guard;
+            let clear = p.distance.max(distance) - self.guard;
             p.inside.filter(|_| point.distance(p.point) < clear)
         });
         let inside = if distance > self.guard {
@@ -126,6 +138,19 @@ impl Search<'_> {
         } else {
             None
         };
+        Ok(self.record(patch, point, closest.point, distance, inside))
+    }
+
+    /// Raises the lower bound with a probe whose side is known (`None` within the guard
+    /// band) and returns the patch's upper bound and what the probe found.
+    fn record(
+        &mut self,
+        patch: &Patch,
+        point: DVec3,
+        closest: DVec3,
+        distance: f64,
+        inside: Option<bool>,
+    ) -> (f64, Side) {
         let (trusted_outside, trusted_inside) = match inside {
             Some(inside) => (!inside, inside),
             None => (false, false),
@@ -136,7 +161,7 @@ impl Search<'_> {
         }
         let probe = Probe {
             distance,
-            closest: closest.point,
+            closest,
             trusted_inside,
         };
         let found = Side {
@@ -144,7 +169,7 @@ impl Search<'_> {
             distance,
             inside,
         };
-        Ok((upper_bound(patch, self.center, self.radius, &probe), found))
+        (upper_bound(patch, self.center, self.radius, &probe), found)
     }
 }
 

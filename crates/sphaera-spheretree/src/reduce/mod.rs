@@ -131,9 +131,6 @@ pub(crate) enum Reducer {
     /// Both, keeping the set with the smaller worst error ([`combined`]).
     #[default]
     Combined,
-    /// [`expand_select`] with `MaxElim`; [`merge`] only where expand-select's set is looser
-    /// than its parent (decided by the tree builder, which knows the parent).
-    ExpandThenMerge,
 }
 
 /// Runs both [`merge`] and [`expand_select`] (`MaxElim`) and keeps the set with the smaller
@@ -179,9 +176,7 @@ pub(crate) fn reduce(
     match reducer {
         Reducer::Merge => merge(input, target),
         Reducer::Burst => burst(input, target),
-        Reducer::Expand | Reducer::ExpandThenMerge => {
-            Ok(expand_select(input, target, Selection::MaxElim)?.spheres)
-        }
+        Reducer::Expand => Ok(expand_select(input, target, Selection::MaxElim)?.spheres),
         Reducer::Combined => combined(input, target),
     }
 }

@@ -1,0 +1,80 @@
+//! Builds a sphere-tree and prints each level's (cut's) size, construction error and
+//! certified error: `cargo run --release -p sphaera-spheretree --example tree_probe --
+//! MESH [METHOD] [DEPTH] [BRANCH] [TOLERANCE%]`.
+
+#![allow(clippy::print_stdout)]
+
+use std::time::Instant;
+
+use sphaera_mesh::{Length, Surface, io, shapes};
+use sphaera_spheretree::{EvaluationOptions, Method, SphereTreeOptions, build, evaluate_set};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let mesh = match args.get(1).map(String::as_str) {
+        Some("-") | None => shapes::capsule(0.5, 2.0, 12)?,
+        Some(path) => io::load(path)?,
+    };
+    let method = args
+        .get(2)
+        .map_or(Some(Method::Auto), |name| Method::from_name(name))
+        .ok_or("unknown method")?;
+    let depth: usize = args.get(3).map_or(Ok(3), |s| s.parse())?;
+    let branch: usize = args.get(4).map_or(Ok(8), |s| s.parse())?;
+    let mut options = SphereTreeOptions::default()
+        .with_method(method)
+        .with_depth(depth)
+        .with_branch(branch);
+    if let Some(t) = args.get(5) {
+        options = options.with_tolerance(Length::RelativeToDiagonal(t.parse::<f64>()? / 100.0));
+    }
+    let diagonal = mesh.bounding_box_diagonal();
+    let started = Instant::now();
+    let surface = Surface::solid_or_shell(&mesh)?;
+    let tree = build(&surface, &options)?;
+    println!(
+        "{}: built in {:.3} s ({} nodes, {} leaves, {} levels)",
+        method.name(),
+        started.elapsed().as_secs_f64(),
+        tree.nodes().len(),
+        tree.leaves().len(),
+        tree.level_count()
+    );
+    if std::env::var("SPH_NOEVAL").is_ok() {
+        let levels: Vec<String> = (1..tree.level_count())
+            .map(|level| {
+                let worst = tree
+                    .cut_at(level)
+                    .iter()
+                    .map(|&i| tree.nodes()[i].error)
+                    .fold(0.0, f64::max);
+                format!("{:.2}", 100.0 * worst / diagonal)
+            })
+            .collect();
+        println!("eq2 % per level: {}", levels.join(" / "));
+        return Ok(());
+    }
+    let evaluation = EvaluationOptions::default()
+        .with_tolerance(Length::RelativeToDiagonal(1e-3))
+        .with_screening(true);
+    let started = Instant::now();
+    for level in 0..tree.level_count() {
+        let cut = tree.cut_at(level);
+        let worst = cut
+            .iter()
+            .map(|&i| tree.nodes()[i].error)
+            .fold(0.0, f64::max);
+        let spheres = tree.cut_spheres(level);
+        let e = evaluate_set(&surface, &spheres, &evaluation)?;
+        println!(
+            "level {level}: {} spheres, eq. 2 {:.2} %, certified {:.2}–{:.2} %, uncovered {:.4} %",
+            cut.len(),
+            100.0 * worst / diagonal,
+            100.0 * e.worst_lower / diagonal,
+            100.0 * e.worst_upper / diagonal,
+            100.0 * e.coverage.uncovered_fraction,
+        );
+    }
+    println!("evaluated in {:.3} s", started.elapsed().as_secs_f64());
+    Ok(())
+}
