@@ -73,7 +73,7 @@ pub(crate) fn minimax_tree(
             break;
         }
         let total = parents.len();
-        let effort = Effort::for_level(total, tolerance.is_none() && level == max_depth);
+        let effort = Effort::for_level(total, branch, tolerance.is_none() && level == max_depth);
         let goal = match tolerance {
             Some(t) => Goal::Within {
                 tolerance: t,
