@@ -215,11 +215,13 @@ pub use collide::{
 };
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
-pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
+pub use evaluate::{
+    EvaluationOptions, SetEvaluation, SphereFit, evaluate_set, evaluate_set_bounded,
+};
 pub use glam::DVec3;
 pub use minimax::MAX_TREE_NODES;
 pub use options::{
-    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH, Method,
+    Effort, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH, Method,
     SphereTreeOptions, SphereTreeProgress,
 };
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};

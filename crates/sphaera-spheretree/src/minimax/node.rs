@@ -9,8 +9,8 @@ use super::candidates::{Candidate, medial_candidate};
 use super::cluster::{Cluster, Region, worst};
 use super::pieces::{Piece, area, centroid};
 use super::search::Thresholds;
-use crate::SphereTreeError;
 use crate::evaluate::{EvaluationOptions, sphere_error};
+use crate::{Effort, SphereTreeError};
 
 /// What a division must reach.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,9 +47,10 @@ pub(crate) struct Child {
     pub(crate) members: Vec<u32>,
 }
 
-/// How hard a division works (see [`divide`]).
+/// How hard a division works (see [`divide`]), from the [`Effort`] asked for and where
+/// the node stands in the tree.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Effort {
+pub(crate) struct Plan {
     /// Starts (different subsets of representatives) tried.
     pub(crate) starts: usize,
     /// The best starts (by their error on the representatives) refined exactly.
@@ -61,27 +62,46 @@ pub(crate) struct Effort {
     /// How strongly the children's regions are balanced by area (0: not at all; see
     /// [`balance`]).
     pub(crate) balance: f64,
+    /// Representatives at least.
+    pub(crate) reps: usize,
+    /// Candidates at least.
+    pub(crate) candidates: usize,
+    /// Pieces a region is split into before it is divided, at least.
+    pub(crate) pieces: usize,
+    /// Pieces per child at least.
+    pub(crate) pieces_per_child: usize,
 }
 
-impl Effort {
-    /// The effort for dividing one of `parents` nodes of a level (`last`: no node of the
-    /// next level will be divided): the fewer the nodes, the more starts each gets (the
-    /// root's division shapes every region below it), swaps for a lone node, and regions
-    /// balanced unless nothing below them is divided.
-    pub(crate) fn for_level(parents: usize, children: usize, last: bool) -> Self {
+impl Plan {
+    /// The plan for dividing one of `parents` nodes of a level into `children` at
+    /// `effort` (`last`: no node of the next level will be divided): the fewer the nodes,
+    /// the more starts each gets (the root's division shapes every region below it),
+    /// swaps for a lone node, and regions balanced unless nothing below them is divided.
+    pub(crate) fn for_level(effort: Effort, parents: usize, children: usize, last: bool) -> Self {
+        let (root_starts, rounds, reps, candidates, pieces, pieces_per_child) = match effort {
+            Effort::Quick => (1, 1, 256, 96, 1_500, 24),
+            Effort::Thorough => (16, 6, 2_048, 512, 16_000, 200),
+            // `Effort` is non-exhaustive: the default for anything new.
+            _ => (8, 4, 1_024, 256, 8_000, 100),
+        };
         // Many children are costly to divide, and each matters less.
         let most = if children > MANY_CHILDREN {
-            2
+            2.min(root_starts)
         } else {
-            ROOT_STARTS
+            root_starts
         };
-        let starts = (ROOT_STARTS / parents.max(1)).clamp(1, most);
+        let starts = (root_starts / parents.max(1)).clamp(1, most);
+        let quick = effort == Effort::Quick;
         Self {
             starts,
             refined: starts.min(REFINED_STARTS),
-            rounds: REFINE_ROUNDS,
-            swaps: usize::from(parents == 1 && children <= SWAP_CHILDREN),
-            balance: if last { 0.0 } else { BALANCE_STRENGTH },
+            rounds,
+            swaps: usize::from(!quick && parents == 1 && children <= SWAP_CHILDREN),
+            balance: if last || quick { 0.0 } else { BALANCE_STRENGTH },
+            reps,
+            candidates,
+            pieces,
+            pieces_per_child,
         }
     }
 }
@@ -92,12 +112,8 @@ const MANY_CHILDREN: usize = 64;
 /// every child).
 const SWAP_CHILDREN: usize = 16;
 
-/// Starts of a lone node's division (a level of `n` nodes gives each `8 / n`).
-const ROOT_STARTS: usize = 8;
 /// Starts refined exactly at most.
 const REFINED_STARTS: usize = 4;
-/// Rounds of exact refinement.
-const REFINE_ROUNDS: usize = 4;
 /// The bias per unit of excess area, in units of the worst child's error
 /// ([`balance`]).
 const BALANCE_STRENGTH: f64 = 0.1;
@@ -106,11 +122,9 @@ const BALANCE_STRENGTH: f64 = 0.1;
 /// rounded, and a sphere must contain its pieces.
 const RADIUS_SLACK: f64 = 1e-12;
 
-/// Representatives at least, and per child.
-const REPS_MIN: usize = 1_024;
+/// Representatives per child.
 const REPS_PER_CHILD: usize = 6;
-/// Candidates at least, per child, and at most.
-const CANDIDATES_MIN: usize = 256;
+/// Candidates per child, and at most.
 const CANDIDATES_PER_CHILD: usize = 4;
 const CANDIDATES_MAX: usize = 2_400;
 
@@ -128,7 +142,7 @@ pub(crate) fn divide(
     pieces: &[Piece],
     goal: Goal,
     parent: (Sphere, f64),
-    effort: Effort,
+    effort: Plan,
 ) -> Result<Vec<Child>, SphereTreeError> {
     if let Goal::Count(k) = goal
         && k > LARGE_DIVISION
@@ -136,14 +150,15 @@ pub(crate) fn divide(
         return divide_in_groups(surface, pieces, k, parent, effort);
     }
     let most = goal.most().max(1);
-    let (mut candidates, mut origins) = candidates(surface, pieces, most, parent.0.radius)?;
+    let (mut candidates, mut origins) =
+        candidates(surface, pieces, most, effort.candidates, parent.0.radius)?;
     // The parent's centre, grown from the middle piece.
     candidates.push(Candidate {
         center: parent.0.center,
         depth: parent.1,
     });
     origins.push((pieces.len() / 2) as u32);
-    let starts = if pieces.len() <= REPS_MIN {
+    let starts = if pieces.len() <= effort.reps {
         1
     } else {
         effort.starts.max(1)
@@ -151,21 +166,37 @@ pub(crate) fn divide(
     // Every start on the representatives; the best ones refined on every piece.
     let mut drafts = Vec::with_capacity(starts);
     for start in 0..starts {
-        let region = region(surface, pieces, most, start, &candidates, &origins);
+        let region = region(
+            surface,
+            pieces,
+            most,
+            effort.reps,
+            start,
+            &candidates,
+            &origins,
+        );
         let clusters = draft(&region, goal);
         drafts.push((worst(&clusters), start, clusters));
     }
     drafts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut best: Option<Vec<Cluster>> = None;
     for (_, start, clusters) in drafts.into_iter().take(effort.refined.max(1)) {
-        let region = region(surface, pieces, most, start, &candidates, &origins);
+        let region = region(
+            surface,
+            pieces,
+            most,
+            effort.reps,
+            start,
+            &candidates,
+            &origins,
+        );
         let refined = finish(&region, goal, &clusters, effort.rounds)?;
         if better(&refined, best.as_deref(), goal) {
             best = Some(refined);
         }
     }
     let mut clusters = best.unwrap_or_default();
-    let whole = region(surface, pieces, most, 0, &candidates, &origins);
+    let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
     if effort.swaps > 0 && matches!(goal, Goal::Count(_)) {
         whole.swap(&mut clusters, effort.swaps, SWAP_ROUNDS)?;
     }
@@ -205,7 +236,7 @@ fn divide_in_groups(
     pieces: &[Piece],
     k: usize,
     parent: (Sphere, f64),
-    effort: Effort,
+    effort: Plan,
 ) -> Result<Vec<Child>, SphereTreeError> {
     let count = k.div_ceil(GROUP_CHILDREN);
     let groups = divide(surface, pieces, Goal::Count(count), parent, effort)?;
@@ -399,10 +430,11 @@ fn candidates(
     surface: &Surface,
     pieces: &[Piece],
     most: usize,
+    minimum: usize,
     scale: f64,
 ) -> Result<(Vec<Candidate>, Vec<u32>), SphereTreeError> {
     let count = (CANDIDATES_PER_CHILD * most)
-        .clamp(CANDIDATES_MIN, CANDIDATES_MAX)
+        .clamp(minimum, CANDIDATES_MAX.max(minimum))
         .min(pieces.len());
     let every = pieces.len().div_ceil(count.max(1)).max(1);
     let origins: Vec<u32> = (0..pieces.len() as u32)
@@ -434,11 +466,12 @@ fn region<'a>(
     surface: &'a Surface,
     pieces: &'a [Piece],
     most: usize,
+    minimum: usize,
     start: usize,
     candidates: &[Candidate],
     origins: &[u32],
 ) -> Region<'a> {
-    let wanted = REPS_MIN.max(REPS_PER_CHILD * most);
+    let wanted = minimum.max(REPS_PER_CHILD * most);
     let stride = pieces.len().div_ceil(wanted).max(1);
     let reps: Vec<u32> = (0..pieces.len() as u32)
         .skip(start % stride)
