@@ -122,6 +122,9 @@ pub fn build_with_progress(
     }
 }
 
+/// The fraction of a tolerance kept free for the coverage certificate's growth.
+const CERTIFICATE_ROOM: f64 = 1e-6;
+
 /// A construction in a (canonical) surface, given the tolerance in its units.
 type Construction<'a> = dyn Fn(&Surface, Option<f64>) -> Result<SphereTree, SphereTreeError> + 'a;
 
@@ -160,7 +163,9 @@ fn posed_tree(
     let tolerance = match options.tolerance {
         Some(t) => {
             let wanted = t.resolve(surface.diagonal());
-            let room = wanted - slack;
+            // The coverage certificate may grow a sphere by the rounding of the way back
+            // (the construction covers every piece exactly): keep room for it.
+            let room = wanted - slack - CERTIFICATE_ROOM * wanted;
             if room.is_nan() || room <= 0.0 {
                 return Err(SphereTreeError::InvalidParameter {
                     name: "tolerance",
@@ -172,7 +177,27 @@ fn posed_tree(
         }
         None => None,
     };
-    let mut tree = construct(&canonical, tolerance)?;
+    let mut tree = construct(&canonical, tolerance).map_err(|e| match e {
+        // Back to the mesh's units: the tolerance as asked, the worst leaf as placed.
+        SphereTreeError::ToleranceUnreachable {
+            worst,
+            spheres,
+            levels,
+            limit,
+            depth,
+            ..
+        } => SphereTreeError::ToleranceUnreachable {
+            tolerance: options
+                .tolerance
+                .map_or(0.0, |t| t.resolve(surface.diagonal())),
+            worst: pose.length_from_canonical(worst) + slack,
+            spheres,
+            levels,
+            limit,
+            depth,
+        },
+        other => other,
+    })?;
     for node in &mut tree.nodes {
         node.sphere = pose.sphere_from_canonical(&node.sphere);
         node.error = pose.length_from_canonical(node.error) + slack;
