@@ -358,8 +358,6 @@ fn spheretree_gives_exactly_8_spheres_in_one_level() {
 }
 
 #[test]
-#[ignore = "library: the minimax one-level tree of 37 spheres on the bunny gives 27 (children \
-            left without pieces are dropped); un-ignore when sphaera-spheretree gives exactly N"]
 fn spheretree_gives_exactly_37_spheres_in_one_level() {
     let (_, tree) = one_level(37);
     assert_eq!(tree.level(1).len(), 37);

@@ -21,7 +21,7 @@ use sphaera::spheretree::export::{
 };
 use sphaera::spheretree::{
     CoverageCertificate, EvaluationOptions, MAX_BRANCH, Method, SphereTree, SphereTreeError,
-    SphereTreeOptions, SphereTreeProgress, build_with_progress, evaluate_set,
+    SphereTreeOptions, SphereTreeProgress, build_with_progress, evaluate_set_bounded,
 };
 
 use crate::{
@@ -144,9 +144,9 @@ struct LevelReport {
     /// largest over the cut.
     worst_error_lower: Option<f64>,
     worst_error_upper: Option<f64>,
-    /// Mean and variance of the per-sphere certified upper bounds (spheres that cannot be
-    /// the worst are evaluated to 10 times the evaluation tolerance, so these are
-    /// conservative).
+    /// Mean and variance of the per-sphere certified upper bounds (a sphere that cannot be
+    /// the worst is not evaluated to the tolerance, and keeps its construction error or a
+    /// coarser bound, so these are conservative).
     mean_error: Option<f64>,
     error_variance: Option<f64>,
     /// Fraction of 100,000 independent surface samples outside every sphere.
@@ -353,8 +353,11 @@ fn evaluate_levels(
         let evaluation = if skip {
             None
         } else {
+            // Each node's error is a certified upper bound of its sphere's: the evaluation
+            // settles the worst with it and spends nothing on spheres that cannot be the
+            // worst.
             Some(
-                evaluate_set(surface, &spheres, &options)
+                evaluate_set_bounded(surface, &spheres, &errors, &options)
                     .with_context(|| format!("cannot evaluate level {level}"))?,
             )
         };

@@ -122,6 +122,11 @@ const BALANCE_STRENGTH: f64 = 0.1;
 /// rounded, and a sphere must contain its pieces.
 const RADIUS_SLACK: f64 = 1e-12;
 
+/// Absolute slack added to every radius, in canonical units (coordinates within 1 of the
+/// origin): a split midpoint is rounded by a few units in the last place of its
+/// coordinates, which a small sphere's relative slack may not cover.
+const ABSOLUTE_SLACK: f64 = 16.0 * f64::EPSILON;
+
 /// Representatives per child.
 const REPS_PER_CHILD: usize = 6;
 /// Candidates per child, and at most.
@@ -206,7 +211,7 @@ pub(crate) fn divide(
     let children: Vec<Child> = clusters
         .into_iter()
         .map(|c| {
-            let radius = (c.cost + c.depth) * (1.0 + RADIUS_SLACK);
+            let radius = (c.cost + c.depth) * (1.0 + RADIUS_SLACK) + ABSOLUTE_SLACK;
             Child {
                 sphere: Sphere::new(c.center, radius.max(f64::MIN_POSITIVE)),
                 depth: c.depth,
