@@ -208,11 +208,13 @@ fn posed_tree(
         node.sphere = sphere;
         node.error = pose.length_from_canonical(node.error) + 2.0 * slack;
     }
-    if options.method.resolved() == Method::Minimax {
+    if !options.certify_coverage {
+        // Not recorded (the minimax spheres cover the surface all the same).
+    } else if options.method.resolved() == Method::Minimax {
         // Every node's sphere contains the corners of the pieces tiling its region, so
         // every cut covers the surface by construction (see `crate::minimax`).
         tree.coverage = crate::cover::by_construction(&tree);
-    } else if options.certify_coverage {
+    } else {
         let diagonal = pose.length_from_canonical(canonical.diagonal());
         let resolution = options.coverage_resolution.resolve(diagonal);
         crate::cover::certify_tree(surface, &mut tree, resolution);

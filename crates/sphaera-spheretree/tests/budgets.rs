@@ -18,7 +18,10 @@ fn meshes() -> Vec<(&'static str, TriMesh)> {
     vec![
         ("capsule", shapes::capsule(0.5, 2.0, 10).expect("capsule")),
         ("torus", shapes::torus(1.0, 0.3, 12).expect("torus")),
-        ("l block", shapes::l_block(2.0, 0.8, 0.6, 2).expect("l block")),
+        (
+            "l block",
+            shapes::l_block(2.0, 0.8, 0.6, 2).expect("l block"),
+        ),
     ]
 }
 
@@ -94,7 +97,10 @@ fn more_spheres_are_never_looser() {
     let mut previous = f64::INFINITY;
     for n in [1, 2, 4, 8, 16, 32] {
         let worst = check_budget(&surface, n, Effort::Default, "capsule");
-        assert!(worst <= previous * (1.0 + 1e-9), "{n} spheres: {worst} > {previous}");
+        assert!(
+            worst <= previous * (1.0 + 1e-9),
+            "{n} spheres: {worst} > {previous}"
+        );
         previous = worst;
     }
 }
