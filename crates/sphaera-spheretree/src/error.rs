@@ -127,7 +127,7 @@ pub enum SphereTreeError {
         spheres: usize,
         /// Levels built.
         levels: usize,
-        /// The node limit.
+        /// The node limit ([`SphereTreeOptions::max_nodes`](crate::SphereTreeOptions::max_nodes)).
         limit: usize,
         /// The depth limit.
         depth: usize,

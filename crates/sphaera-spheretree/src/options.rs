@@ -193,7 +193,8 @@ impl Method {
 /// use sphaera_spheretree::{Effort, SphereTreeOptions};
 ///
 /// assert_eq!(SphereTreeOptions::default().effort, Effort::Default);
-/// assert_eq!("quick".parse::<Effort>(), Ok(Effort::Quick));
+/// assert_eq!("quick".parse::<Effort>().ok(), Some(Effort::Quick));
+/// assert!("fast".parse::<Effort>().is_err());
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -307,6 +308,12 @@ pub struct SphereTreeOptions {
     /// [`MAX_MEDIAL_DEPTH`] levels is refused
     /// ([`SphereTreeError::ToleranceUnreachable`]).
     pub tolerance: Option<Length>,
+    /// [`Method::Minimax`] with a tolerance: the most nodes the tree may have (default and
+    /// at most [`MAX_TREE_NODES`](crate::MAX_TREE_NODES)). A tolerance that would need more
+    /// is refused ([`SphereTreeError::ToleranceUnreachable`]) as soon as the next level
+    /// could exceed it, so a sphere budget and a tolerance can be asked for together: the
+    /// tolerance is met within the budget, or the answer says it cannot be.
+    pub max_nodes: usize,
     /// [`Method::Minimax`]: how hard each division works for its accuracy (default
     /// [`Effort::Default`]).
     pub effort: Effort,
@@ -328,6 +335,7 @@ impl Default for SphereTreeOptions {
             coverage_resolution: Length::RelativeToDiagonal(1e-3),
             forming_points: 600,
             tolerance: None,
+            max_nodes: crate::MAX_TREE_NODES,
             effort: Effort::Default,
         }
     }
@@ -448,6 +456,14 @@ impl SphereTreeOptions {
         self
     }
 
+    /// With at most `max_nodes` nodes in a tolerance tree
+    /// ([`SphereTreeOptions::max_nodes`]).
+    #[must_use]
+    pub fn with_max_nodes(mut self, max_nodes: usize) -> Self {
+        self.max_nodes = max_nodes;
+        self
+    }
+
     /// Checks the options the method uses.
     pub(crate) fn validate(&self) -> Result<(), SphereTreeError> {
         let bad = |name: &'static str, value: f64, requirement: &'static str| {
@@ -476,6 +492,13 @@ impl SphereTreeOptions {
             }
             if self.branch == 0 {
                 return bad("branch", 0.0, "at least 1");
+            }
+            if self.max_nodes == 0 || self.max_nodes > crate::MAX_TREE_NODES {
+                return bad(
+                    "max_nodes",
+                    self.max_nodes as f64,
+                    "at least 1 and at most MAX_TREE_NODES (2^21)",
+                );
             }
             if self.branch > MAX_BRANCH {
                 return bad("branch", self.branch as f64, "at most 10,000");

@@ -89,6 +89,37 @@ fn awkward_meshes_meet_their_tolerances() {
     }
 }
 
+/// A tolerance and a node budget together: the tolerance met within the budget, or
+/// refused; never more nodes, never a looser leaf.
+#[test]
+fn a_tolerance_within_a_node_budget_is_met_or_refused() {
+    let surface = Surface::new(&shapes::torus(1.0, 0.3, 12).expect("torus")).expect("closed");
+    let tolerance = 0.03 * surface.diagonal();
+    let free = tolerance_tree(&surface, tolerance, Effort::Quick);
+    let needed = free.nodes().len();
+    let options = SphereTreeOptions::default()
+        .with_tolerance(Length::Absolute(tolerance))
+        .with_effort(Effort::Quick);
+    let roomy = build(&surface, &options.clone().with_max_nodes(needed)).expect("fits");
+    assert_eq!(roomy.nodes(), free.nodes());
+    for max_nodes in [1, needed / 2] {
+        assert!(matches!(
+            build(&surface, &options.clone().with_max_nodes(max_nodes)),
+            Err(SphereTreeError::ToleranceUnreachable { limit, spheres, .. })
+                if limit == max_nodes && spheres <= max_nodes
+        ));
+    }
+    for bad in [0, sphaera_spheretree::MAX_TREE_NODES + 1] {
+        assert!(matches!(
+            build(&surface, &options.clone().with_max_nodes(bad)),
+            Err(SphereTreeError::InvalidParameter {
+                name: "max_nodes",
+                ..
+            })
+        ));
+    }
+}
+
 /// Scaling the mesh by a power of two scales the tree: the same structure, every centre,
 /// radius and error scaled, bit for bit.
 #[test]
@@ -120,14 +151,40 @@ fn a_power_of_two_scales_the_tree_exactly() {
 #[test]
 fn unreachable_and_invalid_tolerances_say_why() {
     let surface = Surface::shell(&shapes::square_sheet(1.0, 1).expect("square")).expect("shell");
+    // Within a node budget (the default limit, 2^21 nodes, is reached the same way, only
+    // later).
     let options = SphereTreeOptions::default()
         .with_tolerance(Length::RelativeToDiagonal(1e-6))
-        .with_effort(Effort::Quick);
+        .with_effort(Effort::Quick)
+        .with_max_nodes(5_000);
     match build(&surface, &options) {
         Err(SphereTreeError::ToleranceUnreachable {
-            tolerance, worst, ..
+            tolerance,
+            worst,
+            spheres,
+            limit,
+            ..
         }) => {
             assert!(worst > tolerance);
+            assert!(spheres <= limit && limit == 5_000, "{spheres} of {limit}");
+        }
+        other => panic!("{other:?}"),
+    }
+    // Deeper than the depth limit: one child per node never gets below the root's error.
+    let options = SphereTreeOptions::default()
+        .with_tolerance(Length::RelativeToDiagonal(0.01))
+        .with_effort(Effort::Quick)
+        .with_branch(1);
+    match build(&surface, &options) {
+        Err(SphereTreeError::ToleranceUnreachable {
+            tolerance,
+            worst,
+            levels,
+            depth,
+            ..
+        }) => {
+            assert!(worst > tolerance);
+            assert!(levels <= depth, "{levels} levels of {depth}");
         }
         other => panic!("{other:?}"),
     }

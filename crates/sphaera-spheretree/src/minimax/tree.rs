@@ -8,7 +8,7 @@ use sphaera_mesh::geometry::minimum_enclosing_ball;
 
 use super::candidates::signed_depth;
 use super::node::{Child, Goal, Plan, divide};
-use super::pieces::{Piece, area, mesh_pieces, refine};
+use super::pieces::{Piece, area, mesh_pieces, refine, refined_count};
 use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::tree::{SphereTree, TreeNode};
@@ -61,6 +61,11 @@ pub(crate) fn minimax_tree(
         Some(_) => MAX_MEDIAL_DEPTH,
         None => options.depth,
     };
+    // A tolerance tree stops at the budget asked for.
+    let max_nodes = match tolerance {
+        Some(_) => options.max_nodes.min(MAX_TREE_NODES),
+        None => MAX_TREE_NODES,
+    };
     for level in 1..=max_depth {
         let above = level_starts[level - 1]..level_starts[level];
         let parents: Vec<usize> = above
@@ -73,15 +78,19 @@ pub(crate) fn minimax_tree(
             break;
         }
         let total = parents.len();
-        if nodes.len().saturating_add(total.saturating_mul(branch)) > MAX_TREE_NODES {
-            return Err(unreachable(tolerance, &nodes, level - 1));
+        // Never more nodes than asked for (each node divided gets a child at least), nor
+        // than a tree may hold (each may get `branch`).
+        if nodes.len().saturating_add(total) > max_nodes
+            || nodes.len().saturating_add(total.saturating_mul(branch)) > MAX_TREE_NODES
+        {
+            return Err(unreachable(tolerance, &nodes, level - 1, max_nodes));
         }
         let last = tolerance.is_none() && level == max_depth;
         let mut effort = Plan::for_level(options.effort, total, branch, last);
         // The level's pieces together stay within LEVEL_PIECES: many nodes get fewer.
         effort.pieces = effort.pieces.min(LEVEL_PIECES / total);
         if effort.pieces < MIN_PIECES_PER_NODE {
-            return Err(unreachable(tolerance, &nodes, level - 1));
+            return Err(unreachable(tolerance, &nodes, level - 1, max_nodes));
         }
         let goal = match tolerance {
             Some(t) => Goal::Within {
@@ -106,8 +115,8 @@ pub(crate) fn minimax_tree(
         for (&parent, (pieces, children)) in parents.iter().zip(divided) {
             let first = nodes.len() as u32;
             added += children.len();
-            if nodes.len() + children.len() > MAX_TREE_NODES {
-                return Err(unreachable(tolerance, &nodes, level));
+            if nodes.len() + children.len() > max_nodes {
+                return Err(unreachable(tolerance, &nodes, level, max_nodes));
             }
             for child in children {
                 let region: Vec<Piece> =
@@ -147,7 +156,7 @@ pub(crate) fn minimax_tree(
         let deepest = level_starts.len().saturating_sub(2);
         let last = level_starts[deepest]..nodes.len();
         if nodes[last].iter().any(|n| n.error > t) {
-            return Err(unreachable(tolerance, &nodes, deepest));
+            return Err(unreachable(tolerance, &nodes, deepest, max_nodes));
         }
     }
     Ok(SphereTree {
@@ -159,7 +168,12 @@ pub(crate) fn minimax_tree(
 }
 
 /// The error of a tolerance that cannot be met, from the tree as it stands.
-fn unreachable(tolerance: Option<f64>, nodes: &[TreeNode], levels: usize) -> SphereTreeError {
+fn unreachable(
+    tolerance: Option<f64>,
+    nodes: &[TreeNode],
+    levels: usize,
+    limit: usize,
+) -> SphereTreeError {
     let tolerance = tolerance.unwrap_or(0.0);
     let worst = nodes
         .iter()
@@ -171,7 +185,7 @@ fn unreachable(tolerance: Option<f64>, nodes: &[TreeNode], levels: usize) -> Sph
         worst,
         spheres: nodes.len(),
         levels,
-        limit: MAX_TREE_NODES,
+        limit,
         depth: MAX_MEDIAL_DEPTH,
     }
 }
@@ -228,17 +242,39 @@ fn divide_all(
 
 /// The longest edge a region's pieces are split to before it is divided into `most`
 /// children: about the plan's pieces per node (or per child) over the region's area, and
-/// never so fine that the region exceeds the pieces cap (checked by `refine`).
+/// never so fine that the region exceeds the pieces cap (checked by `refine`). Slivers
+/// (a thin rod's long side triangles) split along their length into far more pieces than
+/// their area suggests: the edge is then lengthened until the region makes at most twice
+/// the pieces wanted.
 fn piece_size(region: &[Piece], most: usize, plan: &Plan) -> f64 {
     let total: f64 = region.iter().map(area).sum();
-    let wanted = plan.pieces.max(plan.pieces_per_child.saturating_mul(most)) as f64;
+    let wanted = plan.pieces.max(plan.pieces_per_child.saturating_mul(most));
     // A piece split to longest edge h has area about h²/4.
-    let h = (4.0 * total / wanted).sqrt();
-    if h > 0.0 && h.is_finite() {
-        h
-    } else {
-        f64::INFINITY
+    let h = (4.0 * total / wanted as f64).sqrt();
+    if !(h > 0.0 && h.is_finite()) {
+        return f64::INFINITY;
     }
+    // Unsplit, the region has its own count of pieces: never asked below that.
+    let limit = wanted.saturating_mul(2).max(region.len());
+    let fits = |h: f64| refined_count(region, h, limit) <= limit;
+    if fits(h) {
+        return h;
+    }
+    // Doubling h ends: past the longest edge nothing is split.
+    let (mut short, mut long) = (h, 2.0 * h);
+    while !fits(long) {
+        (short, long) = (long, 2.0 * long);
+    }
+    // Halving the ratio in log scale; powers of two scale every step exactly.
+    for _ in 0..6 {
+        let middle = (short * long).sqrt();
+        if fits(middle) {
+            long = middle;
+        } else {
+            short = middle;
+        }
+    }
+    long
 }
 
 /// In a tolerance tree: the certified error of every node of a new level whose eq. 2
