@@ -34,7 +34,7 @@ pub(crate) fn worst(clusters: &[Cluster]) -> f64 {
 }
 
 /// Clusters of more than this many spheres assign pieces among neighbouring spheres only.
-const BRUTE_FORCE_SPHERES: usize = 24;
+pub(crate) const BRUTE_FORCE_SPHERES: usize = 24;
 
 /// The region being divided: its pieces, representatives and candidate centres.
 pub(crate) struct Region<'a> {

@@ -6,7 +6,7 @@ use glam::DVec3;
 use sphaera_mesh::{Sphere, Surface};
 
 use super::candidates::{Candidate, medial_candidate};
-use super::cluster::{Cluster, Region, worst};
+use super::cluster::{BRUTE_FORCE_SPHERES, Cluster, Region, worst};
 use super::pieces::{Piece, area, centroid};
 use super::search::Thresholds;
 use crate::evaluate::{EvaluationOptions, sphere_error};
@@ -163,46 +163,70 @@ pub(crate) fn divide(
         depth: parent.1,
     });
     origins.push((pieces.len() / 2) as u32);
-    let starts = if pieces.len() <= effort.reps {
-        1
+    let wanted = effort
+        .pieces
+        .max(effort.pieces_per_child.saturating_mul(most))
+        .max(1);
+    let proxied = most <= BRUTE_FORCE_SPHERES && pieces.len() > PROXY_FACTOR.saturating_mul(wanted);
+    let mut clusters = if proxied {
+        // Divided on every `stride`-th piece (each standing for its neighbours in Morton
+        // order), then refined on every piece from there.
+        let stride = pieces.len().div_ceil(wanted);
+        let proxy: Vec<Piece> = pieces.iter().step_by(stride).copied().collect();
+        let drafted: Vec<Cluster> = divide(surface, &proxy, goal, parent, effort)?
+            .into_iter()
+            .map(|child| Cluster {
+                center: child.sphere.center,
+                depth: child.depth,
+                members: Vec::new(),
+                cost: child.error,
+                bias: 0.0,
+            })
+            .collect();
+        let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
+        finish(&whole, goal, &drafted, PROXY_ROUNDS)?
     } else {
-        effort.starts.max(1)
-    };
-    // Every start on the representatives; the best ones refined on every piece.
-    let mut drafts = Vec::with_capacity(starts);
-    for start in 0..starts {
-        let region = region(
-            surface,
-            pieces,
-            most,
-            effort.reps,
-            start,
-            &candidates,
-            &origins,
-        );
-        let clusters = draft(&region, goal);
-        drafts.push((worst(&clusters), start, clusters));
-    }
-    drafts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let mut best: Option<Vec<Cluster>> = None;
-    for (_, start, clusters) in drafts.into_iter().take(effort.refined.max(1)) {
-        let region = region(
-            surface,
-            pieces,
-            most,
-            effort.reps,
-            start,
-            &candidates,
-            &origins,
-        );
-        let refined = finish(&region, goal, &clusters, effort.rounds)?;
-        if better(&refined, best.as_deref(), goal) {
-            best = Some(refined);
+        let starts = if pieces.len() <= effort.reps {
+            1
+        } else {
+            effort.starts.max(1)
+        };
+        // Every start on the representatives; the best ones refined on every piece.
+        let mut drafts = Vec::with_capacity(starts);
+        for start in 0..starts {
+            let region = region(
+                surface,
+                pieces,
+                most,
+                effort.reps,
+                start,
+                &candidates,
+                &origins,
+            );
+            let clusters = draft(&region, goal);
+            drafts.push((worst(&clusters), start, clusters));
         }
-    }
-    let mut clusters = best.unwrap_or_default();
+        drafts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut best: Option<Vec<Cluster>> = None;
+        for (_, start, clusters) in drafts.into_iter().take(effort.refined.max(1)) {
+            let region = region(
+                surface,
+                pieces,
+                most,
+                effort.reps,
+                start,
+                &candidates,
+                &origins,
+            );
+            let refined = finish(&region, goal, &clusters, effort.rounds)?;
+            if better(&refined, best.as_deref(), goal) {
+                best = Some(refined);
+            }
+        }
+        best.unwrap_or_default()
+    };
     let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
-    if effort.swaps > 0 && matches!(goal, Goal::Count(_)) {
+    if !proxied && effort.swaps > 0 && matches!(goal, Goal::Count(_)) {
         whole.swap(&mut clusters, effort.swaps, SWAP_ROUNDS)?;
     }
     if effort.balance > 0.0 && clusters.len() > 1 {
@@ -222,6 +246,15 @@ pub(crate) fn divide(
         .collect();
     no_looser_than_parent(surface, children, parent)
 }
+
+/// A region of more pieces than this many times the plan's (the root of a mesh of a
+/// million triangles) is first divided on a proxy, every `stride`-th piece, and then
+/// refined on every piece for [`PROXY_ROUNDS`] rounds from there (the proxy's division
+/// has had the starts and the swaps).
+const PROXY_FACTOR: usize = 2;
+
+/// Rounds of exact refinement on every piece after a proxy's division.
+const PROXY_ROUNDS: usize = 2;
 
 /// Divisions into more children than this go in two steps ([`divide_in_groups`]).
 const LARGE_DIVISION: usize = 1_024;

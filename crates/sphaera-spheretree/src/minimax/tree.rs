@@ -52,6 +52,8 @@ pub(crate) fn minimax_tree(
         children: 0..0,
         region_samples: mesh.triangle_count() as u32,
     }];
+    let eq2_bounds = eq2_bounds(surface);
+    certify_level(surface, &mut nodes, tolerance, eq2_bounds)?;
     let mut regions: Vec<Vec<Piece>> = vec![mesh_pieces(mesh)];
     // The signed depth of every node's centre.
     let mut depths = vec![root_depth];
@@ -140,9 +142,9 @@ pub(crate) fn minimax_tree(
             break;
         }
         level_starts.push(nodes.len());
+        let start = level_starts[level];
+        certify_level(surface, &mut nodes[start..], tolerance, eq2_bounds)?;
         if let Some(t) = tolerance {
-            let start = level_starts[level];
-            certify_level(surface, &mut nodes[start..], t)?;
             // Leaves are never divided: their pieces go.
             for (node, region) in nodes[start..].iter().zip(&mut regions[start..]) {
                 if node.error <= t {
@@ -188,6 +190,36 @@ fn unreachable(
         limit,
         depth: MAX_MEDIAL_DEPTH,
     }
+}
+
+/// Whether eq. 2 (the radius less the centre's depth) bounds a sphere's error: on a
+/// shell, and on a solid whose inside is bounded by the mesh alone, a closed mesh (a ball
+/// of the depth's radius about an inside centre is then inside). An open mesh taken as a
+/// solid (a scan with holes) has an inside that reaches out through its holes: its
+/// nodes' errors are certified by evaluation instead.
+fn eq2_bounds(surface: &Surface) -> bool {
+    !surface.has_inside() || surface.is_embedded_solid() || closed_chain(surface.mesh())
+}
+
+/// Whether the triangles' oriented edges cancel (every edge, by its corners' positions,
+/// used as often in one direction as in the other): the generalized winding number is
+/// then an integer off the mesh and changes only across it, so the inside it defines is
+/// bounded by the mesh.
+fn closed_chain(mesh: &sphaera_mesh::TriMesh) -> bool {
+    let key = |v: u32| mesh.positions()[v as usize].to_array().map(f64::to_bits);
+    let mut count: std::collections::HashMap<([u64; 3], [u64; 3]), i64> =
+        std::collections::HashMap::with_capacity(3 * mesh.triangle_count());
+    for t in mesh.triangles() {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            let (a, b) = (key(a), key(b));
+            if a < b {
+                *count.entry((a, b)).or_insert(0) += 1;
+            } else {
+                *count.entry((b, a)).or_insert(0) -= 1;
+            }
+        }
+    }
+    count.values().all(|&c| c == 0)
 }
 
 /// A parent's region as divided (its pieces) and its children.
@@ -277,23 +309,31 @@ fn piece_size(region: &[Piece], most: usize, plan: &Plan) -> f64 {
     long
 }
 
-/// In a tolerance tree: the certified error of every node of a new level whose eq. 2
-/// error exceeds the tolerance; a node whose certified error meets it keeps that as its
-/// error (it is then a leaf).
+/// The certified error of every node of a new level whose eq. 2 error exceeds the
+/// tolerance (`None` in a tree built to a depth: none does), or of every node when eq. 2
+/// bounds nothing (`eq2_bounds` false, see [`eq2_bounds`]); a node of a tolerance tree whose certified error meets
+/// the tolerance is then a leaf.
 fn certify_level(
     surface: &Surface,
     level: &mut [TreeNode],
-    tolerance: f64,
+    tolerance: Option<f64>,
+    eq2_bounds: bool,
 ) -> Result<(), SphereTreeError> {
-    let options = EvaluationOptions::default().with_tolerance(sphaera_mesh::Length::Absolute(
-        (CERTIFY_FRACTION * tolerance).max(f64::MIN_POSITIVE),
-    ));
     let one = |node: &TreeNode| -> Result<f64, SphereTreeError> {
-        if node.error <= tolerance {
+        let within = tolerance.is_none_or(|t| node.error <= t);
+        if eq2_bounds && within {
             return Ok(node.error);
         }
+        let goal = tolerance.unwrap_or(node.error);
+        let options = EvaluationOptions::default().with_tolerance(sphaera_mesh::Length::Absolute(
+            (CERTIFY_FRACTION * goal).max(f64::MIN_POSITIVE),
+        ));
         let fit = sphere_error(surface, &node.sphere, &options)?;
-        Ok(node.error.min(fit.upper))
+        Ok(if eq2_bounds {
+            node.error.min(fit.upper)
+        } else {
+            fit.upper
+        })
     };
     #[cfg(feature = "parallel")]
     let errors: Result<Vec<f64>, SphereTreeError> = {

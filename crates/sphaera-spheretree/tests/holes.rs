@@ -1,0 +1,76 @@
+//! Meshes with holes taken as solids (a scan open at its base, a capsule with a missing
+//! patch): the inside the winding number gives them reaches out through the holes, so a
+//! sphere's radius less its centre's depth does not bound its error there. Every node's
+//! error must still be a certified upper bound, checked independently.
+
+mod checks;
+
+use sphaera_mesh::{Length, Surface, TriMesh, shapes};
+use sphaera_spheretree::{Effort, SphereTreeOptions, build};
+
+/// A capsule with the triangles around its top pole removed: a hole a quarter of its
+/// width across.
+fn holed_capsule() -> TriMesh {
+    let mesh = shapes::capsule(0.5, 2.0, 16).expect("capsule");
+    let top = mesh
+        .positions()
+        .iter()
+        .map(|p| p.z)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let kept: Vec<[u32; 3]> = mesh
+        .triangles()
+        .iter()
+        .copied()
+        .filter(|t| {
+            t.iter()
+                .all(|&v| mesh.positions()[v as usize].z < top - 0.02)
+        })
+        .collect();
+    assert!(kept.len() < mesh.triangle_count(), "a hole was cut");
+    TriMesh::new(mesh.positions().to_vec(), kept).expect("valid mesh")
+}
+
+/// Fails today: the certified evaluation (`evaluate::sphere_error`) takes a patch of a
+/// sphere that crosses no triangle to lie on one side, which holds for closed meshes
+/// only; across a hole the winding number passes ½ without crossing the mesh, and a
+/// sphere poking through this hole is under-estimated (0.063 certified, 0.123 sampled).
+#[test]
+#[ignore = "known: the certified evaluation assumes a closed mesh (see the doc comment)"]
+fn node_errors_bound_the_protrusion_of_a_holed_capsule() {
+    let mesh = holed_capsule();
+    let surface = Surface::new(&mesh).expect("still a solid by its winding number");
+    assert!(!surface.is_embedded_solid());
+    let tree = build(
+        &surface,
+        &SphereTreeOptions::default().with_effort(Effort::Quick),
+    )
+    .expect("builds");
+    checks::check_tree(&surface, &tree, 3_000, 256, "holed capsule, depth 3");
+    let tolerance = 0.04 * surface.diagonal();
+    let options = SphereTreeOptions::default()
+        .with_effort(Effort::Quick)
+        .with_tolerance(Length::Absolute(tolerance));
+    let tree = build(&surface, &options).expect("builds");
+    for &leaf in &tree.leaves() {
+        assert!(tree.nodes()[leaf].error <= tolerance);
+    }
+    checks::check_tree(&surface, &tree, 3_000, 256, "holed capsule, 4 %");
+}
+
+/// The Stanford bunny as scanned, open at its base: its level-3 spheres were reported
+/// within 2.0 % of the diagonal by eq. 2 while the certified evaluation found 3.3 %.
+#[test]
+fn node_errors_bound_the_protrusion_of_the_open_stanford_bunny() {
+    let Some(data) =
+        sphaera_tests::data_dir("node_errors_bound_the_protrusion_of_the_open_stanford_bunny")
+    else {
+        return;
+    };
+    let mesh = sphaera_mesh::io::load(data.join("stanford-bunny.obj")).expect("loads");
+    let surface = Surface::new(&mesh).expect("a solid by its winding number");
+    let options = SphereTreeOptions::default()
+        .with_effort(Effort::Quick)
+        .with_depth(2);
+    let tree = build(&surface, &options).expect("builds");
+    checks::check_tree(&surface, &tree, 2_000, 128, "stanford bunny");
+}
