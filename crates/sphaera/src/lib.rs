@@ -16,7 +16,7 @@
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | Guéziec 2001 (error spheres) | edge-collapse simplification whose reported error bound holds in both directions, and its progressive hierarchy |
 //! | `sweep` (feature `sweep`) | `sphaera-sweep` | Guéziec 2001 (Meshsweeper) | exact and anytime closest-point queries, coherent sessions, motion, polylines and certified Hausdorff distances |
 //! | `medial` (feature `medial`) | `sphaera-medial` | Bradshaw & O'Sullivan 2004 | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
-//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | Bradshaw & O'Sullivan 2004 | sphere-trees for collision detection (merge, burst, expand-select and combined reducers; octree, grid and Hubbard baselines), coverage of the whole surface certified at every level, fit evaluation, interruptible traversal and exports |
+//! | `spheretree` (feature `spheretree`) | `sphaera-spheretree` | Bradshaw & O'Sullivan 2004 | sphere-trees for collision detection: the minimax construction (the default: built to a depth, to a tolerance as deep as needed, or to exactly N spheres; solids and sheets alike), the paper's merge, burst, expand-select and combined reducers, octree, grid and Hubbard baselines; coverage of the whole surface certified at every level, fit evaluation, interruptible traversal and exports |
 //! | `hal` (feature `hal`) | `sphaera-hal` | Veltkamp | HAL trees: hierarchical approximation and localization of polygons, polylines and closed genus-0 meshes by signed discs and balls |
 //! | `silhouette` (feature `silhouette`) | `sphaera-silhouette` | Mata, Pastor & Rodríguez | view-dependent distance-transform silhouette labels and the silhouette-preserving level of detail they guide |
 //! | `robot` (feature `robot`) | `sphaera-robot` | Bradshaw & O'Sullivan 2004 | URDF robots: every link spherized in its own frame with certified coverage (meshes by sphere-trees, primitives analytically), forward kinematics, the spherized URDF, MoveIt SRDF, cuRobo YAML and JSON |
@@ -75,18 +75,30 @@
 //! # Ok::<(), sphaera::Error>(())
 //! ```
 //!
-//! Build a sphere-tree whose every level covers the surface, certified:
+//! Build a sphere-tree whose every level covers the surface, certified; to a tolerance
+//! (as deep as each part needs, every leaf within it, certified), or with exactly the
+//! number of spheres a budget allows; a flat sheet (no inside) gets spheres as well:
 //!
 //! ```
 //! use sphaera::prelude::*;
 //!
-//! let torus = sphaera::mesh::shapes::torus(1.0, 0.3, 48)?;
-//! let options = SphereTreeOptions::default()
-//!     .with_depth(2).with_branch(4).with_samples(800)
-//!     .with_initial_spheres(80).with_min_spheres_per_node(20);
-//! let tree: SphereTree = sphaera::spheretree::build(&Surface::new(&torus)?, &options)?;
+//! let torus = Surface::new(&sphaera::mesh::shapes::torus(1.0, 0.3, 48)?)?;
+//! let options = SphereTreeOptions::default().with_depth(2).with_branch(4);
+//! let tree: SphereTree = sphaera::spheretree::build(&torus, &options)?;
 //! assert_eq!(tree.level_count(), 3);
 //! assert_eq!(tree.coverage().len(), 3);
+//!
+//! let tolerance = Length::RelativeToDiagonal(0.03);
+//! let fine = sphaera::spheretree::build(&torus, &SphereTreeOptions::default().with_tolerance(tolerance))?;
+//! let within = 0.03 * torus.diagonal();
+//! assert!(fine.leaves().iter().all(|&leaf| fine.nodes()[leaf].error <= within));
+//!
+//! let budget = SphereTreeOptions::default().with_depth(1).with_branch(12);
+//! assert_eq!(sphaera::spheretree::build(&torus, &budget)?.level(1).len(), 12);
+//!
+//! let sheet = Surface::solid_or_shell(&sphaera::mesh::shapes::square_sheet(1.0, 4)?)?;
+//! assert!(!sheet.has_inside());
+//! assert_eq!(sphaera::spheretree::build(&sheet, &budget)?.level(1).len(), 12);
 //! # Ok::<(), sphaera::Error>(())
 //! ```
 //!
