@@ -51,6 +51,35 @@ pub enum SceneError {
         /// The tolerance as given.
         text: String,
     },
+    /// A detail request needs a tolerance below the model's finest
+    /// ([`ModelOptions::finest_tolerance`](crate::ModelOptions::finest_tolerance)) that no
+    /// tree of the model meets.
+    #[error(
+        "model `{model}`: the tolerance {tolerance:e} (model units) is below its finest, {finest:e}; lower `ModelOptions::finest_tolerance` to build trees that fine"
+    )]
+    ToleranceBelowFinest {
+        /// The model's name.
+        model: String,
+        /// The tolerance needed, in the model's units.
+        tolerance: f64,
+        /// The finest tolerance it builds trees to, in the model's units.
+        finest: f64,
+    },
+    /// A model could not build a sphere-tree to a tolerance: the tolerance is out of
+    /// reach ([`sphaera_spheretree::SphereTreeError::ToleranceUnreachable`]) or the
+    /// tolerance trees' options are invalid.
+    #[error(
+        "model `{model}`: no sphere-tree for the tolerance {tolerance:e} (model units): {reason}"
+    )]
+    ToleranceTree {
+        /// The model's name.
+        model: String,
+        /// The tolerance needed, in the model's units.
+        tolerance: f64,
+        /// Why the tree could not be built (shared: a tolerance found out of reach is
+        /// remembered, and finer requests fail with the same reason).
+        reason: std::sync::Arc<sphaera_spheretree::SphereTreeError>,
+    },
     /// A tolerance in pixels was asked for without a camera.
     #[error("a tolerance in pixels needs a camera")]
     NoCamera,

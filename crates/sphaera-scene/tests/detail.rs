@@ -1,5 +1,6 @@
-//! `Scene::detail` against brute force: the chosen level meets the tolerance and every
-//! coarser level violates it; the camera's pixel bound holds for random displacements;
+//! `Scene::detail` against brute force: the chosen level of the tree the spheres are taken
+//! from meets the tolerance and every coarser level violates it, the cut meets it unless
+//! the tolerance is below the model's finest; the camera's pixel bound holds for random displacements;
 //! the mesh ladder is the hierarchy's selective refinement; scaling by powers of two gives
 //! identical choices.
 
@@ -114,22 +115,52 @@ proptest! {
                     && choice.error == errors[level] * s
                     && choice.levels == errors.len()
             };
-            let tree = model.tree();
-            prop_assert!(check(&detail.spheres, model.tree_errors(), &|l| tree.level(l).len()),
-                "{detail:?}");
+            // The spheres: the tree the instance's detail was taken from, its levels being
+            // its cuts, each cut's worst error recomputed here.
+            let trees = model.trees();
+            let used = &trees[detail.tree.index];
+            let tree = used.tree();
+            prop_assert_eq!(detail.tree.tolerance, used.tolerance());
+            prop_assert_eq!(detail.tree.leaves, tree.leaves().len());
+            let cut_errors: Vec<f64> = (0..tree.level_count())
+                .map(|l| tree.cut_at(l).iter().map(|&i| tree.nodes()[i].error).fold(f64::NEG_INFINITY, f64::max))
+                .collect();
+            prop_assert!(check(&detail.spheres, &cut_errors, &|l| tree.cut_at(l).len()), "{detail:?}");
             let ladder: Vec<f64> = model.mesh_levels().iter().map(|l| l.error_bound).collect();
             prop_assert!(check(&detail.mesh, &ladder, &|l| model.mesh_levels()[l].triangles),
                 "{detail:?}");
             prop_assert!(detail.mesh.meets, "the input meets every tolerance");
+            // The tolerance asked of the model: the largest error that meets the
+            // tolerance for this instance.
+            let need = detail.model_tolerance;
+            // (`t / s · s` may round a unit in the last place above `t`.)
+            let meets = |e: f64| measure(e).is_none_or(|m| m <= tolerance.value() * (1.0 + 1e-15));
+            prop_assert!(meets(need), "{detail:?}");
+            match tolerance {
+                Tolerance::World(t) => prop_assert_eq!(need, t / s),
+                Tolerance::Relative(t) => prop_assert_eq!(need, t * model.diagonal()),
+                Tolerance::Pixels(_) => {}
+            }
             // The smallest cut: never more spheres than a level that meets, and what it
-            // claims holds.
+            // claims holds; it meets unless the tolerance is below the model's finest
+            // (1 % of its diagonal here), and then it says so.
             let cut = &detail.cut;
             prop_assert!(cut.count >= 1 && cut.deepest_level < tree.level_count());
+            let expected = sphaera_spheretree::cut_for_tolerance(tree, need);
+            prop_assert_eq!(cut.count, expected.nodes.len());
+            prop_assert_eq!(cut.meets, expected.meets_tolerance);
+            if need >= 0.01 * model.diagonal() {
+                prop_assert!(cut.meets && detail.unmet.is_none(), "{detail:?}");
+            }
+            if !cut.meets {
+                prop_assert!(detail.unmet.as_deref().is_some_and(|why| why.contains("finest")), "{detail:?}");
+            }
             if detail.spheres.meets {
                 prop_assert!(cut.meets && cut.count <= detail.spheres.count, "{detail:?}");
             }
             if cut.meets {
                 prop_assert!(cut.measured <= tolerance.value(), "{detail:?}");
+                prop_assert!(cut.error <= need * s * (1.0 + 1e-12), "{detail:?}");
             }
             if detail.spheres.meets && detail.spheres.level == 0 {
                 prop_assert_eq!(cut.count, tree.level(0).len());
@@ -145,6 +176,7 @@ proptest! {
         let triangles: usize = report.instances.iter().map(|d| d.mesh.count).sum();
         prop_assert_eq!(report.triangles, triangles);
         prop_assert!(report.triangles <= report.full_triangles);
+        prop_assert_eq!(report.all_meet, report.instances.iter().all(|d| d.cut.meets));
     }
 }
 
@@ -227,7 +259,9 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
             )
         })
         .collect();
-    let base = common::scene(&placements);
+    // Models of their own: the trees both scenes take are those these requests build.
+    let models = common::fresh_models();
+    let base = common::scene_of(&models, &placements);
     let camera = Camera::perspective(DVec3::new(3.0, 2.0, 8.0), DVec3::ZERO, 50.0, 1920, 1080)
         .expect("a camera");
     for k in [-30i32, -1, 3, 40] {
@@ -246,7 +280,7 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
                 )
             })
             .collect();
-        let scaled = common::scene(&scaled_placements);
+        let scaled = common::scene_of(&models, &scaled_placements);
         let scaled_camera = Camera::perspective(camera.eye() * f, DVec3::ZERO, 50.0, 1920, 1080)
             .expect("a camera")
             .with_near(camera.near() * f)
@@ -275,10 +309,11 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
             let b = scaled.detail(scaled_cam, scaled_tolerance).expect("report");
             for (x, y) in a.instances.iter().zip(&b.instances) {
                 assert_eq!(
-                    (x.spheres.level, x.mesh.level),
-                    (y.spheres.level, y.mesh.level),
+                    (x.tree.index, x.spheres.level, x.mesh.level),
+                    (y.tree.index, y.spheres.level, y.mesh.level),
                     "2^{k} {tolerance}"
                 );
+                assert_eq!(x.model_tolerance, y.model_tolerance, "2^{k} {tolerance}");
                 assert_eq!(x.mesh.error * f, y.mesh.error, "2^{k}");
                 assert_eq!(x.spheres.error * f, y.spheres.error, "2^{k}");
                 assert_eq!(x.cut.count, y.cut.count, "2^{k} {tolerance}");
@@ -334,7 +369,6 @@ fn the_same_detail_on_any_number_of_threads() {
             )
         })
         .collect();
-    let scene = common::scene(&placements);
     let camera = Camera::perspective(
         DVec3::new(1.0, 1.0, 4.0),
         DVec3::new(1.0, 0.5, -8.0),
@@ -343,7 +377,9 @@ fn the_same_detail_on_any_number_of_threads() {
         720,
     )
     .expect("a camera");
+    // Fresh models for each run: the trees are built in the run, on its threads.
     let run = |threads: usize| {
+        let scene = common::scene_of(&common::fresh_models(), &placements);
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
@@ -352,6 +388,7 @@ fn the_same_detail_on_any_number_of_threads() {
                 scene
                     .detail(Some(&camera), Tolerance::Pixels(1.5))
                     .expect("detail")
+                    .without_times()
             })
     };
     let one = run(1);
@@ -371,7 +408,13 @@ fn the_same_detail_on_any_number_of_threads() {
         mix(d.cut.count as u64);
         mix(d.cut.error.to_bits());
         mix(d.cut.measured.to_bits());
+        mix(d.model_tolerance.to_bits());
+        mix(d.tree.index as u64);
+        mix(d.tree.leaves as u64);
+        mix(u64::from(d.tree.built));
+        mix(u64::from(d.unmet.is_some()));
     }
+    mix(one.trees_built as u64);
     assert!(
         one.triangles < one.full_triangles,
         "{} of {} triangles, all meet: {}",

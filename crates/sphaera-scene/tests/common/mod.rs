@@ -5,20 +5,32 @@
 use std::sync::{Arc, OnceLock};
 
 use sphaera_mesh::geometry::Similarity;
-use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
 use sphaera_scene::{ModelOptions, ObjectModel, Scene};
 use sphaera_spheretree::SphereTreeOptions;
 
-/// Small sphere-trees: depth 2, branch 4.
+/// Small sphere-trees: a base tree of depth 2, branch 4; tolerance trees no finer than
+/// 1 % of a model's diagonal.
 pub fn options() -> ModelOptions {
-    ModelOptions::default().with_tree(
-        SphereTreeOptions::default()
-            .with_depth(2)
-            .with_branch(4)
-            .with_samples(800)
-            .with_initial_spheres(80)
-            .with_min_spheres_per_node(20),
-    )
+    ModelOptions::default()
+        .with_tree(
+            SphereTreeOptions::default()
+                .with_depth(2)
+                .with_branch(4)
+                .with_samples(800)
+                .with_initial_spheres(80)
+                .with_min_spheres_per_node(20),
+        )
+        .with_finest_tolerance(Length::RelativeToDiagonal(0.01))
+}
+
+/// Fresh models of [`meshes`] (not shared with other tests: a test that checks exact
+/// answers must not see the trees another test's requests built).
+pub fn fresh_models() -> Vec<Arc<ObjectModel>> {
+    meshes()
+        .into_iter()
+        .map(|(name, mesh)| Arc::new(ObjectModel::build(name, mesh, &options()).expect(name)))
+        .collect()
 }
 
 /// The meshes of [`models`]: a ball, a capsule, a torus and a cube, each a few hundred
@@ -54,11 +66,16 @@ pub fn pose(translation: DVec3, axis: DVec3, angle: f64, scale: f64) -> Similari
     .expect("a similarity")
 }
 
-/// A scene of `placements` (model index, pose).
+/// A scene of `placements` (model index, pose) of the shared [`models`].
 pub fn scene(placements: &[(usize, Similarity)]) -> Scene {
+    scene_of(models(), placements)
+}
+
+/// A scene of `placements` (model index, pose) of `models`.
+pub fn scene_of(models: &[Arc<ObjectModel>], placements: &[(usize, Similarity)]) -> Scene {
     let mut scene = Scene::new();
     for (k, (model, pose)) in placements.iter().enumerate() {
-        let model = &models()[model % models().len()];
+        let model = &models[model % models.len()];
         scene.add(format!("{}-{k}", model.name()), Arc::clone(model), *pose);
     }
     scene
