@@ -21,6 +21,7 @@
 //! |---|---|---|
 //! | [`data_dir`], [`mesh_files`], [`expected_stats`] | the shared real meshes | tests of every crate, benches, `sphaera-eval` |
 //! | [`hausdorff`] | the sampled Hausdorff distance measured with parry3d-f64 (samples and maxima from `sphaera_mesh::measure`, plus a local refinement), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
+//! | [`animal`] | a procedural horned quadruped with thin legs and a tail, the unseen mesh of issue 36 | `sphaera-eval`'s `spheres_vs_count` experiment |
 //! | [`awkward`] | generated meshes users bring: a pinched vertex, slivers, a tiny detached component, far-apart components, a thin rod, horns, spikes | the sphere-tree's `awkward` tests (every method, every output format) |
 //! | [`brute`] | brute-force point-to-mesh distances and the closeness of exact answers | the closest-point tests of mesh and sweep |
 //! | [`random`] | [`SplitMix64`] and the MMIX [`random::Lcg64`], each caller's mapping of words to numbers named | unit tests of mesh (indexed heap), simplify (edge radius, quadric, queue, shared fan) and sweep (queue, polyline hierarchy, Hausdorff bounds); the sweep and sphere-tree integration tests; `sphaera-eval`'s query sets |
@@ -38,7 +39,7 @@
 //!
 //! - [`random`], [`pattern_search`] and [`point_sets`] take and return only numbers and
 //!   glam's `DVec3` (one glam for everyone): any unit test may use them;
-//! - [`hausdorff`], [`brute`] and [`awkward`] take or return `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
+//! - [`hausdorff`], [`brute`], [`awkward`] and [`animal`] take or return `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
 //!   `sphaera-medial`: they serve integration tests, benches, experiments and the fuzz
 //!   target only.
 //!
@@ -57,6 +58,7 @@
 
 use std::path::{Path, PathBuf};
 
+pub mod animal;
 pub mod awkward;
 pub mod brute;
 pub mod delaunay_fuzz;

@@ -43,18 +43,26 @@ pub enum Command {
     /// and an upper bound at most `--tolerance` apart, where the maximum is reached, and
     /// optionally a PLY of the first mesh coloured by its distance to the second.
     Hausdorff(HausdorffArgs),
-    /// Adaptive medial-axis approximation (Bradshaw and O'Sullivan 2004, section 4):
-    /// spheres on the internal Voronoi vertices of surface samples, plus cover spheres, so
-    /// that every sample is covered, improved by replacing the worst sphere until the
-    /// target count or error is reached. The set is then certified to cover the whole
-    /// surface, not only the samples, growing the few spheres that must grow (as every
-    /// sphere-tree level is); `--samples-only` skips that.
+    /// Spheres around a mesh from its medial axis. `--spheres N` gives exactly N spheres
+    /// covering the whole surface (certified by construction): the minimax cover, whose
+    /// centres are medial candidates moved on the exact surface; it also covers flat
+    /// sheets. Otherwise the adaptive medial-axis approximation (Bradshaw and O'Sullivan
+    /// 2004, section 4): spheres on the internal Voronoi vertices of surface samples, plus
+    /// cover spheres, so that every sample is covered, improved by replacing the worst
+    /// sphere until `--medial-target` spheres (500 by default; the set then has at least
+    /// that many) or `--max-error` is reached, then certified to cover the whole surface,
+    /// not only the samples, growing the few spheres that must grow (as every sphere-tree
+    /// level is); `--samples-only` skips that.
     Medial(MedialArgs),
-    /// Sphere-tree for collision detection (Bradshaw and O'Sullivan 2004): the root is the
-    /// mesh's minimum enclosing ball; each level refines the adaptive medial
-    /// approximation in every node's region and reduces it to `--branch` children.
-    /// Every level is certified to cover the whole surface. The main job: with no
-    /// arguments it builds the embedded bunny's tree.
+    /// Sphere-tree for collision detection: the root is the mesh's minimum enclosing ball
+    /// and each node's part of the surface is divided between at most `--branch`
+    /// children, to `--depth` levels, or only where needed until every leaf is within
+    /// `--tolerance` (as deep as that takes), or into exactly `--spheres` N spheres in one
+    /// level. The default method (auto, today minimax) also covers flat sheets and open
+    /// patches; the paper's methods (Bradshaw and O'Sullivan 2004) need a solid. Every
+    /// level is certified to cover the whole surface (not by the baselines, whose
+    /// coverage is measured), and its certified worst error is reported. The main job:
+    /// with no arguments it builds the embedded bunny's tree.
     Spheretree(SpheretreeArgs),
     /// HAL tree (Veltkamp): a polygon kept as a binary tree of approximations by its own
     /// vertices, each part bounded by the intersection of two discs through its ends.
@@ -533,11 +541,13 @@ pub struct HalArgs {
 /// Arguments of `sphaera spheretree`.
 #[derive(Debug, Args)]
 pub struct SpheretreeArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. It must
-    /// enclose a volume (holes and non-manifold edges are fine; a flat sheet is not).
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. A
+    /// mesh that encloses a volume is a solid (holes and non-manifold edges are fine); one
+    /// that does not (a flat sheet, an open patch) is a shell, which only the minimax
+    /// method (auto) covers.
     pub mesh: Option<PathBuf>,
 
-    /// How a node's medial spheres are reduced to its children.
+    /// How the tree is built.
     #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
     pub method: MethodArg,
 
@@ -549,22 +559,28 @@ pub struct SpheretreeArgs {
     #[arg(long, default_value_t = 8)]
     pub branch: usize,
 
-    /// Surface samples standing for the surface (Poisson-disk, reproducible).
+    /// Exactly N spheres in one level: a one-level minimax tree (depth 1, branch N, at
+    /// most 10,000), reported with its certified error (minimax and auto only).
+    #[arg(long, value_name = "N", conflicts_with_all = ["depth", "tolerance", "branch"])]
+    pub spheres: Option<usize>,
+
+    /// Surface samples standing for the surface (Poisson-disk, reproducible; the medial
+    /// methods and the baselines: minimax works on the triangles themselves).
     #[arg(long, default_value_t = 10_000)]
     pub samples: usize,
 
-    /// Spheres of the initial medial approximation (medial methods).
+    /// Spheres of the initial medial approximation (merge, burst, expand, combined).
     #[arg(long, default_value_t = 500)]
     pub initial_spheres: usize,
 
     /// Medial spheres each node's region is refined to before reduction (merge, burst,
-    /// expand, combined, auto).
+    /// expand, combined).
     #[arg(long, default_value_t = 100)]
     pub min_spheres_per_node: usize,
 
     /// A node's medial spheres are refined until their worst error is at most this
-    /// fraction of the parent's (medial methods; the paper: ½ to ¼). Smaller is tighter
-    /// at levels 2 and 3 and slower.
+    /// fraction of the parent's (merge, burst, expand, combined; the paper: ½ to ¼).
+    /// Smaller is tighter at levels 2 and 3 and slower.
     #[arg(long, default_value_t = 0.125)]
     pub error_fraction: f64,
 
@@ -572,9 +588,13 @@ pub struct SpheretreeArgs {
     #[arg(long, default_value_t = 600)]
     pub forming_points: usize,
 
-    /// Report the shallowest level whose worst error is at most this: an absolute
-    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`2%`).
-    #[arg(long, value_parser = parse_length)]
+    /// Build until every leaf's certified error is at most this, refining only the nodes
+    /// that exceed it, each into the fewest children (at most `--branch`) that meet it,
+    /// as deep as needed (minimax and auto only; instead of `--depth`): an absolute
+    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`2%`). Leaves
+    /// then end at different depths, so each level is reported as its cut: the level's
+    /// nodes and the leaves above it, which together cover the surface.
+    #[arg(long, value_parser = parse_length, conflicts_with = "depth")]
     pub tolerance: Option<Length>,
 
     /// Skip the certified evaluation of every level (worst error by branch and bound,
@@ -587,9 +607,10 @@ pub struct SpheretreeArgs {
     pub seed: u64,
 
     /// Write the tree, atomically: `.json` (levels, spheres, errors, parents, children,
-    /// coverage certificates), `.sph` (the classic sphere-tree format) or `.yaml` (a
-    /// motion planner's `collision_spheres` list: the smallest cut of the tree meeting
-    /// `--tolerance`, or the deepest level).
+    /// coverage certificates), `.sph` (the classic sphere-tree format: a complete
+    /// `branch`-ary tree with a slot for every possible node, so a deep tree may not fit)
+    /// or `.yaml` (a motion planner's `collision_spheres` list: the tree's leaves, which
+    /// meet `--tolerance` when it is given).
     #[arg(long, short)]
     pub output: Option<PathBuf>,
 
@@ -597,19 +618,26 @@ pub struct SpheretreeArgs {
     pub print: OutputArgs,
 }
 
-/// `--method`: the reducers, and the classic baselines for comparison.
+/// `--method`: the minimax construction, the paper's reducers, and the classic baselines
+/// for comparison.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum MethodArg {
-    /// Merge neighbouring spheres, tightest result first.
-    Merge,
-    /// Burst spheres, handing their points to the spheres closest to covering them.
-    Burst,
-    /// Expand the medial spheres to a common standoff and select a covering subset.
-    Expand,
-    /// Merge and expand per node, keeping the tighter.
-    Combined,
-    /// Expand per node; merge only where expand's children are looser than their parent.
+    /// The minimax construction: each region tiled by triangle pieces and divided
+    /// between the children whose worst error is least; builds to a depth, a tolerance
+    /// or a sphere count, and covers sheets (surfaces without inside).
+    Minimax,
+    /// The default: the best method for the surface, today minimax.
     Auto,
+    /// The paper's reducer: merge neighbouring medial spheres, tightest result first.
+    Merge,
+    /// The paper's reducer: burst medial spheres, handing their points to the spheres
+    /// closest to covering them.
+    Burst,
+    /// The paper's reducer: expand the medial spheres to a common standoff and select a
+    /// covering subset.
+    Expand,
+    /// The paper's best: merge and expand per node, keeping the tighter.
+    Combined,
     /// Baseline: an octree's occupied cells, each in its circumscribed sphere.
     Octree,
     /// Baseline: per level a regular grid of about branch^level occupied cells.
@@ -622,11 +650,12 @@ impl MethodArg {
     /// The library's method.
     pub fn method(self) -> Method {
         match self {
+            Self::Minimax => Method::Minimax,
+            Self::Auto => Method::Auto,
             Self::Merge => Method::Merge,
             Self::Burst => Method::Burst,
             Self::Expand => Method::Expand,
             Self::Combined => Method::Combined,
-            Self::Auto => Method::Auto,
             Self::Octree => Method::Octree,
             Self::Grid => Method::Grid,
             Self::Hubbard => Method::Hubbard,
@@ -637,19 +666,36 @@ impl MethodArg {
 /// Arguments of `sphaera medial`.
 #[derive(Debug, Args)]
 pub struct MedialArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. It must
-    /// enclose a volume (holes and non-manifold edges are fine; a flat sheet is not).
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. The
+    /// adaptive approximation needs a mesh that encloses a volume (holes and non-manifold
+    /// edges are fine; a flat sheet is not); `--spheres` covers sheets too.
     pub mesh: Option<PathBuf>,
 
-    /// Improve until the set has at least this many spheres (default 500 when
-    /// `--max-error` is not given).
-    #[arg(long, conflicts_with = "max_error")]
+    /// Exactly N spheres covering the whole surface (certified by construction), at most
+    /// 10,000: the minimax cover (a one-level minimax sphere-tree), each sphere's centre a
+    /// medial candidate moved on the exact surface so that the worst sphere's error is
+    /// least. Without it: the adaptive approximation (`--medial-target`, `--max-error`).
+    #[arg(
+        long,
+        value_name = "N",
+        conflicts_with_all = [
+            "medial_target", "max_error", "static_points", "samples", "cover",
+            "samples_only", "seed",
+        ]
+    )]
     pub spheres: Option<usize>,
 
-    /// Improve until no sphere reaches farther than this beyond the surface: an absolute
-    /// distance (`0.002`) or a percentage of the bounding-box diagonal (`1%`). It bounds
-    /// the medial spheres; the surface certificate's growth can add to a few of them (the
-    /// report gives the error before and after; more `--samples` shrink the growth).
+    /// The adaptive approximation: improve until the set has at least this many spheres
+    /// (its cover spheres can add more; default 500 when neither `--spheres` nor
+    /// `--max-error` is given).
+    #[arg(long, value_name = "M", conflicts_with = "max_error")]
+    pub medial_target: Option<usize>,
+
+    /// The adaptive approximation: improve until no sphere reaches farther than this
+    /// beyond the surface: an absolute distance (`0.002`) or a percentage of the
+    /// bounding-box diagonal (`1%`). It bounds the medial spheres; the surface
+    /// certificate's growth can add to a few of them (the report gives the error before
+    /// and after; more `--samples` shrink the growth).
     #[arg(long, value_parser = parse_length)]
     pub max_error: Option<Length>,
 
@@ -664,7 +710,7 @@ pub struct MedialArgs {
     /// Hubbard's static baseline instead: the Voronoi diagram of this many samples, no
     /// improvement, coverage of the samples not completed (the surface certificate still
     /// grows spheres to cover the whole surface, unless `--samples-only`).
-    #[arg(long, conflicts_with_all = ["spheres", "max_error"])]
+    #[arg(long, conflicts_with_all = ["medial_target", "max_error"])]
     pub static_points: Option<usize>,
 
     /// Skip the surface certificate: the spheres then cover the surface samples only, and

@@ -94,7 +94,7 @@ fn medial_spheres_cover_the_whole_surface_of_a_block_by_default() {
     let path = dir.path().join("l_block.obj");
     let mesh = shapes::l_block(2.0, 0.8, 0.5, 4).expect("an L block");
     io::write_obj(&path, &mesh).expect("written");
-    assert_surface_covered(&path, &["--spheres", "120", "--samples", "2000"]);
+    assert_surface_covered(&path, &["--medial-target", "120", "--samples", "2000"]);
 }
 
 #[test]
@@ -105,7 +105,7 @@ fn medial_spheres_cover_the_whole_surface_of_spot() {
     };
     // Issue 16: with 500 spheres, 0.26 % of the surface and 1.7 % of the vertices were
     // outside every sphere.
-    assert_surface_covered(&data.join("spot.obj"), &["--spheres", "500"]);
+    assert_surface_covered(&data.join("spot.obj"), &["--medial-target", "500"]);
 }
 
 #[test]
@@ -115,7 +115,7 @@ fn medial_json_reports_the_certificate_and_grown_spheres_consistently() {
     let report = json(&sphaera(&[
         "medial",
         "--json",
-        "--spheres",
+        "--medial-target",
         "150",
         "--samples",
         "2000",
@@ -155,7 +155,7 @@ fn medial_json_reports_the_certificate_and_grown_spheres_consistently() {
     let ungrown_report = json(&sphaera(&[
         "medial",
         "--json",
-        "--spheres",
+        "--medial-target",
         "150",
         "--samples",
         "2000",
@@ -200,7 +200,7 @@ fn medial_samples_only_reports_the_samples_guarantee() {
     let report = json(&sphaera(&[
         "medial",
         "--json",
-        "--spheres",
+        "--medial-target",
         "100",
         "--samples",
         "2000",
@@ -213,7 +213,7 @@ fn medial_samples_only_reports_the_samples_guarantee() {
     let text = sphaera(&[
         "medial",
         "-q",
-        "--spheres",
+        "--medial-target",
         "100",
         "--samples",
         "2000",
@@ -222,7 +222,14 @@ fn medial_samples_only_reports_the_samples_guarantee() {
     assert!(text.status.success());
     let text = String::from_utf8_lossy(&text.stdout);
     assert!(text.contains("the surface samples only"), "{text}");
-    let certified = sphaera(&["medial", "-q", "--spheres", "100", "--samples", "2000"]);
+    let certified = sphaera(&[
+        "medial",
+        "-q",
+        "--medial-target",
+        "100",
+        "--samples",
+        "2000",
+    ]);
     let certified = String::from_utf8_lossy(&certified.stdout);
     assert!(
         certified.contains("the whole surface, certified"),
@@ -237,7 +244,7 @@ fn medial_of_the_embedded_bunny_covers_every_sample_and_writes_the_spheres() {
     let report = json(&sphaera(&[
         "medial",
         "--json",
-        "--spheres",
+        "--medial-target",
         "200",
         "--samples",
         "3000",
@@ -311,4 +318,115 @@ fn medial_of_a_flat_sheet_is_a_clear_error() {
     assert!(!output.status.success());
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(message.contains("no meaningful inside"), "{message}");
+    // The error says what covers a sheet.
+    assert!(message.contains("--spheres N"), "{message}");
+}
+
+#[test]
+fn medial_spheres_n_gives_exactly_n_spheres_covering_the_surface() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let mesh = dir.path().join("bunny.obj");
+    std::fs::write(
+        &mesh,
+        include_bytes!("../assets/bunny_lowres.obj").as_slice(),
+    )
+    .expect("written");
+    let out = dir.path().join("spheres.json");
+    let report = json(&sphaera(&[
+        "medial",
+        "--json",
+        "-q",
+        mesh.to_str().expect("utf-8"),
+        "--spheres",
+        "8",
+        "-o",
+        out.to_str().expect("utf-8"),
+    ]));
+    assert_eq!(report["method"], "minimax");
+    assert_eq!(report["surface"], "solid");
+    assert_eq!(report["spheres_requested"], 8);
+    assert_eq!(report["spheres"], 8);
+    assert_eq!(report["coverage"], "surface");
+    assert!(report["certificate"]["pieces"].as_u64().expect("pieces") > 0);
+    let (file, spheres) = written_spheres(&out);
+    assert_eq!(spheres.len(), 8);
+    assert!(
+        file["spheres"]
+            .as_array()
+            .expect("spheres")
+            .iter()
+            .all(|s| s["kind"] == "Minimax")
+    );
+    let worst = file["spheres"]
+        .as_array()
+        .expect("spheres")
+        .iter()
+        .map(|s| s["error"].as_f64().expect("error"))
+        .fold(0.0, f64::max);
+    assert_eq!(serde_json::json!(worst), report["worst_error"]);
+    // Covered, by an independent brute-force check.
+    let outside = outside_every_sphere(&io::load(&mesh).expect("the mesh"), &spheres);
+    assert!(outside.is_empty(), "{} points outside", outside.len());
+
+    let text = sphaera(&["medial", "-q", "--spheres", "8"]);
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("8 (8 asked)"), "{text}");
+}
+
+#[test]
+fn medial_target_keeps_the_adaptive_approximation() {
+    let report = json(&sphaera(&[
+        "medial",
+        "--json",
+        "-q",
+        "--medial-target",
+        "100",
+        "--samples",
+        "2000",
+    ]));
+    assert_eq!(report["method"], "adaptive");
+    assert_eq!(report["target"], "medial-target 100");
+    assert!(report["spheres_requested"].is_null());
+    assert!(report["spheres"].as_u64().expect("count") >= 100);
+}
+
+#[test]
+fn medial_spheres_cover_a_flat_sheet_and_bad_counts_are_refused() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("sheet.obj");
+    std::fs::write(
+        &path,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n",
+    )
+    .expect("written");
+    let sheet = path.to_str().expect("utf-8");
+    let report = json(&sphaera(&[
+        "medial",
+        "--json",
+        "-q",
+        sheet,
+        "--spheres",
+        "4",
+    ]));
+    assert_eq!(report["surface"], "shell");
+    assert_eq!(report["spheres"], 4);
+    for (args, expected) in [
+        (&["--spheres", "0"][..], "10,000"),
+        (&["--spheres", "10001"][..], "10,000"),
+        (
+            &["--spheres", "8", "--medial-target", "8"][..],
+            "--medial-target",
+        ),
+        (&["--spheres", "8", "--max-error", "1%"][..], "--max-error"),
+        (&["--spheres", "8", "--samples", "100"][..], "--samples"),
+    ] {
+        let mut all = vec!["medial", "-q", sheet];
+        all.extend(args);
+        let output = sphaera(&all);
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success() && message.contains(expected),
+            "{args:?}: {message}"
+        );
+    }
 }

@@ -646,3 +646,133 @@ fn a_real_scan_shows_every_layer() {
     let vertices = page_mesh(&data, &data["mesh"]).positions().len();
     assert_eq!(decode(&data["labels"]["grey"]).len(), 62 * vertices);
 }
+
+/// The page's and the report's sphere count per level.
+fn shown_counts(report: &serde_json::Value, page: &std::path::Path) -> Vec<u64> {
+    let data = page_data(&std::fs::read_to_string(page).expect("the page"));
+    let shown: Vec<u64> = data["levels"]
+        .as_array()
+        .expect("levels")
+        .iter()
+        .map(|l| l["count"].as_u64().expect("count"))
+        .collect();
+    let reported: Vec<u64> = report["levels"]
+        .as_array()
+        .expect("levels")
+        .iter()
+        .map(|l| l["spheres"].as_u64().expect("count"))
+        .collect();
+    assert_eq!(shown, reported);
+    shown
+}
+
+#[test]
+fn a_tolerance_tree_is_shown_level_by_level_as_cuts() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let json_tree = dir.path().join("tree.json");
+    let sph_tree = dir.path().join("tree.sph");
+    for tree in [&json_tree, &sph_tree] {
+        let output = sphaera(&[
+            "spheretree",
+            "--tolerance",
+            "3%",
+            "--branch",
+            "4",
+            "--no-evaluation",
+            "-q",
+            "-o",
+            tree.to_str().expect("utf-8"),
+        ]);
+        assert!(output.status.success());
+    }
+    let tree = sphaera::spheretree::export::tree_from_json(
+        &std::fs::read_to_string(&json_tree).expect("written"),
+    )
+    .expect("our JSON");
+    let cuts: Vec<u64> = (0..tree.level_count())
+        .map(|l| tree.cut_at(l).len() as u64)
+        .collect();
+    assert_ne!(
+        cuts.last().copied(),
+        Some(tree.level(tree.level_count() - 1).len() as u64),
+        "the deepest level alone is not the leaves"
+    );
+    for path in [&json_tree, &sph_tree] {
+        let page = dir.path().join("view.html");
+        let report = json(&sphaera(&[
+            "view",
+            "--tree",
+            path.to_str().expect("utf-8"),
+            "-q",
+            "--json",
+            "-o",
+            page.to_str().expect("utf-8"),
+        ]));
+        assert_eq!(shown_counts(&report, &page), cuts, "{}", path.display());
+        for (level, reported) in report["levels"]
+            .as_array()
+            .expect("levels")
+            .iter()
+            .enumerate()
+        {
+            let lower = reported["error_lower"].as_f64().expect("certified");
+            let upper = reported["error_upper"].as_f64().expect("certified");
+            assert!(0.0 <= lower && lower <= upper);
+            if path == &json_tree {
+                // The tree's own node bounds tighten the evaluation's.
+                let bound = tree
+                    .cut_at(level)
+                    .iter()
+                    .map(|&i| tree.nodes()[i].error)
+                    .fold(0.0, f64::max);
+                assert!(upper <= bound, "level {level}: {upper} > {bound}");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_flat_sheet_is_shown_with_its_certified_errors() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let sheet = dir.path().join("sheet.obj");
+    std::fs::write(
+        &sheet,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n",
+    )
+    .expect("written");
+    let tree = dir.path().join("tree.json");
+    let output = sphaera(&[
+        "spheretree",
+        sheet.to_str().expect("utf-8"),
+        "--depth",
+        "2",
+        "--no-evaluation",
+        "-q",
+        "-o",
+        tree.to_str().expect("utf-8"),
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let page = dir.path().join("view.html");
+    let report = json(&sphaera(&[
+        "view",
+        sheet.to_str().expect("utf-8"),
+        "--tree",
+        tree.to_str().expect("utf-8"),
+        "-q",
+        "--json",
+        "-o",
+        page.to_str().expect("utf-8"),
+    ]));
+    assert_eq!(shown_counts(&report, &page), [1, 8, 64]);
+    for level in report["levels"].as_array().expect("levels") {
+        // A sphere around a sheet reaches out by its radius at least.
+        assert!(
+            level["error_lower"].as_f64().expect("certified") > 0.0,
+            "{level}"
+        );
+    }
+}

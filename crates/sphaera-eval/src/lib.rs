@@ -35,8 +35,12 @@
 //!   `sweep_throughput` experiment, the `sweep_vs_parry` and `polyline_vs_parry` benches);
 //! - [`rapier_shapes`]: meshes scaled to a size of 1 and sphere sets as rapier colliders
 //!   (the `scene_time_vs_error` experiment, the `scene_vs_rapier` bench);
-//! - [`peers`]: peers run as child processes, today cascading-upper-bounds in Python (the
-//!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench);
+//! - [`peers`]: peers run as child processes: cascading-upper-bounds in Python (the
+//!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench) and morphit-rs (the
+//!   `spheres_vs_count` experiment, the `spheres_vs_morphit` bench);
+//! - [`sphere_sets`]: exactly N spheres from Sphaera's one-level tree, and another set
+//!   grown until it covers the surface (the `spheres_vs_count` experiment, the
+//!   `spheres_vs_morphit` bench);
 //! - [`chart`]: SVG charts (plotters) and the CSV written beside each (every experiment);
 //! - [`experiments`]: one private module per experiment, with [`experiments::NAMES`] and
 //!   [`experiments::run`] (the binary), and the voxel k-means sphere baseline
@@ -73,3 +77,4 @@ pub mod methods;
 pub mod peers;
 pub mod query_sets;
 pub mod rapier_shapes;
+pub mod sphere_sets;

@@ -1,15 +1,23 @@
 //! Peers that are not Rust crates, run as child processes in the same sitting as Sphaera.
 //!
-//! Today one: **cascading-upper-bounds** (Sacht & Jacobson, SGP 2024), the certified
-//! Hausdorff distance of its Python package, run by `peers/cub_hausdorff.py`. The
-//! `hausdorff` bench and the `hausdorff_gap_vs_time` experiment both go through
-//! [`cub_python`] and [`run_cub`], so that they time exactly the same calls.
+//! - **cascading-upper-bounds** (Sacht & Jacobson, SGP 2024), the certified Hausdorff
+//!   distance of its Python package, run by `peers/cub_hausdorff.py`. The `hausdorff`
+//!   bench and the `hausdorff_gap_vs_time` experiment both go through [`cub_python`] and
+//!   [`run_cub`], so that they time exactly the same calls. The interpreter is
+//!   `$SPHAERA_CUB_PYTHON`, else `python3`.
+//! - **morphit-rs** (PyPI 0.2.0, the `MorphIt` sphere packer in Rust for Python), run by
+//!   `peers/morphit_spheres.py`: a fixed number of spheres per mesh, its default preset
+//!   and seed 0. The `spheres_vs_morphit` bench and the `spheres_vs_count` experiment
+//!   both go through [`morphit_python`] and [`run_morphit`]. The interpreter is
+//!   `$SPHAERA_MORPHIT_PYTHON`, else `python3`.
 //!
-//! The interpreter is `$SPHAERA_CUB_PYTHON`, else `python3`; install the peer with
+//! Install them with
 //!
 //! ```text
 //! python3 -m venv env && env/bin/pip install cascading_upper_bounds numpy
 //! SPHAERA_CUB_PYTHON=env/bin/python cargo bench -p sphaera-eval --bench hausdorff
+//! python3 -m venv env && env/bin/pip install morphit-rs==0.2.0 numpy
+//! SPHAERA_MORPHIT_PYTHON=env/bin/python cargo bench -p sphaera-eval --bench spheres_vs_morphit
 //! ```
 
 use std::{
@@ -18,6 +26,7 @@ use std::{
 };
 
 use anyhow::{Context, Result, bail};
+use sphaera::mesh::{DVec3, Sphere};
 
 /// One run of the peer: both one-sided distances to a tolerance, as the script reports it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,19 +43,29 @@ pub struct CubRun {
 /// terminal with `who` (the bench or experiment skipping the peer) and how to install it.
 #[must_use]
 pub fn cub_python(who: &str) -> Option<PathBuf> {
-    let python =
-        std::env::var_os("SPHAERA_CUB_PYTHON").map_or_else(|| "python3".into(), PathBuf::from);
+    python_with(
+        who,
+        "SPHAERA_CUB_PYTHON",
+        "cascading_upper_bounds",
+        "cascading_upper_bounds numpy",
+    )
+}
+
+/// `$variable` (else `python3`) when it can import `module`; else `None`, said on the
+/// terminal with `who` and the command that installs `packages`.
+fn python_with(who: &str, variable: &str, module: &str, packages: &str) -> Option<PathBuf> {
+    let python = std::env::var_os(variable).map_or_else(|| "python3".into(), PathBuf::from);
     let works = Command::new(&python)
-        .args(["-c", "import cascading_upper_bounds"])
+        .args(["-c", &format!("import {module}")])
         .output()
         .is_ok_and(|o| o.status.success());
     if !works {
         #[allow(clippy::print_stderr)] // a skipped peer is said where the figures appear
         {
             eprintln!(
-                "{who}: skipped cascading_upper_bounds: `{}` cannot import it \
-                 (`python3 -m venv env && env/bin/pip install cascading_upper_bounds numpy`, \
-                 then SPHAERA_CUB_PYTHON=env/bin/python)",
+                "{who}: skipped {module}: `{}` cannot import it \
+                 (`python3 -m venv env && env/bin/pip install {packages}`, \
+                 then {variable}=env/bin/python)",
                 python.display()
             );
         }
@@ -102,4 +121,131 @@ pub fn run_cub(
         bail!("cub_hausdorff.py printed no run");
     }
     Ok(out)
+}
+
+/// One sphere count of morphit-rs, as `peers/morphit_spheres.py` reports it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MorphitRun {
+    /// The spheres asked for.
+    pub requested: usize,
+    /// The spheres it returned (at most `requested`: its final prune drops spheres whose
+    /// centre left the mesh), or why `pack` failed on this count.
+    pub spheres: std::result::Result<Vec<Sphere>, String>,
+    /// The shortest time of `pack` over the runs, in seconds (0 when it failed).
+    pub seconds: f64,
+    /// The median time of `pack` over the runs, in seconds (0 when it failed).
+    pub seconds_median: f64,
+    /// Every run's time of `pack`, in seconds (empty when it failed).
+    pub seconds_all: Vec<f64>,
+}
+
+/// The Python interpreter that imports `morphit_rs`, or `None`, said on the terminal
+/// with `who` (the bench or experiment skipping the peer) and how to install it.
+#[must_use]
+pub fn morphit_python(who: &str) -> Option<PathBuf> {
+    python_with(
+        who,
+        "SPHAERA_MORPHIT_PYTHON",
+        "morphit_rs",
+        "morphit-rs==0.2.0 numpy",
+    )
+}
+
+/// Runs morphit-rs's default preset (`MorphIt-B`, seed 0, the package's default threads)
+/// on the mesh file `mesh` (OBJ, STL or PLY) for each of `counts`, `runs` times each,
+/// timing only `pack`: one [`MorphitRun`] per count, in order.
+///
+/// # Errors
+///
+/// When the script cannot start, fails (e.g. the mesh does not load), or prints
+/// something other than one JSON object per count.
+pub fn run_morphit(
+    python: &Path,
+    mesh: &Path,
+    counts: &[usize],
+    runs: usize,
+) -> Result<Vec<MorphitRun>> {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("peers/morphit_spheres.py");
+    let list: Vec<String> = counts.iter().map(usize::to_string).collect();
+    let output = Command::new(python)
+        .arg(&script)
+        .arg(mesh)
+        .arg(list.join(","))
+        .arg(runs.to_string())
+        .output()
+        .with_context(|| format!("cannot run {}", script.display()))?;
+    if !output.status.success() {
+        bail!(
+            "morphit_spheres.py failed on {}: {}",
+            mesh.display(),
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    let mut out = Vec::new();
+    for line in String::from_utf8_lossy(&output.stdout).lines() {
+        out.push(parse_morphit(line)?);
+    }
+    if out.len() != counts.len() {
+        bail!(
+            "morphit_spheres.py reported {} counts of {}",
+            out.len(),
+            counts.len()
+        );
+    }
+    Ok(out)
+}
+
+/// One JSON line of `morphit_spheres.py`.
+fn parse_morphit(line: &str) -> Result<MorphitRun> {
+    let run: serde_json::Value = serde_json::from_str(line)
+        .with_context(|| format!("morphit_spheres.py printed {line:?}"))?;
+    let number = |k: &str| {
+        run[k]
+            .as_f64()
+            .with_context(|| format!("morphit_spheres.py printed no {k:?}"))
+    };
+    let requested = run["n"]
+        .as_u64()
+        .and_then(|n| usize::try_from(n).ok())
+        .context("morphit_spheres.py printed no count")?;
+    if let Some(error) = run["error"].as_str() {
+        return Ok(MorphitRun {
+            requested,
+            spheres: Err(error.to_owned()),
+            seconds: 0.0,
+            seconds_median: 0.0,
+            seconds_all: Vec::new(),
+        });
+    }
+    let (Some(centers), Some(radii)) = (run["centers"].as_array(), run["radii"].as_array()) else {
+        bail!("morphit_spheres.py printed no spheres for {requested}");
+    };
+    if centers.len() != radii.len() {
+        bail!(
+            "morphit_spheres.py printed {} centres and {} radii",
+            centers.len(),
+            radii.len()
+        );
+    }
+    let mut spheres = Vec::with_capacity(radii.len());
+    for (c, r) in centers.iter().zip(radii) {
+        let xyz: Vec<f64> = c
+            .as_array()
+            .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
+            .unwrap_or_default();
+        let (&[x, y, z], Some(radius)) = (xyz.as_slice(), r.as_f64()) else {
+            bail!("morphit_spheres.py printed a malformed sphere {c} {r}");
+        };
+        spheres.push(Sphere::new(DVec3::new(x, y, z), radius));
+    }
+    Ok(MorphitRun {
+        requested,
+        spheres: Ok(spheres),
+        seconds: number("seconds")?,
+        seconds_median: number("seconds_median")?,
+        seconds_all: run["seconds_all"]
+            .as_array()
+            .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
+            .unwrap_or_default(),
+    })
 }

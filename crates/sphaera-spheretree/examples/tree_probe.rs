@@ -7,7 +7,9 @@
 use std::time::Instant;
 
 use sphaera_mesh::{Length, Surface, io, shapes};
-use sphaera_spheretree::{EvaluationOptions, Method, SphereTreeOptions, build, evaluate_set};
+use sphaera_spheretree::{
+    EvaluationOptions, Method, SphereTreeOptions, build, evaluate_set, evaluate_set_bounded,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -25,6 +27,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .with_method(method)
         .with_depth(depth)
         .with_branch(branch);
+    if let Ok(e) = std::env::var("SPH_EFFORT") {
+        options = options.with_effort(e.parse()?);
+    }
     if let Some(t) = args.get(5) {
         options = options.with_tolerance(Length::RelativeToDiagonal(t.parse::<f64>()? / 100.0));
     }
@@ -65,7 +70,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|&i| tree.nodes()[i].error)
             .fold(0.0, f64::max);
         let spheres = tree.cut_spheres(level);
-        let e = evaluate_set(&surface, &spheres, &evaluation)?;
+        let e = if std::env::var("SPH_FULLEVAL").is_ok() {
+            evaluate_set(&surface, &spheres, &evaluation)?
+        } else {
+            let bounds: Vec<f64> = cut.iter().map(|&i| tree.nodes()[i].error).collect();
+            evaluate_set_bounded(&surface, &spheres, &bounds, &evaluation)?
+        };
         println!(
             "level {level}: {} spheres, eq. 2 {:.2} %, certified {:.2}–{:.2} %, uncovered {:.4} %",
             cut.len(),

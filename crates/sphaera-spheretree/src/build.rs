@@ -122,6 +122,9 @@ pub fn build_with_progress(
     }
 }
 
+/// The fraction of a tolerance kept free for the coverage certificate's growth.
+const CERTIFICATE_ROOM: f64 = 1e-6;
+
 /// A construction in a (canonical) surface, given the tolerance in its units.
 type Construction<'a> = dyn Fn(&Surface, Option<f64>) -> Result<SphereTree, SphereTreeError> + 'a;
 
@@ -139,10 +142,11 @@ type Construction<'a> = dyn Fn(&Surface, Option<f64>) -> Result<SphereTree, Sphe
 /// diagonal, which does not turn with the mesh.
 ///
 /// `construct` builds in the canonical surface (a solid or a shell, as `surface` is),
-/// given the tolerance in canonical units less the snapping's displacement. Each node's
-/// eq. 2 error is brought back with that displacement added (the distance from a sphere
-/// to the surface changes by at most that much), and the coverage certificate is
-/// computed on the mesh itself.
+/// given the tolerance in canonical units less twice the snapping's displacement. Each
+/// sphere is brought back grown by that displacement (so that it covers on the mesh what
+/// it covered on the canonical mesh) and its eq. 2 error by twice it (the growth, and the
+/// distance from its centre to the surface, which changes by at most that much); the
+/// coverage certificate is then computed on the mesh itself.
 fn posed_tree(
     surface: &Surface,
     options: &SphereTreeOptions,
@@ -160,7 +164,9 @@ fn posed_tree(
     let tolerance = match options.tolerance {
         Some(t) => {
             let wanted = t.resolve(surface.diagonal());
-            let room = wanted - slack;
+            // The coverage certificate may grow a sphere by the rounding of the way back
+            // (the construction covers every piece exactly): keep room for it.
+            let room = wanted - 2.0 * slack - CERTIFICATE_ROOM * wanted;
             if room.is_nan() || room <= 0.0 {
                 return Err(SphereTreeError::InvalidParameter {
                     name: "tolerance",
@@ -172,12 +178,43 @@ fn posed_tree(
         }
         None => None,
     };
-    let mut tree = construct(&canonical, tolerance)?;
+    let mut tree = construct(&canonical, tolerance).map_err(|e| match e {
+        // Back to the mesh's units: the tolerance as asked, the worst leaf as placed.
+        SphereTreeError::ToleranceUnreachable {
+            worst,
+            spheres,
+            levels,
+            limit,
+            depth,
+            ..
+        } => SphereTreeError::ToleranceUnreachable {
+            tolerance: options
+                .tolerance
+                .map_or(0.0, |t| t.resolve(surface.diagonal())),
+            worst: pose.length_from_canonical(worst) + slack,
+            spheres,
+            levels,
+            limit,
+            depth,
+        },
+        other => other,
+    })?;
     for node in &mut tree.nodes {
-        node.sphere = pose.sphere_from_canonical(&node.sphere);
-        node.error = pose.length_from_canonical(node.error) + slack;
+        // The mesh lies within `slack` of the canonical mesh mapped back: a sphere grown by
+        // it covers on the mesh what it covered there, and reaches at most `slack` farther
+        // from the mesh, plus the growth.
+        let mut sphere = pose.sphere_from_canonical(&node.sphere);
+        sphere.radius += slack;
+        node.sphere = sphere;
+        node.error = pose.length_from_canonical(node.error) + 2.0 * slack;
     }
-    if options.certify_coverage {
+    if !options.certify_coverage {
+        // Not recorded (the minimax spheres cover the surface all the same).
+    } else if options.method.resolved() == Method::Minimax {
+        // Every node's sphere contains the corners of the pieces tiling its region, so
+        // every cut covers the surface by construction (see `crate::minimax`).
+        tree.coverage = crate::cover::by_construction(&tree);
+    } else {
         let diagonal = pose.length_from_canonical(canonical.diagonal());
         let resolution = options.coverage_resolution.resolve(diagonal);
         crate::cover::certify_tree(surface, &mut tree, resolution);

@@ -63,6 +63,23 @@ pub(crate) fn certify_tree(
     tree.coverage = certificates;
 }
 
+/// The certificates of a tree whose nodes cover their regions by construction (the
+/// minimax method: every node's sphere contains the corners of the triangle pieces
+/// tiling its region): per cut, its pieces, and nothing grown.
+pub(crate) fn by_construction(tree: &crate::SphereTree) -> Vec<CoverageCertificate> {
+    (0..tree.level_count())
+        .map(|level| CoverageCertificate {
+            pieces: tree
+                .cut_at(level)
+                .iter()
+                .map(|&i| tree.nodes[i].region_samples as usize)
+                .sum(),
+            grown_spheres: 0,
+            largest_growth: 0.0,
+        })
+        .collect()
+}
+
 /// Makes `spheres` cover every point of `mesh`'s triangles: splits each triangle until
 /// every piece lies in one sphere, growing the sphere needing the least growth for a
 /// piece whose longest edge is at most `resolution` and that no sphere contains. Returns

@@ -114,8 +114,9 @@ pub enum SphereTreeError {
     /// at that count, such as a sheet asked for a tiny tolerance).
     #[error(
         "cannot meet the tolerance {tolerance}: after {spheres} spheres and {levels} levels \
-         the worst leaf is still {worst} (at most {limit} nodes and {depth} levels; ask \
-         for a larger tolerance)"
+         the worst leaf still reaches {worst} beyond the surface, and finer levels would \
+         exceed the limits (at most {limit} nodes, {depth} levels, 2^24 surface pieces per \
+         level); ask for a larger tolerance"
     )]
     ToleranceUnreachable {
         /// The tolerance asked for (in the mesh's units).

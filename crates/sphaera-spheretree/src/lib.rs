@@ -3,15 +3,24 @@
 //! Sphere-trees for time-critical collision detection: a hierarchy of spheres around a
 //! triangle mesh whose every level covers the whole surface and fits it more tightly
 //! than the level above, so that a collision test can stop at any level and still have
-//! an answer with a known error. This crate implements G. Bradshaw and C. O'Sullivan,
-//! *Adaptive Medial-Axis Approximation for Sphere-Tree Construction* (ACM Transactions on
-//! Graphics 23(1), 2004): the adaptive medial-axis approximation of [`sphaera_medial`],
-//! refined in each node's part of the surface and reduced to a few children by the
-//! paper's **merge**, **burst**, **expand-select** or **combined** reducers, beside the
-//! classic octree, grid and Hubbard constructions the paper compares against. Beyond the
-//! paper, coverage of the surface itself (not only of its samples) is certified at every
-//! level, every sphere's error is certified by branch and bound, and the tree is built
-//! in the mesh's canonical pose, so it turns, scales and moves with the mesh.
+//! an answer with a known error. Beside the trees to a depth the paper builds, this crate
+//! builds trees **to a tolerance** (refined only where the error is, as deep as needed)
+//! and sphere sets **of an exact budget**, on solids and on **sheets** (surfaces without
+//! inside).
+//!
+//! It implements G. Bradshaw and C. O'Sullivan, *Adaptive Medial-Axis Approximation for
+//! Sphere-Tree Construction* (ACM Transactions on Graphics 23(1), 2004): the adaptive
+//! medial-axis approximation of [`sphaera_medial`], refined in each node's part of the
+//! surface and reduced to a few children by the paper's **merge**, **burst**,
+//! **expand-select** or **combined** reducers, beside the classic octree, grid and Hubbard
+//! constructions the paper compares against. The default is this crate's own
+//! construction, [`minimax`]: each node's part of the surface, tiled exactly by triangle
+//! pieces, is divided between the children whose worst error is least (medial balls as
+//! candidate centres, a set-cover search, then every centre moved on the exact surface),
+//! so that every cut covers the surface by construction and every level is tighter than
+//! the paper's best (see the charts in the repository's `docs/benchmarks.md`). Every
+//! node's error is a certified bound, every tree is built in the mesh's canonical pose, so
+//! it turns, scales and moves with the mesh.
 //!
 //! Around the construction: certified fit evaluation ([`evaluate`]), the shallowest level
 //! or smallest cut that meets a tolerance ([`select`]), interruptible tree-against-tree
@@ -21,39 +30,42 @@
 //!
 //! # Quick start
 //!
-//! One entry point, [`build`], takes the prepared [`Surface`] (its inside test and exact
-//! closest points, built once) and the [`SphereTreeOptions`], whose [`Method`] picks a
-//! medial reducer or a classic baseline. The same surface then evaluates the tree. (The
-//! options below are small so that the example runs fast; the defaults are the paper's
-//! depth 3, branch 8 and 10,000 samples.)
+//! One entry point, [`build`], takes the prepared [`Surface`] (exact closest points and
+//! the inside test, built once; [`Surface::shell`] for a sheet) and the
+//! [`SphereTreeOptions`]: a depth, a tolerance or a one-level budget. The same surface then
+//! evaluates the tree. (The [`Effort::Quick`] below keeps the example fast.)
 //!
 //! ```
-//! use sphaera_mesh::shapes;
+//! use sphaera_mesh::{Length, shapes};
 //! use sphaera_spheretree::{
-//!     Budget, DVec3, EvaluationOptions, Method, Similarity, SphereTreeOptions, Surface, build,
-//!     collide, evaluate_set, level_for_tolerance,
+//!     Budget, DVec3, Effort, EvaluationOptions, Similarity, SphereTreeOptions, Surface,
+//!     build, collide, evaluate_set_bounded,
 //! };
 //!
 //! let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
-//! let options = SphereTreeOptions::default()
-//!     .with_method(Method::Expand)
-//!     .with_depth(2)
-//!     .with_branch(4)
-//!     .with_samples(1_500)
-//!     .with_initial_spheres(100)
-//!     .with_min_spheres_per_node(30);
-//! let tree = build(&surface, &options)?;
-//! assert_eq!(tree.level_count(), 3);
-//! // Every level covers the whole surface, certified piece by piece.
-//! assert_eq!(tree.coverage().len(), 3);
-//! // Errors shrink level by level; pick the shallowest level tight enough.
+//! let quick = SphereTreeOptions::default().with_effort(Effort::Quick);
+//!
+//! // A tree to a depth: every level covers the surface, each tighter than the last.
+//! let tree = build(&surface, &quick.clone().with_depth(2).with_branch(4))?;
 //! let worst = |l: usize| tree.level(l).iter().map(|n| n.error).fold(0.0, f64::max);
-//! assert!(worst(2) < worst(0));
-//! assert_eq!(level_for_tolerance(&tree, worst(1)), Some(1));
-//! // The certified worst error of a level, from the same surface.
-//! let fit = evaluate_set(&surface, &tree.level_spheres(2), &EvaluationOptions::default())?;
-//! assert!(fit.worst_lower <= fit.worst_upper);
+//! assert!(worst(2) < worst(1) && worst(1) < worst(0));
+//!
+//! // A tree to a tolerance: refined where the error is, until every leaf meets it.
+//! let tolerance = 0.02 * surface.diagonal();
+//! let fine = build(&surface, &quick.clone().with_tolerance(Length::Absolute(tolerance)))?;
+//! assert!(fine.leaves().iter().all(|&leaf| fine.nodes()[leaf].error <= tolerance));
+//!
+//! // A budget: exactly 12 spheres, covering the surface.
+//! let twelve = build(&surface, &quick.with_depth(1).with_branch(12))?;
+//! assert_eq!(twelve.level(1).len(), 12);
+//!
+//! // The certified worst error of a level (node errors are certified upper bounds).
+//! let spheres = tree.level_spheres(2);
+//! let bounds: Vec<f64> = tree.level(2).iter().map(|n| n.error).collect();
+//! let fit = evaluate_set_bounded(&surface, &spheres, &bounds, &EvaluationOptions::default())?;
+//! assert!(fit.worst_lower <= fit.worst_upper && fit.worst_upper <= worst(2));
 //! assert_eq!(fit.coverage.uncovered, 0);
+//!
 //! // Two copies 0.9 apart (the capsule is 1 wide) touch: contacts at the deepest level.
 //! let near = Similarity::from_translation(DVec3::new(0.9, 0.0, 0.0))?;
 //! let hit = collide(&tree, &Similarity::IDENTITY, &tree, &near, &Budget::Unlimited)?;
@@ -63,7 +75,32 @@
 //!
 //! # How it works
 //!
-//! The paper's Algorithm 1, for the medial methods ([`Method::is_medial`]):
+//! **The minimax construction** ([`Method::Minimax`], which [`Method::Auto`] chooses; the
+//! [`minimax`] module has the details). A node must cover its region with at most
+//! `branch` children whose largest error is as small as it can be, the error of a sphere
+//! being the paper's eq. 2: its radius less the signed distance of its centre to the
+//! surface, an upper bound on how far it pokes out of the object.
+//!
+//! 1. **Pieces.** The region is tiled by triangles (the mesh's, split at their longest
+//!    edge until a node has about 8,000): a sphere containing a piece's corners contains
+//!    the piece, so children that contain their pieces cover the surface exactly.
+//! 2. **Candidates.** Medial balls, found by shrinking a ball tangent at a piece against
+//!    the exact surface: where a sphere reaches far along the surface while poking out
+//!    least. On a shell, the pieces' centroids.
+//! 3. **Search.** Every candidate expanded to a common standoff (the paper's expand
+//!    step); a depth-first search on the most constrained piece finds a few that cover
+//!    every representative piece, and bisection the least standoff it finds them at.
+//! 4. **Refinement.** Lloyd's iteration (each piece to its cheapest sphere, each sphere
+//!    to its best candidate), then Nelder–Mead moves every centre off the candidates on
+//!    the exact surface; a count asked for is completed by splitting the worst child;
+//!    several starts where few nodes are divided (the root's division shapes all below),
+//!    swaps at the root, and regions balanced by area without raising the worst.
+//! 5. **The tree.** Top down, level by level: to a depth, every node divided into
+//!    `branch` children; to a tolerance ([`SphereTreeOptions::tolerance`]), only the
+//!    nodes whose certified error exceeds it, each into the fewest children that meet it,
+//!    as deep as needed; a budget is a one-level tree of exactly `branch` spheres.
+//!
+//! **The paper's Algorithm 1**, for the medial methods ([`Method::is_medial`]):
 //!
 //! 1. **Samples.** The surface is represented by [`SphereTreeOptions::samples`]
 //!    Poisson-disk samples ([`sphaera_mesh::sampling::poisson_disk`]); each stands for
@@ -95,32 +132,36 @@
 //!    in one sphere, and where none holds a piece at the resolution, the sphere needing
 //!    the least growth grows by exactly that ([`CoverageCertificate`] records it).
 //!
-//! A node's error ([`TreeNode::error`]) is the paper's eq. 2: for a centre inside the
-//! object, the radius minus the centre's distance to the surface, an upper bound on how
-//! far the sphere pokes out of the object. [`evaluate_set`] certifies the true value,
-//! the largest distance from a point of the sphere outside the object to the surface, as
-//! an interval at most a tolerance wide (branch and bound over the sphere's surface,
-//! see [`evaluate`]). The baselines ([`Method::Octree`], [`Method::Grid`],
-//! [`Method::Hubbard`]) are the classic constructions as published: same tree structure
-//! and samples, coverage measured but not certified.
+//! A node's error ([`TreeNode::error`]) is a certified upper bound on how far its sphere
+//! pokes out of the object: the paper's eq. 2 with an exact distance and a certified
+//! inside test (or the branch and bound's bound, where a tolerance tree needed it).
+//! [`evaluate_set`] certifies the true value, the largest distance from a point of the
+//! sphere outside the object to the surface, as an interval at most a tolerance wide
+//! (branch and bound over the sphere's surface, see [`evaluate`]);
+//! [`evaluate_set_bounded`] does it far faster for a tree's nodes, whose errors it takes as
+//! bounds. The baselines ([`Method::Octree`], [`Method::Grid`], [`Method::Hubbard`]) are
+//! the classic constructions as published: same tree structure and samples, coverage
+//! measured but not certified.
 //!
 //! Using a tree: [`level_for_tolerance`] and [`cut_for_tolerance`] pick the coarsest
 //! detail whose worst error meets a tolerance ("model no more than the scene needs");
-//! [`collide`](fn@collide) descends two placed trees breadth-first, a level at a time, so
-//! that it can stop when a [`Budget`] (the paper's cost model, or wall time) runs out and
-//! still report contacts with an error bound; [`overlaps`] answers yes or no, depth-first.
+//! [`SphereTree::cut_at`] gives what covers the surface at a depth of a tree whose leaves
+//! are not all at the bottom (a tolerance tree); [`collide`](fn@collide) descends two
+//! placed trees breadth-first, a level at a time (a leaf standing for itself below its
+//! level), so that it can stop when a [`Budget`] (the paper's cost model, or wall time)
+//! runs out and still report contacts with an error bound; [`overlaps`] answers yes or
+//! no, depth-first.
 //!
-//! # What every medial tree guarantees
+//! # What every tree guarantees
 //!
-//! - Every level covers the whole surface, certified piece by piece ([`cover`]).
-//! - Every node has a positive radius covering its samples: a one-sample region gets
-//!   the ball of half the sample spacing around its sample, not a point.
-//! - No child is built looser than its parent: its eq. 2 error, an upper bound on its
-//!   certified error, never exceeds a lower bound on the parent's certified error. The
-//!   coverage certificate may then grow spheres: by about the resolution where spheres
-//!   barely overlap, by a gap's size where there was a gap (with few samples per node, a
-//!   level can end up looser than its parent; at the default 10,000 samples every
-//!   shared mesh is monotone).
+//! - Every level (every cut) covers the whole surface: by construction for minimax (its
+//!   spheres contain the pieces tiling their regions), certified piece by piece for the
+//!   medial methods ([`cover`]).
+//! - A tolerance asked for is met by every leaf, certified, or the build says it cannot
+//!   be ([`SphereTreeError::ToleranceUnreachable`]); a budget of `n` spheres gives `n`.
+//! - Every node has a positive radius, and no child is built looser than its parent: its
+//!   error bound never exceeds a lower bound on the parent's certified error (else the
+//!   child takes the parent's sphere).
 //! - The same input, options and seed give the same tree, with or without `parallel`.
 //! - The tree moves with the mesh: it is built in the mesh's canonical pose
 //!   ([`sphaera_mesh::geometry::CanonicalPose`]: a frame taken from the mesh's own
@@ -130,22 +171,22 @@
 //!   away has lost 20 bits to the move). Scaling by a power of two gives every number
 //!   scaled, bit for bit.
 //!
-//! The default [`Method::Auto`] runs expand-select per node and merge only where
-//! expand-select's children are looser than their parent, at an error fraction of ⅛
-//! ([`SphereTreeOptions::error_fraction`]); the paper's reducers stay available by name.
-//!
 //! # Errors
 //!
 //! Every fallible function returns [`SphereTreeError`]; library code does not panic on
 //! user input. The variants a caller meets most:
 //!
 //! - [`SphereTreeError::InvalidParameter`]: an option out of its domain (a zero branch
-//!   factor, fewer than 4 samples, an error fraction outside `(0, 1]`, an evaluation
-//!   tolerance that is not finite and positive), with the parameter's name, value and
-//!   requirement;
+//!   factor, a branch above [`MAX_BRANCH`], a tolerance that is not finite and positive or
+//!   given to a method other than minimax, fewer than 4 samples, an error fraction
+//!   outside `(0, 1]`), with the parameter's name, value and requirement;
+//! - [`SphereTreeError::ToleranceUnreachable`]: a tolerance that would need more than
+//!   [`MAX_TREE_NODES`] nodes, [`MAX_MEDIAL_DEPTH`] levels or more surface pieces per level
+//!   than memory allows, with the worst leaf reached;
+//! - [`SphereTreeError::NeedsInside`]: one of the paper's methods asked for a shell;
 //! - [`SphereTreeError::Mesh`]: the mesh cannot be sampled (no area) or a transform is
-//!   not a similarity (a mesh without a meaningful inside is refused earlier, by
-//!   [`Surface::new`]);
+//!   not a similarity (a mesh facing inward is refused earlier, by [`Surface::new`] and
+//!   [`Surface::solid_or_shell`]);
 //! - [`SphereTreeError::Medial`]: the medial approximation cannot start (fewer than four
 //!   distinct, non-coplanar samples);
 //! - [`SphereTreeError::InvalidSphere`] and [`SphereTreeError::EmptySphereSet`]: spheres
@@ -156,30 +197,17 @@
 //!
 //! # Performance
 //!
-//! The build time follows the number of samples, not the mesh's size: the medial
-//! refinement and the reductions work on samples and medial spheres, and the mesh is
-//! touched through the [`Surface`]'s trees (closest points and winding numbers, typically
-//! logarithmic in the triangle count per query). Measured on the 2-core reference machine
-//! (2026-11-25, `cargo run --release -p sphaera-cli -- spheretree MESH --json -q`, the
-//! default options: `auto`, depth 3, branch 8, 10,000 samples):
+//! Minimax's work follows the number of nodes divided, not the mesh's size: each node is
+//! tiled by about 8,000 pieces (400 per child for a budget), and the mesh is touched
+//! through the [`Surface`]'s trees (exact closest points, and the inside test: the
+//! pseudo-normal test on certified embedded solids, the winding number elsewhere,
+//! logarithmic in the triangle count per query). A tolerance tree costs in proportion to
+//! the spheres it needs; a budget in proportion to the count asked. [`Effort`] trades
+//! time for accuracy. The figures, generated from the experiments' CSVs by `cargo xtask
+//! tables` (the commands are in the repository's `docs/benchmarks.md`, with the charts of
+//! error against level, against time and against the sphere count):
 //!
-//! | mesh | build | evaluation of every level | certified worst error, L1 / L2 / L3 |
-//! |---|---:|---:|---|
-//! | low-res bunny (3,674 triangles) | 1.9 s | 1.1 s | 9.10 / 3.79 / 1.45 % of the diagonal |
-//! | Stanford bunny (69k triangles) | 3.0 s | 0.7 s | 10.12 / 4.34 / 3.63 % |
-//! | Stanford dragon (871k triangles) | 7.3–7.7 s | 2.8 s | 13.12 / 6.67 / 4.29 % |
-//!
-//! On the low-res bunny the paper's authors' toolkit takes 100–170 s of CPU for
-//! 10.26 / 3.73 / 2.09 % at best and leaves 1.3–1.6 % of the surface outside its
-//! level-3 spheres; every medial method here leaves none. With the paper's settings
-//! (error fraction ½; criterion, `cargo bench -p sphaera-spheretree --bench spheretree`,
-//! 2026-11-21) the reducers take 0.73 s (burst) to 1.97 s (combined) on the same mesh,
-//! the octree 72 ms and the grid 139 ms. Over 20 random similarity transforms of four
-//! meshes, a level's worst error varies by at most 7.3 % (2026-11-25). A collision
-//! traversal of two such trees takes microseconds (see the performance section of
-//! [`collide`](fn@collide)). Every figure, with the command that made it, the charts of
-//! error against level and against time, and what was tried, is in the repository's
-//! `docs/benchmarks.md` (sections "Sphere-trees" and "Issue 16").
+#![doc = include_str!("performance.md")]
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]
@@ -215,11 +243,13 @@ pub use collide::{
 };
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
-pub use evaluate::{EvaluationOptions, SetEvaluation, SphereFit, evaluate_set};
+pub use evaluate::{
+    EvaluationOptions, SetEvaluation, SphereFit, evaluate_set, evaluate_set_bounded,
+};
 pub use glam::DVec3;
 pub use minimax::MAX_TREE_NODES;
 pub use options::{
-    MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH, Method,
+    Effort, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH, Method,
     SphereTreeOptions, SphereTreeProgress,
 };
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};

@@ -183,6 +183,66 @@ impl Method {
     }
 }
 
+/// How hard the minimax method works for its accuracy ([`SphereTreeOptions::effort`]):
+/// the time–accuracy trade-off of [`Method::Minimax`], charted in the repository's
+/// `docs/benchmarks.md`.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::{Effort, SphereTreeOptions};
+///
+/// assert_eq!(SphereTreeOptions::default().effort, Effort::Default);
+/// assert_eq!("quick".parse::<Effort>(), Ok(Effort::Quick));
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+#[non_exhaustive]
+pub enum Effort {
+    /// One start per division, one round of refinement, a coarse tiling of each region
+    /// (about 1,500 pieces a node): for previews and for trees built while a user waits.
+    Quick,
+    /// The default: several starts where few nodes are divided (the root gets eight),
+    /// four rounds of refinement, swaps at the root, regions balanced, about 8,000 pieces
+    /// a node.
+    #[default]
+    Default,
+    /// Twice the starts, six rounds, about 16,000 pieces a node: for trees built once and
+    /// used for long.
+    Thorough,
+}
+
+impl Effort {
+    /// Every level, quickest first.
+    pub const ALL: [Self; 3] = [Self::Quick, Self::Default, Self::Thorough];
+
+    /// Its name, as the CLI spells it (`"quick"`, `"default"`, `"thorough"`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Quick => "quick",
+            Self::Default => "default",
+            Self::Thorough => "thorough",
+        }
+    }
+}
+
+impl std::str::FromStr for Effort {
+    type Err = SphereTreeError;
+
+    /// Parses [`Effort::name`].
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|e| e.name() == s)
+            .ok_or(SphereTreeError::InvalidParameter {
+                name: "effort",
+                value: f64::NAN,
+                requirement: "quick, default or thorough",
+            })
+    }
+}
+
 /// Options of [`build`](crate::build), with the paper's defaults.
 ///
 /// # Examples
@@ -247,6 +307,9 @@ pub struct SphereTreeOptions {
     /// [`MAX_MEDIAL_DEPTH`] levels is refused
     /// ([`SphereTreeError::ToleranceUnreachable`]).
     pub tolerance: Option<Length>,
+    /// [`Method::Minimax`]: how hard each division works for its accuracy (default
+    /// [`Effort::Default`]).
+    pub effort: Effort,
 }
 
 impl Default for SphereTreeOptions {
@@ -265,6 +328,7 @@ impl Default for SphereTreeOptions {
             coverage_resolution: Length::RelativeToDiagonal(1e-3),
             forming_points: 600,
             tolerance: None,
+            effort: Effort::Default,
         }
     }
 }
@@ -352,6 +416,13 @@ impl SphereTreeOptions {
     #[must_use]
     pub fn with_forming_points(mut self, n: usize) -> Self {
         self.forming_points = n;
+        self
+    }
+
+    /// With the given [`Effort`] (minimax only).
+    #[must_use]
+    pub fn with_effort(mut self, effort: Effort) -> Self {
+        self.effort = effort;
         self
     }
 

@@ -181,9 +181,9 @@ fn the_parallel_feature_does_not_change_the_tree() {
 }
 
 const EXPECTED_DIGESTS: [u64; 5] = [
-    0x787a_ec9e_9e6d_472d,
-    0xb614_90f7_859a_4cc2,
-    0x721a_8936_c16f_266a,
-    0x0f17_3aa5_dbf5_8c5e,
-    0x0d46_2a1b_bf9d_0ceb,
+    0x73cf_af10_dbce_928a,
+    0x7987_93ff_f3ed_ca70,
+    0x602f_cd73_261e_9218,
+    0xdc4e_6798_0767_10a2,
+    0x8946_8461_d862_569b,
 ];

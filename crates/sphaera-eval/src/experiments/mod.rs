@@ -25,7 +25,11 @@
 //! - `robot_protrusion_vs_spheres`: `robot/mod.rs` (the Franka Panda's and KUKA iiwa's
 //!   links spherized by Sphaera and by the voxel k-means baseline planners ship, in
 //!   [`voxel`] (`robot/voxel.rs`, public for the `robot_spheres` bench), both measured by
-//!   the same certified evaluator).
+//!   the same certified evaluator);
+//! - `spheres_vs_count`: `spheres_vs_count/mod.rs` (exactly N spheres, Sphaera's one-level
+//!   minimax tree against morphit-rs raw and grown to cover, on the shared meshes, the
+//!   Panda's links and the procedural animal; three charts, written in
+//!   `spheres_vs_count/charts.rs`).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -38,6 +42,7 @@ mod robot;
 mod scene;
 mod silhouette;
 mod simplify_error;
+mod spheres_vs_count;
 mod spheretree;
 mod sweep_coherence;
 mod sweep_throughput;
@@ -66,6 +71,7 @@ pub const NAMES: &[&str] = &[
     silhouette::timing::NAME,
     scene::NAME,
     robot::NAME,
+    spheres_vs_count::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -84,6 +90,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         silhouette::timing::NAME => silhouette::timing::run(data, out),
         scene::NAME => scene::run(data, out),
         robot::NAME => robot::run(data, out),
+        spheres_vs_count::NAME => spheres_vs_count::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }

@@ -20,6 +20,10 @@
 //! | [`s_tube`] | 0 | segments around the tube (≥ 3) | `π r² · 2π R` |
 //! | [`l_block`] | 0 | subdivisions across the arm (≥ 1) | `(2 l − w) w d` (exact) |
 //!
+//! Two open builders stand apart: [`square_sheet`] and [`ring_sheet`] (a disc, or a
+//! sheet with a hole) are flat sheets of zero thickness, with no inside, for
+//! [`Surface::shell`](crate::Surface::shell) and the methods that cover sheets.
+//!
 //! In every direction other than the one `resolution` counts, the builders pick the number
 //! of pieces so that edges are about as long as around the main circle, so triangles stay
 //! well shaped (the cone's apex and the caps' centres are single vertices with fans of
@@ -72,6 +76,7 @@ mod block;
 mod catalog;
 mod loft;
 mod round;
+mod sheet;
 mod swept;
 #[cfg(test)]
 mod tests;
@@ -79,6 +84,7 @@ mod tests;
 pub use block::{cube, l_block};
 pub use catalog::{DEFAULT_SHAPES, Shape};
 pub use round::{capsule, cone, cylinder, ellipsoid, sphere, thick_tube, torus};
+pub use sheet::{ring_sheet, square_sheet};
 pub use swept::s_tube;
 
 use crate::MeshError;

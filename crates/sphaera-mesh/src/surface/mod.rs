@@ -235,10 +235,11 @@ impl Surface {
     ///
     /// # Errors
     ///
-    /// [`MeshError::EmptyMesh`] for a mesh without triangles, and [`MeshError::NoInside`]
-    /// when inside is meaningless: a flat sheet, a single open patch, a mesh whose winding
-    /// number does not jump from about 1 to about 0 across most of its surface (an
-    /// inside-out mesh is reported the same way).
+    /// [`MeshError::EmptyMesh`] for a mesh without triangles,
+    /// [`MeshError::InwardOrientation`] for a closed mesh whose triangles face inward (flip
+    /// them), and [`MeshError::NoInside`] when inside is meaningless: a flat sheet, a
+    /// single open patch, a mesh whose winding number does not jump from about 1 to about
+    /// 0 across most of its surface.
     ///
     /// # Performance
     ///
@@ -303,12 +304,22 @@ impl Surface {
     /// assert!(Surface::solid_or_shell(&shapes::cube(1.0, 1)?)?.has_inside());
     /// let sheet = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]])?;
     /// assert!(!Surface::solid_or_shell(&sheet)?.has_inside());
+    /// // A cube whose triangles face inward is a mistake, not a sheet.
+    /// let cube = shapes::cube(1.0, 1)?;
+    /// let flipped: Vec<[u32; 3]> = cube.triangles().iter().map(|&[a, b, c]| [a, c, b]).collect();
+    /// let inward = TriMesh::new(cube.positions().to_vec(), flipped)?;
+    /// assert!(matches!(
+    ///     Surface::solid_or_shell(&inward),
+    ///     Err(sphaera_mesh::MeshError::InwardOrientation { .. })
+    /// ));
     /// # Ok::<(), sphaera_mesh::MeshError>(())
     /// ```
     ///
     /// # Errors
     ///
-    /// [`MeshError::EmptyMesh`] for a mesh without triangles.
+    /// [`MeshError::EmptyMesh`] for a mesh without triangles, and
+    /// [`MeshError::InwardOrientation`] for a closed mesh whose triangles face inward (a
+    /// solid oriented the wrong way is not a shell: flip its triangles).
     pub fn solid_or_shell(mesh: &TriMesh) -> Result<Self, MeshError> {
         let mut surface = Self::prepare(mesh.clone())?;
         match surface.check_inside() {
@@ -363,32 +374,49 @@ impl Surface {
 
     /// Probes pairs of points just inside and just outside the surface (along the normals
     /// of random surface samples): on a solid the winding number is about 1 inside and 0
-    /// outside; on a sheet about ±½ on both sides.
+    /// outside; on a sheet about ±½ on both sides; on a solid whose triangles face inward,
+    /// about 0 behind them and −1 in front ([`MeshError::InwardOrientation`], which
+    /// [`Surface::solid_or_shell`] does not take for a shell).
     fn check_inside(&self) -> Result<(), MeshError> {
         let probes = sampling::random(&self.mesh, INSIDE_PROBES, 0x1D5E)?;
         let offset = 1e-4 * self.diagonal;
         let mut clear = 0_usize;
-        let mut counted = 0_usize;
+        let mut inverted = 0_usize;
+        let mut inner_windings = Vec::with_capacity(probes.len());
         for s in &probes {
             if s.normal == DVec3::ZERO {
                 continue;
             }
-            counted += 1;
             let inner = self.winding.winding_number(s.position - offset * s.normal);
             let outer = self.winding.winding_number(s.position + offset * s.normal);
+            inner_windings.push(inner);
             if inner > 0.75 && outer.abs() < 0.25 {
                 clear += 1;
             }
+            if outer < -0.75 && inner.abs() < 0.25 {
+                inverted += 1;
+            }
         }
-        let fraction = if counted == 0 {
-            0.0
-        } else {
-            clear as f64 / counted as f64
+        let counted = inner_windings.len();
+        let share = |n: usize| {
+            if counted == 0 {
+                0.0
+            } else {
+                n as f64 / counted as f64
+            }
         };
-        if fraction < INSIDE_QUORUM {
-            return Err(MeshError::NoInside { fraction });
+        if share(clear) >= INSIDE_QUORUM {
+            return Ok(());
         }
-        Ok(())
+        if share(inverted) >= INSIDE_QUORUM {
+            inner_windings.sort_by(f64::total_cmp);
+            return Err(MeshError::InwardOrientation {
+                median_inner_winding: inner_windings[counted / 2],
+            });
+        }
+        Err(MeshError::NoInside {
+            fraction: share(clear),
+        })
     }
 
     /// The mesh.

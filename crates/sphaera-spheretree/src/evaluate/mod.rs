@@ -115,5 +115,5 @@ pub use options::{
     DEFAULT_COVERAGE_SAMPLES, DEFAULT_COVERAGE_SEED, DEFAULT_MAX_PATCHES,
     DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions, SCREENING_FACTOR,
 };
-pub use set::{SetEvaluation, evaluate_set};
+pub use set::{SetEvaluation, evaluate_set, evaluate_set_bounded};
 pub use sphere_fit::{SphereFit, sphere_error, sphere_errors};

@@ -224,15 +224,26 @@ pub fn sphere_error(
     if !sphere.is_valid() {
         return Err(SphereTreeError::InvalidSphere { index: 0 });
     }
-    fit(surface, sphere, tolerance, options.max_patches)
+    fit(
+        surface,
+        sphere,
+        tolerance,
+        options.max_patches,
+        f64::NEG_INFINITY,
+    )
 }
 
 /// The branch and bound, for a valid sphere and a checked tolerance.
+///
+/// The search also stops, converged, once the sphere's upper bound is at most `settle`:
+/// a caller looking for the worst of several spheres needs no more of a sphere that
+/// cannot exceed what another already reached (`f64::NEG_INFINITY`: never).
 pub(crate) fn fit(
     surface: &Surface,
     sphere: &Sphere,
     tolerance: f64,
     max_patches: usize,
+    settle: f64,
 ) -> Result<SphereFit, SphereTreeError> {
     let mut search = Search {
         surface,
@@ -261,7 +272,7 @@ pub(crate) fn fit(
         let Some(top) = queue.pop() else {
             break true;
         };
-        if top.upper - search.lower <= tolerance {
+        if top.upper - search.lower <= tolerance || top.upper <= settle {
             queue.push(top);
             break true;
         }
@@ -333,7 +344,7 @@ pub fn sphere_errors(
     let tolerance = options.checked_tolerance(surface.diagonal())?;
     check_spheres(spheres)?;
     let max_patches = options.max_patches;
-    let one = |s: &Sphere| fit(surface, s, tolerance, max_patches);
+    let one = |s: &Sphere| fit(surface, s, tolerance, max_patches, f64::NEG_INFINITY);
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;

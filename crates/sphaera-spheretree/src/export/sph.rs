@@ -86,7 +86,8 @@ pub enum SphDefect {
         levels: usize,
         /// Branching factor.
         branch: usize,
-        /// What the node count exceeds: `"the file has characters"`, `"fit in memory"`.
+        /// What the node count exceeds: `"the file has characters"`, `"the format's 2^24
+        /// slots (write JSON instead)"`.
         limit: &'static str,
     },
     /// A node field is not a number.
@@ -249,7 +250,7 @@ impl SphFile {
             .ok_or(SphereTreeError::SphLayout(SphDefect::TooLarge {
                 levels,
                 branch,
-                limit: "fit in memory",
+                limit: "the format's 2^24 slots (write JSON instead)",
             }))?;
         let mut nodes = vec![None; count];
         // Flat slot of every tree node, the root first (parents precede children).

@@ -146,7 +146,8 @@ impl Region<'_> {
     }
 
     /// Lloyd's iteration on the representatives: assign, then fit every changed cluster,
-    /// while the worst error falls (at most `rounds` times). Empty clusters are dropped.
+    /// while the worst error falls (at most `rounds` times). Empty clusters are dropped
+    /// (the count is completed on the pieces, [`Region::complete`]).
     pub(crate) fn lloyd(&self, clusters: &mut Vec<Cluster>, rounds: usize) {
         for _ in 0..rounds {
             let before = worst(clusters);
@@ -167,86 +168,6 @@ impl Region<'_> {
             }
             if !changed || after >= before - 1e-12 * before.abs() {
                 return;
-            }
-        }
-    }
-
-    /// The two halves of a cluster (two-means on its representatives' centroids, seeded
-    /// by a far pair), each fitted.
-    pub(crate) fn split(&self, cluster: &Cluster) -> Option<[Cluster; 2]> {
-        let members = &cluster.members;
-        if members.len() < 2 {
-            return None;
-        }
-        let at = |p: u32| centroid(self.rep(p));
-        let farthest_from = |x: DVec3| {
-            members
-                .iter()
-                .copied()
-                .max_by(|&a, &b| {
-                    at(a)
-                        .distance_squared(x)
-                        .total_cmp(&at(b).distance_squared(x))
-                        .then(b.cmp(&a))
-                })
-                .map_or(x, at)
-        };
-        let first = farthest_from(cluster.center);
-        let (mut a, mut b) = (first, farthest_from(first));
-        let (mut left, mut right) = (Vec::new(), Vec::new());
-        for _ in 0..6 {
-            left.clear();
-            right.clear();
-            for &m in members {
-                let p = at(m);
-                if p.distance_squared(a) <= p.distance_squared(b) {
-                    left.push(m);
-                } else {
-                    right.push(m);
-                }
-            }
-            if left.is_empty() || right.is_empty() {
-                break;
-            }
-            a = left.iter().map(|&m| at(m)).sum::<DVec3>() / left.len() as f64;
-            b = right.iter().map(|&m| at(m)).sum::<DVec3>() / right.len() as f64;
-        }
-        if left.is_empty() || right.is_empty() {
-            let half = members.len() / 2;
-            left = members[..half].to_vec();
-            right = members[half..].to_vec();
-        }
-        Some([self.fit(&left, &[]), self.fit(&right, &[])])
-    }
-
-    /// Splits the worst splittable cluster until there are `k` (or none can be split),
-    /// with a short Lloyd iteration after each split.
-    pub(crate) fn fill(&self, clusters: &mut Vec<Cluster>, k: usize) {
-        let mut attempts = 0;
-        while clusters.len() < k && attempts < 4 * k {
-            attempts += 1;
-            let Some(w) = (0..clusters.len())
-                .filter(|&i| clusters[i].members.len() > 1)
-                .max_by(|&a, &b| {
-                    clusters[a]
-                        .cost
-                        .total_cmp(&clusters[b].cost)
-                        .then(b.cmp(&a))
-                })
-            else {
-                return;
-            };
-            let cluster = clusters.swap_remove(w);
-            match self.split(&cluster) {
-                Some([a, b]) => {
-                    clusters.push(a);
-                    clusters.push(b);
-                    self.lloyd(clusters, 3);
-                }
-                None => {
-                    clusters.push(cluster);
-                    return;
-                }
             }
         }
     }
@@ -358,6 +279,21 @@ impl Region<'_> {
     ) -> Result<(), SphereTreeError> {
         let changed = self.reassign_pieces(clusters);
         self.polish_changed(clusters, &changed)
+    }
+
+    /// Polishes the clusters `these`.
+    pub(crate) fn polish_these(
+        &self,
+        clusters: &mut [Cluster],
+        these: &[usize],
+    ) -> Result<(), SphereTreeError> {
+        let mut flags = vec![false; clusters.len()];
+        for &i in these {
+            if let Some(f) = flags.get_mut(i) {
+                *f = true;
+            }
+        }
+        self.polish_changed(clusters, &flags)
     }
 
     /// Polishes every cluster's centre (in parallel with the `parallel` feature; each is

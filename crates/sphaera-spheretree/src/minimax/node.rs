@@ -9,8 +9,8 @@ use super::candidates::{Candidate, medial_candidate};
 use super::cluster::{Cluster, Region, worst};
 use super::pieces::{Piece, area, centroid};
 use super::search::Thresholds;
-use crate::SphereTreeError;
 use crate::evaluate::{EvaluationOptions, sphere_error};
+use crate::{Effort, SphereTreeError};
 
 /// What a division must reach.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,9 +47,10 @@ pub(crate) struct Child {
     pub(crate) members: Vec<u32>,
 }
 
-/// How hard a division works (see [`divide`]).
+/// How hard a division works (see [`divide`]), from the [`Effort`] asked for and where
+/// the node stands in the tree.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Effort {
+pub(crate) struct Plan {
     /// Starts (different subsets of representatives) tried.
     pub(crate) starts: usize,
     /// The best starts (by their error on the representatives) refined exactly.
@@ -61,31 +62,58 @@ pub(crate) struct Effort {
     /// How strongly the children's regions are balanced by area (0: not at all; see
     /// [`balance`]).
     pub(crate) balance: f64,
+    /// Representatives at least.
+    pub(crate) reps: usize,
+    /// Candidates at least.
+    pub(crate) candidates: usize,
+    /// Pieces a region is split into before it is divided, at least.
+    pub(crate) pieces: usize,
+    /// Pieces per child at least.
+    pub(crate) pieces_per_child: usize,
 }
 
-impl Effort {
-    /// The effort for dividing one of `parents` nodes of a level (`last`: no node of the
-    /// next level will be divided): the fewer the nodes, the more starts each gets (the
-    /// root's division shapes every region below it), swaps for a lone node, and regions
-    /// balanced unless nothing below them is divided.
-    pub(crate) fn for_level(parents: usize, last: bool) -> Self {
-        let starts = (ROOT_STARTS / parents.max(1)).clamp(1, ROOT_STARTS);
+impl Plan {
+    /// The plan for dividing one of `parents` nodes of a level into `children` at
+    /// `effort` (`last`: no node of the next level will be divided): the fewer the nodes,
+    /// the more starts each gets (the root's division shapes every region below it),
+    /// swaps for a lone node, and regions balanced unless nothing below them is divided.
+    pub(crate) fn for_level(effort: Effort, parents: usize, children: usize, last: bool) -> Self {
+        let (root_starts, rounds, reps, candidates, pieces, pieces_per_child) = match effort {
+            Effort::Quick => (1, 1, 256, 96, 1_500, 24),
+            Effort::Thorough => (16, 6, 2_048, 512, 16_000, 200),
+            // `Effort` is non-exhaustive: the default for anything new.
+            _ => (8, 4, 1_024, 256, 8_000, 100),
+        };
+        // Many children are costly to divide, and each matters less.
+        let most = if children > MANY_CHILDREN {
+            2.min(root_starts)
+        } else {
+            root_starts
+        };
+        let starts = (root_starts / parents.max(1)).clamp(1, most);
+        let quick = effort == Effort::Quick;
         Self {
             starts,
             refined: starts.min(REFINED_STARTS),
-            rounds: REFINE_ROUNDS,
-            swaps: usize::from(parents == 1),
-            balance: if last { 0.0 } else { BALANCE_STRENGTH },
+            rounds,
+            swaps: usize::from(!quick && parents == 1 && children <= SWAP_CHILDREN),
+            balance: if last || quick { 0.0 } else { BALANCE_STRENGTH },
+            reps,
+            candidates,
+            pieces,
+            pieces_per_child,
         }
     }
 }
 
-/// Starts of a lone node's division (a level of `n` nodes gives each `8 / n`).
-const ROOT_STARTS: usize = 8;
+/// Divisions into more children than this get at most two starts.
+const MANY_CHILDREN: usize = 64;
+/// Swaps are tried for divisions into at most this many children (each swap tries
+/// every child).
+const SWAP_CHILDREN: usize = 16;
+
 /// Starts refined exactly at most.
 const REFINED_STARTS: usize = 4;
-/// Rounds of exact refinement.
-const REFINE_ROUNDS: usize = 4;
 /// The bias per unit of excess area, in units of the worst child's error
 /// ([`balance`]).
 const BALANCE_STRENGTH: f64 = 0.1;
@@ -94,11 +122,14 @@ const BALANCE_STRENGTH: f64 = 0.1;
 /// rounded, and a sphere must contain its pieces.
 const RADIUS_SLACK: f64 = 1e-12;
 
-/// Representatives at least, and per child.
-const REPS_MIN: usize = 1_024;
+/// Absolute slack added to every radius, in canonical units (coordinates within 1 of the
+/// origin): a split midpoint is rounded by a few units in the last place of its
+/// coordinates, which a small sphere's relative slack may not cover.
+const ABSOLUTE_SLACK: f64 = 16.0 * f64::EPSILON;
+
+/// Representatives per child.
 const REPS_PER_CHILD: usize = 6;
-/// Candidates at least, per child, and at most.
-const CANDIDATES_MIN: usize = 256;
+/// Candidates per child, and at most.
 const CANDIDATES_PER_CHILD: usize = 4;
 const CANDIDATES_MAX: usize = 2_400;
 
@@ -116,17 +147,23 @@ pub(crate) fn divide(
     pieces: &[Piece],
     goal: Goal,
     parent: (Sphere, f64),
-    effort: Effort,
+    effort: Plan,
 ) -> Result<Vec<Child>, SphereTreeError> {
+    if let Goal::Count(k) = goal
+        && k > LARGE_DIVISION
+    {
+        return divide_in_groups(surface, pieces, k, parent, effort);
+    }
     let most = goal.most().max(1);
-    let (mut candidates, mut origins) = candidates(surface, pieces, most, parent.0.radius)?;
+    let (mut candidates, mut origins) =
+        candidates(surface, pieces, most, effort.candidates, parent.0.radius)?;
     // The parent's centre, grown from the middle piece.
     candidates.push(Candidate {
         center: parent.0.center,
         depth: parent.1,
     });
     origins.push((pieces.len() / 2) as u32);
-    let starts = if pieces.len() <= REPS_MIN {
+    let starts = if pieces.len() <= effort.reps {
         1
     } else {
         effort.starts.max(1)
@@ -134,21 +171,37 @@ pub(crate) fn divide(
     // Every start on the representatives; the best ones refined on every piece.
     let mut drafts = Vec::with_capacity(starts);
     for start in 0..starts {
-        let region = region(surface, pieces, most, start, &candidates, &origins);
+        let region = region(
+            surface,
+            pieces,
+            most,
+            effort.reps,
+            start,
+            &candidates,
+            &origins,
+        );
         let clusters = draft(&region, goal);
         drafts.push((worst(&clusters), start, clusters));
     }
     drafts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
     let mut best: Option<Vec<Cluster>> = None;
     for (_, start, clusters) in drafts.into_iter().take(effort.refined.max(1)) {
-        let region = region(surface, pieces, most, start, &candidates, &origins);
-        let refined = finish(&region, goal, clusters, effort.rounds)?;
+        let region = region(
+            surface,
+            pieces,
+            most,
+            effort.reps,
+            start,
+            &candidates,
+            &origins,
+        );
+        let refined = finish(&region, goal, &clusters, effort.rounds)?;
         if better(&refined, best.as_deref(), goal) {
             best = Some(refined);
         }
     }
     let mut clusters = best.unwrap_or_default();
-    let whole = region(surface, pieces, most, 0, &candidates, &origins);
+    let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
     if effort.swaps > 0 && matches!(goal, Goal::Count(_)) {
         whole.swap(&mut clusters, effort.swaps, SWAP_ROUNDS)?;
     }
@@ -158,7 +211,7 @@ pub(crate) fn divide(
     let children: Vec<Child> = clusters
         .into_iter()
         .map(|c| {
-            let radius = (c.cost + c.depth) * (1.0 + RADIUS_SLACK);
+            let radius = (c.cost + c.depth) * (1.0 + RADIUS_SLACK) + ABSOLUTE_SLACK;
             Child {
                 sphere: Sphere::new(c.center, radius.max(f64::MIN_POSITIVE)),
                 depth: c.depth,
@@ -168,6 +221,101 @@ pub(crate) fn divide(
         })
         .collect();
     no_looser_than_parent(surface, children, parent)
+}
+
+/// Divisions into more children than this go in two steps ([`divide_in_groups`]).
+const LARGE_DIVISION: usize = 1_024;
+
+/// Children per group of a two-step division, about.
+const GROUP_CHILDREN: usize = 256;
+
+/// A division into `k` children, more than [`LARGE_DIVISION`], in two steps: the region
+/// is first divided into groups of about [`GROUP_CHILDREN`] children's worth, each group
+/// gets a share of the `k` children proportional to its area (largest remainders, at
+/// least one each, exactly `k` in all), and each group is divided into its share (in
+/// parallel with the `parallel` feature). The groups' boundaries constrain the children
+/// a little; the search and the refinement of one division into thousands would cost
+/// far more.
+fn divide_in_groups(
+    surface: &Surface,
+    pieces: &[Piece],
+    k: usize,
+    parent: (Sphere, f64),
+    effort: Plan,
+) -> Result<Vec<Child>, SphereTreeError> {
+    let count = k.div_ceil(GROUP_CHILDREN);
+    let groups = divide(surface, pieces, Goal::Count(count), parent, effort)?;
+    let areas: Vec<f64> = groups
+        .iter()
+        .map(|g| g.members.iter().map(|&m| area(&pieces[m as usize])).sum())
+        .collect();
+    let shares = shares(&areas, k);
+    let one = |(group, &share): (&Child, &usize)| -> Result<Vec<Child>, SphereTreeError> {
+        let own: Vec<Piece> = group.members.iter().map(|&m| pieces[m as usize]).collect();
+        let children = divide(
+            surface,
+            &own,
+            Goal::Count(share),
+            (group.sphere, group.depth),
+            effort,
+        )?;
+        // Back to the region's piece indices.
+        Ok(children
+            .into_iter()
+            .map(|mut c| {
+                for m in &mut c.members {
+                    *m = group.members[*m as usize];
+                }
+                c.members.sort_unstable();
+                c
+            })
+            .collect())
+    };
+    #[cfg(feature = "parallel")]
+    let divided: Result<Vec<Vec<Child>>, SphereTreeError> = {
+        use rayon::prelude::*;
+        groups.par_iter().zip(shares.par_iter()).map(one).collect()
+    };
+    #[cfg(not(feature = "parallel"))]
+    let divided: Result<Vec<Vec<Child>>, SphereTreeError> =
+        groups.iter().zip(shares.iter()).map(one).collect();
+    Ok(divided?.into_iter().flatten().collect())
+}
+
+/// `total` split in proportion to `weights` by largest remainders, at least 1 each (when
+/// `total` allows), summing to `total` exactly.
+fn shares(weights: &[f64], total: usize) -> Vec<usize> {
+    let n = weights.len();
+    if n == 0 {
+        return Vec::new();
+    }
+    let base = total.saturating_sub(n);
+    let sum: f64 = weights.iter().map(|w| w.max(0.0)).sum();
+    let exact: Vec<f64> = weights
+        .iter()
+        .map(|w| {
+            if sum > 0.0 {
+                base as f64 * w.max(0.0) / sum
+            } else {
+                base as f64 / n as f64
+            }
+        })
+        .collect();
+    let mut out: Vec<usize> = exact.iter().map(|e| 1 + e.floor() as usize).collect();
+    let mut left = total.saturating_sub(out.iter().sum());
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| {
+        let (fa, fb) = (exact[a] - exact[a].floor(), exact[b] - exact[b].floor());
+        fb.total_cmp(&fa).then(a.cmp(&b))
+    });
+    for &i in order.iter().cycle().take(n * 2) {
+        if left == 0 {
+            break;
+        }
+        out[i] += 1;
+        left -= 1;
+    }
+    out
 }
 
 /// The children with every child that could reach farther beyond the surface than its
@@ -206,6 +354,9 @@ fn no_looser_than_parent(
     }
     Ok(children)
 }
+
+/// Rounds of exact refinement after the children were completed to the count.
+const COMPLETION_ROUNDS: usize = 2;
 
 /// Rounds of exact refinement after each swap.
 const SWAP_ROUNDS: usize = 2;
@@ -284,10 +435,11 @@ fn candidates(
     surface: &Surface,
     pieces: &[Piece],
     most: usize,
+    minimum: usize,
     scale: f64,
 ) -> Result<(Vec<Candidate>, Vec<u32>), SphereTreeError> {
     let count = (CANDIDATES_PER_CHILD * most)
-        .clamp(CANDIDATES_MIN, CANDIDATES_MAX)
+        .clamp(minimum, CANDIDATES_MAX.max(minimum))
         .min(pieces.len());
     let every = pieces.len().div_ceil(count.max(1)).max(1);
     let origins: Vec<u32> = (0..pieces.len() as u32)
@@ -319,11 +471,12 @@ fn region<'a>(
     surface: &'a Surface,
     pieces: &'a [Piece],
     most: usize,
+    minimum: usize,
     start: usize,
     candidates: &[Candidate],
     origins: &[u32],
 ) -> Region<'a> {
-    let wanted = REPS_MIN.max(REPS_PER_CHILD * most);
+    let wanted = minimum.max(REPS_PER_CHILD * most);
     let stride = pieces.len().div_ceil(wanted).max(1);
     let reps: Vec<u32> = (0..pieces.len() as u32)
         .skip(start % stride)
@@ -351,7 +504,6 @@ fn draft(region: &Region<'_>, goal: Goal) -> Vec<Cluster> {
         .map(|&r| region.pieces[r as usize])
         .collect();
     let thresholds = Thresholds::new(&reps, &region.candidates);
-    let most = goal.most().max(1);
     let chosen = match goal {
         Goal::Count(k) => thresholds.smallest_cover(k, 1).1,
         Goal::Within { tolerance, most } => thresholds
@@ -379,9 +531,6 @@ fn draft(region: &Region<'_>, goal: Goal) -> Vec<Cluster> {
         *c = region.fit(&c.members, &[]);
     }
     region.lloyd(&mut clusters, 12);
-    if matches!(goal, Goal::Count(_)) {
-        region.fill(&mut clusters, most);
-    }
     clusters
 }
 
@@ -390,21 +539,48 @@ fn draft(region: &Region<'_>, goal: Goal) -> Vec<Cluster> {
 fn finish(
     region: &Region<'_>,
     goal: Goal,
-    mut clusters: Vec<Cluster>,
+    clusters: &[Cluster],
     rounds: usize,
 ) -> Result<Vec<Cluster>, SphereTreeError> {
-    let mut exact = region.on_pieces(&clusters);
+    let mut exact = region.on_pieces(clusters);
     region.refine(&mut exact, rounds)?;
-    if let Goal::Within { tolerance, most } = goal {
-        while worst(&exact) > tolerance && clusters.len() < most {
-            let before = clusters.len();
-            region.fill(&mut clusters, before + 1);
-            if clusters.len() == before {
-                break;
+    match goal {
+        Goal::Count(k) => {
+            if exact.len() < k {
+                region.complete(&mut exact, k)?;
+                region.refine(&mut exact, COMPLETION_ROUNDS)?;
             }
-            exact = region.on_pieces(&clusters);
-            region.refine(&mut exact, rounds)?;
+        }
+        Goal::Within { tolerance, most } => {
+            while worst(&exact) > tolerance && exact.len() < most {
+                let before = exact.len();
+                region.complete(&mut exact, before + 1)?;
+                if exact.len() == before {
+                    break;
+                }
+                region.refine(&mut exact, rounds)?;
+            }
         }
     }
     Ok(exact)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shares;
+
+    #[test]
+    fn shares_sum_to_the_total_with_one_each_at_least() {
+        for (weights, total) in [
+            (vec![1.0, 1.0, 1.0], 10),
+            (vec![5.0, 0.1, 0.0, 2.0], 1_025),
+            (vec![0.0, 0.0], 3),
+            (vec![1e-300, 1e300], 2),
+        ] {
+            let s = shares(&weights, total);
+            assert_eq!(s.iter().sum::<usize>(), total, "{weights:?}");
+            assert!(s.iter().all(|&x| x >= 1), "{s:?}");
+        }
+        assert_eq!(shares(&[3.0, 1.0], 6), vec![4, 2]);
+    }
 }

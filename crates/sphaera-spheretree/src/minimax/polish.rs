@@ -98,10 +98,15 @@ fn unique_corners(pieces: &[Piece], members: &[u32]) -> Vec<DVec3> {
     for &m in members {
         for p in pieces[m as usize] {
             let bits = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-            let hash = bits.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| {
-                (h ^ b).wrapping_mul(0x0100_0000_01b3)
+            // Split midpoints are dyadic: their low bits are mostly zero, so every word is
+            // mixed in fully (the SplitMix64 finalizer) before the low bits pick a slot.
+            let hash = bits.iter().fold(0x9e37_79b9_7f4a_7c15_u64, |h, &b| {
+                let mut x = h ^ b;
+                x = (x ^ x >> 30).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+                x = (x ^ x >> 27).wrapping_mul(0x94d0_49bb_1331_11eb);
+                x ^ x >> 31
             });
-            let mut slot = (hash ^ hash >> 29) as usize & mask;
+            let mut slot = hash as usize & mask;
             loop {
                 match table[slot] {
                     None => {

@@ -9,6 +9,23 @@ use super::pieces::centroid;
 use super::polish::Reach;
 use crate::SphereTreeError;
 
+/// The clusters `of` and those that could take pieces from them or give them pieces (the
+/// neighbour condition of [`super::cluster`], both ways), ascending.
+fn near(clusters: &[Cluster], of: &[usize]) -> Vec<usize> {
+    let reach = |c: &Cluster| c.cost + c.depth;
+    (0..clusters.len())
+        .filter(|&j| {
+            of.iter().any(|&s| {
+                let (cs, cj) = (&clusters[s], &clusters[j]);
+                let apart = cs.center.distance(cj.center);
+                j == s
+                    || apart <= reach(cs) + cs.cost.max(0.0) + cj.depth
+                    || apart <= reach(cj) + cj.cost.max(0.0) + cs.depth
+            })
+        })
+        .collect()
+}
+
 impl Region<'_> {
     /// Swaps (every other child removed in turn while the worst is split), kept while the
     /// worst error falls, for at most `passes` passes over the children. `clusters` hold
@@ -64,6 +81,95 @@ impl Region<'_> {
             }
         }
         Ok(())
+    }
+
+    /// Adds children until there are `k` (or none can be split): the worst child with two
+    /// pieces or more is split in two, and the pieces of the two halves and their
+    /// neighbours are reassigned among them; that is kept only when it does not raise the
+    /// worst error over the split alone, whose halves reach no farther than the child
+    /// did. So the worst error never rises, and a count asked for is a count given.
+    pub(crate) fn complete(
+        &self,
+        clusters: &mut Vec<Cluster>,
+        k: usize,
+    ) -> Result<(), SphereTreeError> {
+        while clusters.len() < k {
+            let Some(w) = (0..clusters.len())
+                .filter(|&i| clusters[i].members.len() > 1)
+                .max_by(|&a, &b| {
+                    clusters[a]
+                        .cost
+                        .total_cmp(&clusters[b].cost)
+                        .then(b.cmp(&a))
+                })
+            else {
+                return Ok(());
+            };
+            let Some([a, b]) = self.split_pieces(&clusters[w]) else {
+                return Ok(());
+            };
+            clusters[w] = a;
+            clusters.push(b);
+            let halves = [w, clusters.len() - 1];
+            self.polish_these(clusters, &halves)?;
+            let plain = worst(clusters);
+            let near = near(clusters, &halves);
+            let saved: Vec<Cluster> = near.iter().map(|&j| clusters[j].clone()).collect();
+            self.exchange(clusters, halves, &near);
+            if worst(clusters) > plain {
+                for (&j, c) in near.iter().zip(saved) {
+                    clusters[j] = c;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// After a split into `halves`: each of their pieces to the cheapest of `near` (the
+    /// halves and their neighbours), and each piece of a neighbour to a half that covers
+    /// it with less error than its own cluster does (the others were already assigned
+    /// among themselves). No cluster is left empty; the costs of the changed ones are
+    /// measured again (their centres stay: the refinement that follows moves them).
+    fn exchange(&self, clusters: &mut [Cluster], halves: [usize; 2], near: &[usize]) {
+        let cost = |c: &Cluster, m: u32| {
+            super::pieces::reach_squared(&self.pieces[m as usize], c.center).sqrt() - c.depth
+        };
+        let mut changed = vec![false; clusters.len()];
+        let mut moves: Vec<(u32, usize, usize)> = Vec::new();
+        for &from in near {
+            let from_half = halves.contains(&from);
+            for &m in &clusters[from].members {
+                let here = cost(&clusters[from], m);
+                let targets: &[usize] = if from_half { near } else { &halves };
+                let mut best = (here, from);
+                for &to in targets {
+                    let there = cost(&clusters[to], m);
+                    if there < best.0 {
+                        best = (there, to);
+                    }
+                }
+                if best.1 != from {
+                    moves.push((m, from, best.1));
+                }
+            }
+        }
+        for (m, from, to) in moves {
+            if clusters[from].members.len() <= 1 {
+                continue;
+            }
+            if let Ok(slot) = clusters[from].members.binary_search(&m) {
+                clusters[from].members.remove(slot);
+                let at = clusters[to].members.partition_point(|&x| x < m);
+                clusters[to].members.insert(at, m);
+                changed[from] = true;
+                changed[to] = true;
+            }
+        }
+        for (c, &changed) in clusters.iter_mut().zip(&changed) {
+            if changed {
+                c.cost = super::cluster::exact_reach(self.pieces, &c.members, c.center) - c.depth;
+            }
+        }
     }
 
     /// Gives each of `pieces` to the cluster that covers it with the least error.
@@ -128,12 +234,14 @@ impl Region<'_> {
             a = left.iter().map(|&m| at(m)).sum::<DVec3>() / left.len() as f64;
             b = right.iter().map(|&m| at(m)).sum::<DVec3>() / right.len() as f64;
         }
-        Some([self.fit_pieces(left), self.fit_pieces(right)])
+        let own = Some((cluster.center, cluster.depth));
+        Some([self.fit_pieces(left, own), self.fit_pieces(right, own)])
     }
 
     /// The best candidate centre for a set of pieces (ascending), among the candidates
-    /// grown from them (all candidates when none was), with its exact cost.
-    fn fit_pieces(&self, members: Vec<u32>) -> Cluster {
+    /// grown from them (all candidates when none was) and `fallback` (a centre with its
+    /// signed depth), with its exact cost.
+    fn fit_pieces(&self, members: Vec<u32>, fallback: Option<(DVec3, f64)>) -> Cluster {
         let mine: Vec<usize> = (0..self.candidates.len())
             .filter(|&c| members.binary_search(&self.origins[c]).is_ok())
             .collect();
@@ -157,12 +265,22 @@ impl Region<'_> {
             }
         }
         let cand = self.candidates[best.1];
-        Cluster {
+        let mut fitted = Cluster {
             center: cand.center,
             depth: cand.depth,
             members,
             cost: best.0,
             bias: 0.0,
+        };
+        // The split cluster's own centre covers these pieces too.
+        if let Some((center, depth)) = fallback {
+            let cost = reach.at(center) - depth;
+            if cost < fitted.cost {
+                fitted.center = center;
+                fitted.depth = depth;
+                fitted.cost = cost;
+            }
         }
+        fitted
     }
 }

@@ -7,24 +7,24 @@ use sphaera_mesh::Surface;
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 
 use super::candidates::signed_depth;
-use super::node::{Child, Effort, Goal, divide};
-use super::pieces::{MAX_PIECES, Piece, area, mesh_pieces, refine};
+use super::node::{Child, Goal, Plan, divide};
+use super::pieces::{Piece, area, mesh_pieces, refine};
 use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::options::{SphereTreeOptions, SphereTreeProgress};
 use crate::tree::{SphereTree, TreeNode};
 use crate::{MAX_MEDIAL_DEPTH, SphereTreeError};
 
-/// Pieces a node's region is split into before it is divided (at least; regions whose
-/// triangles are already smaller keep them): enough for children's spheres to be fitted
-/// to well below their error.
-const PIECES_PER_NODE: usize = 8_000;
-
-/// Pieces per child, for divisions into many children (a one-level tree of a budget).
-const PIECES_PER_CHILD: usize = 400;
-
 /// The most nodes a tree may have (each holds its region's pieces while its level is
 /// built): a tolerance needing more is refused.
 pub const MAX_TREE_NODES: usize = 1 << 21;
+
+/// The most pieces the nodes of one level hold together (about 1.2 GB): a level of many
+/// nodes tiles each more coarsely.
+const LEVEL_PIECES: usize = 1 << 24;
+
+/// The fewest pieces a node is tiled with before it is divided: a tolerance tree whose
+/// level would need more nodes than [`LEVEL_PIECES`] allows at this is refused.
+const MIN_PIECES_PER_NODE: usize = 256;
 
 /// Parents divided between two progress reports (in parallel within a batch).
 const PROGRESS_BATCH: usize = 8;
@@ -73,7 +73,16 @@ pub(crate) fn minimax_tree(
             break;
         }
         let total = parents.len();
-        let effort = Effort::for_level(total, tolerance.is_none() && level == max_depth);
+        if nodes.len().saturating_add(total.saturating_mul(branch)) > MAX_TREE_NODES {
+            return Err(unreachable(tolerance, &nodes, level - 1));
+        }
+        let last = tolerance.is_none() && level == max_depth;
+        let mut effort = Plan::for_level(options.effort, total, branch, last);
+        // The level's pieces together stay within LEVEL_PIECES: many nodes get fewer.
+        effort.pieces = effort.pieces.min(LEVEL_PIECES / total);
+        if effort.pieces < MIN_PIECES_PER_NODE {
+            return Err(unreachable(tolerance, &nodes, level - 1));
+        }
         let goal = match tolerance {
             Some(t) => Goal::Within {
                 tolerance: t,
@@ -125,8 +134,15 @@ pub(crate) fn minimax_tree(
         if let Some(t) = tolerance {
             let start = level_starts[level];
             certify_level(surface, &mut nodes[start..], t)?;
+            // Leaves are never divided: their pieces go.
+            for (node, region) in nodes[start..].iter().zip(&mut regions[start..]) {
+                if node.error <= t {
+                    *region = Vec::new();
+                }
+            }
         }
     }
+    drop(regions);
     if let Some(t) = tolerance {
         let deepest = level_starts.len().saturating_sub(2);
         let last = level_starts[deepest]..nodes.len();
@@ -175,7 +191,7 @@ fn divide_all(
     regions: &[Vec<Piece>],
     parents: &[usize],
     goal: Goal,
-    effort: Effort,
+    effort: Plan,
     done: &dyn Fn(usize),
 ) -> Result<Vec<Division>, SphereTreeError> {
     let most = match goal {
@@ -184,7 +200,7 @@ fn divide_all(
     };
     let one = |&parent: &usize| -> Result<Division, SphereTreeError> {
         let region = &regions[parent];
-        let pieces = refine(region, piece_size(region, most))?;
+        let pieces = refine(region, piece_size(region, most, &effort))?;
         let node = &nodes[parent];
         let children = divide(
             surface,
@@ -211,11 +227,11 @@ fn divide_all(
 }
 
 /// The longest edge a region's pieces are split to before it is divided into `most`
-/// children: about [`PIECES_PER_NODE`] pieces (or [`PIECES_PER_CHILD`] per child) over
-/// the region's area, and never so fine that the region exceeds [`MAX_PIECES`].
-fn piece_size(region: &[Piece], most: usize) -> f64 {
+/// children: about the plan's pieces per node (or per child) over the region's area, and
+/// never so fine that the region exceeds the pieces cap (checked by `refine`).
+fn piece_size(region: &[Piece], most: usize, plan: &Plan) -> f64 {
     let total: f64 = region.iter().map(area).sum();
-    let wanted = PIECES_PER_NODE.max(PIECES_PER_CHILD.saturating_mul(most)) as f64;
+    let wanted = plan.pieces.max(plan.pieces_per_child.saturating_mul(most)) as f64;
     // A piece split to longest edge h has area about h²/4.
     let h = (4.0 * total / wanted).sqrt();
     if h > 0.0 && h.is_finite() {
@@ -255,5 +271,3 @@ fn certify_level(
     }
     Ok(())
 }
-
-const _: () = assert!(MAX_PIECES > PIECES_PER_NODE);

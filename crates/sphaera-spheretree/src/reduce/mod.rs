@@ -91,13 +91,13 @@ impl ReductionInput<'_> {
     }
 }
 
-/// Distance from `centre` to the surface and whether it is inside.
+/// Distance from `centre` to the surface and whether it is inside (certified).
 pub(crate) fn centre_depth(surface: &Surface, centre: DVec3) -> (f64, bool) {
-    let inside = surface.is_inside(centre);
-    let d = surface
-        .closest(centre)
-        .map_or(f64::INFINITY, |c| c.distance);
-    (d, inside)
+    // The certified side: eq. 2 is an upper bound of a sphere's error only for a centre
+    // truly inside.
+    surface
+        .signed_closest(centre)
+        .map_or((f64::INFINITY, false), |s| (s.closest.distance, s.inside))
 }
 
 /// The eq. 2 error of a sphere of radius `radius` whose centre is `depth` from the

@@ -35,8 +35,8 @@ struct Report {
     diagonal: f64,
     /// `built` (depth and branch) or the tree file read.
     tree: String,
-    /// Per level: spheres and the certified worst error (`null` when the mesh has no
-    /// inside to measure against).
+    /// Per level, its cut (the level's nodes and the leaves above it): spheres and the
+    /// certified worst error (`null` when the mesh has no surface to measure against).
     levels: Vec<LevelReport>,
     /// The other surfaces the page can show, in its menu's order: the rungs of
     /// `--simplify` (bound: certified error), then the HAL levels and the approximation of
@@ -113,10 +113,12 @@ pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
             input.source
         );
     }
-    let surface = Surface::new(&mesh).ok();
+    // A mesh without inside (a sheet, an open patch) is a shell: its tree covers it and
+    // its errors are measured from its surface.
+    let surface = Surface::solid_or_shell(&mesh).ok();
     let (levels, tree_source) =
         tree::levels(args.tree.as_deref(), surface.as_ref(), &input.source, quiet)?;
-    tree::check_tree_fits(&mesh, &levels, &tree_source)?;
+    tree::check_tree_fits(&mesh, &levels.spheres, &tree_source)?;
     let evaluations = tree::evaluate(surface.as_ref(), &levels, quiet)?;
     let mut surfaces: Vec<Layer> = Vec::new();
     if let Some(ratio) = args.simplify {
@@ -140,7 +142,7 @@ pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
     let page = page::page(&page::Contents {
         name: &input.source,
         mesh: &mesh,
-        levels: &levels,
+        levels: &levels.spheres,
         evaluations: &evaluations,
         layers: &surfaces,
         distance: distance.as_ref(),
@@ -154,6 +156,7 @@ pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
         diagonal: mesh.bounding_box_diagonal(),
         tree: tree_source,
         levels: levels
+            .spheres
             .iter()
             .zip(&evaluations)
             .enumerate()
@@ -229,7 +232,7 @@ impl crate::output::Report for Report {
                 thousands(l.spheres),
                 match (l.error_lower, l.error_upper) {
                     (Some(a), Some(b)) => format!("[{a:.6}, {b:.6}]"),
-                    _ => "not measured (no inside)".to_owned(),
+                    _ => "not measured (no surface)".to_owned(),
                 }
             ));
         }

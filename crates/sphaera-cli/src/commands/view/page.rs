@@ -39,7 +39,7 @@ struct PageLevel {
     /// `x, y, z, r` per sphere, f32, base64.
     spheres: String,
     /// The index of the sphere reaching farthest beyond the surface (certified), or the
-    /// largest sphere when the mesh has no inside to measure against.
+    /// largest sphere when there is no surface to measure against.
     worst: usize,
     error_lower: Option<f64>,
     error_upper: Option<f64>,

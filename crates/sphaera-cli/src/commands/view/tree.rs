@@ -1,36 +1,93 @@
 //! The sphere-tree a page shows: read from a file or built, checked against the mesh, and
 //! each level's worst error certified.
+//!
+//! A level is shown as its cut: the level's nodes and the leaves above it, which together
+//! cover the surface. In a tree built to a depth that is the level itself; in a tree built
+//! to a tolerance (`sphaera spheretree --tolerance`) the leaves end at different depths,
+//! and a level alone would leave holes where a shallower leaf stands for its part.
 
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use sphaera::mesh::{DVec3, Length, Sphere, Surface, TriMesh};
-use sphaera::spheretree::export::{read_sph, tree_from_json};
+use sphaera::spheretree::export::{SphFile, read_sph, tree_from_json};
 use sphaera::spheretree::{
-    EvaluationOptions, SphereTreeOptions, build_with_progress, evaluate_set,
+    EvaluationOptions, SphereTree, SphereTreeOptions, build_with_progress, evaluate_set,
 };
 
 use crate::progress;
 
-/// The levels of a tree file: JSON (`sphaera spheretree -o tree.json`) or `.sph`.
-pub fn read_tree(path: &Path) -> Result<Vec<Vec<Sphere>>> {
+/// The levels a page shows, each as its cut.
+pub struct Levels {
+    /// Per level, the spheres of its cut.
+    pub spheres: Vec<Vec<Sphere>>,
+    /// Per level, each sphere's certified error bound as the tree records it (its node's
+    /// construction error), when the tree records one: not in `.sph` files.
+    pub bounds: Vec<Option<Vec<f64>>>,
+}
+
+impl Levels {
+    /// The cuts of a tree, with its nodes' errors.
+    fn of_tree(tree: &SphereTree) -> Self {
+        let cuts: Vec<Vec<usize>> = (0..tree.level_count()).map(|l| tree.cut_at(l)).collect();
+        let node = |i: usize| &tree.nodes()[i];
+        Self {
+            spheres: cuts
+                .iter()
+                .map(|cut| cut.iter().map(|&i| node(i).sphere).collect())
+                .collect(),
+            bounds: cuts
+                .iter()
+                .map(|cut| Some(cut.iter().map(|&i| node(i).error).collect()))
+                .collect(),
+        }
+    }
+
+    /// The cuts of a `.sph` tree: per level, its used slots and the used slots above it
+    /// whose child slots are all unused (the leaves), in slot order.
+    fn of_sph(file: &SphFile) -> Self {
+        // The level and leafness of every used slot.
+        let mut used: Vec<(usize, Sphere, bool)> = Vec::new();
+        for level in 0..file.levels {
+            for slot in file.level_range(level) {
+                if let Some(Some((sphere, _))) = file.nodes.get(slot) {
+                    let leaf = file
+                        .children(slot)
+                        .all(|c| file.nodes.get(c).is_none_or(Option::is_none));
+                    used.push((level, *sphere, leaf));
+                }
+            }
+        }
+        let spheres: Vec<Vec<Sphere>> = (0..file.levels)
+            .map(|level| {
+                used.iter()
+                    .filter(|&&(at, _, leaf)| at == level || (at < level && leaf))
+                    .map(|&(_, sphere, _)| sphere)
+                    .collect()
+            })
+            .collect();
+        let bounds = vec![None; spheres.len()];
+        Self { spheres, bounds }
+    }
+}
+
+/// The levels of a tree file, as cuts: JSON (`sphaera spheretree -o tree.json`) or `.sph`.
+pub fn read_tree(path: &Path) -> Result<Levels> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read the tree {}", path.display()))?;
     let is_sph = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("sph"));
-    let levels: Vec<Vec<Sphere>> = if is_sph {
+    let levels = if is_sph {
         let file = read_sph(&text, DVec3::ZERO)
             .with_context(|| format!("{}: not a valid .sph file", path.display()))?;
-        (0..file.levels).map(|l| file.level(l)).collect()
+        Levels::of_sph(&file)
     } else {
         let tree = tree_from_json(&text)
             .with_context(|| format!("{}: not a sphere-tree JSON file", path.display()))?;
-        (0..tree.level_count())
-            .map(|l| tree.level_spheres(l))
-            .collect()
+        Levels::of_tree(&tree)
     };
-    if levels.iter().all(Vec::is_empty) {
+    if levels.spheres.iter().all(Vec::is_empty) {
         bail!("{}: the tree has no spheres", path.display());
     }
     Ok(levels)
@@ -64,31 +121,56 @@ pub struct Evaluation {
     pub worst: usize,
 }
 
-/// The certified worst error of each level, or `None` without a surface.
+/// The certified worst error of each level's cut, or `None` without a surface. The upper
+/// bound is the tightest certified one: per sphere the smaller of the evaluation's upper
+/// bound and the tree's own bound (where the tree records one), largest over the cut.
 pub fn evaluate(
     surface: Option<&Surface>,
-    levels: &[Vec<Sphere>],
+    levels: &Levels,
     quiet: bool,
 ) -> Result<Vec<Option<Evaluation>>> {
     let Some(surface) = surface else {
-        return Ok(vec![None; levels.len()]);
+        return Ok(vec![None; levels.spheres.len()]);
     };
     let options = EvaluationOptions::default()
         .with_tolerance(Length::RelativeToDiagonal(1e-3))
         .with_screening(true);
-    let bar = progress::bar(quiet, "certifying each level's error", levels.len() as u64);
-    let mut out = Vec::with_capacity(levels.len());
-    for (level, spheres) in levels.iter().enumerate() {
+    let bar = progress::bar(
+        quiet,
+        "certifying each level's error",
+        levels.spheres.len() as u64,
+    );
+    let mut out = Vec::with_capacity(levels.spheres.len());
+    for (level, (spheres, bounds)) in levels.spheres.iter().zip(&levels.bounds).enumerate() {
         if spheres.is_empty() {
             out.push(None);
             continue;
         }
         let fit = evaluate_set(surface, spheres, &options)
             .with_context(|| format!("cannot evaluate level {level}"))?;
+        let uppers: Vec<f64> = fit
+            .fits
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                let bound = bounds
+                    .as_ref()
+                    .and_then(|b| b.get(i).copied())
+                    .unwrap_or(f64::INFINITY);
+                f.upper.min(bound)
+            })
+            .collect();
+        // The first sphere of the largest bound.
+        let (worst, upper) = uppers.iter().copied().enumerate().fold(
+            (fit.worst_index, f64::NEG_INFINITY),
+            |best, (i, u)| {
+                if u > best.1 { (i, u) } else { best }
+            },
+        );
         out.push(Some(Evaluation {
             lower: fit.worst_lower,
-            upper: fit.worst_upper,
-            worst: fit.worst_index,
+            upper,
+            worst,
         }));
         bar.inc(1);
     }
@@ -105,21 +187,19 @@ pub fn largest(spheres: &[Sphere]) -> usize {
         .map_or(0, |(i, _)| i)
 }
 
-/// The levels to show and where they come from: the tree file, or a tree built with the
-/// default options (the main job's).
+/// The levels to show, as cuts, and where they come from: the tree file, or a tree built
+/// with the default options (the main job's) on the surface (a solid or a shell).
 pub fn levels(
     tree: Option<&Path>,
     surface: Option<&Surface>,
     source: &str,
     quiet: bool,
-) -> Result<(Vec<Vec<Sphere>>, String)> {
+) -> Result<(Levels, String)> {
     if let Some(path) = tree {
         return Ok((read_tree(path)?, path.display().to_string()));
     }
     let Some(surface) = surface else {
-        bail!(
-            "{source}: the mesh encloses no volume, so it has no sphere-tree (give one with --tree)"
-        );
+        bail!("{source}: the mesh has no surface to build a sphere-tree on (give one with --tree)");
     };
     let options = SphereTreeOptions::default();
     let bar = progress::bar(quiet, "building the sphere-tree", 1);
@@ -127,11 +207,8 @@ pub fn levels(
         .with_context(|| format!("cannot build a sphere-tree of {source}"));
     bar.finish_and_clear();
     let tree = tree?;
-    let levels = (0..tree.level_count())
-        .map(|l| tree.level_spheres(l))
-        .collect();
     Ok((
-        levels,
+        Levels::of_tree(&tree),
         format!("built (depth {}, branch {})", options.depth, options.branch),
     ))
 }
