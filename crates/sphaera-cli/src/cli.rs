@@ -80,16 +80,18 @@ pub enum Command {
     /// silhouettes of the original and the result overlaid.
     Silhouette(SilhouetteArgs),
     /// Model no more than a scene needs, and no less. Reads a scene file (JSON: meshes,
-    /// instances with poses, a camera), builds each mesh's model once (a base
-    /// sphere-tree and a simplification hierarchy), then gives every instance the fewest
-    /// spheres and the coarsest mesh level whose certified error meets `--tolerance`
-    /// (pixels on the camera's image, a percentage of each object, or world units): a
-    /// model whose trees do not reach that builds one to it, once, refined only where
-    /// needed. Then finds every contact within `--budget` (a broad phase, then every
-    /// close pair's finest trees descended together, level by level). Reports the
-    /// choices, their certified errors, the trees built, and the totals against full
-    /// detail; a tolerance that cannot be met says why. With no scene file: eight
-    /// embedded bunnies going away from the camera, two of them touching.
+    /// instances with poses, a camera) or mesh files (one instance each, side by side),
+    /// builds each mesh's model once (a base sphere-tree and a simplification
+    /// hierarchy), then gives every instance the coarsest sphere-tree cut and mesh level
+    /// whose certified error meets `--tolerance` (pixels on the camera's image, a
+    /// percentage of each object, or world units): a model whose trees do not reach
+    /// that builds a minimax tree to it, once, refined only where needed. Then finds
+    /// every contact within `--budget` (a broad phase, then every close pair's finest
+    /// trees descended together, level by level). Reports the choices, their certified
+    /// errors, the trees built, and the spheres and triangles saved against full
+    /// detail; a tolerance that cannot be met is an error naming the model and the
+    /// figures. With no input: eight embedded bunnies going away from the camera, two
+    /// of them touching.
     Scene(SceneArgs),
     /// Whole-robot sphere models for motion planners. Reads a URDF, loads every link's
     /// collision (or `--visual`) meshes in the link's frame with their origins and scales
@@ -256,9 +258,11 @@ fn parse_package(text: &str) -> Result<(String, PathBuf), String> {
 /// Arguments of `sphaera scene`.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// The scene file (JSON, see `sphaera_scene`'s documentation); the demo scene of
-    /// embedded bunnies when omitted.
-    pub scene: Option<PathBuf>,
+    /// A scene file (JSON, see `sphaera_scene`'s documentation), or one or more mesh
+    /// files (each an instance of its own model, side by side along x); the demo scene
+    /// of embedded bunnies when omitted.
+    #[arg(value_name = "SCENE.json | MESH...")]
+    pub inputs: Vec<PathBuf>,
 
     /// The error each instance may have: pixels on the camera's image (`2px`), a
     /// percentage of each object's bounding-box diagonal (`0.5%`), or world units
@@ -309,13 +313,24 @@ pub struct SceneArgs {
     pub samples: usize,
 
     /// The finest tolerance a model builds a sphere-tree to: a percentage of its
-    /// diagonal (`0.1%`) or model units. An instance needing a finer one is reported as
-    /// not met, with the reason.
+    /// diagonal (`0.1%`) or model units. A tolerance needing a finer one is an error
+    /// naming the model and the figures.
     #[arg(long, default_value = "0.1%", value_parser = parse_length)]
     pub finest: Length,
 
+    /// How hard the trees built to the tolerance work for few spheres: `quick` (the
+    /// default: they are built while you wait), `default` (about four times the time
+    /// for 3–15 % fewer spheres) or `thorough`.
+    #[arg(long, default_value = "quick", value_parser = parse_effort)]
+    pub effort: sphaera::spheretree::Effort,
+
     #[command(flatten)]
     pub print: OutputArgs,
+}
+
+fn parse_effort(text: &str) -> Result<sphaera::spheretree::Effort, String> {
+    text.parse()
+        .map_err(|e: sphaera::spheretree::SphereTreeError| e.to_string())
 }
 
 fn parse_scene_tolerance(text: &str) -> Result<sphaera::scene::Tolerance, String> {

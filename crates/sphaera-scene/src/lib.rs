@@ -9,14 +9,19 @@
 //! - [`Scene::detail`] gives every instance the spheres and the mesh its [`Tolerance`]
 //!   needs: world units, a fraction of each object's size, or pixels on a perspective
 //!   [`Camera`]'s image (certified there too, see [`Camera::pixels_per_unit`]). **Every
-//!   tolerance is met**: a model whose trees do not reach it builds a tree to it (every
-//!   leaf's certified error within it, refined only where needed), once, and keeps it
-//!   ([`ObjectModel::tree_for`]); each instance then takes the smallest cut through its
-//!   model's trees that meets its tolerance ([`CutChoice`]: coarse nodes where they are
-//!   tight enough), and the coarsest mesh level. The [`DetailReport`] gives each choice,
-//!   its certified error, the tree it came from and whether it was built for it, and
-//!   says plainly why when a tolerance cannot be met (below the model's
-//!   [finest](ModelOptions::finest_tolerance), or out of reach).
+//!   tolerance asked is met, or the request is an error**: a model whose trees do not
+//!   reach it builds a minimax tree to it (every leaf's certified error within it,
+//!   refined only where needed; [`sphaera_spheretree::SphereTreeOptions::with_tolerance`]),
+//!   once per model and tolerance, and keeps it ([`ObjectModel::tree_for`]); each
+//!   instance then takes the coarsest cut [`SphereTree::cut_at`](sphaera_spheretree::SphereTree::cut_at)`(level)`
+//!   whose **certified error** meets its tolerance ([`SphereChoice`]: each sphere's node
+//!   error, or the bound of the sphere evaluated on the exact surface where that is
+//!   smaller), the smallest cut of mixed levels ([`CutChoice`]), and the coarsest mesh
+//!   level. The [`DetailReport`] gives each choice, its certified error, the tree it came
+//!   from and whether it was built for it, and the spheres and triangles saved against
+//!   full detail. A tolerance that cannot be met (below the model's
+//!   [finest](ModelOptions::finest_tolerance), or out of reach of any tree) is an error
+//!   naming the model and the figures.
 //! - [`Scene::collide`] finds every contact within a [`Budget`]: a broad phase over the
 //!   instances' bounding spheres, then the paper's interruptible tree-against-tree
 //!   traversal of every close pair's finest trees, **all pairs one level at a time**, so
@@ -34,7 +39,7 @@
 //! ```
 //! use std::sync::Arc;
 //! use sphaera_mesh::geometry::Similarity;
-//! use sphaera_scene::{Budget, Camera, DVec3, ModelOptions, ObjectModel, Scene, Tolerance};
+//! use sphaera_scene::{Budget, Camera, DVec3, ModelOptions, ObjectModel, Scene, SceneError, Tolerance};
 //! use sphaera_spheretree::SphereTreeOptions;
 //!
 //! // A small base tree (depth 1) keeps the model cheap: finer tolerances get trees of
@@ -52,18 +57,23 @@
 //! // take fewer spheres and coarser meshes.
 //! let camera = Camera::perspective(DVec3::new(0.0, 1.0, 6.0), DVec3::new(2.0, 0.0, -5.0), 60.0, 1280, 720)?;
 //! let report = scene.detail(Some(&camera), Tolerance::Pixels(8.0))?;
-//! assert!(report.all_meet);
-//! let spheres: Vec<usize> = report.instances.iter().map(|d| d.cut.count).collect();
+//! assert!(report.instances.iter().all(|d| d.spheres.measured <= 8.0 && d.mesh.measured <= 8.0));
+//! let spheres: Vec<usize> = report.instances.iter().map(|d| d.spheres.count).collect();
 //! let triangles: Vec<usize> = report.instances.iter().map(|d| d.mesh.count).collect();
 //! assert!(spheres[3] < spheres[0] && triangles[3] < triangles[0]);
 //! // The base tree was too coarse up close: one tree was built for the tolerance, for
-//! // all four tori, and asking again builds nothing.
+//! // all four tori, and asking again (the next frame) builds nothing.
 //! assert_eq!(report.trees_built, 1);
 //! assert_eq!(scene.detail(Some(&camera), Tolerance::Pixels(8.0))?.trees_built, 0);
 //!
 //! // For physics, a tolerance in world units: the tori's roots are enough at 2 units.
 //! let coarse = scene.detail(None, Tolerance::World(2.0))?;
-//! assert!(coarse.instances.iter().all(|d| d.cut.count == 1 && d.cut.meets));
+//! assert!(coarse.instances.iter().all(|d| d.spheres.count == 1 && d.spheres.error <= 2.0));
+//!
+//! // A tolerance no tree is built for (below the finest, 0.1 % of a model's size by
+//! // default) is an error naming the model, not a looser answer.
+//! let refused = scene.detail(None, Tolerance::Relative(1e-4)).unwrap_err();
+//! assert!(matches!(&refused, SceneError::ToleranceBelowFinest { model, .. } if model == "torus"));
 //!
 //! // Nothing touches: the broad phase finds no close pair.
 //! let contacts = scene.collide(&Budget::Unlimited)?;
@@ -107,36 +117,41 @@
 //! Building sphere-trees is the cost; choosing detail and colliding are cheap next to
 //! it. A model builds its base tree and its hierarchy up front ([`ObjectModel::build`]:
 //! 0.3–0.5 s of processor time per shared mesh of 3,674 to 12,946 triangles at the
-//! defaults, a depth-2 base tree; well under 0.1 s with a base tree of the root alone),
+//! defaults, a depth-2 base tree; 0.05–0.3 s with a base tree of the root alone),
 //! its HAL tree and silhouette labels on first use, and a tree per tolerance finer than
 //! its trees reach, once, when a request needs it: **only what the scene asks for**.
 //! [`Scene::detail`] builds the trees of different models on every core at once with
 //! the `parallel` feature.
 //!
-//! Measured on the 2-core reference machine (2026-11-28, shared with other builds, so
-//! wall times vary by up to half), with `cargo run --release -p sphaera-cli -- scene
-//! four.json --tolerance 2%`, a scene file placing one each of `bunny_lowres.obj`,
-//! `spot.obj`, pybullet's `duck.obj` and `fandisk.obj` (base trees of the root alone, the
-//! command's default): the tolerance trees have 101, 66, 70 and 223 leaves, each within
-//! 2 % of its mesh's diagonal, certified, and the whole run takes 4.9 s of processor
-//! time. Before the trees were built to the tolerance, the same command built depth-3
-//! trees (9.6 s of processor time) that left fandisk at 2.05 %, unmet. At 1 % the trees
-//! have 149–904 leaves and take 12.6 s of processor time, fandisk most of it. Choosing
-//! detail without building is microseconds per instance: [`Scene::collide`] to the
-//! leaves of 200 low-res bunnies takes 1.42 ms and [`Scene::detail`] at 2 pixels 1.34 ms
-//! (`cargo bench -p sphaera-eval --bench scene_vs_rapier`); the figures, the experiment
-//! and what was tried are in the repository's `docs/benchmarks.md` ("Scenes: detail and
-//! collision").
+//! Measured on the 2-core reference machine (2026-11-28, shared with other builds: a
+//! load average of 6 to 8, so wall times are about twice what an idle machine gives),
+//! with `cargo run --release -p sphaera-cli -- scene bunny_lowres.obj fandisk.obj
+//! spot.obj duck.obj --tolerance 2%` on the shared meshes (pybullet's duck; base trees of
+//! the root alone, the command's default): the tolerance trees have 109, 266, 65 and 81
+//! leaves, each within 2 % of its mesh's diagonal, certified, and the whole run takes
+//! 1.3 s of processor time, 1.3–2.0 s of wall time (0.5 s building the models, the rest
+//! the four trees, [`Effort::Quick`](sphaera_spheretree::Effort::Quick)). With
+//! `--effort default` the trees have 459 leaves in all (12 % fewer) for 4.5 s of
+//! processor time; at 1 % (quick) 1,563 leaves and 3.3 s. Choosing detail once the trees
+//! are built walks their cuts, evaluating a node's sphere only where its node error is
+//! over a tolerance and probing its boundary does not already show it cannot meet it:
+//! 1–35 ms per model the first time a tolerance is asked, microseconds after. Before
+//! this change, [`Scene::collide`] to the leaves of 200 low-res bunnies took 1.42 ms and
+//! [`Scene::detail`] at 2 pixels 1.34 ms (`cargo bench -p sphaera-eval --bench
+//! scene_vs_rapier`); the figures, the experiment and what was tried are in the
+//! repository's `docs/benchmarks.md` ("Scenes: detail and collision").
 //!
 //! # Errors
 //!
 //! Every fallible function returns [`SceneError`]: the crates' own errors pass through
-//! ([`SceneError::Mesh`], [`SceneError::SphereTree`], [`SceneError::Simplify`]), a tree
-//! that cannot be built to a tolerance says which model and why
-//! ([`SceneError::ToleranceBelowFinest`], [`SceneError::ToleranceTree`]; in a
-//! [`DetailReport`] as [`InstanceDetail::unmet`], the other instances unaffected), and
-//! scene files report the file and the entry ([`SceneError::ParseFile`] with line and
-//! column, [`SceneError::InvalidEntry`] naming `instances[3] ("name")`, `meshes.NAME` or
+//! ([`SceneError::Mesh`], [`SceneError::SphereTree`], [`SceneError::Simplify`]), a
+//! tolerance that cannot be met names the model, the tolerance and its share of the
+//! model's diagonal ([`SceneError::ToleranceBelowFinest`]; [`SceneError::ToleranceTree`]
+//! with the library's reason, such as
+//! [`ToleranceUnreachable`](sphaera_spheretree::SphereTreeError::ToleranceUnreachable)
+//! with the worst error reached, the spheres and levels built and the limits), and scene
+//! files report the file and the entry ([`SceneError::ParseFile`] with line and column,
+//! [`SceneError::InvalidEntry`] naming `instances[3] ("name")`, `meshes.NAME` or
 //! `camera`).
 //!
 //! # See also
@@ -162,7 +177,7 @@ mod trees;
 
 pub use camera::Camera;
 pub use collide::{CollisionSummary, PairContacts, SceneCollision};
-pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice, TreeChoice};
+pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice, SphereChoice, TreeChoice};
 pub use error::SceneError;
 pub use file::{CameraEntry, InstanceEntry, LoadedScene, SceneDescription, SceneFile};
 pub use glam::DVec3;

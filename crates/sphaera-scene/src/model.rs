@@ -9,10 +9,10 @@ use std::time::Instant;
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Length, Sphere, Surface, TriMesh};
 use sphaera_simplify::{Hierarchy, Simplified, SimplifyOptions};
-use sphaera_spheretree::{Cut, SphereTree, SphereTreeOptions};
+use sphaera_spheretree::{Effort, SphereTree, SphereTreeOptions};
 
-use crate::SceneError;
-use crate::trees::{ModelTree, TreePolicy, Trees};
+use crate::trees::{ModelTree, Selection, TreePolicy, Trees};
+use crate::{InstanceDetail, SceneError};
 
 /// How [`ObjectModel::build`] builds a model.
 ///
@@ -25,6 +25,7 @@ use crate::trees::{ModelTree, TreePolicy, Trees};
 /// let options = ModelOptions::default();
 /// assert_eq!((options.tree.depth, options.tree.branch), (2, 8));
 /// assert_eq!(options.tolerance_tree.branch, 16);
+/// assert_eq!(options.tolerance_tree.effort, sphaera_spheretree::Effort::Quick);
 /// assert_eq!(options.finest_tolerance, Length::RelativeToDiagonal(1e-3));
 /// assert_eq!(options.mesh_ladder_step, 2f64.sqrt());
 /// ```
@@ -37,10 +38,12 @@ pub struct ModelOptions {
     pub tree: SphereTreeOptions,
     /// The options of the trees built to a tolerance when a detail request needs a finer
     /// one than every tree the model has ([`ObjectModel::tree_for`]; default
-    /// [`SphereTreeOptions::default`] with branch 16: on the shared meshes at 2 % and
-    /// 1 % of their size, a fifth less time than branch 8 for about as many leaves). They
-    /// are built with [`SphereTreeOptions::with_tolerance`], so the method must be the
-    /// minimax (`auto`, the default); `depth` is not used.
+    /// [`SphereTreeOptions::default`] with branch 16 and [`Effort::Quick`]: they are
+    /// built while a request waits. On the four shared meshes at 2 % of their size,
+    /// quick trees take a quarter of the default effort's time for 2–18 % more leaves,
+    /// 13 % in all, and branch 16 a fifth less time than branch 8). They are built with
+    /// [`SphereTreeOptions::with_tolerance`] and coverage certification on, so the
+    /// method must be the minimax (`auto`, the default); `depth` is not used.
     pub tolerance_tree: SphereTreeOptions,
     /// The finest tolerance a tree is built to (default 10⁻³ of the mesh's bounding-box
     /// diagonal): below it, a detail request says so
@@ -102,7 +105,9 @@ impl Default for ModelOptions {
     fn default() -> Self {
         Self {
             tree: SphereTreeOptions::default().with_depth(2),
-            tolerance_tree: SphereTreeOptions::default().with_branch(16),
+            tolerance_tree: SphereTreeOptions::default()
+                .with_branch(16)
+                .with_effort(Effort::Quick),
             finest_tolerance: Length::RelativeToDiagonal(1e-3),
             simplify: SimplifyOptions::default(),
             mesh_ladder_step: std::f64::consts::SQRT_2,
@@ -269,6 +274,7 @@ impl ObjectModel {
         options: &ModelOptions,
     ) -> Result<Self, SceneError> {
         let surface = Surface::solid_or_shell(&mesh)?;
+        drop(mesh);
         Self::assemble(name.into(), surface, tree, 0.0, hierarchy, options)
     }
 
@@ -381,15 +387,21 @@ impl ObjectModel {
         self.trees.finest()
     }
 
-    /// A sphere-tree with a cut meeting `tolerance` (in the model's units, certified by
-    /// the nodes' errors), and whether it was built for this call.
+    /// A sphere-tree with a cut meeting `tolerance` (in the model's units, certified),
+    /// and whether it was built for this call.
     ///
-    /// When some tree already has such a cut, the one whose smallest cut
-    /// ([`sphaera_spheretree::cut_for_tolerance`]) has the fewest spheres is returned
-    /// (the earliest on a tie). Otherwise a tolerance tree is built from
-    /// [`ModelOptions::tolerance_tree`], to `tolerance`, or to half the finest tolerance
-    /// built before when that is smaller: a run of tightening requests (a camera coming
-    /// closer) builds once per halving, not once per request. The tree is kept.
+    /// A tree meets a tolerance when one of its cuts [`SphereTree::cut_at`]`(level)` has
+    /// a certified error within it: each node's error
+    /// ([`TreeNode::error`](sphaera_spheretree::TreeNode::error)), or, for a node over
+    /// the tolerance, the smaller of it and the upper bound of the node's sphere
+    /// evaluated on the exact surface ([`sphaera_spheretree::evaluate::sphere_error`],
+    /// computed once per node and kept). When some tree meets it, the one whose coarsest
+    /// such cut has the fewest spheres is returned (the earliest on a tie). Otherwise a
+    /// tolerance tree is built from [`ModelOptions::tolerance_tree`], to `tolerance`, or
+    /// to half the finest tolerance built before when that is smaller: a run of
+    /// tightening requests (a camera coming closer) builds once per halving, not once
+    /// per request. The tree is kept. Only trees whose coverage is certified at every
+    /// level ([`ModelTree::coverage_certified`]) are used.
     ///
     /// # Examples
     ///
@@ -415,20 +427,20 @@ impl ObjectModel {
     ///
     /// # Performance
     ///
-    /// Choosing among the trees walks their cuts (microseconds). A build costs about
-    /// what the tree's spheres cost: 0.4–1.5 s of processor time at 2 % of the diagonal
-    /// for the shared meshes (52–284 leaves), 1–8 s at 1 % (see the crate's Performance
-    /// section).
+    /// Choosing among the trees walks their cuts (microseconds), probing a node's sphere
+    /// the first time a tolerance below its node error is asked (32 closest-point
+    /// queries) and evaluating it when the probes do not rule it out (about a
+    /// millisecond). A build costs about what the tree's spheres cost: 0.2–0.6 s of
+    /// processor time at 2 % of the diagonal for the shared meshes (65–266 leaves,
+    /// [`Effort::Quick`](sphaera_spheretree::Effort::Quick), the default; see the crate's
+    /// Performance section).
     pub fn tree_for(&self, tolerance: f64) -> Result<(Arc<ModelTree>, bool), SceneError> {
         self.ensure_tree(tolerance)
-            .map(|(tree, _, built)| (tree, built))
+            .map(|(selection, built)| (selection.tree, built))
     }
 
-    /// [`ObjectModel::tree_for`] with the tree's smallest cut for `tolerance`.
-    pub(crate) fn ensure_tree(
-        &self,
-        tolerance: f64,
-    ) -> Result<(Arc<ModelTree>, Cut, bool), SceneError> {
+    /// [`ObjectModel::tree_for`] with what the tree offers `tolerance`.
+    pub(crate) fn ensure_tree(&self, tolerance: f64) -> Result<(Selection, bool), SceneError> {
         self.trees.ensure(
             &self.name,
             tolerance,
@@ -438,10 +450,32 @@ impl ObjectModel {
         )
     }
 
-    /// The tree whose smallest cut meeting `tolerance` has the fewest spheres, with that
-    /// cut; `None` when no tree meets it (nothing is built).
-    pub(crate) fn best_tree(&self, tolerance: f64) -> Option<(Arc<ModelTree>, Cut)> {
-        self.trees.best(tolerance)
+    /// The spheres an instance's detail chose ([`InstanceDetail::spheres`]: the cut
+    /// [`SphereTree::cut_at`]`(level)` of tree [`InstanceDetail::tree`]), in the model's
+    /// frame (place them with the instance's pose); `None` when `detail` names a tree
+    /// this model does not have (a detail of another model).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use sphaera_mesh::geometry::Similarity;
+    /// use sphaera_scene::{ModelOptions, ObjectModel, Scene, Tolerance};
+    ///
+    /// let model = Arc::new(ObjectModel::build("ball", sphaera_mesh::shapes::sphere(1.0, 12)?, &ModelOptions::default())?);
+    /// let mut scene = Scene::new();
+    /// scene.add("ball", Arc::clone(&model), Similarity::IDENTITY);
+    /// let report = scene.detail(None, Tolerance::Relative(0.05))?;
+    /// let spheres = model.detail_spheres(&report.instances[0]).expect("its model");
+    /// assert_eq!(spheres.len(), report.instances[0].spheres.count);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn detail_spheres(&self, detail: &InstanceDetail) -> Option<Vec<Sphere>> {
+        let trees = self.trees.all();
+        let tree = trees.get(detail.tree.index)?;
+        (detail.spheres.level < tree.tree().level_count())
+            .then(|| tree.tree().cut_spheres(detail.spheres.level))
     }
 
     /// The simplification hierarchy.

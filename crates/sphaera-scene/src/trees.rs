@@ -1,13 +1,14 @@
 //! The sphere-trees of an object model: the base tree built with it, and the trees built
 //! to a tolerance when a detail request needs one, each built once and kept.
 
+use std::collections::HashMap;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
 
 use sphaera_mesh::geometry::minimum_enclosing_ball_of_balls;
 use sphaera_mesh::{Length, Sphere, Surface};
-use sphaera_spheretree::select::Cut;
-use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, cut_for_tolerance};
+use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
+use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, TreeNode};
 
 use crate::SceneError;
 
@@ -46,10 +47,52 @@ pub struct ModelTree {
     index: usize,
     tolerance: Option<f64>,
     level_errors: Vec<f64>,
+    level_counts: Vec<usize>,
     worst_error: f64,
     leaves: usize,
     bound: Sphere,
     build_seconds: f64,
+    certified: bool,
+    /// What is known of the nodes looked at so far, by index.
+    known: Mutex<HashMap<usize, Known>>,
+}
+
+/// What is known of a node's error beyond its node error: at least `lower` (a point of
+/// its sphere that far outside the object, found by probing), and at most `upper` once
+/// its sphere has been evaluated on the exact surface.
+#[derive(Clone, Copy, Debug)]
+struct Known {
+    lower: f64,
+    upper: Option<f64>,
+}
+
+/// Points probed on a sphere's boundary before it is evaluated: a point found farther
+/// outside than the tolerance settles that it cannot meet it, for a few closest-point
+/// queries instead of a branch and bound.
+const PROBES: usize = 32;
+
+/// What one sphere-tree offers a tolerance: the coarsest cut
+/// [`SphereTree::cut_at`]`(level)` whose certified error meets it, and the smallest cut
+/// of mixed levels whose nodes all do.
+#[derive(Clone, Debug)]
+pub(crate) struct Selection {
+    /// The tree.
+    pub(crate) tree: Arc<ModelTree>,
+    /// The level of the coarsest level cut meeting the tolerance.
+    pub(crate) level: usize,
+    /// Its spheres.
+    pub(crate) spheres: usize,
+    /// Its certified error: the worst over its nodes of the node's error, or of the
+    /// evaluated bound where that is smaller (model units).
+    pub(crate) error: f64,
+    /// Its worst node error (model units).
+    pub(crate) node_error: f64,
+    /// The smallest cut meeting the tolerance (node indices, ascending).
+    pub(crate) cut: Vec<usize>,
+    /// Its certified error (model units).
+    pub(crate) cut_error: f64,
+    /// The deepest level it reaches.
+    pub(crate) cut_deepest: usize,
 }
 
 impl ModelTree {
@@ -62,7 +105,7 @@ impl ModelTree {
         build_seconds: f64,
         mesh_ball: Sphere,
     ) -> Result<Self, SceneError> {
-        let level_errors = cut_errors(&tree);
+        let (level_errors, level_counts) = cut_errors(&tree);
         let worst_error = level_errors.last().copied().unwrap_or(0.0);
         let leaves = tree
             .nodes()
@@ -74,15 +117,19 @@ impl ModelTree {
         let mut balls = tree.level_spheres(0);
         balls.push(mesh_ball);
         let bound = minimum_enclosing_ball_of_balls(&balls)?;
+        let certified = tree.level_count() > 0 && tree.coverage().len() == tree.level_count();
         Ok(Self {
             tree,
             index,
             tolerance,
             level_errors,
+            level_counts,
             worst_error,
             leaves,
             bound,
             build_seconds,
+            certified,
+            known: Mutex::new(HashMap::new()),
         })
     }
 
@@ -114,6 +161,12 @@ impl ModelTree {
         &self.level_errors
     }
 
+    /// The spheres of each cut [`SphereTree::cut_at`]`(level)`, root first.
+    #[must_use]
+    pub fn level_counts(&self) -> &[usize] {
+        &self.level_counts
+    }
+
     /// The worst certified error of its leaves (its finest cut).
     #[must_use]
     pub fn worst_error(&self) -> f64 {
@@ -139,35 +192,186 @@ impl ModelTree {
     pub fn build_seconds(&self) -> f64 {
         self.build_seconds
     }
+
+    /// Whether every cut's coverage of the surface is certified (one coverage
+    /// certificate per level, as [`sphaera_spheretree::build`] records them): only such a
+    /// tree is used for detail, since an error bound says nothing of a surface the
+    /// spheres leave uncovered.
+    #[must_use]
+    pub fn coverage_certified(&self) -> bool {
+        self.certified
+    }
+
+    /// Node `index`'s error for `tolerance`, certified: its node error when that meets the
+    /// tolerance, else the smaller of it and the upper end of the node's sphere evaluated
+    /// on the exact surface ([`sphaera_spheretree::evaluate::sphere_error`], kept for
+    /// later requests). A node whose sphere has a probed point farther outside the object
+    /// than the tolerance cannot meet it, and keeps its node error without an evaluation
+    /// (the answer is the same: over the tolerance).
+    fn certified_error(&self, surface: &Surface, index: usize, tolerance: f64) -> f64 {
+        let Some(node) = self.tree.nodes().get(index) else {
+            return f64::INFINITY;
+        };
+        if node.error <= tolerance {
+            return node.error;
+        }
+        let known = lock(&self.known).get(&index).copied();
+        let known = known.unwrap_or_else(|| {
+            let known = Known {
+                lower: probe(surface, &node.sphere),
+                upper: None,
+            };
+            lock(&self.known).insert(index, known);
+            known
+        });
+        if known.lower > tolerance {
+            return node.error;
+        }
+        let upper = known.upper.or_else(|| {
+            let upper = sphere_error(surface, &node.sphere, &evaluation_options())
+                .ok()
+                .map(|f| f.upper);
+            if let Some(upper) = upper {
+                lock(&self.known).insert(
+                    index,
+                    Known {
+                        upper: Some(upper),
+                        ..known
+                    },
+                );
+            }
+            upper
+        });
+        upper.map_or(node.error, |u| u.min(node.error))
+    }
+
+    /// The nodes of the cut [`SphereTree::cut_at`]`(level)`.
+    fn cut_nodes(&self, level: usize) -> impl Iterator<Item = (usize, &TreeNode)> {
+        self.tree.nodes().iter().enumerate().filter(move |(_, n)| {
+            let depth = n.level as usize;
+            depth == level || (depth < level && n.children.is_empty())
+        })
+    }
+
+    /// What this tree offers `tolerance` (model units): `None` when no level cut's
+    /// certified error meets it, or its coverage is not certified.
+    pub(crate) fn select(self: &Arc<Self>, surface: &Surface, tolerance: f64) -> Option<Selection> {
+        if !self.certified {
+            return None;
+        }
+        let (level, error) = (0..self.level_errors.len()).find_map(|level| {
+            let node_error = self.level_errors[level];
+            if node_error <= tolerance {
+                return Some((level, node_error));
+            }
+            // The nodes over the tolerance by their node errors, worst first: the first
+            // whose evaluation does not bring it within settles the level.
+            let mut worst = f64::NEG_INFINITY;
+            let mut over = Vec::new();
+            for (i, node) in self.cut_nodes(level) {
+                if node.error <= tolerance {
+                    worst = worst.max(node.error);
+                } else {
+                    over.push((i, node.error));
+                }
+            }
+            over.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            for (i, _) in over {
+                let certified = self.certified_error(surface, i, tolerance);
+                if certified.is_nan() || certified > tolerance {
+                    return None;
+                }
+                worst = worst.max(certified);
+            }
+            Some((level, worst))
+        })?;
+        // The smallest cut: from the roots down, a node stays when its certified error
+        // meets the tolerance. It never goes below `level`, whose nodes all meet it.
+        let nodes = self.tree.nodes();
+        let mut cut = Vec::new();
+        let mut cut_error = f64::NEG_INFINITY;
+        let mut cut_deepest = 0;
+        let mut stack: Vec<usize> = (0..self.tree.level(0).len()).collect();
+        while let Some(i) = stack.pop() {
+            let Some(node) = nodes.get(i) else { continue };
+            let certified = self.certified_error(surface, i, tolerance);
+            let end = (node.children.end as usize).min(nodes.len());
+            let start = (node.children.start as usize).min(end);
+            if certified <= tolerance || start == end {
+                cut.push(i);
+                cut_error = cut_error.max(certified);
+                cut_deepest = cut_deepest.max(node.level as usize);
+            } else {
+                stack.extend(start..end);
+            }
+        }
+        cut.sort_unstable();
+        Some(Selection {
+            tree: Arc::clone(self),
+            level,
+            spheres: self.level_counts[level],
+            error,
+            node_error: self.level_errors[level],
+            cut,
+            cut_error,
+            cut_deepest,
+        })
+    }
 }
 
-/// The worst error of each cut `cut_at(level)`: the nodes of the level and the leaves
-/// above it, in one pass.
-fn cut_errors(tree: &SphereTree) -> Vec<f64> {
+/// A lower bound on the error of `sphere`: the farthest outside the object of
+/// [`PROBES`] points spread over its boundary (certified sides and exact distances; 0
+/// when none is outside).
+fn probe(surface: &Surface, sphere: &Sphere) -> f64 {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..PROBES)
+        .filter_map(|k| {
+            let z = 1.0 - (2 * k + 1) as f64 / PROBES as f64;
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let angle = golden * k as f64;
+            let p = sphere.center
+                + sphere.radius * glam::DVec3::new(r * angle.cos(), r * angle.sin(), z);
+            let side = surface.signed_closest(p).ok()?;
+            (!side.inside).then_some(side.closest.distance)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// How node spheres are evaluated: intervals 10⁻⁴ of the diagonal wide (the library's
+/// default).
+fn evaluation_options() -> EvaluationOptions {
+    EvaluationOptions::default()
+}
+
+/// The worst error and the number of spheres of each cut `cut_at(level)`: the nodes of
+/// the level and the leaves above it, in one pass.
+fn cut_errors(tree: &SphereTree) -> (Vec<f64>, Vec<usize>) {
     let levels = tree.level_count();
-    let mut at_level = vec![f64::NEG_INFINITY; levels];
-    let mut leaves_at = vec![f64::NEG_INFINITY; levels];
+    let mut at_level = vec![(f64::NEG_INFINITY, 0_usize); levels];
+    let mut leaves_at = vec![(f64::NEG_INFINITY, 0_usize); levels];
     for node in tree.nodes() {
         let level = node.level as usize;
-        if let Some(worst) = at_level.get_mut(level) {
+        if let Some((worst, count)) = at_level.get_mut(level) {
             *worst = worst.max(node.error);
+            *count += 1;
         }
         if node.children.is_empty()
-            && let Some(worst) = leaves_at.get_mut(level)
+            && let Some((worst, count)) = leaves_at.get_mut(level)
         {
             *worst = worst.max(node.error);
+            *count += 1;
         }
     }
-    let mut above = f64::NEG_INFINITY;
+    let mut above = (f64::NEG_INFINITY, 0);
     at_level
         .iter()
         .zip(&leaves_at)
-        .map(|(&here, &leaves)| {
-            let worst = here.max(above);
-            above = above.max(leaves);
-            worst
+        .map(|(&(here, count), &(leaves, leaf_count))| {
+            let cut = (here.max(above.0), count + above.1);
+            above = (above.0.max(leaves), above.1 + leaf_count);
+            cut
         })
-        .collect()
+        .unzip()
 }
 
 /// The fraction of a tolerance trees are built inside it (2⁻¹⁰): room for the growth
@@ -241,27 +445,25 @@ impl Trees {
             .unwrap_or_else(|| Arc::clone(&self.base))
     }
 
-    /// Among the trees whose smallest cut for `tolerance` meets it, the one whose cut has
-    /// the fewest spheres (the earliest on a tie), with that cut.
-    pub(crate) fn best(&self, tolerance: f64) -> Option<(Arc<ModelTree>, Cut)> {
-        let mut best: Option<(Arc<ModelTree>, Cut)> = None;
+    /// Among the trees with a level cut whose certified error meets `tolerance`, the one
+    /// whose coarsest such cut has the fewest spheres (the earliest on a tie), with what
+    /// it offers.
+    pub(crate) fn best(&self, surface: &Surface, tolerance: f64) -> Option<Selection> {
+        let mut best: Option<Selection> = None;
         for tree in self.all() {
-            let cut = cut_for_tolerance(&tree.tree, tolerance);
-            if cut.meets_tolerance
-                && best
-                    .as_ref()
-                    .is_none_or(|(_, b)| cut.nodes.len() < b.nodes.len())
+            if let Some(selection) = tree.select(surface, tolerance)
+                && best.as_ref().is_none_or(|b| selection.spheres < b.spheres)
             {
-                best = Some((tree, cut));
+                best = Some(selection);
             }
         }
         best
     }
 
-    /// A tree meeting `tolerance` (model units) with its smallest cut for it, building
-    /// one when none does (and whether it did). The tree is built to `tolerance`, or to
-    /// half the finest tolerance built so far when that is smaller, so a run of slowly
-    /// tightening requests builds once per halving, not once per request.
+    /// What the model's trees offer `tolerance` (model units), building a tree when none
+    /// meets it (and whether it did). The tree is built to `tolerance`, or to half the
+    /// finest tolerance built so far when that is smaller, so a run of slowly tightening
+    /// requests builds once per halving, not once per request.
     pub(crate) fn ensure(
         &self,
         model: &str,
@@ -269,32 +471,36 @@ impl Trees {
         surface: &Surface,
         policy: &TreePolicy,
         mesh_ball: Sphere,
-    ) -> Result<(Arc<ModelTree>, Cut, bool), SceneError> {
-        if let Some((tree, cut)) = self.best(tolerance) {
-            return Ok((tree, cut, false));
+    ) -> Result<(Selection, bool), SceneError> {
+        let diagonal = surface.diagonal();
+        if let Some(selection) = self.best(surface, tolerance) {
+            return Ok((selection, false));
         }
-        if !(tolerance >= policy.finest) {
+        if tolerance.is_nan() || tolerance < policy.finest {
             return Err(SceneError::ToleranceBelowFinest {
                 model: model.to_owned(),
                 tolerance,
                 finest: policy.finest,
+                diagonal,
             });
         }
         let _building = lock(&self.building);
         // Another request may have built what this one needs while it waited.
-        if let Some((tree, cut)) = self.best(tolerance) {
-            return Ok((tree, cut, false));
+        if let Some(selection) = self.best(surface, tolerance) {
+            return Ok((selection, false));
         }
+        let unreachable = |reason: Arc<SphereTreeError>| SceneError::ToleranceTree {
+            model: model.to_owned(),
+            tolerance,
+            diagonal,
+            reason,
+        };
         let finest_built = {
             let state = lock(&self.state);
-            if let Some((unreachable, why)) = &state.unreachable
-                && tolerance <= *unreachable
+            if let Some((out_of_reach, why)) = &state.unreachable
+                && tolerance <= *out_of_reach
             {
-                return Err(SceneError::ToleranceTree {
-                    model: model.to_owned(),
-                    tolerance,
-                    reason: Arc::clone(why),
-                });
+                return Err(unreachable(Arc::clone(why)));
             }
             state
                 .built
@@ -312,22 +518,36 @@ impl Trees {
             let options = policy
                 .options
                 .clone()
+                .with_certify_coverage(true)
                 .with_tolerance(Length::Absolute(target - margin));
             let started = Instant::now();
             let error = match sphaera_spheretree::build(surface, &options) {
                 Ok(tree) => {
                     let seconds = started.elapsed().as_secs_f64();
                     let built = ModelTree::new(tree, 0, Some(target), seconds, mesh_ball)?;
-                    let cut = cut_for_tolerance(&built.tree, tolerance);
                     let missed = built.worst_error - target;
-                    if cut.meets_tolerance && missed <= 0.0 {
+                    if missed <= 0.0 && built.certified {
                         let mut state = lock(&self.state);
                         let tree = Arc::new(ModelTree {
                             index: state.built.len() + 1,
                             ..built
                         });
                         state.built.push(Arc::clone(&tree));
-                        return Ok((tree, cut, true));
+                        drop(state);
+                        // Every leaf meets `target`, at most `tolerance`: the leaves do.
+                        return tree
+                            .select(surface, tolerance)
+                            .map(|selection| (selection, true))
+                            .ok_or_else(|| {
+                                unreachable(Arc::new(SphereTreeError::ToleranceUnreachable {
+                                    tolerance,
+                                    worst: tree.worst_error,
+                                    spheres: tree.tree.nodes().len(),
+                                    levels: tree.tree.level_count(),
+                                    limit: sphaera_spheretree::MAX_TREE_NODES,
+                                    depth: sphaera_spheretree::MAX_MEDIAL_DEPTH,
+                                }))
+                            });
                     }
                     if !retried && missed > 0.0 && margin + 2.0 * missed < target {
                         retried = true;
@@ -353,6 +573,7 @@ impl Trees {
                 if state.unreachable.as_ref().is_none_or(|(u, _)| target > *u) {
                     state.unreachable = Some((target, Arc::clone(&reason)));
                 }
+                drop(state);
                 // The halved target was out of reach; the one asked may not be.
                 if target < tolerance {
                     target = tolerance;
@@ -361,11 +582,7 @@ impl Trees {
                     continue;
                 }
             }
-            return Err(SceneError::ToleranceTree {
-                model: model.to_owned(),
-                tolerance,
-                reason,
-            });
+            return Err(unreachable(reason));
         }
     }
 }

@@ -91,7 +91,7 @@ fn a_good_scene_file_builds_with_its_poses() {
     let camera = loaded.camera.expect("a camera");
     let report = loaded
         .scene
-        .detail(Some(&camera), Tolerance::Pixels(1.0))
+        .detail(Some(&camera), Tolerance::Pixels(3.0))
         .expect("detail");
     assert_eq!(report.instances.len(), 3);
     let contacts = loaded

@@ -80,3 +80,83 @@ pub fn scene_of(models: &[Arc<ObjectModel>], placements: &[(usize, Similarity)])
     }
     scene
 }
+
+/// Node `index`'s certified error for `need` (model units), recomputed here: its node
+/// error when that meets `need`, else the smaller of it and the upper bound of its
+/// sphere evaluated on the exact surface.
+pub fn certified_error(
+    model: &ObjectModel,
+    tree: &sphaera_spheretree::SphereTree,
+    index: usize,
+    need: f64,
+) -> f64 {
+    let node = &tree.nodes()[index];
+    if node.error <= need {
+        return node.error;
+    }
+    let fit = sphaera_spheretree::evaluate::sphere_error(
+        model.surface(),
+        &node.sphere,
+        &sphaera_spheretree::evaluate::EvaluationOptions::default(),
+    )
+    .expect("a valid sphere");
+    fit.upper.min(node.error)
+}
+
+/// The certified error of the cut `tree.cut_at(level)` when every node meets `need`,
+/// else `None` (nodes over `need` by their node errors evaluated worst first, stopping
+/// at the first that fails).
+pub fn level_error(
+    model: &ObjectModel,
+    tree: &sphaera_spheretree::SphereTree,
+    level: usize,
+    need: f64,
+) -> Option<f64> {
+    let mut cut = tree.cut_at(level);
+    cut.sort_by(|&a, &b| tree.nodes()[b].error.total_cmp(&tree.nodes()[a].error));
+    let mut worst = f64::NEG_INFINITY;
+    for i in cut {
+        let e = certified_error(model, tree, i, need);
+        if e.is_nan() || e > need {
+            return None;
+        }
+        worst = worst.max(e);
+    }
+    Some(worst)
+}
+
+/// The smallest cut meeting `need`, recomputed here by recursion from the roots: its
+/// nodes (ascending) and certified error.
+pub fn smallest_cut(
+    model: &ObjectModel,
+    tree: &sphaera_spheretree::SphereTree,
+    need: f64,
+) -> (Vec<usize>, f64) {
+    fn visit(
+        model: &ObjectModel,
+        tree: &sphaera_spheretree::SphereTree,
+        i: usize,
+        need: f64,
+        out: &mut Vec<(usize, f64)>,
+    ) {
+        let node = &tree.nodes()[i];
+        let e = certified_error(model, tree, i, need);
+        if e <= need || node.children.is_empty() {
+            out.push((i, e));
+        } else {
+            for child in node.children.start as usize..node.children.end as usize {
+                visit(model, tree, child, need, out);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for root in 0..tree.level(0).len() {
+        visit(model, tree, root, need, &mut out);
+    }
+    out.sort_by_key(|&(i, _)| i);
+    let worst = out
+        .iter()
+        .map(|&(_, e)| e)
+        .fold(f64::NEG_INFINITY, f64::max);
+    (out.into_iter().map(|(i, _)| i).collect(), worst)
+}
