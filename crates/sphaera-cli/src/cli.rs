@@ -79,15 +79,19 @@ pub enum Command {
     /// its certified bound. Pictures: the labels as grey levels seen from the view, and the
     /// silhouettes of the original and the result overlaid.
     Silhouette(SilhouetteArgs),
-    /// Model no more than a scene needs. Reads a scene file (JSON: meshes, instances with
-    /// poses, a camera), builds each mesh's sphere-tree and simplification hierarchy once,
-    /// then picks for every instance the coarsest sphere-tree level and mesh level whose
-    /// certified error meets `--tolerance` (pixels on the camera's image, a percentage of
-    /// each object, or world units), and finds every contact within `--budget` (a broad
-    /// phase, then every close pair's trees descended together, level by level). Reports
-    /// the choices, their certified errors, and the totals against full detail. With no
-    /// scene file: eight embedded bunnies going away from the camera, two of them
-    /// touching.
+    /// Model no more than a scene needs, and no less. Reads a scene file (JSON: meshes,
+    /// instances with poses, a camera) or mesh files (one instance each, side by side),
+    /// builds each mesh's model once (a base sphere-tree and a simplification
+    /// hierarchy), then gives every instance the coarsest sphere-tree cut and mesh level
+    /// whose certified error meets `--tolerance` (pixels on the camera's image, a
+    /// percentage of each object, or world units): a model whose trees do not reach
+    /// that builds a minimax tree to it, once, refined only where needed. Then finds
+    /// every contact within `--budget` (a broad phase, then every close pair's finest
+    /// trees descended together, level by level). Reports the choices, their certified
+    /// errors, the trees built, and the spheres and triangles saved against full
+    /// detail; a tolerance that cannot be met is an error naming the model and the
+    /// figures. With no input: eight embedded bunnies going away from the camera, two
+    /// of them touching.
     Scene(SceneArgs),
     /// Whole-robot sphere models for motion planners. Reads a URDF, loads every link's
     /// collision (or `--visual`) meshes in the link's frame with their origins and scales
@@ -254,9 +258,11 @@ fn parse_package(text: &str) -> Result<(String, PathBuf), String> {
 /// Arguments of `sphaera scene`.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
-    /// The scene file (JSON, see `sphaera_scene`'s documentation); the demo scene of
-    /// embedded bunnies when omitted.
-    pub scene: Option<PathBuf>,
+    /// A scene file (JSON, see `sphaera_scene`'s documentation), or one or more mesh
+    /// files (each an instance of its own model, side by side along x); the demo scene
+    /// of embedded bunnies when omitted.
+    #[arg(value_name = "SCENE.json | MESH...")]
+    pub inputs: Vec<PathBuf>,
 
     /// The error each instance may have: pixels on the camera's image (`2px`), a
     /// percentage of each object's bounding-box diagonal (`0.5%`), or world units
@@ -291,20 +297,40 @@ pub struct SceneArgs {
     #[arg(long, default_value_t = 4.0)]
     pub silhouette: f64,
 
-    /// Levels below the root of each sphere-tree.
-    #[arg(long, default_value_t = 3)]
+    /// Levels below the root of each model's base sphere-tree, built with the model
+    /// (0: the root alone). Finer trees are built to the tolerance when it needs them.
+    #[arg(long, default_value_t = 0)]
     pub depth: usize,
 
-    /// Children per sphere-tree node at most.
+    /// Children per node of the base sphere-tree at most (the trees built to the
+    /// tolerance take 16).
     #[arg(long, default_value_t = 8)]
     pub branch: usize,
 
-    /// Surface samples per sphere-tree.
+    /// Surface samples per sphere-tree (the paper's medial methods; the minimax trees
+    /// work on the exact surface).
     #[arg(long, default_value_t = 10_000)]
     pub samples: usize,
 
+    /// The finest tolerance a model builds a sphere-tree to: a percentage of its
+    /// diagonal (`0.1%`) or model units. A tolerance needing a finer one is an error
+    /// naming the model and the figures.
+    #[arg(long, default_value = "0.1%", value_parser = parse_length)]
+    pub finest: Length,
+
+    /// How hard the trees built to the tolerance work for few spheres: `quick` (the
+    /// default: they are built while you wait), `default` (about four times the time
+    /// for 3–15 % fewer spheres) or `thorough`.
+    #[arg(long, default_value = "quick", value_parser = parse_effort)]
+    pub effort: sphaera::spheretree::Effort,
+
     #[command(flatten)]
     pub print: OutputArgs,
+}
+
+fn parse_effort(text: &str) -> Result<sphaera::spheretree::Effort, String> {
+    text.parse()
+        .map_err(|e: sphaera::spheretree::SphereTreeError| e.to_string())
 }
 
 fn parse_scene_tolerance(text: &str) -> Result<sphaera::scene::Tolerance, String> {

@@ -1,12 +1,14 @@
 //! Contacts in a whole scene within one budget: a broad phase over the instances' bounding
 //! spheres, then every close pair's sphere-trees descended together, level by level.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use serde::Serialize;
+use sphaera_mesh::Sphere;
 use sphaera_spheretree::collide::{Budget, Contact, Traversal, TraversalStats};
 
-use crate::{Instance, Scene, SceneError};
+use crate::{Instance, ModelTree, Scene, SceneError};
 
 /// The contacts of one pair of instances.
 #[derive(Clone, Debug, PartialEq)]
@@ -107,27 +109,13 @@ impl SceneCollision {
 }
 
 impl Scene {
-    /// The pairs of instances whose bounding spheres overlap, sorted: a sweep along `x`.
+    /// The pairs of instances whose bounding spheres overlap, sorted: a sweep along `x`
+    /// over each instance's [`Instance::root_bound`] (around its mesh and the roots of
+    /// its model's collision tree).
     #[must_use]
     pub fn broad_phase(&self) -> Vec<(usize, usize)> {
-        let bounds: Vec<_> = self.instances().iter().map(Instance::root_bound).collect();
-        let mut order: Vec<usize> = (0..bounds.len()).collect();
-        let low = |i: usize| bounds[i].center.x - bounds[i].radius;
-        order.sort_by(|&i, &j| low(i).total_cmp(&low(j)).then(i.cmp(&j)));
-        let mut pairs = Vec::new();
-        for (k, &i) in order.iter().enumerate() {
-            let high = bounds[i].center.x + bounds[i].radius;
-            for &j in order.get(k + 1..).unwrap_or(&[]) {
-                if low(j) > high {
-                    break;
-                }
-                if bounds[i].intersects(&bounds[j]) {
-                    pairs.push((i.min(j), i.max(j)));
-                }
-            }
-        }
-        pairs.sort_unstable();
-        pairs
+        let bounds: Vec<Sphere> = self.instances().iter().map(Instance::root_bound).collect();
+        sweep(&bounds)
     }
 
     /// Every contact in the scene within `budget`: the broad phase, then every close pair's
@@ -135,6 +123,13 @@ impl Scene {
     /// [`sphaera_spheretree::collide()`]), **level `k` of every pair before level `k + 1`
     /// of any**, so a budget too small for the whole scene leaves every pair equally
     /// refined rather than a few exact and the rest at their roots.
+    ///
+    /// Each instance's tree is its model's collision tree
+    /// ([`ObjectModel::collision_tree`](crate::ObjectModel::collision_tree)): the base
+    /// tree, or the finest tolerance tree once [`Scene::detail`] has built one, so the
+    /// contacts are as tight as the scene's tolerance asked. A tree built to a tolerance
+    /// has leaves at several depths; a leaf above the deepest level stands for itself
+    /// below it.
     ///
     /// - [`Budget::Unlimited`]: every pair down to its leaves.
     /// - [`Budget::Cost`]: the broad phase and every pair's root test are always done;
@@ -185,13 +180,22 @@ impl Scene {
     pub fn collide(&self, budget: &Budget) -> Result<SceneCollision, SceneError> {
         budget.validate()?;
         let start = Instant::now();
-        let close = self.broad_phase();
         let instances = self.instances();
+        // The trees descended, taken once: a tree built meanwhile changes nothing here.
+        let trees: Vec<Arc<ModelTree>> =
+            instances.iter().map(|i| i.model.collision_tree()).collect();
+        let bounds: Vec<Sphere> = instances
+            .iter()
+            .zip(&trees)
+            .map(|(i, t)| i.pose.sphere(&t.bound()))
+            .collect();
+        let close = sweep(&bounds);
         let mut traversals: Vec<(usize, usize, Traversal<'_>)> = close
             .iter()
             .filter_map(|&(a, b)| {
                 let (ia, ib) = (instances.get(a)?, instances.get(b)?);
-                let t = Traversal::new(ia.model.tree(), &ia.pose, ib.model.tree(), &ib.pose);
+                let (ta, tb) = (trees.get(a)?, trees.get(b)?);
+                let t = Traversal::new(ta.tree(), &ia.pose, tb.tree(), &ib.pose);
                 Some((a, b, t))
             })
             .collect();
@@ -264,6 +268,27 @@ impl Scene {
             pairs,
         })
     }
+}
+
+/// The pairs of `bounds` that overlap, sorted: a sweep along `x`.
+fn sweep(bounds: &[Sphere]) -> Vec<(usize, usize)> {
+    let mut order: Vec<usize> = (0..bounds.len()).collect();
+    let low = |i: usize| bounds[i].center.x - bounds[i].radius;
+    order.sort_by(|&i, &j| low(i).total_cmp(&low(j)).then(i.cmp(&j)));
+    let mut pairs = Vec::new();
+    for (k, &i) in order.iter().enumerate() {
+        let high = bounds[i].center.x + bounds[i].radius;
+        for &j in order.get(k + 1..).unwrap_or(&[]) {
+            if low(j) > high {
+                break;
+            }
+            if bounds[i].intersects(&bounds[j]) {
+                pairs.push((i.min(j), i.max(j)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
 }
 
 /// Descends the traversals at `chosen` (sorted indices) one level each.

@@ -51,6 +51,43 @@ pub enum SceneError {
         /// The tolerance as given.
         text: String,
     },
+    /// A detail request needs a tolerance below the model's finest
+    /// ([`ModelOptions::finest_tolerance`](crate::ModelOptions::finest_tolerance)) that no
+    /// tree of the model meets.
+    #[error(
+        "model `{model}`: the tolerance {tolerance:.4e} ({:.4} % of its diagonal {diagonal:.4e}) is below its finest, {finest:.4e} ({:.4} %); lower the finest tolerance (`ModelOptions::finest_tolerance`, `sphaera scene --finest`) to build trees that fine",
+        100.0 * .tolerance / .diagonal,
+        100.0 * .finest / .diagonal
+    )]
+    ToleranceBelowFinest {
+        /// The model's name.
+        model: String,
+        /// The tolerance needed, in the model's units.
+        tolerance: f64,
+        /// The finest tolerance it builds trees to, in the model's units.
+        finest: f64,
+        /// The model's bounding-box diagonal.
+        diagonal: f64,
+    },
+    /// A model could not build a sphere-tree to a tolerance: the tolerance is out of
+    /// reach ([`sphaera_spheretree::SphereTreeError::ToleranceUnreachable`], which gives
+    /// the figures: the worst leaf error reached, the spheres and levels built, the
+    /// limits) or the tolerance trees' options are invalid.
+    #[error(
+        "model `{model}`: the tolerance {tolerance:.4e} ({:.4} % of its diagonal {diagonal:.4e}) cannot be met: {reason}",
+        100.0 * .tolerance / .diagonal
+    )]
+    ToleranceTree {
+        /// The model's name.
+        model: String,
+        /// The tolerance needed, in the model's units.
+        tolerance: f64,
+        /// The model's bounding-box diagonal.
+        diagonal: f64,
+        /// Why the tree could not be built (shared: a tolerance found out of reach is
+        /// remembered, and finer requests fail with the same reason).
+        reason: std::sync::Arc<sphaera_spheretree::SphereTreeError>,
+    },
     /// A tolerance in pixels was asked for without a camera.
     #[error("a tolerance in pixels needs a camera")]
     NoCamera,

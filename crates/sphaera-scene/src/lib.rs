@@ -1,21 +1,32 @@
 //! # sphaera-scene
 //!
-//! Model no more than a scene needs. Each mesh is built once into an [`ObjectModel`]: its
-//! sphere-tree (Bradshaw and O'Sullivan, *Adaptive Medial-Axis Approximation for
+//! Model no more than a scene needs, and no less. Each mesh is built once into an
+//! [`ObjectModel`]: its sphere-trees (the minimax construction of `sphaera-spheretree`,
+//! or the paper's, Bradshaw and O'Sullivan, *Adaptive Medial-Axis Approximation for
 //! Sphere-Tree Construction*, 2004) and its simplification hierarchy with error spheres,
 //! every level with a certified error. A [`Scene`] places shared models with poses. Then:
 //!
-//! - [`Scene::detail`] picks, for every instance, the **coarsest** sphere-tree level and
-//!   the coarsest mesh level whose certified error meets a [`Tolerance`]: world units, a
-//!   fraction of each object's size, or pixels on a perspective [`Camera`]'s image
-//!   (certified there too, see [`Camera::pixels_per_unit`]), and the smallest cut through
-//!   the sphere-tree that meets it ([`CutChoice`]: coarse nodes where they are tight
-//!   enough, often far fewer spheres than a level). The [`DetailReport`] gives each
-//!   choice, its error, and the totals against full detail.
+//! - [`Scene::detail`] gives every instance the spheres and the mesh its [`Tolerance`]
+//!   needs: world units, a fraction of each object's size, or pixels on a perspective
+//!   [`Camera`]'s image (certified there too, see [`Camera::pixels_per_unit`]). **Every
+//!   tolerance asked is met, or the request is an error**: a model whose trees do not
+//!   reach it builds a minimax tree to it (every leaf's certified error within it,
+//!   refined only where needed; [`sphaera_spheretree::SphereTreeOptions::with_tolerance`]),
+//!   once per model and tolerance, and keeps it ([`ObjectModel::tree_for`]); each
+//!   instance then takes the coarsest cut [`SphereTree::cut_at`](sphaera_spheretree::SphereTree::cut_at)`(level)`
+//!   whose **certified error** meets its tolerance ([`SphereChoice`]: each sphere's node
+//!   error, or the bound of the sphere evaluated on the exact surface where that is
+//!   smaller), the smallest cut of mixed levels ([`CutChoice`]), and the coarsest mesh
+//!   level. The [`DetailReport`] gives each choice, its certified error, the tree it came
+//!   from and whether it was built for it, and the spheres and triangles saved against
+//!   full detail. A tolerance that cannot be met (below the model's
+//!   [finest](ModelOptions::finest_tolerance), or out of reach of any tree) is an error
+//!   naming the model and the figures.
 //! - [`Scene::collide`] finds every contact within a [`Budget`]: a broad phase over the
 //!   instances' bounding spheres, then the paper's interruptible tree-against-tree
-//!   traversal for every close pair, **all pairs one level at a time**, so the answer
-//!   improves monotonically as the budget grows. Each contact carries its error bound.
+//!   traversal of every close pair's finest trees, **all pairs one level at a time**, so
+//!   the answer improves monotonically as the budget grows. Each contact carries its
+//!   error bound.
 //! - With the `silhouette` feature, `Scene::silhouette_detail` keeps each instance's
 //!   **outline** within the tolerance and lets its interior be coarser (a multiple of
 //!   it), from the model's silhouette labels (Mata, Pastor and Rodríguez), both regions'
@@ -28,13 +39,12 @@
 //! ```
 //! use std::sync::Arc;
 //! use sphaera_mesh::geometry::Similarity;
-//! use sphaera_scene::{Budget, Camera, DVec3, ModelOptions, ObjectModel, Scene, Tolerance};
+//! use sphaera_scene::{Budget, Camera, DVec3, ModelOptions, ObjectModel, Scene, SceneError, Tolerance};
 //! use sphaera_spheretree::SphereTreeOptions;
 //!
-//! // Small trees keep this example fast; the defaults are depth 3, branch 8.
-//! let tree = SphereTreeOptions::default().with_depth(2).with_branch(4).with_samples(600)
-//!     .with_initial_spheres(60).with_min_spheres_per_node(20);
-//! let options = ModelOptions::default().with_tree(tree);
+//! // A small base tree (depth 1) keeps the model cheap: finer tolerances get trees of
+//! // their own when a request needs them.
+//! let options = ModelOptions::default().with_tree(SphereTreeOptions::default().with_depth(1));
 //! let torus = Arc::new(ObjectModel::build("torus", sphaera_mesh::shapes::torus(1.0, 0.3, 32)?, &options)?);
 //!
 //! let mut scene = Scene::new();
@@ -43,19 +53,27 @@
 //!     scene.add(format!("torus-{i}"), Arc::clone(&torus), pose);
 //! }
 //!
-//! // Two pixels on a 1280×720 image: the far tori take coarser meshes.
+//! // Eight pixels on a 1280×720 image: every torus within them, certified; the far ones
+//! // take fewer spheres and coarser meshes.
 //! let camera = Camera::perspective(DVec3::new(0.0, 1.0, 6.0), DVec3::new(2.0, 0.0, -5.0), 60.0, 1280, 720)?;
-//! let report = scene.detail(Some(&camera), Tolerance::Pixels(2.0))?;
+//! let report = scene.detail(Some(&camera), Tolerance::Pixels(8.0))?;
+//! assert!(report.instances.iter().all(|d| d.spheres.measured <= 8.0 && d.mesh.measured <= 8.0));
+//! let spheres: Vec<usize> = report.instances.iter().map(|d| d.spheres.count).collect();
 //! let triangles: Vec<usize> = report.instances.iter().map(|d| d.mesh.count).collect();
-//! assert!(triangles[3] < triangles[0] && report.triangles < report.full_triangles);
-//! assert!(report.instances.iter().all(|d| d.mesh.meets && d.mesh.measured <= 2.0));
-//! // These small trees are too coarse for two pixels up close: the finest level is
-//! // taken, and the report says so.
-//! assert!(!report.instances[0].spheres.meets && !report.all_meet);
+//! assert!(spheres[3] < spheres[0] && triangles[3] < triangles[0]);
+//! // The base tree was too coarse up close: one tree was built for the tolerance, for
+//! // all four tori, and asking again (the next frame) builds nothing.
+//! assert_eq!(report.trees_built, 1);
+//! assert_eq!(scene.detail(Some(&camera), Tolerance::Pixels(8.0))?.trees_built, 0);
 //!
 //! // For physics, a tolerance in world units: the tori's roots are enough at 2 units.
 //! let coarse = scene.detail(None, Tolerance::World(2.0))?;
-//! assert!(coarse.instances.iter().all(|d| d.spheres.level == 0 && d.spheres.meets));
+//! assert!(coarse.instances.iter().all(|d| d.spheres.count == 1 && d.spheres.error <= 2.0));
+//!
+//! // A tolerance no tree is built for (below the finest, 0.1 % of a model's size by
+//! // default) is an error naming the model, not a looser answer.
+//! let refused = scene.detail(None, Tolerance::Relative(1e-4)).unwrap_err();
+//! assert!(matches!(&refused, SceneError::ToleranceBelowFinest { model, .. } if model == "torus"));
 //!
 //! // Nothing touches: the broad phase finds no close pair.
 //! let contacts = scene.collide(&Budget::Unlimited)?;
@@ -96,25 +114,42 @@
 //!
 //! # Performance
 //!
-//! Choosing detail and colliding are cheap next to building the models: an
-//! [`ObjectModel`] costs about its sphere-tree (2–3 s for a mesh of 4k–13k triangles with
-//! the default depth 3 on the 2-core reference machine), and is built once per mesh.
-//! Measured on that machine (2026-11-27, `cargo bench -p sphaera-eval --bench
-//! scene_vs_rapier`, 200 low-res bunnies, everything from scratch per call):
-//! [`Scene::collide`] to the leaves takes 1.42 ms, where rapier's collision pipeline on
-//! compounds of the same balls takes 24.8 ms; [`Scene::detail`] at 2 pixels takes
-//! 1.34 ms for all 200 instances (levels, mesh rungs and smallest cuts), and
-//! `Scene::silhouette_detail` 28.9 ms. In rapier, 200 falling bodies on the ball
-//! compounds `Scene::detail` chooses for 10 % of each object's size step in 3.0 ms, 11×
-//! faster than on rapier's convex decomposition, with no true mesh penetrating another;
-//! at the default trees' finest level (about 2 %) convex decomposition is 4× faster. The
-//! figures, the experiment and what was tried are in the repository's
-//! `docs/benchmarks.md` ("Scenes: detail and collision").
+//! Building sphere-trees is the cost; choosing detail and colliding are cheap next to
+//! it. A model builds its base tree and its hierarchy up front ([`ObjectModel::build`]:
+//! 0.3–0.5 s of processor time per shared mesh of 3,674 to 12,946 triangles at the
+//! defaults, a depth-2 base tree; 0.05–0.3 s with a base tree of the root alone),
+//! its HAL tree and silhouette labels on first use, and a tree per tolerance finer than
+//! its trees reach, once, when a request needs it: **only what the scene asks for**.
+//! [`Scene::detail`] builds the trees of different models on every core at once with
+//! the `parallel` feature.
+//!
+//! Measured on the 2-core reference machine (2026-11-28, shared with other builds: a
+//! load average of 6 to 8, so wall times are about twice what an idle machine gives),
+//! with `cargo run --release -p sphaera-cli -- scene bunny_lowres.obj fandisk.obj
+//! spot.obj duck.obj --tolerance 2%` on the shared meshes (pybullet's duck; base trees of
+//! the root alone, the command's default): the tolerance trees have 109, 266, 65 and 81
+//! leaves, each within 2 % of its mesh's diagonal, certified, and the whole run takes
+//! 1.3 s of processor time, 1.3–2.0 s of wall time (0.5 s building the models, the rest
+//! the four trees, [`Effort::Quick`](sphaera_spheretree::Effort::Quick)). With
+//! `--effort default` the trees have 459 leaves in all (12 % fewer) for 4.5 s of
+//! processor time; at 1 % (quick) 1,563 leaves and 3.3 s. Choosing detail once the trees
+//! are built walks their cuts, evaluating a node's sphere only where its node error is
+//! over a tolerance and probing its boundary does not already show it cannot meet it:
+//! 1–35 ms per model the first time a tolerance is asked, microseconds after. Before
+//! this change, [`Scene::collide`] to the leaves of 200 low-res bunnies took 1.42 ms and
+//! [`Scene::detail`] at 2 pixels 1.34 ms (`cargo bench -p sphaera-eval --bench
+//! scene_vs_rapier`); the figures, the experiment and what was tried are in the
+//! repository's `docs/benchmarks.md` ("Scenes: detail and collision").
 //!
 //! # Errors
 //!
 //! Every fallible function returns [`SceneError`]: the crates' own errors pass through
-//! ([`SceneError::Mesh`], [`SceneError::SphereTree`], [`SceneError::Simplify`]), and scene
+//! ([`SceneError::Mesh`], [`SceneError::SphereTree`], [`SceneError::Simplify`]), a
+//! tolerance that cannot be met names the model, the tolerance and its share of the
+//! model's diagonal ([`SceneError::ToleranceBelowFinest`]; [`SceneError::ToleranceTree`]
+//! with the library's reason, such as
+//! [`ToleranceUnreachable`](sphaera_spheretree::SphereTreeError::ToleranceUnreachable)
+//! with the worst error reached, the spheres and levels built and the limits), and scene
 //! files report the file and the entry ([`SceneError::ParseFile`] with line and column,
 //! [`SceneError::InvalidEntry`] naming `instances[3] ("name")`, `meshes.NAME` or
 //! `camera`).
@@ -138,10 +173,11 @@ mod scene;
 #[cfg(feature = "silhouette")]
 mod silhouette;
 mod tolerance;
+mod trees;
 
 pub use camera::Camera;
 pub use collide::{CollisionSummary, PairContacts, SceneCollision};
-pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice};
+pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice, SphereChoice, TreeChoice};
 pub use error::SceneError;
 pub use file::{CameraEntry, InstanceEntry, LoadedScene, SceneDescription, SceneFile};
 pub use glam::DVec3;
@@ -152,6 +188,7 @@ pub use silhouette::{SilhouetteChoice, SilhouetteDetailOptions, SilhouetteReport
 pub use sphaera_mesh::Sphere;
 pub use sphaera_spheretree::collide::{Budget, Contact, CostModel, TraversalStats};
 pub use tolerance::Tolerance;
+pub use trees::ModelTree;
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
 /// that it stays true.

@@ -1,30 +1,55 @@
 //! An object built once per mesh: its sphere-tree and its simplification hierarchy, with
 //! the certified error of every level.
 
-use sphaera_mesh::geometry::{minimum_enclosing_ball, minimum_enclosing_ball_of_balls};
-use sphaera_mesh::{Sphere, Surface, TriMesh};
-use sphaera_simplify::{Hierarchy, Simplified, SimplifyOptions};
-use sphaera_spheretree::select::level_worst_errors;
-use sphaera_spheretree::{SphereTree, SphereTreeOptions};
+use std::sync::Arc;
+#[cfg(any(feature = "hal", feature = "silhouette"))]
+use std::sync::OnceLock;
+use std::time::Instant;
 
-use crate::SceneError;
+use sphaera_mesh::geometry::minimum_enclosing_ball;
+use sphaera_mesh::{Length, Sphere, Surface, TriMesh};
+use sphaera_simplify::{Hierarchy, Simplified, SimplifyOptions};
+use sphaera_spheretree::{Effort, SphereTree, SphereTreeOptions};
+
+use crate::trees::{ModelTree, Selection, TreePolicy, Trees};
+use crate::{InstanceDetail, SceneError};
 
 /// How [`ObjectModel::build`] builds a model.
 ///
 /// # Examples
 ///
 /// ```
+/// use sphaera_mesh::Length;
 /// use sphaera_scene::ModelOptions;
 ///
 /// let options = ModelOptions::default();
-/// assert_eq!(options.tree.depth, 3);
+/// assert_eq!((options.tree.depth, options.tree.branch), (2, 8));
+/// assert_eq!(options.tolerance_tree.branch, 16);
+/// assert_eq!(options.tolerance_tree.effort, sphaera_spheretree::Effort::Quick);
+/// assert_eq!(options.finest_tolerance, Length::RelativeToDiagonal(1e-3));
 /// assert_eq!(options.mesh_ladder_step, 2f64.sqrt());
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ModelOptions {
-    /// The sphere-tree's options (default: [`SphereTreeOptions::default`], depth 3 and
-    /// branch 8).
+    /// The base sphere-tree's options: the tree built with the model (default:
+    /// [`SphereTreeOptions::default`] to depth 2, 64 spheres at branch 8; any method).
+    /// Finer tolerances get trees of their own ([`ModelOptions::tolerance_tree`]), so a
+    /// deep base tree only pays where collisions need it before any detail request does.
     pub tree: SphereTreeOptions,
+    /// The options of the trees built to a tolerance when a detail request needs a finer
+    /// one than every tree the model has ([`ObjectModel::tree_for`]; default
+    /// [`SphereTreeOptions::default`] with branch 16 and [`Effort::Quick`]: they are
+    /// built while a request waits. On the four shared meshes at 2 % of their size,
+    /// quick trees take a quarter of the default effort's time for 2–18 % more leaves,
+    /// 13 % in all, and branch 16 a fifth less time than branch 8). They are built with
+    /// [`SphereTreeOptions::with_tolerance`] and coverage certification on, so the
+    /// method must be the minimax (`auto`, the default); `depth` is not used.
+    pub tolerance_tree: SphereTreeOptions,
+    /// The finest tolerance a tree is built to (default 10⁻³ of the mesh's bounding-box
+    /// diagonal): below it, a detail request says so
+    /// ([`SceneError::ToleranceBelowFinest`]) rather than building for minutes and
+    /// thousands of spheres. Lower it when that is what a scene needs.
+    pub finest_tolerance: Length,
     /// The simplification hierarchy's options (default: simplify as far as it goes).
     pub simplify: SimplifyOptions,
     /// The ratio between the error bounds of successive mesh levels (default `√2`: each
@@ -79,7 +104,11 @@ impl Default for SilhouetteOptions {
 impl Default for ModelOptions {
     fn default() -> Self {
         Self {
-            tree: SphereTreeOptions::default(),
+            tree: SphereTreeOptions::default().with_depth(2),
+            tolerance_tree: SphereTreeOptions::default()
+                .with_branch(16)
+                .with_effort(Effort::Quick),
+            finest_tolerance: Length::RelativeToDiagonal(1e-3),
             simplify: SimplifyOptions::default(),
             mesh_ladder_step: std::f64::consts::SQRT_2,
             mesh_ladder_levels: 40,
@@ -89,10 +118,24 @@ impl Default for ModelOptions {
 }
 
 impl ModelOptions {
-    /// With the given sphere-tree options.
+    /// With the given base sphere-tree options.
     #[must_use]
     pub fn with_tree(mut self, tree: SphereTreeOptions) -> Self {
         self.tree = tree;
+        self
+    }
+
+    /// With the given options for the trees built to a tolerance.
+    #[must_use]
+    pub fn with_tolerance_tree(mut self, tree: SphereTreeOptions) -> Self {
+        self.tolerance_tree = tree;
+        self
+    }
+
+    /// With the given finest tolerance.
+    #[must_use]
+    pub fn with_finest_tolerance(mut self, finest: Length) -> Self {
+        self.finest_tolerance = finest;
         self
     }
 
@@ -120,14 +163,25 @@ pub struct MeshLevel {
 }
 
 /// An object built once per mesh and shared by every instance of it (wrap it in an
-/// [`Arc`](std::sync::Arc)): its mesh, its sphere-tree with the worst certified error
-/// of each level, and its simplification hierarchy with a ladder of mesh levels from the
-/// base mesh to the input, each with its certified error.
+/// [`Arc`]): its mesh, its sphere-trees with the certified error of every cut, and its
+/// simplification hierarchy with a ladder of mesh levels from the base mesh to the
+/// input, each with its certified error.
 ///
-/// Levels are numbered coarsest first, for the sphere-tree (level 0: the roots) and the
+/// A model starts with one sphere-tree, its **base tree** ([`ModelOptions::tree`]).
+/// When a request needs a finer tolerance than every tree it has
+/// ([`ObjectModel::tree_for`], which [`Scene::detail`](crate::Scene::detail) calls), it
+/// builds a **tolerance tree** for it (the minimax method: every leaf's certified error
+/// within the tolerance, refined only where needed) and keeps it, so each tolerance is
+/// built once per model whatever the number of instances or requests. Building is
+/// thread-safe (one build at a time per model; a request waiting for a build uses it
+/// when it meets its tolerance) and deterministic: the same requests in the same order
+/// give the same trees.
+///
+/// Levels are numbered coarsest first, for the sphere-trees (level 0: the roots) and the
 /// mesh ladder (level 0: the base mesh; the last: the input, error 0) alike. With the
 /// `hal` feature a model also carries its HAL tree (`ObjectModel::hal_tree`), and with
-/// `silhouette` its silhouette labels (`ObjectModel::silhouette_labels`).
+/// `silhouette` its silhouette labels (`ObjectModel::silhouette_labels`), each computed
+/// on first use.
 ///
 /// # Examples
 ///
@@ -136,10 +190,7 @@ pub struct MeshLevel {
 /// use sphaera_spheretree::SphereTreeOptions;
 ///
 /// let mesh = sphaera_mesh::shapes::torus(1.0, 0.3, 24)?;
-/// let options = ModelOptions::default().with_tree(
-///     SphereTreeOptions::default().with_depth(2).with_branch(4).with_samples(800)
-///         .with_initial_spheres(80).with_min_spheres_per_node(20),
-/// );
+/// let options = ModelOptions::default().with_tree(SphereTreeOptions::default().with_depth(2).with_branch(4));
 /// let model = ObjectModel::build("torus", mesh, &options)?;
 /// assert_eq!(model.tree().level_count(), 3);
 /// let ladder = model.mesh_levels();
@@ -147,56 +198,70 @@ pub struct MeshLevel {
 /// assert!(ladder[0].triangles < ladder[ladder.len() - 1].triangles);
 /// assert_eq!(ladder[ladder.len() - 1].error_bound, 0.0);
 /// assert_eq!(ladder.last().unwrap().triangles, model.mesh().triangle_count());
+///
+/// // 2 % of its diagonal, finer than the base tree reaches: a tree is built for it.
+/// let tolerance = 0.02 * model.diagonal();
+/// assert!(model.base_tree().worst_error() > tolerance);
+/// let (tree, built) = model.tree_for(tolerance)?;
+/// assert!(built && tree.worst_error() <= tolerance);
+/// assert_eq!(model.trees().len(), 2);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Debug)]
 pub struct ObjectModel {
     name: String,
-    mesh: TriMesh,
+    surface: Surface,
     diagonal: f64,
     bounding_sphere: Sphere,
-    root_bound: Sphere,
-    tree: SphereTree,
-    tree_errors: Vec<f64>,
+    trees: Trees,
+    policy: TreePolicy,
     hierarchy: Hierarchy,
     mesh_levels: Vec<MeshLevel>,
     mesh_errors: Vec<f64>,
     #[cfg(feature = "hal")]
-    hal: Result<sphaera_hal::HalTree3, sphaera_hal::HalError>,
+    hal: OnceLock<Result<sphaera_hal::HalTree3, sphaera_hal::HalError>>,
     #[cfg(feature = "silhouette")]
-    silhouette: Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError>,
+    silhouette: OnceLock<Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError>>,
+    #[cfg(feature = "silhouette")]
+    silhouette_options: SilhouetteOptions,
 }
 
 impl ObjectModel {
-    /// Builds the sphere-tree and the simplification hierarchy of `mesh` (a closed mesh
-    /// for the sphere-tree: it needs an inside), then the mesh ladder.
+    /// Builds the base sphere-tree and the simplification hierarchy of `mesh`, then the
+    /// mesh ladder. The mesh may be a closed solid or a sheet (the minimax trees cover
+    /// shells; the paper's medial methods need an inside).
     ///
     /// # Errors
     ///
     /// [`SceneError::Mesh`] for an empty or invalid mesh, [`SceneError::SphereTree`] when
-    /// the sphere-tree cannot be built (an open mesh, too few distinct samples, bad
-    /// options), [`SceneError::Simplify`] for bad simplification options. A ladder step
-    /// at or below 1 (or NaN) is taken as `√2`.
+    /// the base tree cannot be built (bad options, a medial method on a sheet),
+    /// [`SceneError::Simplify`] for bad simplification options. A ladder step at or below
+    /// 1 (or NaN) is taken as `√2`.
     ///
     /// # Performance
     ///
-    /// Dominated by the sphere-tree, whose cost follows its samples more than the
-    /// triangles: 2.8–3.2 s at the default options (10,000 samples, depth 3, branch 8) for
-    /// the shared meshes of 3,674 to 12,716 triangles, all told (`scene_time_vs_error` in
-    /// `docs/benchmarks.md`); the hierarchy and the ladder take a fraction of that.
+    /// The base tree and the hierarchy, one after the other (every core works inside
+    /// each with the `parallel` feature): at the defaults (a minimax tree to depth 2)
+    /// 0.3–0.5 s of processor time for the shared meshes of 3,674 to 12,946 triangles,
+    /// the hierarchy and the ladder 0.03–0.2 s. Tolerance trees are built later, when a
+    /// request needs one (see the crate's Performance section).
     pub fn build(
         name: impl Into<String>,
         mesh: TriMesh,
         options: &ModelOptions,
     ) -> Result<Self, SceneError> {
-        let surface = Surface::new(&mesh)?;
+        let surface = Surface::solid_or_shell(&mesh)?;
+        drop(mesh);
+        let started = Instant::now();
         let tree = sphaera_spheretree::build(&surface, &options.tree)?;
-        let hierarchy = Hierarchy::build(&mesh, &options.simplify)?;
-        Self::from_parts(name, mesh, tree, hierarchy, options)
+        let seconds = started.elapsed().as_secs_f64();
+        let hierarchy = Hierarchy::build(surface.mesh(), &options.simplify)?;
+        Self::assemble(name.into(), surface, tree, seconds, hierarchy, options)
     }
 
-    /// A model from a sphere-tree and a hierarchy built elsewhere (for example read from
-    /// files), both of `mesh`.
+    /// A model from a base sphere-tree and a hierarchy built elsewhere (for example read
+    /// from files), both of `mesh`. Finer tolerances get trees built from
+    /// [`ModelOptions::tolerance_tree`].
     ///
     /// # Errors
     ///
@@ -208,35 +273,44 @@ impl ObjectModel {
         hierarchy: Hierarchy,
         options: &ModelOptions,
     ) -> Result<Self, SceneError> {
+        let surface = Surface::solid_or_shell(&mesh)?;
+        drop(mesh);
+        Self::assemble(name.into(), surface, tree, 0.0, hierarchy, options)
+    }
+
+    fn assemble(
+        name: String,
+        surface: Surface,
+        tree: SphereTree,
+        seconds: f64,
+        hierarchy: Hierarchy,
+        options: &ModelOptions,
+    ) -> Result<Self, SceneError> {
+        let mesh = surface.mesh();
         let bounding_sphere = minimum_enclosing_ball(mesh.positions())?;
-        let roots = tree.level_spheres(0);
-        // The roots cover the surface (certified), so the ball around them holds it too;
-        // the mesh's own ball is added for trees built elsewhere.
-        let mut balls = roots;
-        balls.push(bounding_sphere);
-        let root_bound = minimum_enclosing_ball_of_balls(&balls)?;
-        let tree_errors = level_worst_errors(&tree);
+        let diagonal = mesh.bounding_box_diagonal();
+        let base = ModelTree::new(tree, 0, None, seconds, bounding_sphere)?;
         let mesh_levels = mesh_ladder(&hierarchy, options);
         let mesh_errors = mesh_levels.iter().map(|l| l.error_bound).collect();
-        #[cfg(feature = "hal")]
-        let hal = sphaera_hal::HalTree3::build(&mesh);
-        #[cfg(feature = "silhouette")]
-        let silhouette = silhouette_labels(&mesh, &options.silhouette);
         Ok(Self {
-            name: name.into(),
-            diagonal: mesh.bounding_box_diagonal(),
-            mesh,
+            name,
+            diagonal,
             bounding_sphere,
-            root_bound,
-            tree,
-            tree_errors,
+            trees: Trees::new(base),
+            policy: TreePolicy {
+                options: options.tolerance_tree.clone(),
+                finest: options.finest_tolerance.resolve(diagonal),
+            },
             hierarchy,
             mesh_levels,
             mesh_errors,
+            surface,
             #[cfg(feature = "hal")]
-            hal,
+            hal: OnceLock::new(),
             #[cfg(feature = "silhouette")]
-            silhouette,
+            silhouette: OnceLock::new(),
+            #[cfg(feature = "silhouette")]
+            silhouette_options: options.silhouette,
         })
     }
 
@@ -249,7 +323,14 @@ impl ObjectModel {
     /// The mesh, in the model's own frame.
     #[must_use]
     pub fn mesh(&self) -> &TriMesh {
-        &self.mesh
+        self.surface.mesh()
+    }
+
+    /// The mesh prepared for exact closest points and inside tests (a solid, or a shell
+    /// for a mesh without an inside): what the sphere-trees are built and checked on.
+    #[must_use]
+    pub fn surface(&self) -> &Surface {
+        &self.surface
     }
 
     /// The diagonal of the mesh's bounding box.
@@ -264,24 +345,137 @@ impl ObjectModel {
         self.bounding_sphere
     }
 
-    /// A sphere holding the mesh and every root sphere of the tree: the broad phase of
+    /// A sphere holding the mesh and the roots of the tree collisions use
+    /// ([`ObjectModel::collision_tree`]): the broad phase of
     /// [`Scene::collide`](crate::Scene::collide) tests these.
     #[must_use]
     pub fn root_bound(&self) -> Sphere {
-        self.root_bound
+        self.collision_tree().bound()
     }
 
-    /// The sphere-tree.
+    /// The base sphere-tree (built with the model from [`ModelOptions::tree`]).
     #[must_use]
     pub fn tree(&self) -> &SphereTree {
-        &self.tree
+        self.trees.base().tree()
     }
 
-    /// The worst node error of each sphere-tree level, root first (how far a level's
-    /// spheres reach beyond the surface, at most).
+    /// The base sphere-tree with its cut errors.
+    #[must_use]
+    pub fn base_tree(&self) -> &ModelTree {
+        self.trees.base()
+    }
+
+    /// The worst node error of each cut of the base tree, root first (how far its spheres
+    /// reach beyond the surface at that detail, at most).
     #[must_use]
     pub fn tree_errors(&self) -> &[f64] {
-        &self.tree_errors
+        self.trees.base().level_errors()
+    }
+
+    /// Every sphere-tree the model has, in the order they were built: the base tree,
+    /// then the tolerance trees.
+    #[must_use]
+    pub fn trees(&self) -> Vec<Arc<ModelTree>> {
+        self.trees.all()
+    }
+
+    /// The tree collisions descend: the one with the smallest worst leaf error (the
+    /// earliest on a tie). It is the base tree until a tolerance tree finer than it has
+    /// been built.
+    #[must_use]
+    pub fn collision_tree(&self) -> Arc<ModelTree> {
+        self.trees.finest()
+    }
+
+    /// A sphere-tree with a cut meeting `tolerance` (in the model's units, certified),
+    /// and whether it was built for this call.
+    ///
+    /// A tree meets a tolerance when one of its cuts [`SphereTree::cut_at`]`(level)` has
+    /// a certified error within it: each node's error
+    /// ([`TreeNode::error`](sphaera_spheretree::TreeNode::error)), or, for a node over
+    /// the tolerance, the smaller of it and the upper bound of the node's sphere
+    /// evaluated on the exact surface ([`sphaera_spheretree::evaluate::sphere_error`],
+    /// computed once per node and kept). When some tree meets it, the one whose coarsest
+    /// such cut has the fewest spheres is returned (the earliest on a tie). Otherwise a
+    /// tolerance tree is built from [`ModelOptions::tolerance_tree`], to `tolerance`, or
+    /// to half the finest tolerance built before when that is smaller: a run of
+    /// tightening requests (a camera coming closer) builds once per halving, not once
+    /// per request. The tree is kept. Only trees whose coverage is certified at every
+    /// level ([`ModelTree::coverage_certified`]) are used.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_scene::{ModelOptions, ObjectModel, SceneError};
+    ///
+    /// let model = ObjectModel::build("ball", sphaera_mesh::shapes::sphere(1.0, 12)?, &ModelOptions::default())?;
+    /// let (tree, built) = model.tree_for(0.05)?;
+    /// assert!(tree.worst_error() <= 0.05);
+    /// // Below the finest tolerance (10⁻³ of the diagonal by default): refused, and said so.
+    /// let refused = model.tree_for(1e-4).unwrap_err();
+    /// assert!(matches!(refused, SceneError::ToleranceBelowFinest { .. }));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`SceneError::ToleranceBelowFinest`] for a tolerance below
+    /// [`ModelOptions::finest_tolerance`] that no tree meets (or NaN),
+    /// [`SceneError::ToleranceTree`] when the tree cannot be built: the tolerance is out of
+    /// reach ([`SphereTreeError::ToleranceUnreachable`](sphaera_spheretree::SphereTreeError::ToleranceUnreachable),
+    /// remembered so that a finer request fails at once) or the options are invalid.
+    ///
+    /// # Performance
+    ///
+    /// Choosing among the trees walks their cuts (microseconds), probing a node's sphere
+    /// the first time a tolerance below its node error is asked (32 closest-point
+    /// queries) and evaluating it when the probes do not rule it out (about a
+    /// millisecond). A build costs about what the tree's spheres cost: 0.2–0.6 s of
+    /// processor time at 2 % of the diagonal for the shared meshes (65–266 leaves,
+    /// [`Effort::Quick`](sphaera_spheretree::Effort::Quick), the default; see the crate's
+    /// Performance section).
+    pub fn tree_for(&self, tolerance: f64) -> Result<(Arc<ModelTree>, bool), SceneError> {
+        self.ensure_tree(tolerance)
+            .map(|(selection, built)| (selection.tree, built))
+    }
+
+    /// [`ObjectModel::tree_for`] with what the tree offers `tolerance`.
+    pub(crate) fn ensure_tree(&self, tolerance: f64) -> Result<(Selection, bool), SceneError> {
+        self.trees.ensure(
+            &self.name,
+            tolerance,
+            &self.surface,
+            &self.policy,
+            self.bounding_sphere,
+        )
+    }
+
+    /// The spheres an instance's detail chose ([`InstanceDetail::spheres`]: the cut
+    /// [`SphereTree::cut_at`]`(level)` of tree [`InstanceDetail::tree`]), in the model's
+    /// frame (place them with the instance's pose); `None` when `detail` names a tree
+    /// this model does not have (a detail of another model).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use sphaera_mesh::geometry::Similarity;
+    /// use sphaera_scene::{ModelOptions, ObjectModel, Scene, Tolerance};
+    ///
+    /// let model = Arc::new(ObjectModel::build("ball", sphaera_mesh::shapes::sphere(1.0, 12)?, &ModelOptions::default())?);
+    /// let mut scene = Scene::new();
+    /// scene.add("ball", Arc::clone(&model), Similarity::IDENTITY);
+    /// let report = scene.detail(None, Tolerance::Relative(0.05))?;
+    /// let spheres = model.detail_spheres(&report.instances[0]).expect("its model");
+    /// assert_eq!(spheres.len(), report.instances[0].spheres.count);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn detail_spheres(&self, detail: &InstanceDetail) -> Option<Vec<Sphere>> {
+        let trees = self.trees.all();
+        let tree = trees.get(detail.tree.index)?;
+        (detail.spheres.level < tree.tree().level_count())
+            .then(|| tree.tree().cut_spheres(detail.spheres.level))
     }
 
     /// The simplification hierarchy.
@@ -296,23 +490,26 @@ impl ObjectModel {
         &self.mesh_levels
     }
 
-    /// The HAL tree of the mesh (feature `hal`): its hierarchy of approximating triangles
-    /// with bounding balls, for point inclusion and intersection tests; the reason when
-    /// the mesh has none (it must be closed and of genus 0).
+    /// The HAL tree of the mesh (feature `hal`), built on the first call: its hierarchy
+    /// of approximating triangles with bounding balls, for point inclusion and
+    /// intersection tests; the reason when the mesh has none (it must be closed and of
+    /// genus 0).
     ///
     /// # Errors
     ///
     /// The [`sphaera_hal::HalError`] the tree's construction gave.
     #[cfg(feature = "hal")]
     pub fn hal_tree(&self) -> Result<&sphaera_hal::HalTree3, &sphaera_hal::HalError> {
-        self.hal.as_ref()
+        self.hal
+            .get_or_init(|| sphaera_hal::HalTree3::build(self.mesh()))
+            .as_ref()
     }
 
-    /// The silhouette labels of the mesh (feature `silhouette`): for each of
-    /// [`ModelOptions::silhouette`]'s views, how many image cells each vertex lies from the
-    /// silhouette (Mata, Pastor and Rodríguez). [`Scene::silhouette_detail`](crate::Scene::silhouette_detail)
-    /// uses them to keep outlines finer than interiors; the reason when the mesh has none
-    /// (bad options).
+    /// The silhouette labels of the mesh (feature `silhouette`), computed on the first
+    /// call: for each of [`ModelOptions::silhouette`]'s views, how many image cells each
+    /// vertex lies from the silhouette (Mata, Pastor and Rodríguez).
+    /// [`Scene::silhouette_detail`](crate::Scene::silhouette_detail) uses them to keep
+    /// outlines finer than interiors; the reason when the mesh has none (bad options).
     ///
     /// # Errors
     ///
@@ -321,7 +518,9 @@ impl ObjectModel {
     pub fn silhouette_labels(
         &self,
     ) -> Result<&sphaera_silhouette::Labels, &sphaera_silhouette::SilhouetteError> {
-        self.silhouette.as_ref()
+        self.silhouette
+            .get_or_init(|| silhouette_labels(self.mesh(), &self.silhouette_options))
+            .as_ref()
     }
 
     /// The certified error of each mesh ladder level, coarsest first (model units).
@@ -338,11 +537,12 @@ impl ObjectModel {
         Some(self.hierarchy.level_by_error(requested))
     }
 
-    /// The coarsest sphere-tree level whose worst error is at most `tolerance` (in the
-    /// model's units), or the finest level and `false` when none is.
+    /// The coarsest cut of the base tree whose worst error is at most `tolerance` (in the
+    /// model's units), or the finest and `false` when none is ([`ObjectModel::tree_for`]
+    /// builds a tree that meets it).
     #[must_use]
     pub fn tree_level_for(&self, tolerance: f64) -> (usize, bool) {
-        coarsest_meeting(&self.tree_errors, |e| e <= tolerance)
+        coarsest_meeting(self.tree_errors(), |e| e <= tolerance)
     }
 
     /// The coarsest mesh level whose certified error is at most `tolerance` (in the

@@ -26,7 +26,8 @@ impl Instance {
         self.pose.sphere(&self.model.bounding_sphere())
     }
 
-    /// The broad-phase sphere (around its mesh and its tree's roots), in the scene.
+    /// The broad-phase sphere (around its mesh and the roots of its model's collision
+    /// tree), in the scene.
     #[must_use]
     pub fn root_bound(&self) -> Sphere {
         self.pose.sphere(&self.model.root_bound())

@@ -1,7 +1,9 @@
-//! `Scene::detail` against brute force: the chosen level meets the tolerance and every
-//! coarser level violates it; the camera's pixel bound holds for random displacements;
-//! the mesh ladder is the hierarchy's selective refinement; scaling by powers of two gives
-//! identical choices.
+//! `Scene::detail` against brute force: the chosen cut of the tree the spheres are taken
+//! from meets the tolerance by its certified error (recomputed here) and every coarser cut
+//! fails it, no other tree offers fewer spheres, the smallest cut is recomputed, a
+//! tolerance below a model's finest is an error; the camera's pixel bound holds for
+//! random displacements; the mesh ladder is the hierarchy's selective refinement; scaling
+//! by powers of two gives identical choices.
 
 #![allow(clippy::float_cmp)]
 
@@ -9,7 +11,7 @@ mod common;
 
 use proptest::prelude::*;
 use sphaera_mesh::{DVec3, Sphere};
-use sphaera_scene::{Camera, LevelChoice, ObjectModel, SceneError, Tolerance};
+use sphaera_scene::{Camera, ObjectModel, SceneError, Tolerance};
 
 /// The camera sees `p`: beyond the near plane and within the image's corner angle.
 fn seen(camera: &Camera, p: DVec3) -> bool {
@@ -87,7 +89,17 @@ proptest! {
         };
         let camera = Camera::perspective(DVec3::from_array(eye), DVec3::ZERO, 60.0, 1280, 720)
             .expect("a camera");
-        let report = scene.detail(Some(&camera), tolerance).expect("a report");
+        let report = match scene.detail(Some(&camera), tolerance) {
+            Ok(report) => report,
+            // Only a tolerance below a model's finest (1 % of its diagonal here) is
+            // refused, naming a model of the scene.
+            Err(SceneError::ToleranceBelowFinest { model, tolerance: need, finest, diagonal }) => {
+                prop_assert!(need < finest && finest == 0.01 * diagonal, "{need} {finest}");
+                prop_assert!(scene.instances().iter().any(|i| i.model.name() == model));
+                return Ok(());
+            }
+            Err(other) => return Err(TestCaseError::fail(other.to_string())),
+        };
         prop_assert_eq!(report.instances.len(), scene.len());
         for (instance, detail) in scene.instances().iter().zip(&report.instances) {
             let model = &instance.model;
@@ -101,47 +113,76 @@ proptest! {
                         &instance.pose.sphere(&model.bounding_sphere()), e * s),
                 }
             };
-            let check = |choice: &LevelChoice, errors: &[f64], counts: &dyn Fn(usize) -> usize| {
-                let measured: Vec<Option<f64>> = errors.iter().map(|&e| measure(e)).collect();
-                // A level that cannot be seen at all meets any tolerance in pixels.
-                let meets = |l: usize| measured[l].is_none_or(|m| m <= tolerance.value());
-                let expected = (0..errors.len()).find(|&l| meets(l));
-                let level = expected.unwrap_or(errors.len() - 1);
-                choice.level == level
-                    && choice.meets == expected.is_some()
-                    && (0..level).all(|l| !meets(l))
-                    && choice.count == counts(level)
-                    && choice.error == errors[level] * s
-                    && choice.levels == errors.len()
-            };
-            let tree = model.tree();
-            prop_assert!(check(&detail.spheres, model.tree_errors(), &|l| tree.level(l).len()),
-                "{detail:?}");
+            // The mesh: the coarsest ladder level whose measured error meets the
+            // tolerance (a level that cannot be seen at all meets any tolerance in pixels).
             let ladder: Vec<f64> = model.mesh_levels().iter().map(|l| l.error_bound).collect();
-            prop_assert!(check(&detail.mesh, &ladder, &|l| model.mesh_levels()[l].triangles),
-                "{detail:?}");
-            prop_assert!(detail.mesh.meets, "the input meets every tolerance");
-            // The smallest cut: never more spheres than a level that meets, and what it
-            // claims holds.
+            let meets = |e: f64| measure(e).is_none_or(|m| m <= tolerance.value());
+            let level = ladder.iter().position(|&e| meets(e)).expect("the input meets");
+            let mesh = detail.mesh;
+            prop_assert!(mesh.meets && mesh.level == level && mesh.levels == ladder.len(), "{detail:?}");
+            prop_assert_eq!(mesh.count, model.mesh_levels()[level].triangles);
+            prop_assert_eq!(mesh.error, ladder[level] * s);
+            // The tolerance asked of the model: the largest error that meets the
+            // tolerance for this instance.
+            let need = detail.model_tolerance;
+            prop_assert_eq!(detail.tolerance, need * s);
+            // (`t / s · s` may round a unit in the last place above `t`.)
+            let meets = |e: f64| measure(e).is_none_or(|m| m <= tolerance.value() * (1.0 + 1e-15));
+            prop_assert!(meets(need), "{detail:?}");
+            match tolerance {
+                Tolerance::World(t) => prop_assert_eq!(need, t / s),
+                Tolerance::Relative(t) => prop_assert_eq!(need, t * model.diagonal()),
+                Tolerance::Pixels(_) => {}
+            }
+            // The spheres: the coarsest cut of the tree they come from whose certified
+            // error (recomputed here) meets the need; every coarser cut fails it.
+            let trees = model.trees();
+            let used = &trees[detail.tree.index];
+            let tree = used.tree();
+            prop_assert_eq!(detail.tree.tolerance, used.tolerance());
+            prop_assert_eq!(detail.tree.leaves, tree.leaves().len());
+            let spheres = detail.spheres;
+            let level = spheres.level;
+            let error = common::level_error(model, tree, level, need);
+            prop_assert_eq!(error.map(|e| e * s), Some(spheres.error), "{:?}", detail);
+            for coarser in 0..level {
+                prop_assert!(common::level_error(model, tree, coarser, need).is_none(), "{detail:?}");
+            }
+            prop_assert!(spheres.error <= need * s * (1.0 + 1e-15) && meets(spheres.error / s));
+            prop_assert!(spheres.measured <= tolerance.value() * (1.0 + 1e-12), "{detail:?}");
+            let node_error = tree.cut_at(level).iter().map(|&i| tree.nodes()[i].error).fold(f64::NEG_INFINITY, f64::max);
+            prop_assert_eq!(spheres.node_error, node_error * s);
+            prop_assert!(spheres.error <= spheres.node_error);
+            prop_assert_eq!(spheres.count, tree.cut_at(level).len());
+            prop_assert_eq!(spheres.levels, tree.level_count());
+            // No other tree of the model offers fewer spheres.
+            for other in &trees {
+                if let Some(l) = (0..other.tree().level_count())
+                    .find(|&l| common::level_error(model, other.tree(), l, need).is_some())
+                {
+                    prop_assert!(other.tree().cut_at(l).len() >= spheres.count, "{detail:?}");
+                }
+            }
+            let full = model.collision_tree().leaf_count();
+            prop_assert_eq!((spheres.finest, detail.full_spheres), (full, full));
+            // The smallest cut, recomputed: never more spheres than the level cut.
             let cut = &detail.cut;
-            prop_assert!(cut.count >= 1 && cut.deepest_level < tree.level_count());
-            if detail.spheres.meets {
-                prop_assert!(cut.meets && cut.count <= detail.spheres.count, "{detail:?}");
-            }
-            if cut.meets {
-                prop_assert!(cut.measured <= tolerance.value(), "{detail:?}");
-            }
-            if detail.spheres.meets && detail.spheres.level == 0 {
-                prop_assert_eq!(cut.count, tree.level(0).len());
-            }
+            let (nodes, cut_error) = common::smallest_cut(model, tree, need);
+            prop_assert_eq!(cut.count, nodes.len());
+            prop_assert_eq!(cut.error, cut_error * s);
+            prop_assert!(cut.count >= 1 && cut.count <= spheres.count, "{detail:?}");
+            prop_assert!(cut.deepest_level <= level);
+            prop_assert!(cut.measured <= tolerance.value() * (1.0 + 1e-12), "{detail:?}");
             let seen = camera.pixels_per_unit(&instance.pose.sphere(&model.bounding_sphere()));
             prop_assert_eq!(detail.visible, seen.is_some());
-
         }
         let spheres: usize = report.instances.iter().map(|d| d.spheres.count).sum();
         prop_assert_eq!(report.spheres, spheres);
         let cut_spheres: usize = report.instances.iter().map(|d| d.cut.count).sum();
         prop_assert_eq!(report.cut_spheres, cut_spheres);
+        let full: usize = report.instances.iter().map(|d| d.full_spheres).sum();
+        prop_assert_eq!(report.full_spheres, full);
+        prop_assert!(report.spheres <= report.full_spheres);
         let triangles: usize = report.instances.iter().map(|d| d.mesh.count).sum();
         prop_assert_eq!(report.triangles, triangles);
         prop_assert!(report.triangles <= report.full_triangles);
@@ -211,7 +252,11 @@ fn a_tolerance_in_pixels_needs_a_camera_and_bad_tolerances_are_refused() {
     let empty = sphaera_scene::Scene::new()
         .detail(None, Tolerance::World(1.0))
         .expect("a report");
-    assert!(empty.instances.is_empty() && empty.all_meet && empty.full_triangles == 0);
+    assert!(empty.instances.is_empty() && empty.full_triangles == 0);
+    assert_eq!(
+        (empty.spheres_saved_percent, empty.triangles_saved_percent),
+        (0.0, 0.0)
+    );
 }
 
 /// Poses scaled by 2^k with the tolerance scaled alike give identical choices, with
@@ -227,7 +272,9 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
             )
         })
         .collect();
-    let base = common::scene(&placements);
+    // Models of their own: the trees both scenes take are those these requests build.
+    let models = common::fresh_models();
+    let base = common::scene_of(&models, &placements);
     let camera = Camera::perspective(DVec3::new(3.0, 2.0, 8.0), DVec3::ZERO, 50.0, 1920, 1080)
         .expect("a camera");
     for k in [-30i32, -1, 3, 40] {
@@ -246,7 +293,7 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
                 )
             })
             .collect();
-        let scaled = common::scene(&scaled_placements);
+        let scaled = common::scene_of(&models, &scaled_placements);
         let scaled_camera = Camera::perspective(camera.eye() * f, DVec3::ZERO, 50.0, 1920, 1080)
             .expect("a camera")
             .with_near(camera.near() * f)
@@ -265,8 +312,8 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
                 None,
             ),
             (
-                Tolerance::Pixels(1.5),
-                Tolerance::Pixels(1.5),
+                Tolerance::Pixels(8.0),
+                Tolerance::Pixels(8.0),
                 Some(&camera),
                 Some(&scaled_camera),
             ),
@@ -275,10 +322,11 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
             let b = scaled.detail(scaled_cam, scaled_tolerance).expect("report");
             for (x, y) in a.instances.iter().zip(&b.instances) {
                 assert_eq!(
-                    (x.spheres.level, x.mesh.level),
-                    (y.spheres.level, y.mesh.level),
+                    (x.tree.index, x.spheres.level, x.mesh.level),
+                    (y.tree.index, y.spheres.level, y.mesh.level),
                     "2^{k} {tolerance}"
                 );
+                assert_eq!(x.model_tolerance, y.model_tolerance, "2^{k} {tolerance}");
                 assert_eq!(x.mesh.error * f, y.mesh.error, "2^{k}");
                 assert_eq!(x.spheres.error * f, y.spheres.error, "2^{k}");
                 assert_eq!(x.cut.count, y.cut.count, "2^{k} {tolerance}");
@@ -334,7 +382,6 @@ fn the_same_detail_on_any_number_of_threads() {
             )
         })
         .collect();
-    let scene = common::scene(&placements);
     let camera = Camera::perspective(
         DVec3::new(1.0, 1.0, 4.0),
         DVec3::new(1.0, 0.5, -8.0),
@@ -343,15 +390,18 @@ fn the_same_detail_on_any_number_of_threads() {
         720,
     )
     .expect("a camera");
+    // Fresh models for each run: the trees are built in the run, on its threads.
     let run = |threads: usize| {
+        let scene = common::scene_of(&common::fresh_models(), &placements);
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .expect("a pool")
             .install(|| {
                 scene
-                    .detail(Some(&camera), Tolerance::Pixels(1.5))
+                    .detail(Some(&camera), Tolerance::Pixels(5.0))
                     .expect("detail")
+                    .without_times()
             })
     };
     let one = run(1);
@@ -362,25 +412,31 @@ fn the_same_detail_on_any_number_of_threads() {
         digest = digest.wrapping_mul(0x0100_0000_01b3);
     };
     for d in &one.instances {
-        for choice in [&d.spheres, &d.mesh] {
-            mix(choice.level as u64);
-            mix(choice.count as u64);
-            mix(choice.error.to_bits());
-            mix(choice.measured.to_bits());
-        }
+        mix(d.spheres.level as u64);
+        mix(d.spheres.count as u64);
+        mix(d.spheres.error.to_bits());
+        mix(d.spheres.measured.to_bits());
+        mix(d.mesh.level as u64);
+        mix(d.mesh.count as u64);
+        mix(d.mesh.error.to_bits());
+        mix(d.mesh.measured.to_bits());
         mix(d.cut.count as u64);
         mix(d.cut.error.to_bits());
         mix(d.cut.measured.to_bits());
+        mix(d.model_tolerance.to_bits());
+        mix(d.tree.index as u64);
+        mix(d.tree.leaves as u64);
+        mix(u64::from(d.tree.built));
     }
+    mix(one.trees_built as u64);
     assert!(
         one.triangles < one.full_triangles,
-        "{} of {} triangles, all meet: {}",
+        "{} of {} triangles",
         one.triangles,
         one.full_triangles,
-        one.all_meet
     );
     assert_eq!(
-        digest, 0xa855_7c4e_1cb2_1d8d,
+        digest, 0x56c7_ec1d_a4b5_9294,
         "digest {digest:#018x}, {} spheres, {} triangles",
         one.spheres, one.triangles
     );

@@ -91,7 +91,7 @@ fn a_good_scene_file_builds_with_its_poses() {
     let camera = loaded.camera.expect("a camera");
     let report = loaded
         .scene
-        .detail(Some(&camera), Tolerance::Pixels(1.0))
+        .detail(Some(&camera), Tolerance::Pixels(3.0))
         .expect("detail");
     assert_eq!(report.instances.len(), 3);
     let contacts = loaded
@@ -232,7 +232,8 @@ fn malformed_json_and_missing_files_are_clear() {
     let missing = SceneDescription::read("/nonexistent/scene.json").expect_err("no file");
     assert!(matches!(missing, SceneError::ReadFile { .. }));
     assert!(missing.to_string().contains("/nonexistent/scene.json"));
-    // A mesh with no inside (an open sheet) cannot have a sphere-tree: named.
+    // A mesh with no inside (an open sheet) gets a model (the minimax trees cover
+    // shells), but not from a medial method, which needs an inside: named.
     let dir = folder();
     let sheet = sphaera_mesh::TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]])
         .expect("a triangle");
@@ -241,9 +242,20 @@ fn malformed_json_and_missing_files_are_clear() {
         dir.path(),
         r#"{ "meshes": { "sheet": "sheet.obj" }, "instances": [ { "mesh": "sheet" } ] }"#,
     );
-    let error = SceneDescription::read(&path)
-        .expect("valid")
+    let description = SceneDescription::read(&path).expect("valid");
+    let loaded = description
         .build(&common::options())
-        .expect_err("no inside");
-    assert!(error.to_string().contains("meshes.sheet"), "{error}");
+        .expect("a sheet's model");
+    assert!(!loaded.models[0].surface().has_inside());
+    let medial = common::options().with_tree(
+        sphaera_spheretree::SphereTreeOptions::default()
+            .with_method(sphaera_spheretree::Method::Combined)
+            .with_depth(1),
+    );
+    let error = description.build(&medial).expect_err("no inside");
+    let message = error.to_string();
+    assert!(
+        message.contains("meshes.sheet") && message.contains("inside"),
+        "{message}"
+    );
 }

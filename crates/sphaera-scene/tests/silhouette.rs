@@ -79,7 +79,13 @@ proptest! {
             prop_assert!(choice.triangles <= instance.model.mesh().triangle_count());
         }
         let strict = scene.silhouette_detail(&camera, tolerance, &options(1.0)).expect("report");
-        let detail = scene.detail(Some(&camera), tolerance).expect("detail");
+        // The uniform meshes are those detail chooses (when every instance's spheres can
+        // meet the tolerance too: a near one may need a tree finer than the models build).
+        let detail = match scene.detail(Some(&camera), tolerance) {
+            Ok(detail) => detail,
+            Err(SceneError::ToleranceBelowFinest { .. }) => return Ok(()),
+            Err(other) => return Err(TestCaseError::fail(other.to_string())),
+        };
         for ((one, choice), uniform) in strict.instances.iter().zip(&report.instances).zip(&detail.instances) {
             prop_assert!(one.meets && one.interior_measured <= pixels);
             prop_assert!(one.triangles <= uniform.mesh.count, "{one:?} against {uniform:?}");

@@ -1,6 +1,6 @@
 //! `sphaera scene`: per-instance level of detail and budgeted collision for a scene.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -51,12 +51,32 @@ struct Report {
 struct ModelReport {
     name: String,
     triangles: usize,
-    /// The worst certified error of each sphere-tree level, root first (model units).
+    /// The bounding-box diagonal (model units).
+    diagonal: f64,
+    /// The worst certified error of each cut of the base sphere-tree, root first (model
+    /// units).
     tree_errors: Vec<f64>,
-    /// Spheres per sphere-tree level.
+    /// Spheres per cut of the base sphere-tree.
     tree_spheres: Vec<usize>,
+    /// Every sphere-tree the model has, in build order: the base tree, then the trees
+    /// built to a tolerance.
+    trees: Vec<TreeReport>,
     /// The mesh ladder, coarsest first: triangles and certified error (model units).
     mesh_levels: Vec<(usize, f64)>,
+}
+
+#[derive(Debug, Serialize)]
+struct TreeReport {
+    /// The tolerance it was built to (model units); `null` for the base tree.
+    tolerance: Option<f64>,
+    /// Its levels, the root's included.
+    levels: usize,
+    /// Its leaves.
+    leaves: usize,
+    /// The worst certified error of its leaves (model units).
+    worst_error: f64,
+    /// The seconds its construction took.
+    build_seconds: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -83,30 +103,57 @@ struct PairReport {
 
 #[derive(Debug, Serialize)]
 struct Seconds {
-    /// Reading the meshes and building their models.
+    /// Reading the meshes and building their models (base trees and hierarchies).
     build: f64,
+    /// Choosing detail, building the sphere-trees the tolerance needs included
+    /// (`detail.tree_seconds`).
     detail: f64,
     silhouette: f64,
     collide: f64,
 }
 
 pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
-    let options = ModelOptions::default().with_tree(
-        SphereTreeOptions::default()
-            .with_depth(args.depth)
-            .with_branch(args.branch)
-            .with_samples(args.samples),
-    );
+    let defaults = ModelOptions::default();
+    let tolerance_tree = defaults.tolerance_tree.clone().with_effort(args.effort);
+    let options = defaults
+        .with_tree(
+            SphereTreeOptions::default()
+                .with_depth(args.depth)
+                .with_branch(args.branch)
+                .with_samples(args.samples),
+        )
+        .with_tolerance_tree(tolerance_tree)
+        .with_finest_tolerance(args.finest);
     let started = Instant::now();
-    let (source, loaded) = match &args.scene {
-        Some(path) => (
-            path.display().to_string(),
-            load_file(path, &options, quiet)?,
-        ),
-        None => (
+    let is_scene_file = |p: &Path| {
+        p.extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("json"))
+    };
+    let (source, loaded) = match args.inputs.as_slice() {
+        [] => (
             format!("demo: {DEMO_INSTANCES} instances of {EMBEDDED_NAME}"),
             demo(&options, quiet)?,
         ),
+        [path] if is_scene_file(path) => (
+            path.display().to_string(),
+            load_file(path, &options, quiet)?,
+        ),
+        paths => {
+            if let Some(json) = paths.iter().find(|p| is_scene_file(p)) {
+                anyhow::bail!(
+                    "{}: a scene file is given alone, not with other files (give a scene file, or mesh files)",
+                    json.display()
+                );
+            }
+            (
+                format!(
+                    "{} mesh file{} side by side",
+                    paths.len(),
+                    if paths.len() == 1 { "" } else { "s" }
+                ),
+                load_meshes(paths, &options, quiet)?,
+            )
+        }
     };
     let build_seconds = started.elapsed().as_secs_f64();
     let LoadedScene {
@@ -134,7 +181,13 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
     });
 
     let started = Instant::now();
-    let detail = scene.detail(camera.as_ref(), tolerance)?;
+    let spinner = progress::spinner(
+        quiet,
+        "choosing detail (building the sphere-trees the tolerance needs)",
+    );
+    let detail = scene.detail(camera.as_ref(), tolerance);
+    spinner.finish_and_clear();
+    let detail = detail?;
     let detail_seconds = started.elapsed().as_secs_f64();
 
     let started = Instant::now();
@@ -216,9 +269,21 @@ fn model_report(model: &ObjectModel) -> ModelReport {
     ModelReport {
         name: model.name().to_owned(),
         triangles: model.mesh().triangle_count(),
+        diagonal: model.diagonal(),
         tree_errors: model.tree_errors().to_vec(),
         tree_spheres: (0..tree.level_count())
-            .map(|l| tree.level(l).len())
+            .map(|l| tree.cut_at(l).len())
+            .collect(),
+        trees: model
+            .trees()
+            .iter()
+            .map(|t| TreeReport {
+                tolerance: t.tolerance(),
+                levels: t.tree().level_count(),
+                leaves: t.leaf_count(),
+                worst_error: t.worst_error(),
+                build_seconds: t.build_seconds(),
+            })
             .collect(),
         mesh_levels: model
             .mesh_levels()
@@ -234,7 +299,7 @@ fn load_file(path: &Path, options: &ModelOptions, quiet: bool) -> Result<LoadedS
     let used = description.used_meshes().len();
     let bar = progress::bar(
         quiet,
-        &format!("building {used} object models (sphere-tree and hierarchy)"),
+        &format!("building {used} object models (base sphere-tree and hierarchy)"),
         used as u64,
     );
     let loaded = description.build_with(|name, mesh_path| {
@@ -245,6 +310,77 @@ fn load_file(path: &Path, options: &ModelOptions, quiet: bool) -> Result<LoadedS
     });
     bar.finish_and_clear();
     Ok(loaded?)
+}
+
+/// Reads mesh files and builds their models (in parallel), one instance each, side by
+/// side along x with a quarter of the largest diagonal between their bounding boxes.
+fn load_meshes(paths: &[PathBuf], options: &ModelOptions, quiet: bool) -> Result<LoadedScene> {
+    let mut names: Vec<String> = Vec::with_capacity(paths.len());
+    for path in paths {
+        let stem = path
+            .file_stem()
+            .map_or_else(|| "mesh".to_owned(), |s| s.to_string_lossy().into_owned());
+        let mut name = stem.clone();
+        let mut k = 2;
+        while names.contains(&name) {
+            name = format!("{stem}-{k}");
+            k += 1;
+        }
+        names.push(name);
+    }
+    let bar = progress::bar(
+        quiet,
+        &format!(
+            "building {} object models (base sphere-tree and hierarchy)",
+            paths.len()
+        ),
+        paths.len() as u64,
+    );
+    let built: Vec<Result<ObjectModel>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = paths
+            .iter()
+            .zip(&names)
+            .map(|(path, name)| {
+                let bar = &bar;
+                scope.spawn(move || {
+                    let mesh = sphaera::mesh::io::load(path)
+                        .with_context(|| format!("reading {}", path.display()))?;
+                    let model = ObjectModel::build(name.as_str(), mesh, options)
+                        .with_context(|| format!("building the model of {}", path.display()));
+                    bar.inc(1);
+                    model
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| {
+                h.join()
+                    .unwrap_or_else(|_| Err(anyhow::anyhow!("a model's construction panicked")))
+            })
+            .collect()
+    });
+    bar.finish_and_clear();
+    let models: Vec<Arc<ObjectModel>> = built
+        .into_iter()
+        .map(|m| m.map(Arc::new))
+        .collect::<Result<_>>()?;
+    let gap = 0.25 * models.iter().map(|m| m.diagonal()).fold(0.0_f64, f64::max);
+    let mut scene = Scene::new();
+    let mut x = 0.0;
+    for model in &models {
+        let bounds = model.mesh().bounding_box();
+        let half = 0.5 * (bounds.max.x - bounds.min.x);
+        let center = bounds.center();
+        let pose = Similarity::from_translation(DVec3::new(x + half, 0.0, 0.0) - center)?;
+        scene.add(model.name(), Arc::clone(model), pose);
+        x += 2.0 * half + gap;
+    }
+    Ok(LoadedScene {
+        scene,
+        camera: None,
+        models,
+    })
 }
 
 /// Eight embedded bunnies going away from the camera; the first two touch.
@@ -273,12 +409,14 @@ fn demo(options: &ModelOptions, quiet: bool) -> Result<LoadedScene> {
         let pose = Similarity::from_translation(offset - center)?;
         scene.add(format!("bunny-{i}"), Arc::clone(&model), pose);
     }
+    // Five sizes back, on a 1280×720 image: two pixels are about 1 % of the nearest
+    // bunny's size, a tree the bunny builds in a second or two.
     let camera = Camera::perspective(
-        DVec3::new(0.2 * size, 0.3 * size, 1.5 * size),
+        DVec3::new(0.2 * size, 0.3 * size, 5.0 * size),
         DVec3::new(0.2 * size, 0.0, -6.0 * size),
         60.0,
-        1920,
-        1080,
+        1280,
+        720,
     )?;
     Ok(LoadedScene {
         scene,
@@ -290,15 +428,37 @@ fn demo(options: &ModelOptions, quiet: bool) -> Result<LoadedScene> {
 impl crate::output::Report for Report {
     fn to_text(&self) -> String {
         let mut lines = vec![format!("scene           {}", self.scene)];
+        let percent = |e: f64, diagonal: f64| {
+            if diagonal > 0.0 {
+                format!("{:.2} %", 100.0 * e / diagonal)
+            } else {
+                "-".to_owned()
+            }
+        };
         for m in &self.models {
             lines.push(format!(
-                "model           {}: {} triangles, {} sphere-tree levels ({} spheres at the finest), {} mesh levels",
+                "model           {}: {} triangles, {} mesh levels, {} sphere-tree{}",
                 m.name,
                 thousands(m.triangles),
-                m.tree_spheres.len(),
-                thousands(m.tree_spheres.last().copied().unwrap_or(0)),
-                m.mesh_levels.len()
+                m.mesh_levels.len(),
+                m.trees.len(),
+                if m.trees.len() == 1 { "" } else { "s" }
             ));
+            for (k, t) in m.trees.iter().enumerate() {
+                let what = match t.tolerance {
+                    None => "base".to_owned(),
+                    Some(tolerance) => format!("to {}", percent(tolerance, m.diagonal)),
+                };
+                lines.push(format!(
+                    "  tree {k}          {what}: {} {} in {} level{}, worst {} of the diagonal, {:.3} s",
+                    thousands(t.leaves),
+                    if t.leaves == 1 { "leaf" } else { "leaves" },
+                    t.levels,
+                    if t.levels == 1 { "" } else { "s" },
+                    percent(t.worst_error, m.diagonal),
+                    t.build_seconds
+                ));
+            }
         }
         if let Some(c) = &self.camera {
             lines.push(format!(
@@ -309,23 +469,25 @@ impl crate::output::Report for Report {
         let d = &self.detail;
         lines.push(format!("tolerance       {}", d.tolerance));
         lines.push(format!(
-            "instance          seen  spheres (level)  {:>9}  mesh triangles (level)  {:>9}",
+            "instance          seen  spheres (level, tree)  {:>9}  smallest cut  mesh triangles (level)  {:>9}",
             format!("error {}", d.unit),
             format!("error {}", d.unit)
         ));
         for i in &d.instances {
             lines.push(format!(
-                "  {:<16} {:>4}  {:>7} ({}/{}){}  {:>9.3}  {:>9} ({:>2}/{})  {:>9.3}",
+                "  {:<16} {:>4}  {:>7} ({:>2}/{}, {}{})  {:>9.4}  {:>12}  {:>9} ({:>2}/{})  {:>9.4}",
                 i.name,
                 yes_no(i.visible),
                 thousands(i.spheres.count),
                 i.spheres.level,
-                i.spheres.levels - 1,
-                if i.spheres.meets { " " } else { "!" },
+                i.spheres.levels.saturating_sub(1),
+                i.tree.index,
+                if i.tree.built { ", built" } else { "" },
                 i.spheres.measured,
+                thousands(i.cut.count),
                 thousands(i.mesh.count),
                 i.mesh.level,
-                i.mesh.levels - 1,
+                i.mesh.levels.saturating_sub(1),
                 i.mesh.measured,
             ));
         }
@@ -337,30 +499,26 @@ impl crate::output::Report for Report {
             }
         };
         lines.push(format!(
-            "spheres         {} of {} at full detail ({:.1} % saved)",
+            "spheres         {} of {} at full detail (the models' finest trees' leaves; {:.1} % saved); {} in the smallest cuts of mixed levels",
             thousands(d.spheres),
             thousands(d.full_spheres),
-            saved(d.spheres, d.full_spheres)
-        ));
-        lines.push(format!(
-            "                {} in the smallest tree cuts for the tolerance ({:.1} % saved; {} of {} instances' cuts meet it)",
+            d.spheres_saved_percent,
             thousands(d.cut_spheres),
-            saved(d.cut_spheres, d.full_spheres),
-            d.instances.iter().filter(|i| i.cut.meets).count(),
-            d.instances.len()
         ));
         lines.push(format!(
             "triangles       {} of {} at full detail ({:.1} % saved)",
             thousands(d.triangles),
             thousands(d.full_triangles),
-            saved(d.triangles, d.full_triangles)
+            d.triangles_saved_percent
         ));
-        if !d.all_meet {
-            lines.push(
-                "                ! no sphere-tree level meets the tolerance: the finest is used (build deeper trees with --depth)"
-                    .to_owned(),
-            );
-        }
+        lines.push(format!(
+            "trees built     {} for this tolerance, in {:.3} s",
+            d.trees_built, d.tree_seconds
+        ));
+        lines.push(format!(
+            "                every instance meets {} (certified)",
+            d.tolerance
+        ));
         if let Some(s) = &self.silhouette {
             lines.push(format!(
                 "silhouettes     outlines within {}, interiors within {}: {} triangles, {} at uniform levels ({:.1} % fewer){}",
@@ -396,8 +554,12 @@ impl crate::output::Report for Report {
             ));
         }
         lines.push(format!(
-            "time            {:.3} s to build, {:.6} s to choose detail, {:.6} s for silhouettes, {:.6} s to collide",
-            self.seconds.build, self.seconds.detail, self.seconds.silhouette, self.seconds.collide
+            "time            {:.3} s to build the models, {:.3} s to choose detail ({:.3} s of it building trees), {:.6} s for silhouettes, {:.6} s to collide",
+            self.seconds.build,
+            self.seconds.detail,
+            self.detail.tree_seconds,
+            self.seconds.silhouette,
+            self.seconds.collide
         ));
         lines.join("\n") + "\n"
     }
