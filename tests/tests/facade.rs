@@ -158,16 +158,13 @@ fn errors_of_every_crate_convert_for_question_mark() {
 fn one_error_type_across_crates() {
     use std::sync::Arc;
 
-    fn pipeline(radius: f64, samples: usize) -> sphaera::Result<usize> {
+    fn pipeline(radius: f64, branch: usize) -> sphaera::Result<usize> {
         let torus = mesh::shapes::torus(1.0, radius, 24)?;
         let coarse =
             simplify::simplify(&torus, &SimplifyOptions::default().with_target_ratio(0.5))?;
         let options = SphereTreeOptions::default()
             .with_depth(1)
-            .with_branch(4)
-            .with_samples(samples)
-            .with_initial_spheres(40)
-            .with_min_spheres_per_node(10);
+            .with_branch(branch);
         let model = ObjectModel::build(
             "torus",
             coarse.mesh,
@@ -179,15 +176,15 @@ fn one_error_type_across_crates() {
         Ok(report.triangles)
     }
 
-    assert!(pipeline(0.3, 400).expect("a pipeline") > 0);
-    let mesh_error = pipeline(-1.0, 400).expect_err("a negative radius");
+    assert!(pipeline(0.3, 4).expect("a pipeline") > 0);
+    let mesh_error = pipeline(-1.0, 4).expect_err("a negative radius");
     assert!(
         matches!(mesh_error, sphaera::Error::Mesh(_)),
         "{mesh_error:?}"
     );
     let direct = mesh::shapes::torus(1.0, -1.0, 24).expect_err("a negative radius");
     assert_eq!(mesh_error.to_string(), direct.to_string());
-    let tree_error = pipeline(0.3, 0).expect_err("no samples");
+    let tree_error = pipeline(0.3, 0).expect_err("no children");
     assert!(
         matches!(
             &tree_error,
