@@ -1,8 +1,21 @@
 //! The library's errors as Python exceptions: `OSError` when a file could not be read or
-//! written, `ValueError` for everything else (bad input), with the library's message.
+//! written, [`ToleranceUnreachableError`] (a `ValueError`) when a sphere-tree cannot meet
+//! the tolerance asked for, `ValueError` for everything else (bad input), with the
+//! library's message.
 
 use pyo3::PyErr;
+use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyValueError};
+
+create_exception!(
+    sphaera,
+    ToleranceUnreachableError,
+    PyValueError,
+    "A sphere-tree cannot meet the tolerance asked for within the library's limits (nodes, \
+levels): the message gives the tolerance, the worst certified leaf error reached and the \
+spheres and levels built; the attributes `tolerance`, `worst`, `spheres` and `levels` \
+hold them. A `ValueError`: ask for a larger tolerance."
+);
 
 /// `OSError` when an I/O error is anywhere in `error`'s chain, else `ValueError`; the
 /// message is the library's.

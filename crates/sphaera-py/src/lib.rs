@@ -11,6 +11,9 @@
 //! h = sphaera.hausdorff(mesh, small.mesh)     # h.lower <= H(A, B) <= h.upper
 //! tree = sphaera.spheretree(mesh, depth=3, branch=8)
 //! tree.levels[2]                              # (n, 4) array: x, y, z, r
+//! fine = sphaera.spheretree(mesh, tolerance="1%")   # every leaf within 1 % of the diagonal
+//! fine.cut(2), fine.leaves, fine.leaf_errors  # what covers the surface, and how well
+//! eight = sphaera.spheretree(mesh, spheres=8) # exactly 8 spheres: eight.cut(1)
 //! coarse, depth = sphaera.hal(mesh, tolerance="1%")
 //! labels, directions = sphaera.silhouette_labels(mesh)
 //! robot = sphaera.urdf("panda.urdf", spheres_per_link=40)
@@ -19,8 +22,9 @@
 //! Arrays come in and go out as numpy arrays (`float64` coordinates, `uint32` or any
 //! integer faces in). Long computations release the GIL and use every core. Every result
 //! pickles (round-tripping exactly), has a readable `repr` and converts to plain data with
-//! `to_dict()`. Errors raise `ValueError` for bad input and `OSError` for files, with the
-//! library's message.
+//! `to_dict()`. Errors raise `ValueError` for bad input (`ToleranceUnreachableError`, a
+//! `ValueError`, for a sphere-tree tolerance that cannot be met) and `OSError` for files,
+//! with the library's message.
 //!
 //! Built with maturin (`pip install ./crates/sphaera-py`); tested from Python
 //! (`crates/sphaera-py/tests`, run by `cargo xtask test`).
@@ -43,6 +47,10 @@ fn _sphaera(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<queries::Distances>()?;
     module.add_class::<queries::Hausdorff>()?;
     module.add_class::<spheretree::SphereTree>()?;
+    module.add(
+        "ToleranceUnreachableError",
+        module.py().get_type::<errors::ToleranceUnreachableError>(),
+    )?;
     module.add_function(wrap_pyfunction!(mesh::load, module)?)?;
     module.add_function(wrap_pyfunction!(simplify::simplify, module)?)?;
     module.add_function(wrap_pyfunction!(queries::distance, module)?)?;

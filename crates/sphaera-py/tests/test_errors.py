@@ -51,8 +51,13 @@ def test_hausdorff_arguments(ball):
 def test_spheretree_arguments(ball):
     with pytest.raises(ValueError, match='unknown method "best".*expand'):
         sphaera.spheretree(ball, method="best")
-    with pytest.raises(ValueError):
-        sphaera.spheretree(open_square())
+    # A flat sheet has no inside: minimax (auto) covers it, the paper's methods refuse it.
+    assert sphaera.spheretree(open_square(), depth=1, branch=2).surface == "shell"
+    with pytest.raises(ValueError, match="needs a solid"):
+        sphaera.spheretree(open_square(), method="expand")
+    inward = sphaera.Mesh(ball.vertices, ball.faces[:, ::-1])
+    with pytest.raises(ValueError, match="inward"):
+        sphaera.spheretree(inward)
     with pytest.raises(ValueError):
         sphaera.spheretree(ball, branch=0)
     octree = sphaera.spheretree(ball, depth=2, method="octree", evaluate=False)

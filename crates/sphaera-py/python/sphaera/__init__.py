@@ -8,6 +8,10 @@ release the GIL and use every core; every result pickles exactly.
 >>> mesh = sphaera.load("bunny.obj")                  # doctest: +SKIP
 >>> tree = sphaera.spheretree(mesh, depth=3)          # doctest: +SKIP
 >>> tree.levels[3].shape, tree.errors[3]              # doctest: +SKIP
+>>> fine = sphaera.spheretree(mesh, tolerance="1%")   # doctest: +SKIP
+>>> fine.leaves, fine.leaf_errors, fine.met           # doctest: +SKIP
+>>> eight = sphaera.spheretree(mesh, spheres=8)       # doctest: +SKIP
+>>> eight.cut(1).shape                                # (8, 4)  # doctest: +SKIP
 """
 
 from ._sphaera import (
@@ -16,6 +20,7 @@ from ._sphaera import (
     Mesh,
     SphereTree,
     Simplified,
+    ToleranceUnreachableError,
     __version__,
     distance,
     hal,
@@ -33,6 +38,7 @@ __all__ = [
     "Mesh",
     "Simplified",
     "SphereTree",
+    "ToleranceUnreachableError",
     "__version__",
     "distance",
     "hal",

@@ -1,7 +1,7 @@
 """Type stubs of the native module `sphaera._sphaera` (re-exported by `sphaera`)."""
 
 import os
-from typing import Any, Optional, Sequence, Tuple, Union
+from typing import Any, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -88,15 +88,47 @@ class Hausdorff:
     def to_dict(self) -> dict[str, Any]: ...
 
 class SphereTree:
-    """Per level the spheres ``(n, 4)``, their parents and the certified worst error."""
+    """A sphere-tree: per level the spheres ``(n, 4)``, their parents and certified errors,
+    and the certified worst error of each level's cut.
+
+    A tree built to a depth has every level cover the surface. A tree built to a
+    tolerance divides only the nodes above it, so its leaves end at different depths:
+    ``cut(level)`` (the level's spheres and the leaves above it) is what covers the
+    surface at that detail, and ``errors[level]`` is that cut's.
+    """
 
     levels: list[npt.NDArray[np.float64]]
+    """Per level, an ``(n, 4)`` array: ``x, y, z, r``."""
     parents: list[npt.NDArray[np.int64]]
+    """Per level, each sphere's parent's row in the level above (``-1`` at the root)."""
     errors: list[Optional[Tuple[float, float]]]
+    """Per level, ``(lower, upper)`` of the worst error of ``cut(level)`` (how far a sphere
+    reaches beyond the surface), certified; ``None`` when not evaluated."""
     method: str
     branch: int
+    node_errors: Optional[list[npt.NDArray[np.float64]]]
+    """Per level, each sphere's certified error (an upper bound)."""
+    surface: Literal["solid", "shell"]
+    """``"shell"`` for a mesh without inside (a flat sheet, an open patch)."""
+    goal: Literal["depth", "tolerance", "spheres"]
+    tolerance: Optional[float]
+    """The tolerance asked for, absolute (in the mesh's units)."""
+    met: Optional[bool]
+    """Whether every leaf's certified error is within ``tolerance`` (``None`` without)."""
+    effort: Literal["quick", "default", "thorough"]
     @property
-    def depth(self) -> int: ...
+    def depth(self) -> int:
+        """The number of levels, the root's included."""
+    @property
+    def leaves(self) -> npt.NDArray[np.float64]:
+        """The spheres without children, ``(n, 4)``, level by level: they cover the surface."""
+    @property
+    def leaf_errors(self) -> npt.NDArray[np.float64]:
+        """Each leaf's certified error (an upper bound), in the order of ``leaves``."""
+    def cut(self, level: int) -> npt.NDArray[np.float64]:
+        """The spheres covering the surface at ``level``: its spheres and the leaves above."""
+    def cut_errors(self, level: int) -> npt.NDArray[np.float64]:
+        """Each sphere of ``cut(level)``'s certified error (an upper bound)."""
     def __init__(
         self,
         levels: Sequence[npt.NDArray[np.float64]],
@@ -104,9 +136,27 @@ class SphereTree:
         errors: Sequence[Optional[Tuple[float, float]]],
         method: str,
         branch: int,
+        node_errors: Optional[Sequence[npt.NDArray[np.float64]]] = None,
+        surface: str = "solid",
+        goal: str = "depth",
+        tolerance: Optional[float] = None,
+        met: Optional[bool] = None,
+        effort: str = "default",
     ) -> None: ...
     def __len__(self) -> int: ...
     def to_dict(self) -> dict[str, Any]: ...
+
+class ToleranceUnreachableError(ValueError):
+    """A sphere-tree cannot meet the tolerance asked for within the library's limits."""
+
+    tolerance: float
+    """The tolerance asked for (in the mesh's units)."""
+    worst: float
+    """The worst certified leaf error reached."""
+    spheres: int
+    """Spheres built when the construction stopped."""
+    levels: int
+    """Levels built."""
 
 def load(path: Union[str, os.PathLike[str]]) -> Mesh: ...
 def simplify(
@@ -124,13 +174,20 @@ def hausdorff(
 ) -> Hausdorff: ...
 def spheretree(
     mesh: Mesh,
-    depth: int = 3,
-    branch: int = 8,
+    depth: Optional[int] = None,
+    branch: Optional[int] = None,
     method: str = "auto",
     samples: Optional[int] = None,
     seed: Optional[int] = None,
     evaluate: bool = True,
-) -> SphereTree: ...
+    *,
+    tolerance: Optional[Length] = None,
+    spheres: Optional[int] = None,
+    effort: Literal["quick", "default", "thorough"] = "default",
+) -> SphereTree:
+    """A sphere-tree of ``mesh``: to ``depth`` (default 3) with ``branch`` (default 8)
+    children per node, or to a ``tolerance`` (every leaf within it), or ``spheres=N``
+    (exactly N in one level)."""
 def hal(
     mesh: Mesh, tolerance: Optional[Length] = None, level: int = 0
 ) -> Tuple[Mesh, int]: ...
