@@ -20,12 +20,12 @@
 //!    corners covers the surface itself, not only samples of it.
 //! 2. **Candidates.** Centres worth trying are medial balls: for a few hundred pieces, the
 //!    largest empty ball tangent at the piece's centroid, found by shrinking against the
-//!    exact surface ([`candidates`]). On a shell (a surface without inside) the pieces'
+//!    exact surface (`candidates.rs`). On a shell (a surface without inside) the pieces'
 //!    centroids themselves.
 //! 3. **Search.** Every candidate is expanded to a common standoff `e` beyond the surface
 //!    (the paper's expand step); a depth-first search on the most constrained piece
 //!    decides whether `k` of them cover a subset of representative pieces, and bisection
-//!    finds the smallest such `e` ([`search`]).
+//!    finds the smallest such `e` (`search.rs`).
 //! 4. **Lloyd's iteration** on the representatives: every piece to its cheapest sphere,
 //!    every sphere to its best candidate, while the worst error falls; children are added
 //!    by splitting the worst when the search chose fewer than asked.
