@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum, builder::PossibleValue};
 use sphaera::mesh::Length;
 use sphaera::simplify::{Order, Placement};
-use sphaera::spheretree::Method;
+use sphaera::spheretree::{Effort, Method};
 
 /// Hierarchical sphere-based approximation of triangle meshes.
 ///
@@ -93,15 +93,20 @@ pub enum Command {
     /// figures. With no input: eight embedded bunnies going away from the camera, two
     /// of them touching.
     Scene(SceneArgs),
-    /// Whole-robot sphere models for motion planners. Reads a URDF, loads every link's
-    /// collision (or `--visual`) meshes in the link's frame with their origins and scales
-    /// (`package://` against the URDF's folder, relative paths against the URDF), and
-    /// spherizes the links in parallel: meshes by a one-level sphere-tree whose coverage
-    /// of the surface and protrusion are certified, boxes, cylinders, spheres and
-    /// capsules analytically. Writes the spherized URDF, MoveIt's SRDF sphere
-    /// approximations, cuRobo's collision-sphere YAML or JSON (`-o`, the format from the
-    /// extension or `--format`), and reports per link the spheres, the worst and the
-    /// 95th-percentile protrusion, the coverage and the time.
+    /// Whole-robot sphere models for motion planners (also `sphaera robot`). Reads a URDF,
+    /// loads every link's collision (or `--visual`) meshes in the link's frame with their
+    /// origins and scales (`package://` against the URDF's folder, relative paths against
+    /// the URDF), and spherizes the links in parallel: meshes (solids, or shells when open
+    /// or flat) by a minimax sphere-tree whose spheres cover every point of the surface by
+    /// construction and whose protrusion is certified, boxes, cylinders, spheres and
+    /// capsules analytically. Exactly `--spheres-per-link N` spheres per link, a
+    /// `--budget N` divided among the links summing to N, or a `--tolerance` every link
+    /// meets with as few spheres as it needs (fewer spheres than asked only where a link
+    /// cannot use them, and the report says why). Writes the spherized URDF, MoveIt's SRDF
+    /// sphere approximations, cuRobo's collision-sphere YAML or JSON (`-o`, the format from
+    /// the extension or `--format`), and reports per link the spheres, the certified worst
+    /// and the 95th-percentile protrusion, the coverage and the time (`--json` for JSON).
+    #[command(visible_alias = "robot")]
     Urdf(UrdfArgs),
     /// One self-contained HTML page (three.js inlined, opens offline in any browser)
     /// showing the mesh and its sphere-tree: a level slider, the spheres translucent,
@@ -172,12 +177,13 @@ pub struct UrdfArgs {
     /// The robot's URDF.
     pub urdf: PathBuf,
 
-    /// Spheres for the whole robot, divided across the links by size and complexity
-    /// (surface area times 1 + ¼·log2(triangles / 12)), at least one each.
+    /// Spheres for the whole robot, exactly: divided among the links in proportion to what
+    /// each needs (surface area times 1 + ¼·log2(triangles / 12)), at least one each
+    /// (`--per-link` counts are taken out first).
     #[arg(long, conflicts_with_all = ["spheres_per_link", "tolerance"])]
     pub budget: Option<usize>,
 
-    /// Spheres for every link (the default: 16).
+    /// Exactly this many spheres for every link (the default: 16).
     #[arg(long, conflicts_with = "tolerance")]
     pub spheres_per_link: Option<usize>,
 
@@ -185,11 +191,17 @@ pub struct UrdfArgs {
     #[arg(long = "per-link", value_parser = parse_link_count)]
     pub per_link: Vec<(String, usize)>,
 
-    /// Instead of a count: as few spheres per link as keep every sphere within this of
-    /// the link's surface (certified), in the URDF's units (`0.005`) or as a percentage
-    /// of each link's bounding-box diagonal (`2%`).
+    /// Instead of a count: every link's spheres within this of its surface (certified),
+    /// with as few spheres as that needs (a minimax tolerance tree's leaves), in the
+    /// URDF's units (`0.005`) or as a percentage of each link's bounding-box diagonal
+    /// (`2%`).
     #[arg(long, value_parser = parse_length, allow_hyphen_values = true)]
     pub tolerance: Option<Length>,
+
+    /// The most spheres a `--tolerance` may give a link: a link that needs more is an
+    /// error.
+    #[arg(long, default_value_t = 1_000)]
+    pub max_spheres_per_link: usize,
 
     /// Spherize the visual geometry instead of the collision geometry.
     #[arg(long, conflicts_with = "collision")]
@@ -213,12 +225,19 @@ pub struct UrdfArgs {
     #[arg(long, value_enum)]
     pub format: Option<UrdfFormat>,
 
-    /// Surface samples per link's sphere-tree.
-    #[arg(long, default_value_t = 3_000)]
-    pub samples: usize,
+    /// How hard each link's sphere-tree works for tighter spheres: `quick`, `default` or
+    /// `thorough`.
+    #[arg(long, default_value = "default", value_parser = parse_effort)]
+    pub effort: Effort,
 
     #[command(flatten)]
     pub print: OutputArgs,
+}
+
+fn parse_effort(text: &str) -> Result<Effort, String> {
+    text.trim()
+        .parse()
+        .map_err(|_| format!("`{text}`: the effort must be quick, default or thorough"))
 }
 
 /// The formats `sphaera urdf` writes.

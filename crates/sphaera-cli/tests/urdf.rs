@@ -45,7 +45,9 @@ fn the_panda_is_spherized_and_written_in_every_format() {
         let links = report["links"].as_array().expect("links");
         assert_eq!(links.len(), 11);
         for link in links {
-            assert!(link["spheres"].as_u64().unwrap() <= 6, "{link}");
+            assert_eq!(link["spheres"], 6, "{link}");
+            assert_eq!(link["budget"], 6, "{link}");
+            assert!(link["shortfall"].is_null(), "{link}");
             assert_eq!(link["coverage"], 1.0);
             assert_eq!(link["coverage_certified"], true);
             assert!(
@@ -109,6 +111,11 @@ fn bad_arguments_and_files_give_clear_errors() {
         (vec!["--per-link", "a=zero"], "positive whole number"),
         (vec!["-o", "out.txt"], "extension"),
         (vec!["--tolerance", "-1"], "non-negative"),
+        (vec!["--tolerance", "nan"], "finite"),
+        (vec!["--tolerance", "0"], "positive and finite"),
+        (vec!["--spheres-per-link", "0"], "at least 1"),
+        (vec!["--budget", "0"], "at least 1"),
+        (vec!["--effort", "hard"], "quick, default or thorough"),
         (vec!["-o", fine], "it is the input URDF"),
         (
             vec!["--budget", "18446744073709551615"],
@@ -143,4 +150,100 @@ fn bad_arguments_and_files_give_clear_errors() {
     assert_eq!(report["spheres"], 1);
     assert_eq!(report["worst_protrusion"], 0.0);
     assert_eq!(report["links"][0]["coverage"], 1.0, "{report}");
+}
+
+/// `sphaera robot` (the same command): a total divided exactly, a tolerance met by every
+/// link, a tolerance that needs too many spheres and a missing mesh refused clearly, a
+/// primitive that cannot use its spheres explained.
+#[test]
+fn robot_budgets_are_exact_and_tolerances_met() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let write = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).expect("write");
+        path.display().to_string()
+    };
+    let parts = write(
+        "parts.urdf",
+        r#"<robot name="parts">
+             <link name="plate"><collision><geometry><box size="0.3 0.2 0.02"/></geometry></collision></link>
+             <link name="ball"><collision><geometry><sphere radius="0.05"/></geometry></collision></link>
+             <joint name="j" type="fixed"><parent link="plate"/><child link="ball"/></joint>
+           </robot>"#,
+    );
+    let report = json(&sphaera(&[
+        "robot",
+        &parts,
+        "--spheres-per-link",
+        "5",
+        "--effort",
+        "quick",
+        "--json",
+    ]));
+    assert_eq!(report["asked"], 10, "{report}");
+    let ball = &report["links"][1];
+    assert_eq!(ball["spheres"], 1, "{report}");
+    assert_eq!(ball["shortfall"], "a sphere primitive is its own sphere");
+    let output = sphaera(&["robot", &parts, "--spheres-per-link", "5", "-q"]);
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        text.contains("! ball has 1 of its 5 spheres: a sphere primitive is its own sphere"),
+        "{text}"
+    );
+    for (args, needle) in [
+        (
+            vec!["--tolerance", "0.0001", "--max-spheres-per-link", "3"],
+            "cannot be met within 3 spheres",
+        ),
+        (vec!["--budget", "1"], "cannot give each of the 2 links"),
+    ] {
+        let mut all = vec!["robot", parts.as_str()];
+        all.extend(args.iter().copied());
+        let output = sphaera(&all);
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            !output.status.success() && message.contains(needle),
+            "{args:?}: {message}"
+        );
+    }
+    let missing = write(
+        "missing.urdf",
+        r#"<robot name="m"><link name="arm"><collision><geometry><mesh filename="arm.stl"/></geometry></collision></link></robot>"#,
+    );
+    let output = sphaera(&["robot", &missing]);
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        !output.status.success()
+            && message.contains("link \"arm\"")
+            && message.contains("`arm.stl` not found"),
+        "{message}"
+    );
+
+    let Some(urdf) = panda("robot_budgets_are_exact") else {
+        return;
+    };
+    let report = json(&sphaera(&["robot", &urdf, "--budget", "40", "--json"]));
+    assert_eq!(report["spheres"], 40, "{report}");
+    assert_eq!(report["asked"], 40, "{report}");
+    let links = report["links"].as_array().expect("links");
+    let sum: u64 = links.iter().map(|l| l["spheres"].as_u64().unwrap()).sum();
+    assert_eq!(sum, 40);
+    let report = json(&sphaera(&[
+        "robot",
+        &urdf,
+        "--tolerance",
+        "0.015",
+        "--effort",
+        "quick",
+        "--json",
+    ]));
+    assert!(report["asked"].is_null());
+    for link in report["links"].as_array().expect("links") {
+        assert_eq!(link["meets_tolerance"], true, "{link}");
+        assert!(
+            link["worst_protrusion"].as_f64().unwrap() <= 0.015,
+            "{link}"
+        );
+        assert_eq!(link["coverage"], 1.0, "{link}");
+    }
 }

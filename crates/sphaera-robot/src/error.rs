@@ -69,13 +69,34 @@ pub enum RobotError {
         /// Why it could not be loaded.
         source: Box<sphaera_mesh::MeshError>,
     },
-    /// A link's geometry could not be spherized (a flat sheet with no inside, too few
-    /// distinct points).
+    /// A link's geometry could not be spherized (a closed mesh facing inward, a mesh
+    /// without area), with the sphere-tree's or the surface's reason.
     #[error("link \"{link}\": {message}")]
     Spherize {
         /// The link.
         link: String,
         /// Why, from the sphere-tree builder or the surface.
+        message: String,
+    },
+    /// A sphere budget that cannot be honoured: a total too small to give every link
+    /// with geometry a sphere, or per-link counts that do not add up to the total.
+    #[error("sphere budget: {message}")]
+    Budget {
+        /// What does not add up.
+        message: String,
+    },
+    /// A link's tolerance cannot be met within the most spheres allowed per link.
+    #[error(
+        "link \"{link}\": the tolerance {tolerance} cannot be met within {max} spheres: {message} (loosen the tolerance or allow more spheres per link)"
+    )]
+    ToleranceUnreachable {
+        /// The link.
+        link: String,
+        /// The tolerance, in the link's units.
+        tolerance: f64,
+        /// The most spheres allowed per link.
+        max: usize,
+        /// What it would need.
         message: String,
     },
     /// An option names a link the robot does not have, or one without geometry.

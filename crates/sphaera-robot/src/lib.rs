@@ -6,15 +6,20 @@
 //! This crate reads a URDF ([`Urdf`]), loads every link's collision (or visual) meshes
 //! in the link's own frame with their `<origin xyz rpy>` and `<mesh scale>`, resolving
 //! `package://` and relative paths ([`MeshResolver`]), and spherizes every link
-//! ([`spherize`]) so that its spheres **cover every point of its surface, certified**:
+//! ([`spherize`]) so that its spheres **cover every point of its surface**, with a
+//! **certified worst protrusion** (how far any sphere reaches beyond the link), to the
+//! budget asked ([`SphereBudget`]):
 //!
-//! - meshes by a sphere-tree of Bradshaw and O'Sullivan's adaptive medial-axis method
-//!   (`sphaera-spheretree`, one level of as many spheres as the link's budget), whose
-//!   coverage of the surface is certified triangle piece by triangle piece and whose
-//!   protrusion (how far a sphere reaches beyond the surface) is certified by branch and
-//!   bound;
-//! - boxes, cylinders, spheres and capsules analytically ([`Primitive`]): covering sets
-//!   by construction, protrusion exact.
+//! - **exactly `N` spheres per link** ([`SphereBudget::PerLink`]): the link's meshes get
+//!   a one-level minimax sphere-tree of `N` spheres (`sphaera-spheretree`), its boxes,
+//!   cylinders, spheres and capsules ([`Primitive`]) analytic sets; never more, and fewer
+//!   only where a link cannot use them, with the reason in its report
+//!   ([`LinkReport::shortfall`]: a sphere primitive is its own sphere);
+//! - **exactly `N` spheres in all** ([`SphereBudget::Total`]), divided among the links in
+//!   proportion to what each needs (per-link counts taken out first);
+//! - **a tolerance** ([`SphereBudget::Tolerance`]), absolute or relative to each link:
+//!   every link's certified worst protrusion within it, with as few spheres as the leaves
+//!   of a minimax tolerance tree need, or an error that says why not.
 //!
 //! Because every link's spheres cover that link in its own frame, the spheres moved by
 //! the robot's forward kinematics ([`Urdf::link_poses`]) cover the posed robot at any
@@ -22,13 +27,16 @@
 //! ([`PlannerFormat`]): the spherized URDF, MoveIt's SRDF sidecar, cuRobo's
 //! `collision_spheres` YAML, or JSON with a tree per link (its bounding sphere, groups
 //! of nearby spheres, then the spheres, each enclosing its children, for planners that
-//! stop early) and a report per link (spheres, worst protrusion, 95th-percentile protrusion,
-//! coverage, time).
+//! stop early) and a report per link (spheres asked and given, worst and
+//! 95th-percentile protrusion, coverage, time).
 //!
 //! # Quick start
 //!
 //! ```
-//! use sphaera_robot::{MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions, Urdf, spherize};
+//! use sphaera_robot::{
+//!     Effort, Length, LinkGeometry, MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions,
+//!     Urdf, spherize, spherize_geometry,
+//! };
 //!
 //! let urdf = Urdf::parse(r#"
 //!   <robot name="arm">
@@ -38,16 +46,36 @@
 //!       <parent link="base"/><child link="upper"/><origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
 //!     </joint>
 //!   </robot>"#, "arm.urdf")?;
-//! // A tolerance: every link gets as few spheres as keep them within 1 cm of its surface.
-//! let options = SpherizeOptions::default().with_budget(SphereBudget::Tolerance(sphaera_mesh::Length::Absolute(0.01)));
-//! let robot = spherize(&urdf, &MeshResolver::new(urdf.folder()), &options)?;
+//! let resolver = MeshResolver::new(urdf.folder());
+//!
+//! // A tolerance: every link within 1 cm of its surface, with as few spheres as it needs.
+//! let options = SpherizeOptions::default().with_budget(SphereBudget::Tolerance(Length::Absolute(0.01)));
+//! let robot = spherize(&urdf, &resolver, &options)?;
 //! for link in &robot.links {
-//!     assert_eq!(link.report.meets_tolerance, Some(true));
 //!     assert!(link.report.worst_protrusion <= 0.01 && link.report.coverage == 1.0);
 //! }
 //! let yaml = PlannerFormat::Curobo.render(&urdf, &robot)?;
 //! assert!(yaml.starts_with("collision_spheres:\n  \"base\":"));
-//! # Ok::<(), sphaera_robot::RobotError>(())
+//!
+//! // Exactly 10 spheres in all, divided by what each link needs.
+//! let options = SpherizeOptions::default().with_budget(SphereBudget::Total(10));
+//! assert_eq!(spherize(&urdf, &resolver, &options)?.sphere_count(), 10);
+//!
+//! // A mesh link (here a procedural one) gets exactly the count asked for.
+//! let rod = LinkGeometry {
+//!     link: "rod".to_owned(),
+//!     mesh: Some(sphaera_mesh::shapes::capsule(0.03, 0.3, 12)?),
+//!     files: Vec::new(),
+//!     primitives: Vec::new(),
+//! };
+//! let options = SpherizeOptions::default()
+//!     .with_budget(SphereBudget::PerLink(6))
+//!     .with_effort(Effort::Quick);
+//! let robot = spherize_geometry("rod", vec![rod], &options, &|_| {})?;
+//! let report = &robot.links[0].report;
+//! assert_eq!((report.spheres, report.budget), (6, Some(6)));
+//! assert!(report.coverage_certified && report.shortfall.is_none());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
 //! # The method in brief
@@ -58,30 +86,77 @@
 //! - **Geometry** ([`LinkGeometry::load`]): each mesh element is resolved, loaded (OBJ,
 //!   PLY, STL, OFF, glTF), scaled per axis (a mirroring scale flips the triangles),
 //!   placed by its origin and joined with the link's other meshes; primitives are
-//!   placed. Open and non-manifold meshes are fine: the inside is the generalized
-//!   winding number's.
-//! - **Budgets** ([`SphereBudget`]): a count per link, a total divided by size and
-//!   complexity, per-link overrides, or a tolerance, which picks each link's count (a
-//!   doubling then a bisection of the count, each candidate certified).
-//! - **Spherizing** ([`spherize`]): links in parallel; within a link the budget is split
-//!   among its meshes and primitives by area.
+//!   placed. For spherizing, vertices at identical positions are welded (OBJ and STL
+//!   files often repeat them per triangle), and the meshes are the solid they enclose
+//!   or, when they enclose nothing (an open patch, a flat plate), a shell
+//!   (`Surface::solid_or_shell`; [`LinkReport::shell`]).
+//! - **Counts**: a link's count is divided among its meshes and primitives by area;
+//!   what a primitive cannot use goes to the meshes. The meshes get a one-level minimax
+//!   tree of exactly their count (`SphereTreeOptions::with_depth(1).with_branch(n)`),
+//!   whose spheres cover the surface by construction. A link with more parts than
+//!   spheres gets one sphere per part, the two whose enclosing ball is smallest merged
+//!   until the count is reached.
+//! - **Totals**: the links with their own count keep it; the rest is divided among the
+//!   other links by surface area times `1 + ¼·log₂(triangles / 12)` (largest
+//!   remainders, at least one each), summing to the total exactly; spheres a link cannot
+//!   use are passed on to the links that use all theirs.
+//! - **Tolerances**: the meshes get the leaves of a minimax tolerance tree
+//!   (`SphereTreeOptions::with_tolerance`: refined only where a sphere reaches farther,
+//!   each node into the fewest children that meet it); primitives the fewest analytic
+//!   spheres. A link that would need more than
+//!   [`SpherizeOptions::max_spheres_per_link`] (1,000) spheres is an error.
+//! - **Certified protrusion**: on a closed manifold ([`LinkReport::closed`]) the tree's
+//!   node errors bound each sphere's protrusion and a branch and bound tightens the
+//!   worst. On open or non-manifold meshes a point can leave the enclosed solid through a
+//!   hole without crossing the surface, so the node errors need not hold there: every
+//!   sphere is evaluated in full by branch and bound instead, and under a tolerance a
+//!   leaf that reaches farther is replaced by spheres fitted to the surface that meets
+//!   it taken as a shell (within the tolerance of that surface, hence of the link).
+//!   Primitives' protrusion is exact (they are convex).
+//! - **Spherizing** ([`spherize`]): links in parallel (`parallel` feature), the same
+//!   spheres either way.
 //!
 //! # Errors
 //!
 //! [`RobotError`]: a file that cannot be read, malformed XML (line and column), an
 //! invalid element (line, link and element), a mesh found nowhere (every path tried),
-//! a mesh that cannot be loaded (link and file), a link that cannot be spherized, an
-//! option naming no link.
+//! a mesh that cannot be loaded (link and file), a zero count or a tolerance that is not
+//! positive and finite ([`RobotError::InvalidParameter`]), a total too small for the
+//! links ([`RobotError::Budget`]), a tolerance that needs too many spheres
+//! ([`RobotError::ToleranceUnreachable`]), a link that cannot be spherized, an option
+//! naming no link.
 //!
-//! # Performance
+//! # Performance and accuracy
 //!
-//! Measured on the 2-core reference machine (`cargo bench -p sphaera-eval --bench
-//! robot_spheres`, 2026-11-28): the whole Franka Panda (eleven collision meshes) at 40
-//! spheres per link in 2.9 s on one thread and 1.6 s on two; the KUKA iiwa (eight
-//! binary STLs of up to 3,038 triangles) in 4.4 s and 2.5 s. At 40 spheres per link the
-//! certified worst protrusion is 0.38–0.67 of a voxel k-means baseline's on the Panda's
-//! links (3.6–6.3 % of each link's diagonal), and 0.43–0.91 on the KUKA's
-//! (`robot_protrusion_vs_spheres` in the repository's `docs/benchmarks.md`).
+//! The Franka Panda (eleven collision meshes of 32–1,308 triangles, ten of them closed
+//! once welded) and the KUKA iiwa (eight binary STLs of 1,157–3,038 triangles, all
+//! open), with `cargo run --release -p sphaera-robot --example robot_figures >
+//! figures.csv` (the default effort; 2026-11-28, the 2-core reference machine **shared
+//! with other builds**, load average 7–8, so the times are wall times inflated about
+//! twofold: the whole run took 118 s of CPU for 241 s of wall time). Worst: the largest
+//! certified protrusion over the links, in millimetres and, in brackets, the largest
+//! share of a link's bounding-box diagonal.
+//!
+//! | budget | Panda spheres | Panda worst | Panda time | KUKA spheres | KUKA worst | KUKA time |
+//! |---|---:|---:|---:|---:|---:|---:|
+//! | 8 per link | 88 | 31.2 mm (10.8 %) | 4.5 s | 64 | 47.4 mm (12.8 %) | 4.4 s |
+//! | 16 per link | 176 | 21.1 mm (8.1 %) | 7.9 s | 128 | 31.4 mm (10.5 %) | 8.1 s |
+//! | 32 per link | 352 | 16.5 mm (6.0 %) | 5.2 s | 256 | 23.5 mm (7.9 %) | 5.6 s |
+//! | 64 per link | 704 | 11.1 mm (4.5 %) | 7.7 s | 512 | 16.9 mm (6.1 %) | 10.3 s |
+//! | 100 in all | 100 | 24.4 mm (33.1 %) | 5.8 s | 100 | 32.1 mm (14.9 %) | 5.8 s |
+//! | 300 in all | 300 | 13.7 mm (15.7 %) | 5.4 s | 300 | 17.7 mm (11.3 %) | 7.4 s |
+//! | tolerance 5 % | 348 | 19.0 mm (5.0 %) | 9.6 s | 363 | 19.5 mm (5.0 %) | 11.9 s |
+//! | tolerance 10 mm | 428 | 9.9 mm (13.4 %) | 10.7 s | 874 | 10.0 mm (6.2 %) | 25.1 s |
+//! | tolerance 5 mm | 1,675 | 5.0 mm (7.6 %) | 36.9 s | 2,643 | 5.0 mm (3.1 %) | 69.3 s |
+//!
+//! Every count is exact (no link of these robots has a primitive). A total divided by
+//! need reaches a smaller worst protrusion in millimetres than the same spheres spread
+//! evenly (100 in all: 24.4 mm on the Panda, against 31.2 mm for 88 at 8 per link). A
+//! relative tolerance is hard on small links (the Panda's 6 cm fingers get 47 spheres
+//! each at 5 %); an absolute one is what a planner's margin is. On the Panda's first link
+//! (the CSV's rows, and `robot_figures 1` for one sphere) the certified worst protrusion
+//! falls from 27.3 % of its diagonal with one sphere to 6.1 % with 8, 3.4 % with 32 and
+//! 2.2 % with 64.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]
@@ -90,7 +165,7 @@
 //!
 //! `sphaera-spheretree` (the sphere-trees, their certificates, and the YAML writer),
 //! `sphaera-mesh` (the mesh readers and the surface's inside test), and `sphaera urdf`
-//! in `sphaera-cli`.
+//! (also `sphaera robot`) in `sphaera-cli`.
 
 mod error;
 mod formats;
@@ -105,6 +180,7 @@ pub use formats::{PlannerFormat, curobo_yaml, json, spherized_urdf, srdf, write_
 pub use geometry::{GeometrySource, LinkGeometry, MeshResolver};
 pub use primitive::{Primitive, Shape};
 pub use sphaera_mesh::{Length, Sphere};
+pub use sphaera_spheretree::Effort;
 pub use spherize::{
     LinkReport, LinkSpheres, MAX_SPHERES_PER_LINK, RobotSpheres, SphereBudget, SpherizeOptions,
     SpherizeProgress, spherize, spherize_geometry, spherize_with_progress,

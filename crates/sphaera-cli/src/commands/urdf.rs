@@ -8,7 +8,6 @@ use sphaera::robot::{
     GeometrySource, LinkReport, MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions, Urdf,
     spherize_with_progress, write_atomic,
 };
-use sphaera::spheretree::SphereTreeOptions;
 
 use crate::{
     cli::{UrdfArgs, UrdfFormat},
@@ -27,6 +26,9 @@ struct Report {
     budget: String,
     /// Spheres over all links.
     spheres: usize,
+    /// The spheres asked for over all links (`None` under a tolerance): more than
+    /// `spheres` only where a link cannot use them (its `shortfall` says why).
+    asked: Option<usize>,
     /// One entry per link with geometry, in URDF order.
     links: Vec<LinkReport>,
     /// Links without geometry of the chosen kind (no spheres).
@@ -90,12 +92,8 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
         } else {
             GeometrySource::Collision
         })
-        .with_tree(
-            SphereTreeOptions::default()
-                .with_depth(1)
-                .with_samples(args.samples)
-                .with_initial_spheres(200),
-        );
+        .with_effort(args.effort)
+        .with_max_spheres_per_link(args.max_spheres_per_link);
     for (name, count) in &args.per_link {
         options = options.with_link(name.clone(), *count);
     }
@@ -124,6 +122,11 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
         source: robot.source,
         budget: budget_text,
         spheres: robot.sphere_count(),
+        asked: robot
+            .links
+            .iter()
+            .map(|l| l.report.budget)
+            .sum::<Option<usize>>(),
         worst_protrusion: robot
             .links
             .iter()
@@ -181,21 +184,23 @@ impl crate::output::Report for Report {
                 l.seconds
             ));
         }
-        let missed: Vec<&str> = self
-            .links
-            .iter()
-            .filter(|l| l.meets_tolerance == Some(false))
-            .map(|l| l.link.as_str())
-            .collect();
-        if !missed.is_empty() {
-            lines.push(format!(
-                "                ! the tolerance is not met by {} (at the most spheres allowed; more --samples lower the floor)",
-                missed.join(", ")
-            ));
+        for l in &self.links {
+            if let Some(why) = &l.shortfall {
+                lines.push(format!(
+                    "                ! {} has {} of its {} spheres: {why}",
+                    l.link,
+                    l.spheres,
+                    l.budget.unwrap_or(l.spheres)
+                ));
+            }
         }
         lines.push(format!(
-            "spheres         {} in all; worst protrusion {:.6} (certified; ✓: coverage of every surface point certified)",
+            "spheres         {} in all{}; worst protrusion {:.6} (certified; ✓: coverage of every surface point certified)",
             thousands(self.spheres),
+            match self.asked {
+                Some(asked) if asked != self.spheres => format!(" of {} asked", thousands(asked)),
+                _ => String::new(),
+            },
             self.worst_protrusion
         ));
         if let Some(output) = &self.output {
