@@ -341,15 +341,10 @@ pub struct SceneArgs {
     /// default: they are built while you wait), `default` (about four times the time
     /// for 3–15 % fewer spheres) or `thorough`.
     #[arg(long, default_value = "quick", value_parser = parse_effort)]
-    pub effort: sphaera::spheretree::Effort,
+    pub effort: Effort,
 
     #[command(flatten)]
     pub print: OutputArgs,
-}
-
-fn parse_effort(text: &str) -> Result<sphaera::spheretree::Effort, String> {
-    text.parse()
-        .map_err(|e: sphaera::spheretree::SphereTreeError| e.to_string())
 }
 
 fn parse_scene_tolerance(text: &str) -> Result<sphaera::scene::Tolerance, String> {

@@ -159,6 +159,13 @@
 //!   medial methods ([`cover`]).
 //! - A tolerance asked for is met by every leaf, certified, or the build says it cannot
 //!   be ([`SphereTreeError::ToleranceUnreachable`]); a budget of `n` spheres gives `n`.
+//!   A node budget ([`SphereTreeOptions::max_nodes`]) bounds a tolerance tree.
+//! - Errors are certified on closed meshes and on shells. On an open mesh taken as a
+//!   solid (a scan with holes), whose inside the winding number extends across the holes,
+//!   node errors come from the certified evaluation, which assumes that a patch of a
+//!   sphere crossing no triangle lies on one side; across a hole it may not, so a sphere
+//!   poking through a hole can be under-estimated there. Close the holes, or build on
+//!   [`Surface::shell`](sphaera_mesh::Surface::shell), for errors certified everywhere.
 //! - Every node has a positive radius, and no child is built looser than its parent: its
 //!   error bound never exceeds a lower bound on the parent's certified error (else the
 //!   child takes the parent's sphere).
