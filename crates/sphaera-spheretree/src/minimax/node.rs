@@ -192,9 +192,8 @@ pub(crate) fn divide(
             effort.starts.max(1)
         };
         // Every start on the representatives; the best ones refined on every piece.
-        let mut drafts = Vec::with_capacity(starts);
-        for start in 0..starts {
-            let region = region(
+        let region_from = |start| {
+            region(
                 surface,
                 pieces,
                 most,
@@ -202,22 +201,18 @@ pub(crate) fn divide(
                 start,
                 &candidates,
                 &origins,
-            );
+            )
+        };
+        let mut drafts = Vec::with_capacity(starts);
+        for start in 0..starts {
+            let region = region_from(start);
             let clusters = draft(&region, goal);
             drafts.push((worst(&clusters), start, clusters));
         }
         drafts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let mut best: Option<Vec<Cluster>> = None;
         for (_, start, clusters) in drafts.into_iter().take(effort.refined.max(1)) {
-            let region = region(
-                surface,
-                pieces,
-                most,
-                effort.reps,
-                start,
-                &candidates,
-                &origins,
-            );
+            let region = region_from(start);
             let refined = finish(&region, goal, &clusters, effort.rounds)?;
             if better(&refined, best.as_deref(), goal) {
                 best = Some(refined);
