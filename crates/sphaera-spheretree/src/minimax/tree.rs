@@ -248,6 +248,24 @@ fn divide_all(
         let region = &regions[parent];
         let pieces = refine(region, piece_size(region, most, &effort))?;
         let node = &nodes[parent];
+        // Where eq. 2 under-estimates (an open mesh taken as a solid: the node's certified
+        // error is above its eq. 2), the children must meet eq. 2 by as much more, or a
+        // region would be divided into the same sphere again and again.
+        let goal = match goal {
+            Goal::Within { tolerance, most } => {
+                let eq2 = super::eq2(node.sphere.radius, depths[parent]);
+                let under = if node.error > eq2 {
+                    (eq2 / node.error).clamp(0.0, 1.0)
+                } else {
+                    1.0
+                };
+                Goal::Within {
+                    tolerance: tolerance * under,
+                    most,
+                }
+            }
+            count => count,
+        };
         let children = divide(
             surface,
             &pieces,
