@@ -436,7 +436,7 @@ fn the_same_detail_on_any_number_of_threads() {
         one.full_triangles,
     );
     assert_eq!(
-        digest, 0x56c7_ec1d_a4b5_9294,
+        digest, 0x6acb_86c7_e2da_3a06,
         "digest {digest:#018x}, {} spheres, {} triangles",
         one.spheres, one.triangles
     );
