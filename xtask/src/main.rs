@@ -615,6 +615,14 @@ const CHARTS: &[(&str, Coverage)] = &[
         "spheres_vs_count_uncovered",
         Coverage::Only(SPHERES_VS_COUNT),
     ),
+    (
+        "main_job",
+        Coverage::Only(&["bunny_lowres.obj", "stanford-bunny.obj", "dragon_vrip.ply"]),
+    ),
+    (
+        "tolerance_trees",
+        Coverage::Only(&["bunny_lowres.obj", "spot.obj", "fandisk.obj"]),
+    ),
 ];
 
 /// The meshes of the `spheres_vs_count` charts, besides the procedural animal (a link

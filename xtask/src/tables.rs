@@ -42,6 +42,9 @@ pub enum Format {
     Text,
     /// The last component of a path (`robots/x/link1.obj` → `link1.obj`), left-aligned.
     FileName,
+    /// As [`Format::FileName`], in backticks: for tables that rustdoc includes, where a
+    /// bare `bunny_lowres.obj` fails clippy's `doc_markdown`.
+    CodeFileName,
     /// A number with this many decimals, right-aligned (a field that is not a number is
     /// shown as written).
     Decimals(usize),
@@ -157,7 +160,136 @@ pub const TABLES: &[Table] = &[
             col("verdict", "verdict", SPHAERA, Format::Text),
         ],
     },
+    // crates/sphaera-spheretree/src/performance.md (the crate docs), its README and
+    // docs/benchmarks.md, "The main job": the default tree of three meshes, built and
+    // certified as the CLI does.
+    Table {
+        name: "main_job",
+        key: &["mesh"],
+        keep: |_| true,
+        columns: &[
+            col("mesh", "mesh", None, Format::CodeFileName),
+            col("triangles", "triangles", None, Format::Right),
+            col("build s", "build_seconds", None, Format::Decimals(2)),
+            col(
+                "certified evaluation s",
+                "evaluation_seconds",
+                None,
+                Format::Decimals(2),
+            ),
+            col("total s", "total_seconds", None, Format::Decimals(2)),
+            col(
+                "L1 worst %",
+                "worst_upper_pct",
+                LEVEL_1,
+                Format::Decimals(2),
+            ),
+            col(
+                "L2 worst %",
+                "worst_upper_pct",
+                LEVEL_2,
+                Format::Decimals(2),
+            ),
+            col(
+                "L3 worst %",
+                "worst_upper_pct",
+                LEVEL_3,
+                Format::Decimals(2),
+            ),
+            col("L3 spheres", "spheres", LEVEL_3, Format::Right),
+            col(
+                "L1 check %",
+                "check_upper_pct",
+                LEVEL_1,
+                Format::Decimals(2),
+            ),
+            col(
+                "L2 check %",
+                "check_upper_pct",
+                LEVEL_2,
+                Format::Decimals(2),
+            ),
+            col(
+                "L3 check %",
+                "check_upper_pct",
+                LEVEL_3,
+                Format::Decimals(2),
+            ),
+        ],
+    },
+    // docs/benchmarks.md, "Trees to a tolerance": per mesh and tolerance.
+    Table {
+        name: "tolerance_trees",
+        key: &["mesh", "tolerance_pct"],
+        keep: |_| true,
+        columns: &[
+            col("mesh", "mesh", None, Format::FileName),
+            col("tolerance %", "tolerance_pct", None, Format::Right),
+            col("leaves", "leaves", None, Format::Right),
+            col("nodes", "nodes", None, Format::Right),
+            col("levels", "levels", None, Format::Right),
+            col(
+                "worst leaf bound %",
+                "leaf_bound_pct",
+                None,
+                Format::Decimals(3),
+            ),
+            col(
+                "evaluated worst %",
+                "evaluated_upper_pct",
+                None,
+                Format::Decimals(3),
+            ),
+            col("met", "met", None, Format::Text),
+            col(
+                "check without bounds %",
+                "check_interval_pct",
+                None,
+                Format::Text,
+            ),
+            col("build s", "build_seconds", None, Format::Decimals(2)),
+        ],
+    },
+    // docs/benchmarks.md, "Sphere-trees", "Charts": per mesh and method the certified worst
+    // error per level, with the toolkit's figures and issue 36's target on the bunny.
+    Table {
+        name: "spheretree_error_vs_level",
+        key: &["file", "method"],
+        keep: |_| true,
+        columns: &[
+            col("mesh", "file", None, Format::FileName),
+            col("method", "method", None, Format::Text),
+            col("source", "source", None, Format::Text),
+            col(
+                "L1 worst %",
+                "worst_error_upper_pct_diag",
+                LEVEL_1,
+                Format::Decimals(2),
+            ),
+            col(
+                "L2 worst %",
+                "worst_error_upper_pct_diag",
+                LEVEL_2,
+                Format::Decimals(2),
+            ),
+            col(
+                "L3 worst %",
+                "worst_error_upper_pct_diag",
+                LEVEL_3,
+                Format::Decimals(2),
+            ),
+            col("L3 spheres", "spheres", LEVEL_3, Format::Right),
+            col("build s", "build_seconds", None, Format::Decimals(2)),
+        ],
+    },
 ];
+
+/// The CSV row of tree level 1 (2, 3) of the sphere-tree tables.
+const LEVEL_1: Option<(&str, &str)> = Some(("level", "1"));
+/// Level 2.
+const LEVEL_2: Option<(&str, &str)> = Some(("level", "2"));
+/// Level 3.
+const LEVEL_3: Option<(&str, &str)> = Some(("level", "3"));
 
 /// Rewrites (or, with `check`, checks) every marked table of every markdown file under
 /// the current directory (the project root).
@@ -295,7 +427,7 @@ fn render(table: &Table, dir: &Path) -> Result<String> {
             .columns
             .iter()
             .map(|c| match c.format {
-                Format::Text | Format::FileName => "---".to_owned(),
+                Format::Text | Format::FileName | Format::CodeFileName => "---".to_owned(),
                 Format::Decimals(_) | Format::Right => "---:".to_owned(),
             })
             .collect(),
@@ -328,6 +460,7 @@ fn format_field(field: &str, format: Format) -> String {
     match format {
         Format::Text | Format::Right => field.to_owned(),
         Format::FileName => field.rsplit('/').next().unwrap_or(field).to_owned(),
+        Format::CodeFileName => format!("`{}`", format_field(field, Format::FileName)),
         Format::Decimals(digits) => field
             .parse::<f64>()
             .map_or_else(|_| field.to_owned(), |v| format!("{v:.digits$}")),

@@ -353,6 +353,8 @@ pub enum Marker {
     Square,
     /// An upward triangle.
     Triangle,
+    /// A diagonal cross (the same filled or hollow).
+    Cross,
 }
 
 /// How a series of a [`StyledPanel`] (or an entry of a [`LegendEntry`] list) is drawn.
@@ -547,6 +549,10 @@ pub fn titled_panels(
                     Marker::Triangle => {
                         legend_area.draw(&(at + TriangleMarker::new((0, 0), 5, shape)))?;
                     }
+                    Marker::Cross => {
+                        legend_area
+                            .draw(&(at + Cross::new((0, 0), 4, cross_style(entry.style))))?;
+                    }
                 }
                 legend_area.draw(&Text::new(
                     entry.label.clone(),
@@ -629,6 +635,10 @@ where
             Marker::Triangle => {
                 chart.draw_series(at.map(|e| e + TriangleMarker::new((0, 0), 5, shape)))?
             }
+            Marker::Cross => {
+                let style = cross_style(s.style);
+                chart.draw_series(at.map(|e| e + Cross::new((0, 0), 4, style)))?
+            }
         };
     }
     let centred = Pos::new(HPos::Center, VPos::Bottom);
@@ -649,6 +659,12 @@ fn shape_style(style: Style) -> ShapeStyle {
     } else {
         style.color.stroke_width(2)
     }
+}
+
+/// The stroke of a [`Marker::Cross`]: a line has no inside, so filled and hollow crosses
+/// are the same two strokes.
+fn cross_style(style: Style) -> ShapeStyle {
+    style.color.stroke_width(2)
 }
 
 /// A short label for a tick on a log axis: powers of ten as `0.001`, `100`, `1e-6`.

@@ -29,7 +29,12 @@
 //! - `spheres_vs_count`: `spheres_vs_count/mod.rs` (exactly N spheres, Sphaera's one-level
 //!   minimax tree against morphit-rs raw and grown to cover, on the shared meshes, the
 //!   Panda's links and the procedural animal; three charts, written in
-//!   `spheres_vs_count/charts.rs`).
+//!   `spheres_vs_count/charts.rs`);
+//! - `main_job`: `main_job.rs` (the default tree of the CLI's bunny, the 69k bunny and the
+//!   dragon, built and certified level by level as `sphaera spheretree` does: seconds and
+//!   certified worst error per level);
+//! - `tolerance_trees`: `tolerance_trees.rs` (trees to 4, 2, 1 and 0.5 % of the diagonal
+//!   on three meshes: leaves, nodes, levels, certified leaf error, build seconds).
 
 // Experiments report each measurement on the terminal as they go.
 #![allow(clippy::print_stderr)]
@@ -37,6 +42,7 @@
 mod hal;
 mod hausdorff_gap;
 mod load_topology;
+mod main_job;
 mod medial_static_vs_adaptive;
 mod robot;
 mod scene;
@@ -46,6 +52,7 @@ mod spheres_vs_count;
 mod spheretree;
 mod sweep_coherence;
 mod sweep_throughput;
+mod tolerance_trees;
 
 pub use robot::voxel;
 
@@ -72,6 +79,8 @@ pub const NAMES: &[&str] = &[
     scene::NAME,
     robot::NAME,
     spheres_vs_count::NAME,
+    main_job::NAME,
+    tolerance_trees::NAME,
 ];
 
 /// Runs the experiment `name` on the meshes in `data`, writing its files into `out`.
@@ -91,6 +100,8 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         scene::NAME => scene::run(data, out),
         robot::NAME => robot::run(data, out),
         spheres_vs_count::NAME => spheres_vs_count::run(data, out),
+        main_job::NAME => main_job::run(data, out),
+        tolerance_trees::NAME => tolerance_trees::run(data, out),
         other => bail!("no experiment named `{other}`"),
     }
 }

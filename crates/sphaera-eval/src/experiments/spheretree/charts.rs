@@ -8,8 +8,9 @@ use anyhow::Result;
 use plotters::style::RGBColor;
 
 use super::{
-    BRANCH, DEPTH, ERROR_FRACTIONS, LEVEL_CHART, MESHES, METHODS, Measured, Method, SWEEP_METHOD,
-    TIME_CHART, TOOLKIT, TOOLKIT_MESH, Variant, method_index,
+    ANIMAL, ANIMAL_LABEL, BRANCH, DEPTH, EFFORTS, ERROR_FRACTIONS, LEVEL_CHART, MESHES, METHODS,
+    Measured, Method, SWEEP_METHOD, TARGET, TIME_CHART, TOOLKIT, TOOLKIT_MESH, Variant,
+    method_index,
 };
 use crate::chart::{
     ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
@@ -22,7 +23,10 @@ const DEFAULT_COLOR: RGBColor = RGBColor(0, 0, 0);
 /// The colour of the legend's mesh markers in the time chart (no method has it).
 const SHAPE_COLOR: RGBColor = RGBColor(70, 70, 70);
 
-/// One row per mesh, method and level; then the toolkit's rows.
+/// The method column of issue 36's target rows in the level CSV.
+const TARGET_NAME: &str = "target";
+
+/// One row per mesh, method and level; then the toolkit's rows and issue 36's target.
 pub(super) fn write_level_table(out: &Path, measured: &[Measured]) -> Result<()> {
     let pct = |x: f64| format!("{:.4}", 100.0 * x);
     let mut table = Vec::new();
@@ -45,7 +49,8 @@ pub(super) fn write_level_table(out: &Path, measured: &[Measured]) -> Result<()>
             ]);
         }
     }
-    for &(name, seconds, errors) in TOOLKIT {
+    let reference = TOOLKIT.iter().copied().chain([(TARGET_NAME, None, TARGET)]);
+    for (name, seconds, errors) in reference {
         for (i, error) in errors.iter().enumerate() {
             table.push(vec![
                 TOOLKIT_MESH.to_owned(),
@@ -90,13 +95,15 @@ fn series_name(variant: Variant) -> &'static str {
     match variant {
         Variant::Method => "method",
         Variant::ErrorFraction(_) => "error_fraction_sweep",
+        Variant::Effort(_) => "effort_sweep",
         Variant::LibraryDefault => "default",
     }
 }
 
 /// One row per mesh and tree (every method, expand's error-fraction sweep, the library's
-/// default): build time, worst error at levels 2 and 3, the error fraction (medial
-/// methods only) and the series; then the toolkit's rows that have a time.
+/// effort sweep, the library's default): build time, worst error at levels 2 and 3, the
+/// error fraction (medial methods only), the effort (minimax only) and the series; then
+/// the toolkit's rows that have a time.
 pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> {
     let pct = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_default();
     let mut table: Vec<Vec<String>> = measured
@@ -114,6 +121,11 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
                 } else {
                     String::new()
                 },
+                if m.method.resolved() == Method::Minimax {
+                    m.effort.name().to_owned()
+                } else {
+                    String::new()
+                },
                 series_name(m.variant).to_owned(),
             ]
         })
@@ -127,6 +139,7 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
                 format!("{s}"),
                 format!("{}", errors[1]),
                 format!("{}", errors[2]),
+                String::new(),
                 String::new(),
                 "toolkit".to_owned(),
             ]);
@@ -142,6 +155,7 @@ pub(super) fn write_time_table(out: &Path, measured: &[Measured]) -> Result<()> 
             "level2_worst_error_upper_pct_diag",
             "level3_worst_error_upper_pct_diag",
             "error_fraction",
+            "effort",
             "series",
         ],
         &table,
@@ -228,6 +242,12 @@ pub(super) fn draw_levels(
                     toolkit_style(name, Marker::Square, true),
                 ));
             }
+            let mut s = Series::new(TARGET_NAME);
+            s.points = (1..=TARGET.len())
+                .map(|l| l as f64)
+                .zip(TARGET.iter().copied())
+                .collect();
+            series.push(StyledSeries::new(s, target_style()));
         }
         per_mesh.push(series);
     }
@@ -254,11 +274,28 @@ pub(super) fn draw_levels(
         label: format!("{} (issue, bunny)", name.replace('-', " ")),
         style: toolkit_style(name, Marker::Square, true),
     }));
+    legend.push(LegendEntry {
+        label: "target: 0.9× toolkit's best".to_owned(),
+        style: target_style(),
+    });
     styled_panels(&out.join(format!("{LEVEL_CHART}.svg")), &panels, &legend)
+}
+
+/// Issue 36's target on the bunny in the level chart: black hollow triangles, joined.
+fn target_style() -> Style {
+    Style {
+        color: DEFAULT_COLOR,
+        marker: Marker::Triangle,
+        filled: false,
+        line: true,
+    }
 }
 
 /// Marker of a mesh in the time chart.
 fn mesh_marker(file: &str) -> Marker {
+    if file == ANIMAL {
+        return Marker::Cross;
+    }
     match MESHES.iter().position(|&(f, _)| f == file) {
         Some(1) => Marker::Square,
         Some(2) => Marker::Triangle,
@@ -266,9 +303,14 @@ fn mesh_marker(file: &str) -> Marker {
     }
 }
 
+/// The method of the effort sweep, and its legend.
+const EFFORT_METHOD: Method = Method::Minimax;
+
 /// Levels 2 and 3: certified worst error against build time, one point per mesh and
-/// method (colour: method, marker: mesh); per mesh, expand's error-fraction sweep as a
-/// line with each point labelled by its fraction, and the library's default as a black
+/// method (colour: method, marker: mesh); per mesh, expand's error-fraction sweep and
+/// minimax's effort sweep as lines with each point labelled by its fraction or effort
+/// (the default effort unlabelled: it is the library's default), and the library's
+/// default as a black
 /// hollow marker labelled "default"; the toolkit's timed figures (bunny only) hollow.
 pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
     let per_level: Vec<Vec<StyledSeries>> = [2, 3]
@@ -297,10 +339,15 @@ pub(super) fn draw_times(out: &Path, measured: &[Measured]) -> Result<()> {
         style: method_style(SWEEP_METHOD, Marker::Circle, true),
     });
     legend.push(LegendEntry {
+        label: format!("{} by effort", EFFORT_METHOD.name()),
+        style: method_style(EFFORT_METHOD, Marker::Circle, true),
+    });
+    legend.push(LegendEntry {
         label: format!("default ({})", Method::default().name()),
         style: default_style(Marker::Circle),
     });
-    legend.extend(MESHES.iter().map(|&(file, label)| LegendEntry {
+    let meshes = MESHES.iter().copied().chain([(ANIMAL, ANIMAL_LABEL)]);
+    legend.extend(meshes.map(|(file, label)| LegendEntry {
         label: label.to_owned(),
         style: Style {
             color: grey,
@@ -369,6 +416,33 @@ fn time_series(measured: &[Measured], level: usize) -> Vec<StyledSeries> {
             StyledSeries::new(s, method_style(SWEEP_METHOD, mesh_marker(file), true))
                 .with_labels(labels),
         );
+        // The effort sweep, quickest first; the default effort is the library's default,
+        // labelled as such below.
+        let mut efforts: Vec<(usize, &Measured)> = measured
+            .iter()
+            .filter(|m| m.file == file)
+            .filter_map(|m| match m.variant {
+                Variant::Effort(i) => Some((i, m)),
+                _ => None,
+            })
+            .collect();
+        efforts.sort_by_key(|&(i, _)| i);
+        let mut s = Series::new(&format!("{} by effort", EFFORT_METHOD.name()));
+        let mut labels = Vec::new();
+        for (i, m) in efforts {
+            if let (Some(p), Some(&effort)) = (point(m), EFFORTS.get(i)) {
+                s.points.push(p);
+                labels.push(if effort == sphaera::spheretree::Effort::Default {
+                    String::new()
+                } else {
+                    effort.name().to_owned()
+                });
+            }
+        }
+        series.push(
+            StyledSeries::new(s, method_style(EFFORT_METHOD, mesh_marker(file), true))
+                .with_labels(labels),
+        );
         for m in measured
             .iter()
             .filter(|m| m.file == file && m.variant == Variant::LibraryDefault)
@@ -416,10 +490,18 @@ mod tests {
             variant: Variant::LibraryDefault,
             ..measured(Method::default(), [0.09, 0.045, 0.021])
         };
+        let effort = |i: usize, uppers| Measured {
+            variant: Variant::Effort(i),
+            effort: EFFORTS[i],
+            seconds: 0.5 + i as f64,
+            ..measured(Method::Minimax, uppers)
+        };
         let mut trees = rows.to_vec();
         trees.extend([
             sweep(0, [0.10, 0.05, 0.03]),
             sweep(1, [0.10, 0.04, 0.02]),
+            effort(0, [0.10, 0.05, 0.025]),
+            effort(2, [0.08, 0.04, 0.018]),
             default,
         ]);
         write_level_table(&dir, &rows)?;
@@ -429,9 +511,10 @@ mod tests {
         draw_times(&dir, &trees)?;
         let levels = std::fs::read_to_string(dir.join(format!("{LEVEL_CHART}.csv")))?;
         let times = std::fs::read_to_string(dir.join(format!("{TIME_CHART}.csv")))?;
-        // 2 trees × 3 levels measured, 4 × 3 from the issue; 5 trees, 2 timed from the issue.
-        assert_eq!(levels.lines().count(), 1 + 6 + 12);
-        assert_eq!(times.lines().count(), 1 + 5 + 2);
+        // 2 trees × 3 levels measured, 4 × 3 from the issue and the 3 levels of the target;
+        // 7 trees, 2 timed from the issue.
+        assert_eq!(levels.lines().count(), 1 + 6 + 12 + 3);
+        assert_eq!(times.lines().count(), 1 + 7 + 2);
         for table in [&levels, &times] {
             let columns = table.lines().next().map(|h| h.split(',').count());
             for line in table.lines().skip(1) {
@@ -440,11 +523,13 @@ mod tests {
             }
         }
         assert!(levels.contains("toolkit-merge,issue,3,,,2.13,"));
+        assert!(levels.contains("target,issue,2,,,3.36,"));
         assert!(levels.contains("merge,measured,3,512,1.9000,2.0000,"));
-        assert!(times.contains("toolkit-expand,issue,103,3.73,2.09,,toolkit"));
-        assert!(times.contains("merge,measured,1.0000,5.0000,2.0000,0.5,method"));
-        assert!(times.contains("octree,measured,1.0000,25.0000,13.0000,,method"));
-        assert!(times.contains("expand,measured,2.0000,4.0000,2.0000,0.25,error_fraction_sweep"));
+        assert!(times.contains("toolkit-expand,issue,103,3.73,2.09,,,toolkit"));
+        assert!(times.contains("merge,measured,1.0000,5.0000,2.0000,0.5,,method"));
+        assert!(times.contains("octree,measured,1.0000,25.0000,13.0000,,,method"));
+        assert!(times.contains("expand,measured,2.0000,4.0000,2.0000,0.25,,error_fraction_sweep"));
+        assert!(times.contains("minimax,measured,2.5000,4.0000,1.8000,,thorough,effort_sweep"));
         let default_row = format!(
             "{},measured,1.0000,4.5000,2.1000,",
             Method::default().name()
@@ -453,6 +538,7 @@ mod tests {
         assert!(times.contains(",default\n"));
         let svg = std::fs::read_to_string(dir.join(format!("{LEVEL_CHART}.svg")))?;
         assert!(svg.contains("toolkit merge (issue, bunny)"));
+        assert!(svg.contains("target: 0.9× toolkit"));
         assert!(svg.contains("certified worst error, % of diagonal"));
         let svg = std::fs::read_to_string(dir.join(format!("{TIME_CHART}.svg")))?;
         for text in [
@@ -460,6 +546,8 @@ mod tests {
             "¼",
             "\ndefault\n",
             "expand by error fraction",
+            "minimax by effort",
+            "thorough",
             "bunny only",
         ] {
             assert!(svg.contains(text), "{text}");
