@@ -137,7 +137,7 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
         let shapes: Vec<SharedShape> = report
             .instances
             .iter()
-            .map(|d| ball_compound(&models[starts[d.instance].0], d.spheres.level))
+            .map(|d| ball_compound(&models[starts[d.instance].0], d))
             .collect();
         let build_seconds = started.elapsed().as_secs_f64();
         let certified = report
@@ -234,9 +234,13 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
     write_outputs(out, &rows)
 }
 
-/// The spheres of `level` of `model`'s tree as one compound of balls.
-fn ball_compound(model: &ObjectModel, level: usize) -> SharedShape {
-    crate::rapier_shapes::ball_compound(&model.tree().level_spheres(level))
+/// The spheres `detail` chose in `model`'s trees (the cut of the tree built for its
+/// tolerance) as one compound of balls.
+fn ball_compound(model: &ObjectModel, detail: &sphaera::scene::InstanceDetail) -> SharedShape {
+    let spheres = model
+        .detail_spheres(detail)
+        .unwrap_or_else(|| model.tree().level_spheres(model.tree().level_count() - 1));
+    crate::rapier_shapes::ball_compound(&spheres)
 }
 
 /// A run where every body of an object shares that object's collider; `parts` counts an
