@@ -626,6 +626,17 @@ pub struct SpheretreeArgs {
     #[arg(long, value_parser = parse_length, conflicts_with = "depth")]
     pub tolerance: Option<Length>,
 
+    /// With `--tolerance`: the most nodes (spheres of every level together) the tree may
+    /// have (at most 2^21). A tolerance that needs more is refused, before the work
+    /// where the count is known in advance, with the figures reached; never more nodes.
+    #[arg(long, value_name = "N", requires = "tolerance")]
+    pub max_nodes: Option<usize>,
+
+    /// How hard the minimax method works for tighter spheres (minimax and auto only):
+    /// `quick`, `default` or `thorough`.
+    #[arg(long, default_value = "default", value_parser = parse_effort)]
+    pub effort: Effort,
+
     /// Skip the certified evaluation of every level (worst error by branch and bound,
     /// coverage on 100,000 independent samples); report the construction error only.
     #[arg(long)]

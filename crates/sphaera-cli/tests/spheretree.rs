@@ -299,6 +299,49 @@ fn spheretree_with_an_unreachable_tolerance_says_why() {
 }
 
 #[test]
+fn spheretree_with_a_node_budget_meets_the_tolerance_within_it_or_says_why() {
+    // Within a generous budget: met, and the report says the budget.
+    let report = json(&sphaera(&[
+        "spheretree",
+        "--json",
+        "--tolerance",
+        "3%",
+        "--max-nodes",
+        "400",
+        "--effort",
+        "quick",
+        "--no-evaluation",
+    ]));
+    assert_eq!(report["tolerance_met"], true);
+    assert_eq!(report["max_nodes"], 400);
+    assert_eq!(report["effort"], "quick");
+    let spheres: u64 = report["levels"]
+        .as_array()
+        .expect("levels")
+        .iter()
+        .map(|l| l["spheres"].as_u64().expect("spheres") - l["leaves_above"].as_u64().unwrap_or(0))
+        .sum();
+    assert!(spheres <= 400, "{spheres} nodes");
+    // A budget too small for the tolerance: refused with the figures, never more nodes.
+    let output = sphaera(&[
+        "spheretree",
+        "-q",
+        "--tolerance",
+        "0.5%",
+        "--max-nodes",
+        "20",
+        "--effort",
+        "quick",
+    ]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("cannot meet the tolerance") && message.contains("20 nodes"),
+        "{message}"
+    );
+}
+
+#[test]
 fn spheretree_tolerance_and_sphere_counts_need_minimax_and_sane_values() {
     for (args, expected) in [
         (
@@ -312,6 +355,20 @@ fn spheretree_tolerance_and_sphere_counts_need_minimax_and_sane_values() {
         (&["--spheres", "8", "--branch", "2"][..], "--branch"),
         (&["--spheres", "8", "--tolerance", "1%"][..], "--tolerance"),
         (&["--tolerance", "1%", "--depth", "2"][..], "--depth"),
+        (&["--max-nodes", "100"][..], "--tolerance"),
+        (
+            &["--tolerance", "1%", "--max-nodes", "0"][..],
+            "--max-nodes",
+        ),
+        (
+            &["--tolerance", "1%", "--max-nodes", "3000000"][..],
+            "--max-nodes",
+        ),
+        (
+            &["--effort", "thorough", "--method", "merge"][..],
+            "--effort",
+        ),
+        (&["--effort", "fast"][..], "quick, default or thorough"),
     ] {
         let mut all = vec!["spheretree", "-q"];
         all.extend(args);

@@ -6,8 +6,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 use sphaera::mesh::{Length, Sphere, Surface};
 use sphaera::spheretree::{
-    Effort, EvaluationOptions, MAX_BRANCH, Method, SphereTreeError, SphereTreeOptions, build,
-    evaluate_set_bounded,
+    Effort, EvaluationOptions, MAX_BRANCH, MAX_TREE_NODES, Method, SphereTreeError,
+    SphereTreeOptions, build, evaluate_set_bounded,
 };
 
 use crate::arrays;
@@ -516,7 +516,10 @@ fn build_error(py: Python<'_>, error: &sphaera::Error) -> PyErr {
 /// `method` is the reducer (`"auto"`, which is `"minimax"`, or the paper's `"merge"`,
 /// `"burst"`, `"expand"`, `"combined"`, or a baseline `"octree"`, `"grid"`, `"hubbard"`);
 /// tolerances and sphere counts need minimax. `effort` (`"quick"`, `"default"`,
-/// `"thorough"`) trades the minimax method's time for tighter spheres. `samples` and
+/// `"thorough"`) trades the minimax method's time for tighter spheres. `max_nodes` (with
+/// `tolerance` only) is the most nodes the tree may have, spheres of every level
+/// together (1 to 2^21, the default): the tolerance is met within it or refused, never
+/// exceeded. `samples` and
 /// `seed` are the other methods' surface samples and seed (defaults as the CLI's).
 ///
 /// A mesh with an inside is a solid; one without (a flat sheet, an open patch) is a shell,
@@ -526,11 +529,12 @@ fn build_error(py: Python<'_>, error: &sphaera::Error) -> PyErr {
 /// every core with the GIL released.
 ///
 /// Raises `ValueError` for an unknown method or effort, bad parameters (a NaN, zero or
-/// negative tolerance, `spheres=0`, `spheres` with `tolerance`, `depth` or `branch`), a
+/// negative tolerance, `spheres=0`, `spheres` with `tolerance`, `depth` or `branch`,
+/// `max_nodes` without `tolerance` or out of range), a
 /// mesh without triangles or facing inward; `ToleranceUnreachableError` (a `ValueError`)
 /// when the tolerance cannot be met within the library's limits.
 #[pyfunction]
-#[pyo3(signature = (mesh, depth=None, branch=None, method="auto", samples=None, seed=None, evaluate=true, *, tolerance=None, spheres=None, effort="default"))]
+#[pyo3(signature = (mesh, depth=None, branch=None, method="auto", samples=None, seed=None, evaluate=true, *, tolerance=None, spheres=None, effort="default", max_nodes=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn spheretree(
     py: Python<'_>,
@@ -544,6 +548,7 @@ pub fn spheretree(
     tolerance: Option<&Bound<'_, PyAny>>,
     spheres: Option<&Bound<'_, PyAny>>,
     effort: &str,
+    max_nodes: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<SphereTree> {
     let Some(chosen) = Method::from_name(method) else {
         let names: Vec<&str> = Method::ALL.iter().map(|m| m.name()).collect();
@@ -572,6 +577,19 @@ pub fn spheretree(
     let samples = samples.map(|s| count(s, "samples")).transpose()?;
     let spheres = spheres.map(|s| count(s, "spheres")).transpose()?;
     let goal = goal_of(chosen, depth, branch, tolerance, spheres)?;
+    let max_nodes = max_nodes.map(|n| count(n, "max_nodes")).transpose()?;
+    if let Some(n) = max_nodes {
+        if !matches!(goal, Goal::Tolerance(_)) {
+            return Err(value_error(
+                "max_nodes bounds a tree built to a tolerance: give tolerance as well",
+            ));
+        }
+        if !(1..=MAX_TREE_NODES).contains(&n) {
+            return Err(value_error(format!(
+                "max_nodes must be between 1 and {MAX_TREE_NODES} (a tree's most nodes), got {n}"
+            )));
+        }
+    }
 
     let mut options = SphereTreeOptions::default()
         .with_method(chosen)
@@ -579,7 +597,9 @@ pub fn spheretree(
         .with_branch(branch.unwrap_or(8));
     options = match goal {
         Goal::Depth(depth) => options.with_depth(depth),
-        Goal::Tolerance(t) => options.with_tolerance(t),
+        Goal::Tolerance(t) => options
+            .with_tolerance(t)
+            .with_max_nodes(max_nodes.unwrap_or(MAX_TREE_NODES)),
         Goal::Spheres(n) => options.with_depth(1).with_branch(n),
     };
     if let Some(samples) = samples {

@@ -222,6 +222,11 @@ def test_effort_levels_all_build(ball):
         ({"spheres": 8, "method": "octree"}, "only the minimax method"),
         ({"effort": "quick", "method": "hubbard"}, "effort applies to the minimax method"),
         ({"method": "best"}, 'unknown method "best"'),
+        ({"max_nodes": 100}, "max_nodes bounds a tree built to a tolerance"),
+        ({"max_nodes": 100, "spheres": 8}, "max_nodes bounds a tree built to a tolerance"),
+        ({"tolerance": "1%", "max_nodes": 0}, "max_nodes must be between 1 and 2097152"),
+        ({"tolerance": "1%", "max_nodes": 2**22}, "max_nodes must be between 1 and 2097152"),
+        ({"tolerance": "1%", "max_nodes": -1}, "max_nodes must not be negative"),
     ],
 )
 def test_bad_parameters_raise_value_error(ball, arguments, message):
@@ -313,3 +318,17 @@ def test_tolerance_and_budget_trees_match_the_cli(cli, data_dir):
             assert row["spheres"] == len(tree.cut(level))
             assert (row["worst_error_lower"], row["worst_error_upper"]) == tree.errors[level]
             assert row["construction_error"] == tree.cut_errors(level).max()
+
+
+def test_a_node_budget_is_met_or_refused_never_exceeded(ellipsoid_arrays):
+    ellipsoid = sphaera.Mesh(*ellipsoid_arrays)
+    tree = sphaera.spheretree(
+        ellipsoid, tolerance="3%", max_nodes=400, effort="quick", evaluate=False
+    )
+    assert tree.met
+    assert sum(len(level) for level in tree.levels) <= 400
+    with pytest.raises(sphaera.ToleranceUnreachableError) as caught:
+        sphaera.spheretree(
+            ellipsoid, tolerance="0.2%", max_nodes=20, effort="quick", evaluate=False
+        )
+    assert "20 nodes" in str(caught.value)

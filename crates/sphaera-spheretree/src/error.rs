@@ -116,7 +116,8 @@ pub enum SphereTreeError {
         "cannot meet the tolerance {tolerance}: after {spheres} spheres and {levels} levels \
          the worst leaf still reaches {worst} beyond the surface, and finer levels would \
          exceed the limits (at most {limit} nodes, {depth} levels, 2^24 surface pieces per \
-         level); ask for a larger tolerance"
+         level); ask for a larger tolerance{}",
+        if *limit < crate::MAX_TREE_NODES { " or a larger node budget" } else { "" }
     )]
     ToleranceUnreachable {
         /// The tolerance asked for (in the mesh's units).

@@ -20,8 +20,9 @@ use sphaera::spheretree::export::{
     CollisionLink, SphFile, write_collision_spheres_yaml, write_sph, write_tree_json,
 };
 use sphaera::spheretree::{
-    CoverageCertificate, EvaluationOptions, MAX_BRANCH, Method, SphereTree, SphereTreeError,
-    SphereTreeOptions, SphereTreeProgress, build_with_progress, evaluate_set_bounded,
+    CoverageCertificate, Effort, EvaluationOptions, MAX_BRANCH, MAX_TREE_NODES, Method, SphereTree,
+    SphereTreeError, SphereTreeOptions, SphereTreeProgress, build_with_progress,
+    evaluate_set_bounded,
 };
 
 use crate::{
@@ -123,6 +124,12 @@ struct Report {
     tolerance: Option<f64>,
     /// With `--tolerance`: whether every leaf's certified error is at most it.
     tolerance_met: Option<bool>,
+    /// With `--tolerance`: the most nodes the tree could have (`--max-nodes`, else the
+    /// library's limit).
+    max_nodes: Option<usize>,
+    /// The minimax method's effort (`quick`, `default` or `thorough`; `null` for the
+    /// other methods).
+    effort: Option<&'static str>,
     output: Option<String>,
     seconds: Seconds,
 }
@@ -197,10 +204,33 @@ fn check_goal(goal: Goal, method: Method) -> Result<()> {
     }
 }
 
+/// Fails before any work on an effort other than the default with a method that has
+/// none, or a node budget out of range.
+fn check_minimax_options(args: &SpheretreeArgs, method: Method) -> Result<()> {
+    if args.effort != Effort::Default && method.resolved() != Method::Minimax {
+        bail!(
+            "--effort tunes the minimax method (--method minimax or auto); --method {} has \
+             its own parameters (--initial-spheres, --error-fraction, --samples)",
+            method.name()
+        );
+    }
+    if let Some(n) = args.max_nodes
+        && !(1..=MAX_TREE_NODES).contains(&n)
+    {
+        bail!(
+            "--max-nodes must be between 1 and {} (a tree's most nodes), got {}",
+            thousands(MAX_TREE_NODES),
+            thousands(n)
+        );
+    }
+    Ok(())
+}
+
 pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
     let method = args.method.method();
     let goal = Goal::of(args);
     check_goal(goal, method)?;
+    check_minimax_options(args, method)?;
     if let Some(path) = &args.output {
         output_format(path)?;
         check_target(path)?;
@@ -216,10 +246,14 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         .with_min_spheres_per_node(args.min_spheres_per_node)
         .with_error_fraction(args.error_fraction)
         .with_forming_points(args.forming_points)
-        .with_seed(args.seed);
+        .with_seed(args.seed)
+        .with_effort(args.effort);
     let options = match goal {
         Goal::Depth(_) => options,
-        Goal::Tolerance(t) => options.with_tolerance(t),
+        Goal::Tolerance(t) => match args.max_nodes {
+            Some(n) => options.with_tolerance(t).with_max_nodes(n),
+            None => options.with_tolerance(t),
+        },
         Goal::Spheres(n) => options.with_depth(1).with_branch(n),
     };
 
@@ -270,6 +304,8 @@ pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
         },
         tolerance,
         tolerance_met: tolerance.map(|t| worst_leaf_error <= t),
+        max_nodes: tolerance.map(|_| options.max_nodes),
+        effort: minimax.then_some(args.effort.name()),
         output: args.output.as_ref().map(|p| p.display().to_string()),
         seconds: Seconds {
             load: input.seconds,
@@ -490,6 +526,12 @@ impl crate::output::Report for Report {
             self.method.to_owned()
         } else {
             format!("{} ({})", self.method_used, self.method)
+        };
+        let method = match self.effort {
+            Some(effort) if effort != Effort::Default.name() => {
+                format!("{method}, {effort} effort")
+            }
+            _ => method,
         };
         let samples = self.samples.map_or_else(String::new, |s| {
             format!(", {} surface samples", thousands(s))

@@ -184,10 +184,11 @@ def spheretree(
     tolerance: Optional[Length] = None,
     spheres: Optional[int] = None,
     effort: Literal["quick", "default", "thorough"] = "default",
+    max_nodes: Optional[int] = None,
 ) -> SphereTree:
     """A sphere-tree of ``mesh``: to ``depth`` (default 3) with ``branch`` (default 8)
-    children per node, or to a ``tolerance`` (every leaf within it), or ``spheres=N``
-    (exactly N in one level)."""
+    children per node, or to a ``tolerance`` (every leaf within it, in at most
+    ``max_nodes`` nodes), or ``spheres=N`` (exactly N in one level)."""
 def hal(
     mesh: Mesh, tolerance: Optional[Length] = None, level: int = 0
 ) -> Tuple[Mesh, int]: ...
