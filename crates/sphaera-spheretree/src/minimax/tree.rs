@@ -53,10 +53,15 @@ pub(crate) fn minimax_tree(
         region_samples: mesh.triangle_count() as u32,
     }];
     let eq2_bounds = eq2_bounds(surface);
-    certify_level(surface, &mut nodes, tolerance, eq2_bounds)?;
+    certify_level(surface, &mut nodes, &[false], tolerance, eq2_bounds)?;
     let mut regions: Vec<Vec<Piece>> = vec![mesh_pieces(mesh)];
     // The signed depth of every node's centre.
     let mut depths = vec![root_depth];
+    // Whether each node was divided around the surface itself ([`on_the_surface`]); its
+    // depth is then measured on the shell, and its eq. 2 error bounds its protrusion.
+    let mut surface_centred = vec![false];
+    // The surface taken as a shell, built when a node first needs it.
+    let mut shell: Option<Surface> = None;
     let mut level_starts = vec![0, 1];
     let branch = options.branch;
     let max_depth = match tolerance {
@@ -101,12 +106,30 @@ pub(crate) fn minimax_tree(
             },
             None => Goal::Count(branch),
         };
+        let on_surface: Vec<bool> = parents
+            .iter()
+            .map(|&p| {
+                let parent = nodes[p].parent.map(|q| &nodes[q as usize]);
+                surface_centred[p]
+                    || (!eq2_bounds
+                        && tolerance.is_some()
+                        && on_the_surface(&nodes[p], depths[p], parent))
+            })
+            .collect();
+        if shell.is_none() && on_surface.contains(&true) {
+            shell = Some(Surface::shell(mesh)?);
+        }
+        let surfaces = Surfaces {
+            solid: surface,
+            shell: shell.as_ref(),
+        };
         let divided = divide_all(
-            surface,
+            &surfaces,
             &nodes,
             &depths,
             &regions,
             &parents,
+            &on_surface,
             goal,
             effort,
             &|done| {
@@ -114,7 +137,9 @@ pub(crate) fn minimax_tree(
             },
         )?;
         let mut added = 0_usize;
-        for (&parent, (pieces, children)) in parents.iter().zip(divided) {
+        for ((&parent, (pieces, children)), &centred) in
+            parents.iter().zip(divided).zip(&on_surface)
+        {
             let first = nodes.len() as u32;
             added += children.len();
             if nodes.len() + children.len() > max_nodes {
@@ -133,6 +158,7 @@ pub(crate) fn minimax_tree(
                 });
                 regions.push(region);
                 depths.push(child.depth);
+                surface_centred.push(centred);
             }
             nodes[parent].children = first..nodes.len() as u32;
             // The parent's pieces live on in its children's regions.
@@ -143,7 +169,13 @@ pub(crate) fn minimax_tree(
         }
         level_starts.push(nodes.len());
         let start = level_starts[level];
-        certify_level(surface, &mut nodes[start..], tolerance, eq2_bounds)?;
+        certify_level(
+            surface,
+            &mut nodes[start..],
+            &surface_centred[start..],
+            tolerance,
+            eq2_bounds,
+        )?;
         if let Some(t) = tolerance {
             // Leaves are never divided: their pieces go.
             for (node, region) in nodes[start..].iter().zip(&mut regions[start..]) {
@@ -222,6 +254,34 @@ fn closed_chain(mesh: &sphaera_mesh::TriMesh) -> bool {
     count.values().all(|&c| c == 0)
 }
 
+/// A node of an open mesh taken as a solid whose certified error exceeds its eq. 2 error
+/// this many times reaches out through a hole: its region is divided around the surface
+/// itself ([`on_the_surface`]).
+const THROUGH_A_HOLE: f64 = 1.5;
+
+/// Whether a node of a tolerance tree on an open mesh taken as a solid (eq. 2 bounds
+/// nothing there) is divided around the surface itself, on the shell, rather than around
+/// the solid's medial candidates: when its certified error exceeds its eq. 2 error
+/// [`THROUGH_A_HOLE`] times. The medial balls of a region beside a hole reach into it
+/// (no triangle stops them there), so its children would be centred in the hole again,
+/// deep by eq. 2 and poking out through it, level after level, and the tolerance never
+/// met. On the shell a centre's depth is minus its distance to the surface, so a child's
+/// eq. 2 error is its radius plus that distance, which bounds how far it reaches from the
+/// surface (the distance is 1-Lipschitz), hence beyond the solid: its children shrink
+/// with their pieces until they meet any tolerance. A node no tighter than its parent
+/// (whose division gave back the parent's sphere: its children would have reached
+/// farther by eq. 2, which under-estimates here) is divided on the shell as well.
+fn on_the_surface(node: &TreeNode, depth: f64, parent: Option<&TreeNode>) -> bool {
+    node.error > THROUGH_A_HOLE * super::eq2(node.sphere.radius, depth).max(0.0)
+        || parent.is_some_and(|parent| node.error >= parent.error)
+}
+
+/// The surface, and the same surface taken as a shell (when some node needs it).
+struct Surfaces<'a> {
+    solid: &'a Surface,
+    shell: Option<&'a Surface>,
+}
+
 /// A parent's region as divided (its pieces) and its children.
 type Division = (Vec<Piece>, Vec<Child>);
 
@@ -231,11 +291,12 @@ type Division = (Vec<Piece>, Vec<Child>);
 /// each batch.
 #[allow(clippy::too_many_arguments)]
 fn divide_all(
-    surface: &Surface,
+    surfaces: &Surfaces<'_>,
     nodes: &[TreeNode],
     depths: &[f64],
     regions: &[Vec<Piece>],
     parents: &[usize],
+    on_surface: &[bool],
     goal: Goal,
     effort: Plan,
     done: &dyn Fn(usize),
@@ -244,10 +305,18 @@ fn divide_all(
         Goal::Count(k) => k,
         Goal::Within { most, .. } => most,
     };
-    let one = |&parent: &usize| -> Result<Division, SphereTreeError> {
+    let one = |(&parent, &centred): (&usize, &bool)| -> Result<Division, SphereTreeError> {
         let region = &regions[parent];
         let pieces = refine(region, piece_size(region, most, &effort))?;
         let node = &nodes[parent];
+        if centred && let Some(shell) = surfaces.shell {
+            // The parent stands with its certified error (its depth made to give it):
+            // no child reaches farther.
+            let depth = node.sphere.radius - node.error;
+            let children = divide(shell, &pieces, goal, (node.sphere, depth), effort)?;
+            return Ok((pieces, children));
+        }
+        let surface = surfaces.solid;
         // Where eq. 2 under-estimates (an open mesh taken as a solid: the node's certified
         // error is above its eq. 2), the children must meet eq. 2 by as much more, or a
         // region would be divided into the same sphere again and again.
@@ -276,15 +345,19 @@ fn divide_all(
         Ok((pieces, children))
     };
     let mut out = Vec::with_capacity(parents.len());
-    for (batch, chunk) in parents.chunks(PROGRESS_BATCH).enumerate() {
+    for (batch, (chunk, centred)) in parents
+        .chunks(PROGRESS_BATCH)
+        .zip(on_surface.chunks(PROGRESS_BATCH))
+        .enumerate()
+    {
         done(batch * PROGRESS_BATCH);
         #[cfg(feature = "parallel")]
         let divided: Result<Vec<_>, SphereTreeError> = {
             use rayon::prelude::*;
-            chunk.par_iter().map(one).collect()
+            chunk.par_iter().zip(centred).map(one).collect()
         };
         #[cfg(not(feature = "parallel"))]
-        let divided: Result<Vec<_>, SphereTreeError> = chunk.iter().map(one).collect();
+        let divided: Result<Vec<_>, SphereTreeError> = chunk.iter().zip(centred).map(one).collect();
         out.extend(divided?);
     }
     Ok(out)
@@ -334,10 +407,13 @@ fn piece_size(region: &[Piece], most: usize, plan: &Plan) -> f64 {
 fn certify_level(
     surface: &Surface,
     level: &mut [TreeNode],
+    surface_centred: &[bool],
     tolerance: Option<f64>,
     eq2_bounds: bool,
 ) -> Result<(), SphereTreeError> {
-    let one = |node: &TreeNode| -> Result<f64, SphereTreeError> {
+    let one = |(node, &centred): (&TreeNode, &bool)| -> Result<f64, SphereTreeError> {
+        // A child of a division on the shell: its eq. 2 error bounds its protrusion.
+        let eq2_bounds = eq2_bounds || centred;
         let within = tolerance.is_none_or(|t| node.error <= t);
         if eq2_bounds && within {
             return Ok(node.error);
@@ -356,10 +432,11 @@ fn certify_level(
     #[cfg(feature = "parallel")]
     let errors: Result<Vec<f64>, SphereTreeError> = {
         use rayon::prelude::*;
-        level.par_iter().map(one).collect()
+        level.par_iter().zip(surface_centred).map(one).collect()
     };
     #[cfg(not(feature = "parallel"))]
-    let errors: Result<Vec<f64>, SphereTreeError> = level.iter().map(one).collect();
+    let errors: Result<Vec<f64>, SphereTreeError> =
+        level.iter().zip(surface_centred).map(one).collect();
     for (node, error) in level.iter_mut().zip(errors?) {
         node.error = error;
     }
