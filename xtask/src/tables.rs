@@ -282,7 +282,91 @@ pub const TABLES: &[Table] = &[
             col("build s", "build_seconds", None, Format::Decimals(2)),
         ],
     },
+    // crates/sphaera-robot/src/performance.md (the crate docs), its README and
+    // docs/benchmarks.md, "Whole robots": per budget, both robots.
+    Table {
+        name: "robot_budgets",
+        key: &["budget"],
+        keep: |_| true,
+        columns: &[
+            col("budget", "budget", None, Format::Text),
+            col("Panda spheres", "spheres", PANDA, Format::Right),
+            col(
+                "Panda worst mm",
+                "worst_protrusion_mm",
+                PANDA,
+                Format::Decimals(1),
+            ),
+            col(
+                "Panda % of a link",
+                "worst_share_pct",
+                PANDA,
+                Format::Decimals(1),
+            ),
+            col("Panda s", "seconds", PANDA, Format::Decimals(1)),
+            col("KUKA spheres", "spheres", KUKA, Format::Right),
+            col(
+                "KUKA worst mm",
+                "worst_protrusion_mm",
+                KUKA,
+                Format::Decimals(1),
+            ),
+            col(
+                "KUKA % of a link",
+                "worst_share_pct",
+                KUKA,
+                Format::Decimals(1),
+            ),
+            col("KUKA s", "seconds", KUKA, Format::Decimals(1)),
+        ],
+    },
+    // docs/benchmarks.md, "Worst protrusion against spheres per link": every link at 40
+    // spheres, Sphaera against the voxel baseline.
+    Table {
+        name: "robot_protrusion_vs_spheres",
+        key: &["robot", "link"],
+        keep: |row| row.get("spheres_per_link") == Some("40"),
+        columns: &[
+            col("robot", "robot", None, Format::FileName),
+            col("link", "link", None, Format::Text),
+            col("Sphaera spheres", "spheres", ROBOT_SPHAERA, Format::Right),
+            col(
+                "worst mm",
+                "worst_protrusion_mm",
+                ROBOT_SPHAERA,
+                Format::Decimals(2),
+            ),
+            col(
+                "% of diagonal",
+                "protrusion_pct_of_diagonal",
+                ROBOT_SPHAERA,
+                Format::Decimals(2),
+            ),
+            col("baseline spheres", "spheres", VOXELS, Format::Right),
+            col(
+                "baseline worst mm",
+                "worst_protrusion_mm",
+                VOXELS,
+                Format::Decimals(2),
+            ),
+            col(
+                "Sphaera / baseline",
+                "worst_vs_baseline",
+                ROBOT_SPHAERA,
+                Format::Decimals(2),
+            ),
+        ],
+    },
 ];
+
+/// The Panda's rows of `robot_budgets.csv`.
+const PANDA: Option<(&str, &str)> = Some(("robot", "robots/urdf/franka_panda/panda.urdf"));
+/// The KUKA's.
+const KUKA: Option<(&str, &str)> = Some(("robot", "robots/urdf/kuka_iiwa/model.urdf"));
+/// Sphaera's rows of `robot_protrusion_vs_spheres.csv`.
+const ROBOT_SPHAERA: Option<(&str, &str)> = Some(("method", "sphaera"));
+/// The voxel baseline's.
+const VOXELS: Option<(&str, &str)> = Some(("method", "voxel_kmeans"));
 
 /// The CSV row of tree level 1 (2, 3) of the sphere-tree tables.
 const LEVEL_1: Option<(&str, &str)> = Some(("level", "1"));

@@ -128,35 +128,7 @@
 //!
 //! # Performance and accuracy
 //!
-//! The Franka Panda (eleven collision meshes of 32–1,308 triangles, ten of them closed
-//! once welded) and the KUKA iiwa (eight binary STLs of 1,157–3,038 triangles, all
-//! open), with `cargo run --release -p sphaera-robot --example robot_figures >
-//! figures.csv` (the default effort; 2026-11-28, the 2-core reference machine **shared
-//! with other builds**, load average 7–8, so the times are wall times inflated about
-//! twofold: the whole run took 118 s of CPU for 241 s of wall time). Worst: the largest
-//! certified protrusion over the links, in millimetres and, in brackets, the largest
-//! share of a link's bounding-box diagonal.
-//!
-//! | budget | Panda spheres | Panda worst | Panda time | KUKA spheres | KUKA worst | KUKA time |
-//! |---|---:|---:|---:|---:|---:|---:|
-//! | 8 per link | 88 | 31.2 mm (10.8 %) | 4.5 s | 64 | 47.4 mm (12.8 %) | 4.4 s |
-//! | 16 per link | 176 | 21.1 mm (8.1 %) | 7.9 s | 128 | 31.4 mm (10.5 %) | 8.1 s |
-//! | 32 per link | 352 | 16.5 mm (6.0 %) | 5.2 s | 256 | 23.5 mm (7.9 %) | 5.6 s |
-//! | 64 per link | 704 | 11.1 mm (4.5 %) | 7.7 s | 512 | 16.9 mm (6.1 %) | 10.3 s |
-//! | 100 in all | 100 | 24.4 mm (33.1 %) | 5.8 s | 100 | 32.1 mm (14.9 %) | 5.8 s |
-//! | 300 in all | 300 | 13.7 mm (15.7 %) | 5.4 s | 300 | 17.7 mm (11.3 %) | 7.4 s |
-//! | tolerance 5 % | 348 | 19.0 mm (5.0 %) | 9.6 s | 363 | 19.5 mm (5.0 %) | 11.9 s |
-//! | tolerance 10 mm | 428 | 9.9 mm (13.4 %) | 10.7 s | 874 | 10.0 mm (6.2 %) | 25.1 s |
-//! | tolerance 5 mm | 1,675 | 5.0 mm (7.6 %) | 36.9 s | 2,643 | 5.0 mm (3.1 %) | 69.3 s |
-//!
-//! Every count is exact (no link of these robots has a primitive). A total divided by
-//! need reaches a smaller worst protrusion in millimetres than the same spheres spread
-//! evenly (100 in all: 24.4 mm on the Panda, against 31.2 mm for 88 at 8 per link). A
-//! relative tolerance is hard on small links (the Panda's 6 cm fingers get 47 spheres
-//! each at 5 %); an absolute one is what a planner's margin is. On the Panda's first link
-//! (the CSV's rows, and `robot_figures 1` for one sphere) the certified worst protrusion
-//! falls from 27.3 % of its diagonal with one sphere to 6.1 % with 8, 3.4 % with 32 and
-//! 2.2 % with 64.
+#![doc = include_str!("performance.md")]
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

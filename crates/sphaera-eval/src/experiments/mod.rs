@@ -26,6 +26,8 @@
 //!   links spherized by Sphaera and by the voxel k-means baseline planners ship, in
 //!   [`voxel`] (`robot/voxel.rs`, public for the `robot_spheres` bench), both measured by
 //!   the same certified evaluator);
+//! - `robot_budgets`: `robot/budgets.rs` (the Panda and the KUKA spherized whole, by
+//!   spheres per link, a total and a tolerance: spheres, worst protrusion, time);
 //! - `spheres_vs_count`: `spheres_vs_count/mod.rs` (exactly N spheres, Sphaera's one-level
 //!   minimax tree against morphit-rs raw and grown to cover, on the shared meshes, the
 //!   Panda's links and the procedural animal; three charts, written in
@@ -78,6 +80,7 @@ pub const NAMES: &[&str] = &[
     silhouette::timing::NAME,
     scene::NAME,
     robot::NAME,
+    robot::budgets::NAME,
     spheres_vs_count::NAME,
     main_job::NAME,
     tolerance_trees::NAME,
@@ -99,6 +102,7 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         silhouette::timing::NAME => silhouette::timing::run(data, out),
         scene::NAME => scene::run(data, out),
         robot::NAME => robot::run(data, out),
+        robot::budgets::NAME => robot::budgets::run(data, out),
         spheres_vs_count::NAME => spheres_vs_count::run(data, out),
         main_job::NAME => main_job::run(data, out),
         tolerance_trees::NAME => tolerance_trees::run(data, out),
