@@ -251,14 +251,39 @@ impl Region<'_> {
         rounds: usize,
     ) -> Result<(), SphereTreeError> {
         self.polish_all(clusters)?;
+        self.refine_polished(clusters, rounds, None)
+    }
+
+    /// [`Region::refine`] where only the clusters marked `changed` need their first
+    /// polish (the others were polished on the same pieces already).
+    pub(crate) fn refine_changed(
+        &self,
+        clusters: &mut Vec<Cluster>,
+        changed: &[bool],
+        rounds: usize,
+    ) -> Result<(), SphereTreeError> {
+        self.polish_changed(clusters, changed)?;
+        self.refine_polished(clusters, rounds, Some(changed.to_vec()))
+    }
+
+    /// The rounds of [`Region::refine`] after its first polish.
+    fn refine_polished(
+        &self,
+        clusters: &mut Vec<Cluster>,
+        rounds: usize,
+        mut active: Option<Vec<bool>>,
+    ) -> Result<(), SphereTreeError> {
         for _ in 0..rounds {
             let before = worst(clusters);
             let snapshot = clusters.clone();
-            let changed = self.reassign_pieces(clusters);
+            let changed = self.reassign_some(clusters, active.as_deref());
             if !changed.contains(&true) {
                 return Ok(());
             }
             self.polish_changed(clusters, &changed)?;
+            if active.is_some() {
+                active = Some(changed);
+            }
             let after = worst(clusters);
             if after > before {
                 *clusters = snapshot;
@@ -345,10 +370,20 @@ impl Region<'_> {
     /// the least error; costs measured again. No cluster is left empty. Returns, per
     /// cluster, whether its pieces changed.
     fn reassign_pieces(&self, clusters: &mut [Cluster]) -> Vec<bool> {
+        self.reassign_some(clusters, None)
+    }
+
+    /// [`Region::reassign_pieces`] for the pieces of the clusters marked `active` only
+    /// (all with `None`); the others keep theirs (and may take some).
+    fn reassign_some(&self, clusters: &mut [Cluster], active: Option<&[bool]>) -> Vec<bool> {
         let reach: Vec<f64> = clusters.iter().map(|c| c.cost + c.depth).collect();
         let neighbours = neighbours(clusters, |k| reach[k]);
         let mut moved: Vec<Vec<u32>> = vec![Vec::new(); clusters.len()];
         for (k, c) in clusters.iter().enumerate() {
+            if active.is_some_and(|a| !a[k]) {
+                moved[k].extend_from_slice(&c.members);
+                continue;
+            }
             for &m in &c.members {
                 let piece = &self.pieces[m as usize];
                 let to = cheapest(clusters, piece, neighbours[k].iter().map(|&j| j as usize))

@@ -57,7 +57,7 @@ pub(crate) struct Plan {
     pub(crate) refined: usize,
     /// Rounds of exact refinement per start.
     pub(crate) rounds: usize,
-    /// Passes of swaps after the refinement (0: none).
+    /// Swaps tried per child after the refinement (0: none; see [`Region::swap`]).
     pub(crate) swaps: usize,
     /// How strongly the children's regions are balanced by area (0: not at all; see
     /// [`balance`]).
@@ -96,7 +96,11 @@ impl Plan {
             starts,
             refined: starts.min(REFINED_STARTS),
             rounds,
-            swaps: usize::from(!quick && parents == 1 && children <= SWAP_CHILDREN),
+            swaps: if !quick && parents == 1 {
+                SWAP_PASSES
+            } else {
+                0
+            },
             balance: if last || quick { 0.0 } else { BALANCE_STRENGTH },
             reps,
             candidates,
@@ -108,9 +112,8 @@ impl Plan {
 
 /// Divisions into more children than this get at most two starts.
 const MANY_CHILDREN: usize = 64;
-/// Swaps are tried for divisions into at most this many children (each swap tries
-/// every child).
-const SWAP_CHILDREN: usize = 16;
+/// Swaps tried by a lone node's division, per child (see [`Region::swap`]).
+const SWAP_PASSES: usize = 2;
 
 /// Starts refined exactly at most.
 const REFINED_STARTS: usize = 4;

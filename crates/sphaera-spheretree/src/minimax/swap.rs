@@ -26,61 +26,131 @@ fn near(clusters: &[Cluster], of: &[usize]) -> Vec<usize> {
         .collect()
 }
 
+/// Removals tried in a row without lowering the worst error before the swaps stop: the
+/// first in [`Region::removal_order`] nearly always succeeds while any does.
+const SWAP_PATIENCE: usize = 6;
+
+/// Children whose centres are nearest a removed child's, to which [`Region::removal_order`]
+/// offers its pieces.
+const RANKING_NEIGHBOURS: usize = 12;
+
 impl Region<'_> {
-    /// Swaps (every other child removed in turn while the worst is split), kept while the
-    /// worst error falls, for at most `passes` passes over the children. `clusters` hold
-    /// pieces as members.
+    /// Swaps, kept while the worst error falls: the worst child is split in two and
+    /// another child removed (its pieces handed to the others), then the changed children
+    /// are refined. The children to remove are tried in the order of
+    /// [`Region::removal_order`] (the likeliest first), until one lowers the worst error
+    /// (then again from the new children) or [`SWAP_PATIENCE`] in a row do not, and at most
+    /// `per_child` times the children's count in all. `clusters` hold pieces as members.
     pub(crate) fn swap(
         &self,
         clusters: &mut Vec<Cluster>,
-        passes: usize,
+        per_child: usize,
         rounds: usize,
     ) -> Result<(), SphereTreeError> {
         if clusters.len() < 3 {
             return Ok(());
         }
-        for _ in 0..passes {
-            let mut improved = false;
-            let mut removed = 0;
-            while removed < clusters.len() {
-                let before = worst(clusters);
-                let w = (0..clusters.len())
-                    .max_by(|&a, &b| {
-                        clusters[a]
-                            .cost
-                            .total_cmp(&clusters[b].cost)
-                            .then(b.cmp(&a))
-                    })
-                    .unwrap_or(0);
-                if removed == w {
-                    removed += 1;
-                    continue;
+        let mut budget = per_child.saturating_mul(clusters.len());
+        'configurations: while budget > 0 {
+            let before = worst(clusters);
+            let w = (0..clusters.len())
+                .max_by(|&a, &b| {
+                    clusters[a]
+                        .cost
+                        .total_cmp(&clusters[b].cost)
+                        .then(b.cmp(&a))
+                })
+                .unwrap_or(0);
+            let Some([a, b]) = self.split_pieces(&clusters[w]) else {
+                return Ok(());
+            };
+            let order = self.removal_order(clusters, w, [&a, &b]);
+            for (tried, &(_, removed)) in order.iter().enumerate() {
+                if tried >= SWAP_PATIENCE || budget == 0 {
+                    break 'configurations;
                 }
-                let Some([a, b]) = self.split_pieces(&clusters[w]) else {
-                    return Ok(());
-                };
+                budget -= 1;
                 let mut trial: Vec<Cluster> = clusters
                     .iter()
                     .enumerate()
                     .filter(|&(i, _)| i != w && i != removed)
                     .map(|(_, c)| c.clone())
                     .collect();
-                trial.push(a);
-                trial.push(b);
-                self.hand_out(&mut trial, &clusters[removed].members);
-                self.refine(&mut trial, rounds)?;
+                trial.push(a.clone());
+                trial.push(b.clone());
+                let mut changed = self.hand_out(&mut trial, &clusters[removed].members);
+                let len = changed.len();
+                changed[len - 2..].fill(true);
+                self.refine_changed(&mut trial, &changed, rounds)?;
                 if worst(&trial) < before - 1e-9 * before.abs() && trial.len() == clusters.len() {
                     *clusters = trial;
-                    improved = true;
-                } else {
-                    removed += 1;
+                    continue 'configurations;
                 }
             }
-            if !improved {
-                break;
-            }
+            break;
         }
         Ok(())
+    }
+
+    /// The children other than the worst `w`, in the order their removal is tried: by the
+    /// worst error right after their pieces are handed to the others (the split halves
+    /// `halves` in the worst's place, and each piece offered to the [`RANKING_NEIGHBOURS`]
+    /// centres nearest its child's), before any centre moves; the least first.
+    fn removal_order(
+        &self,
+        clusters: &[Cluster],
+        w: usize,
+        halves: [&Cluster; 2],
+    ) -> Vec<(f64, usize)> {
+        let cost = |c: &Cluster, m: u32| {
+            super::pieces::reach_squared(&self.pieces[m as usize], c.center).sqrt() - c.depth
+        };
+        // The errors of the children that stay (and of the halves), largest first: a
+        // removal leaves the largest of them but its own.
+        let mut kept: Vec<(f64, usize)> = clusters
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| i != w)
+            .map(|(i, c)| (c.cost, i))
+            .chain(halves.iter().map(|h| (h.cost, usize::MAX)))
+            .collect();
+        kept.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let mut order: Vec<(f64, usize)> = (0..clusters.len())
+            .filter(|&r| r != w)
+            .map(|r| {
+                let mut score = kept
+                    .iter()
+                    .find(|&&(_, i)| i != r)
+                    .map_or(f64::NEG_INFINITY, |k| k.0);
+                let center = clusters[r].center;
+                let mut near: Vec<(f64, usize)> = (0..clusters.len())
+                    .filter(|&i| i != w && i != r)
+                    .map(|i| (clusters[i].center.distance_squared(center), i))
+                    .collect();
+                let count = RANKING_NEIGHBOURS.min(near.len());
+                if count < near.len() {
+                    near.select_nth_unstable_by(count, |a, b| {
+                        a.0.total_cmp(&b.0).then(a.1.cmp(&b.1))
+                    });
+                    near.truncate(count);
+                }
+                let others: Vec<&Cluster> = near
+                    .iter()
+                    .map(|&(_, i)| &clusters[i])
+                    .chain(halves)
+                    .collect();
+                for &m in &clusters[r].members {
+                    let least = others
+                        .iter()
+                        .map(|c| cost(c, m))
+                        .fold(f64::INFINITY, f64::min);
+                    score = score.max(least);
+                }
+                (score, r)
+            })
+            .collect();
+        order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        order
     }
 
     /// Adds children until there are `k` (or none can be split): the worst child with two
@@ -172,8 +242,10 @@ impl Region<'_> {
         }
     }
 
-    /// Gives each of `pieces` to the cluster that covers it with the least error.
-    fn hand_out(&self, clusters: &mut [Cluster], pieces: &[u32]) {
+    /// Gives each of `pieces` to the cluster that covers it with the least error; returns,
+    /// per cluster, whether it took any.
+    fn hand_out(&self, clusters: &mut [Cluster], pieces: &[u32]) -> Vec<bool> {
+        let mut took = vec![false; clusters.len()];
         for &m in pieces {
             let piece = &self.pieces[m as usize];
             let mut best = (f64::INFINITY, 0);
@@ -185,12 +257,14 @@ impl Region<'_> {
             }
             if let Some(c) = clusters.get_mut(best.1) {
                 c.members.push(m);
+                took[best.1] = true;
             }
         }
-        for c in clusters.iter_mut() {
+        for (c, _) in clusters.iter_mut().zip(&took).filter(|(_, t)| **t) {
             c.members.sort_unstable();
             c.cost = super::cluster::exact_reach(self.pieces, &c.members, c.center) - c.depth;
         }
+        took
     }
 
     /// The two halves of a cluster of pieces (two-means on the pieces' centroids, seeded
