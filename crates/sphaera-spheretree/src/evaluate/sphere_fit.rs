@@ -71,6 +71,39 @@ struct Side {
     inside: Option<bool>,
 }
 
+/// A patch evaluated: its bound and what its probe found, or its inside test put off.
+enum Evaluated {
+    Known(f64, Side),
+    Deferred(Deferred),
+}
+
+/// A dropped patch whose probe's side was not asked (see [`Search::evaluate`]): its bound
+/// taken as outside holds whatever the side; the side can only lower it.
+struct Deferred {
+    /// The bound taken as outside, capped by the parent's.
+    upper: f64,
+    /// The parent's bound.
+    cap: f64,
+    patch: Patch,
+    point: DVec3,
+    probe: Probe,
+}
+
+impl Deferred {
+    /// The patch's bound with its probe's side known: what the search would have dropped
+    /// it with.
+    fn settle(&self, search: &Search<'_>) -> f64 {
+        if !search.surface.is_inside_certified(self.point) {
+            return self.upper;
+        }
+        let probe = Probe {
+            trusted_inside: true,
+            ..self.probe
+        };
+        upper_bound(&self.patch, search.center, search.radius, &probe).min(self.cap)
+    }
+}
+
 impl Priority for Queued {
     type Key = (TotalF64, Reverse<usize>);
 
@@ -99,11 +132,18 @@ impl Search<'_> {
     /// one side and the new probe lies in the ball about it that holds no surface (closer
     /// to it than its distance to the surface, by more than the guard band): the segment
     /// between them crosses no surface, so both lie on the same side.
+    ///
+    /// It is put off ([`Evaluated::Deferred`]) when it cannot change the search: the
+    /// probe is no farther from the surface than the lower bound (so it cannot raise it),
+    /// and the patch's bound taken as outside, capped by `cap` (the parent's bound), is
+    /// already within `tolerance` of the lower bound (so the patch is dropped whatever its
+    /// side). Only the final upper bound may need its side ([`Deferred::settle`]).
     fn evaluate(
         &mut self,
         patch: &Patch,
-        parent: Option<&Side>,
-    ) -> Result<(f64, Side), SphereTreeError> {
+        parent: Option<(&Side, f64)>,
+        tolerance: f64,
+    ) -> Result<Evaluated, SphereTreeError> {
         self.patches += 1;
         let point = self.center + self.radius * patch.direction;
         // The parent's probe bounds the distance (the distance is 1-Lipschitz), which
@@ -115,9 +155,10 @@ impl Search<'_> {
             let signed = self.surface.signed_closest(point)?;
             let distance = signed.closest.distance;
             let inside = (distance > self.guard).then_some(signed.inside);
-            return Ok(self.record(patch, point, signed.closest.point, distance, inside));
+            let (upper, found) = self.record(patch, point, signed.closest.point, distance, inside);
+            return Ok(Evaluated::Known(upper, found));
         }
-        let bound = parent.map(|p| (p.distance + point.distance(p.point)) * (1.0 + 1e-9));
+        let bound = parent.map(|(p, _)| (p.distance + point.distance(p.point)) * (1.0 + 1e-9));
         let closest = match bound {
             Some(bound) => match self.surface.tree().closest_within(point, bound)? {
                 Some(found) => found,
@@ -126,19 +167,40 @@ impl Search<'_> {
             None => self.surface.closest(point)?,
         };
         let distance = closest.distance;
+        if distance <= self.guard {
+            let (upper, found) = self.record(patch, point, closest.point, distance, None);
+            return Ok(Evaluated::Known(upper, found));
+        }
         // A probe in the clear ball of its parent's probe, or with its parent's probe in
         // its own clear ball, is on the parent's side: the segment between them crosses
         // no surface.
-        let inherited = parent.and_then(|p| {
+        let inherited = parent.and_then(|(p, _)| {
             let clear = p.distance.max(distance) - self.guard;
             p.inside.filter(|_| point.distance(p.point) < clear)
         });
-        let inside = if distance > self.guard {
-            Some(inherited.unwrap_or_else(|| self.surface.is_inside_certified(point)))
-        } else {
-            None
-        };
-        Ok(self.record(patch, point, closest.point, distance, inside))
+        if inherited.is_none()
+            && let Some((_, cap)) = parent
+            && distance <= self.lower
+        {
+            let probe = Probe {
+                distance,
+                closest: closest.point,
+                trusted_inside: false,
+            };
+            let outside = upper_bound(patch, self.center, self.radius, &probe).min(cap);
+            if outside - self.lower <= tolerance {
+                return Ok(Evaluated::Deferred(Deferred {
+                    upper: outside,
+                    cap,
+                    patch: *patch,
+                    point,
+                    probe,
+                }));
+            }
+        }
+        let inside = inherited.unwrap_or_else(|| self.surface.is_inside_certified(point));
+        let (upper, found) = self.record(patch, point, closest.point, distance, Some(inside));
+        Ok(Evaluated::Known(upper, found))
     }
 
     /// Raises the lower bound with a probe whose side is known (`None` within the guard
@@ -258,8 +320,21 @@ pub(crate) fn fit(
     // The largest upper bound of the patches dropped because they can no longer matter.
     let mut dropped = 0.0_f64;
     let mut order = 0_usize;
+    // The dropped patches whose side was put off.
+    let mut deferred: Vec<Deferred> = Vec::new();
     for patch in icosahedron() {
-        let (upper, found) = search.evaluate(&patch, None)?;
+        // A patch without parent is never deferred; were it, its side unknown is safe.
+        let (upper, found) = match search.evaluate(&patch, None, tolerance)? {
+            Evaluated::Known(upper, found) => (upper, found),
+            Evaluated::Deferred(d) => (
+                d.upper,
+                Side {
+                    point: d.point,
+                    distance: d.probe.distance,
+                    inside: None,
+                },
+            ),
+        };
         queue.push(Queued {
             upper,
             order,
@@ -283,23 +358,36 @@ pub(crate) fn fit(
         for child in top.patch.split() {
             // A child's bound may exceed its parent's (each is computed independently);
             // the parent's also holds on the child, so keep the smaller.
-            let (upper, found) = search.evaluate(&child, Some(&top.found))?;
-            let upper = upper.min(top.upper);
-            if upper - search.lower <= tolerance {
-                dropped = dropped.max(upper);
-            } else {
-                queue.push(Queued {
-                    upper,
-                    order,
-                    patch: child,
-                    found,
-                });
+            match search.evaluate(&child, Some((&top.found, top.upper)), tolerance)? {
+                Evaluated::Deferred(d) => deferred.push(d),
+                Evaluated::Known(upper, found) => {
+                    let upper = upper.min(top.upper);
+                    if upper - search.lower <= tolerance {
+                        dropped = dropped.max(upper);
+                    } else {
+                        queue.push(Queued {
+                            upper,
+                            order,
+                            patch: child,
+                            found,
+                        });
+                    }
+                }
             }
             order += 1;
         }
     };
     let open = queue.peek().map_or(0.0, |q| q.upper);
-    let upper = open.max(dropped).max(search.lower);
+    let mut upper = open.max(dropped).max(search.lower);
+    // The put-off sides that could raise the upper bound, largest bound first: with its
+    // side known each patch has the bound it would have been dropped with.
+    deferred.sort_by(|a, b| b.upper.total_cmp(&a.upper));
+    for d in &deferred {
+        if d.upper <= upper {
+            break;
+        }
+        upper = upper.max(d.settle(&search));
+    }
     Ok(SphereFit {
         lower: search.lower,
         upper,
@@ -361,5 +449,51 @@ pub(crate) fn check_spheres(spheres: &[Sphere]) -> Result<(), SphereTreeError> {
     match spheres.iter().position(|s| !s.is_valid()) {
         Some(index) => Err(SphereTreeError::InvalidSphere { index }),
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use sphaera_mesh::{TriMesh, shapes};
+    use sphaera_tests::point_sets::fibonacci_sphere;
+
+    use super::*;
+
+    /// On a mesh that is not an embedded solid (a capsule with a hole at its top pole) the
+    /// sides are asked of the winding number, some put off; the bounds still bracket the
+    /// error sampled densely, away from the hole.
+    #[test]
+    fn put_off_sides_keep_the_bounds_of_an_open_mesh() {
+        let mesh = shapes::capsule(0.5, 2.0, 16).expect("capsule");
+        let kept: Vec<[u32; 3]> = mesh
+            .triangles()
+            .iter()
+            .copied()
+            .filter(|t| t.iter().all(|&v| mesh.positions()[v as usize].z < 1.4))
+            .collect();
+        let holed = TriMesh::new(mesh.positions().to_vec(), kept).expect("mesh");
+        let surface = Surface::new(&holed).expect("surface");
+        assert!(surface.has_inside() && !surface.is_embedded_solid());
+        let tolerance = 1e-3;
+        for sphere in [
+            Sphere::new(DVec3::new(0.0, 0.0, -0.5), 0.6),
+            Sphere::new(DVec3::new(0.3, 0.0, -0.2), 0.3),
+            Sphere::new(DVec3::new(0.0, 0.2, 0.0), 0.55),
+        ] {
+            let fit = fit(&surface, &sphere, tolerance, 100_000, f64::NEG_INFINITY).expect("fit");
+            assert!(fit.converged && fit.upper - fit.lower <= tolerance + 1e-12);
+            let sampled = fibonacci_sphere(20_000)
+                .into_iter()
+                .map(|u| sphere.center + sphere.radius * u)
+                .filter(|&x| !surface.is_inside_certified(x))
+                .map(|x| surface.closest(x).expect("closest").distance)
+                .fold(0.0, f64::max);
+            assert!(sampled <= fit.upper + 1e-12, "{sampled} > {}", fit.upper);
+            assert!(
+                fit.lower <= sampled + tolerance,
+                "{} vs {sampled}",
+                fit.lower
+            );
+        }
     }
 }

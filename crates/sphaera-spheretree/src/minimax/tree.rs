@@ -238,20 +238,38 @@ fn eq2_bounds(surface: &Surface) -> bool {
 /// then an integer off the mesh and changes only across it, so the inside it defines is
 /// bounded by the mesh.
 fn closed_chain(mesh: &sphaera_mesh::TriMesh) -> bool {
-    let key = |v: u32| mesh.positions()[v as usize].to_array().map(f64::to_bits);
-    let mut count: std::collections::HashMap<([u64; 3], [u64; 3]), i64> =
-        std::collections::HashMap::with_capacity(3 * mesh.triangle_count());
+    let positions = mesh.positions();
+    let key = |v: u32| positions[v as usize].to_array().map(f64::to_bits);
+    // Every vertex named by its position's rank among the distinct positions: the same
+    // name for the same position, names ordered as the positions' bits.
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    order.sort_unstable_by_key(|&v| key(v));
+    let mut name = vec![0_u32; positions.len()];
+    let mut rank = 0_u32;
+    for (i, &v) in order.iter().enumerate() {
+        if i > 0 && key(v) != key(order[i - 1]) {
+            rank += 1;
+        }
+        name[v as usize] = rank;
+    }
+    // Every oriented edge as its two names, the smaller first, and whether it runs from
+    // the larger; a degenerate edge counts as backward alone.
+    let mut edges: Vec<(u64, bool)> = Vec::with_capacity(3 * mesh.triangle_count());
     for t in mesh.triangles() {
         for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-            let (a, b) = (key(a), key(b));
-            if a < b {
-                *count.entry((a, b)).or_insert(0) += 1;
+            let (a, b) = (u64::from(name[a as usize]), u64::from(name[b as usize]));
+            edges.push(if a < b {
+                ((a << 32) | b, false)
             } else {
-                *count.entry((b, a)).or_insert(0) -= 1;
-            }
+                ((b << 32) | a, true)
+            });
         }
     }
-    count.values().all(|&c| c == 0)
+    edges.sort_unstable();
+    // Per edge, as many forward as backward.
+    edges
+        .chunk_by(|x, y| x.0 == y.0)
+        .all(|run| 2 * run.iter().filter(|e| !e.1).count() == run.len())
 }
 
 /// A node of an open mesh taken as a solid whose certified error exceeds its eq. 2 error
@@ -441,4 +459,36 @@ fn certify_level(
         node.error = error;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use sphaera_mesh::{TriMesh, shapes};
+
+    use super::closed_chain;
+
+    #[test]
+    fn a_closed_chain_is_told_by_positions() {
+        let cube = shapes::cube(2.0, 2).expect("cube");
+        assert!(closed_chain(&cube));
+        // Every triangle with its own corners: still closed by positions.
+        let positions: Vec<_> = cube
+            .triangles()
+            .iter()
+            .flat_map(|t| t.map(|v| cube.positions()[v as usize]))
+            .collect();
+        let triangles: Vec<[u32; 3]> = (0..cube.triangle_count() as u32)
+            .map(|i| [3 * i, 3 * i + 1, 3 * i + 2])
+            .collect();
+        let soup = TriMesh::new(positions, triangles).expect("soup");
+        assert!(closed_chain(&soup));
+        // A triangle missing, or one turned over: open.
+        let mut open = cube.triangles().to_vec();
+        let last = open.pop().expect("a triangle");
+        let holed = TriMesh::new(cube.positions().to_vec(), open.clone()).expect("holed");
+        assert!(!closed_chain(&holed));
+        open.push([last[0], last[2], last[1]]);
+        let flipped = TriMesh::new(cube.positions().to_vec(), open).expect("flipped");
+        assert!(!closed_chain(&flipped));
+    }
 }
