@@ -11,10 +11,8 @@
 //!   starting Python excluded). The interpreter is `$SPHAERA_MORPHIT_PYTHON`, else
 //!   `python3`; without the package the bench says how to install it and skips the peer.
 //!
-//! At N = 512 Sphaera's one-level build takes minutes today (2026-11-28: 170 s on a
-//! loaded machine; its speed above a few hundred spheres is being worked on), and
-//! criterion's ten samples at least would take half an hour: counts above
-//! [`CRITERION_MAX`] are timed once each, outside criterion, for both libraries, and
+//! Counts above [`CRITERION_MAX`] are timed once each, outside criterion, for both
+//! libraries (ten samples of the peer at 512 take about a minute), and
 //! printed. At the end the bench prints, per N, both mean times and Sphaera's over the
 //! peer's.
 //!
