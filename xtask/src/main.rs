@@ -758,31 +758,23 @@ fn charts(check: bool, only: &[String]) -> Result<()> {
         eprintln!("  (charts present: ok)");
         return Ok(());
     }
+    let run = [
+        "run",
+        "--release",
+        "--locked",
+        "-p",
+        "sphaera-eval",
+        "--",
+        "--out",
+        "docs/charts",
+    ];
     if only.is_empty() {
-        return cargo(&[
-            "run",
-            "--release",
-            "--locked",
-            "-p",
-            "sphaera-eval",
-            "--",
-            "--out",
-            "docs/charts",
-        ]);
+        return cargo(&run);
     }
     for name in only {
-        cargo(&[
-            "run",
-            "--release",
-            "--locked",
-            "-p",
-            "sphaera-eval",
-            "--",
-            "--out",
-            "docs/charts",
-            "--only",
-            name,
-        ])?;
+        let mut args = run.to_vec();
+        args.extend(["--only", name.as_str()]);
+        cargo(&args)?;
     }
     Ok(())
 }
