@@ -1,6 +1,8 @@
 //! Builds a sphere-tree and prints each level's (cut's) size, construction error and
 //! certified error: `cargo run --release -p sphaera-spheretree --example tree_probe --
-//! MESH [METHOD] [DEPTH] [BRANCH] [TOLERANCE%]`.
+//! MESH [METHOD] [DEPTH] [BRANCH] [TOLERANCE%]` (environment: `SPH_EFFORT`, `SPH_NOEVAL` to
+//! skip the evaluation, `SPH_FULLEVAL` for the unbounded one, `SPH_WORST` to print the
+//! deepest worst node and its ancestors).
 
 #![allow(clippy::print_stdout)]
 
@@ -45,6 +47,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         tree.leaves().len(),
         tree.level_count()
     );
+    if std::env::var("SPH_WORST").is_ok() {
+        // The deepest level's worst node and its ancestors: error and radius, % of the diagonal.
+        let cut = tree.cut_at(tree.level_count() - 1);
+        let mut at = cut
+            .iter()
+            .copied()
+            .max_by(|&a, &b| tree.nodes()[a].error.total_cmp(&tree.nodes()[b].error));
+        while let Some(i) = at {
+            let node = &tree.nodes()[i];
+            println!(
+                "node {i} level {}: error {:.3} %, radius {:.3} %, {} children",
+                node.level,
+                100.0 * node.error / diagonal,
+                100.0 * node.sphere.radius / diagonal,
+                node.children.len()
+            );
+            at = node.parent.map(|p| p as usize);
+        }
+    }
     if std::env::var("SPH_NOEVAL").is_ok() {
         let levels: Vec<String> = (1..tree.level_count())
             .map(|level| {

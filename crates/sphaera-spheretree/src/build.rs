@@ -10,7 +10,7 @@ use crate::SphereTreeError;
 use crate::baseline;
 use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::minimax::minimax_tree;
-use crate::options::{Method, SphereTreeOptions, SphereTreeProgress};
+use crate::options::{Effort, Method, SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{
     Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
 };
@@ -116,10 +116,47 @@ pub fn build_with_progress(
         Method::Octree => baseline::octree(surface, options, progress),
         Method::Grid => baseline::grid(surface, options, progress),
         Method::Hubbard => baseline::hubbard(surface, options, progress),
-        Method::Minimax | Method::Auto => posed_tree(surface, options, &|canonical, tolerance| {
-            minimax_tree(canonical, options, tolerance, progress)
-        }),
+        Method::Minimax | Method::Auto => {
+            let minimax = |options: &SphereTreeOptions| {
+                posed_tree(surface, options, &|canonical, tolerance| {
+                    minimax_tree(canonical, options, tolerance, progress)
+                })
+            };
+            let tree = minimax(options)?;
+            if options.effort != Effort::Thorough {
+                return Ok(tree);
+            }
+            // A thorough tree is never looser than the default's.
+            let default = minimax(&options.clone().with_effort(Effort::Default))?;
+            Ok(if tighter(&default, &tree, options.tolerance.is_some()) {
+                default
+            } else {
+                tree
+            })
+        }
     }
+}
+
+/// Whether tree `a` is strictly tighter than `b`: with a tolerance (both meet it), by
+/// fewer spheres in its cut of leaves; built to a depth, by a smaller product of its
+/// levels' worst errors (every level counts alike, whatever its scale).
+fn tighter(a: &SphereTree, b: &SphereTree, tolerance: bool) -> bool {
+    if tolerance {
+        return a.leaves().len() < b.leaves().len();
+    }
+    let score = |tree: &SphereTree| -> f64 {
+        (1..tree.level_count())
+            .map(|level| {
+                let worst = tree
+                    .level(level)
+                    .iter()
+                    .map(|n| n.error)
+                    .fold(0.0, f64::max);
+                worst.max(f64::MIN_POSITIVE).ln()
+            })
+            .sum()
+    };
+    a.level_count() == b.level_count() && score(a) < score(b)
 }
 
 /// The fraction of a tolerance kept free for the coverage certificate's growth.

@@ -187,3 +187,50 @@ const EXPECTED_DIGESTS: [u64; 5] = [
     0xdc4e_6798_0767_10a2,
     0x8946_8461_d862_569b,
 ];
+
+/// A thorough tree is never looser than the default's: built to a depth, the product of
+/// its levels' worst errors is no larger; with a tolerance, it has no more leaves (the
+/// default's tree is built as well and kept when tighter).
+#[test]
+fn thorough_trees_are_never_looser_than_the_defaults() {
+    use sphaera_mesh::Length;
+    use sphaera_spheretree::Effort;
+    let meshes = [
+        ("capsule", shapes::capsule(0.5, 2.0, 8).expect("valid")),
+        ("torus", shapes::torus(1.0, 0.3, 16).expect("valid")),
+    ];
+    let score = |tree: &SphereTree| -> f64 {
+        (1..tree.level_count())
+            .map(|level| {
+                tree.level(level)
+                    .iter()
+                    .map(|n| n.error)
+                    .fold(0.0, f64::max)
+                    .ln()
+            })
+            .sum()
+    };
+    for (name, mesh) in meshes {
+        let surface = Surface::new(&mesh).expect("closed");
+        let at = |effort, tolerance: Option<f64>| {
+            let mut options = SphereTreeOptions::default()
+                .with_effort(effort)
+                .with_depth(2)
+                .with_branch(4);
+            if let Some(t) = tolerance {
+                options = options.with_tolerance(Length::RelativeToDiagonal(t));
+            }
+            build(&surface, &options).expect("builds")
+        };
+        let (default, thorough) = (at(Effort::Default, None), at(Effort::Thorough, None));
+        assert!(score(&thorough) <= score(&default), "{name} to a depth");
+        let (default, thorough) = (
+            at(Effort::Default, Some(0.03)),
+            at(Effort::Thorough, Some(0.03)),
+        );
+        assert!(
+            thorough.leaves().len() <= default.leaves().len(),
+            "{name} at 3 %"
+        );
+    }
+}

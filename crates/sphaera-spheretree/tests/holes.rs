@@ -114,3 +114,45 @@ fn tolerance_trees_on_meshes_with_holes_meet_small_tolerances() {
         }
     }
 }
+
+/// Trees built to a depth on open meshes taken as solids do not get looser down a branch:
+/// a region beside a hole whose medial children poke out through it is divided around the
+/// surface instead, whichever division is tighter kept (the Stanford bunny's level 3 had
+/// a child reaching 3.68 % of the diagonal under a parent within 2.56 %), and a child no
+/// division makes tighter than its parent takes the parent's sphere (the holed capsule's
+/// spheres near the hole are its own medial balls, pinned by the dent the hole makes in
+/// the solid, and at level 3 the surface's pieces are still too large for spheres around
+/// them to be tighter).
+#[test]
+fn depth_trees_on_meshes_with_holes_do_not_loosen_down_a_branch() {
+    let mut cases = vec![("holed capsule".to_owned(), holed_capsule())];
+    if let Some(data) =
+        sphaera_tests::data_dir("depth_trees_on_meshes_with_holes_do_not_loosen_down_a_branch")
+    {
+        for (name, file) in [
+            ("panda link6", "robots/franka_panda/collision/link6.obj"),
+            ("stanford bunny", "stanford-bunny.obj"),
+        ] {
+            let mesh = sphaera_mesh::io::load(data.join(file)).expect("loads");
+            cases.push((name.to_owned(), mesh));
+        }
+    }
+    for (name, mesh) in cases {
+        let surface = Surface::new(&mesh).expect("a solid by its winding number");
+        let options = SphereTreeOptions::default()
+            .with_effort(Effort::Quick)
+            .with_depth(3);
+        let tree = build(&surface, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+        for (index, node) in tree.nodes().iter().enumerate() {
+            for child in tree.children(index) {
+                assert!(
+                    child.error <= node.error,
+                    "{name}: node {index} (level {}, {}) has a child reaching {}",
+                    node.level,
+                    node.error,
+                    child.error
+                );
+            }
+        }
+    }
+}

@@ -136,39 +136,26 @@ pub(crate) fn minimax_tree(
                 progress(&SphereTreeProgress { level, done, total });
             },
         )?;
-        let mut added = 0_usize;
-        for ((&parent, (pieces, children)), &centred) in
-            parents.iter().zip(divided).zip(&on_surface)
+        let start = nodes.len();
         {
-            let first = nodes.len() as u32;
-            added += children.len();
-            if nodes.len() + children.len() > max_nodes {
-                return Err(unreachable(tolerance, &nodes, level, max_nodes));
+            let mut built = Level {
+                nodes: &mut nodes,
+                regions: &mut regions,
+                depths: &mut depths,
+                surface_centred: &mut surface_centred,
+                level: level as u32,
+                max_nodes,
+                tolerance,
+            };
+            for ((&parent, (pieces, children)), &centred) in
+                parents.iter().zip(divided).zip(&on_surface)
+            {
+                built.push(parent, children_of(&pieces, children, centred))?;
             }
-            for child in children {
-                let region: Vec<Piece> =
-                    child.members.iter().map(|&m| pieces[m as usize]).collect();
-                nodes.push(TreeNode {
-                    sphere: child.sphere,
-                    error: child.error,
-                    level: level as u32,
-                    parent: Some(parent as u32),
-                    children: 0..0,
-                    region_samples: region.len() as u32,
-                });
-                regions.push(region);
-                depths.push(child.depth);
-                surface_centred.push(centred);
-            }
-            nodes[parent].children = first..nodes.len() as u32;
-            // The parent's pieces live on in its children's regions.
-            regions[parent] = Vec::new();
         }
-        if added == 0 {
+        if nodes.len() == start {
             break;
         }
-        level_starts.push(nodes.len());
-        let start = level_starts[level];
         certify_level(
             surface,
             &mut nodes[start..],
@@ -176,6 +163,45 @@ pub(crate) fn minimax_tree(
             tolerance,
             eq2_bounds,
         )?;
+        if !eq2_bounds {
+            let failed = through_a_hole(&nodes, &depths, &parents, &on_surface);
+            if !failed.is_empty() {
+                let shell = match &mut shell {
+                    Some(shell) => &*shell,
+                    none => none.insert(Surface::shell(mesh)?),
+                };
+                redivide_on_the_shell(
+                    surface,
+                    shell,
+                    &failed,
+                    &parents,
+                    start,
+                    (goal, effort),
+                    Level {
+                        nodes: &mut nodes,
+                        regions: &mut regions,
+                        depths: &mut depths,
+                        surface_centred: &mut surface_centred,
+                        level: level as u32,
+                        max_nodes,
+                        tolerance,
+                    },
+                )?;
+            }
+            if tolerance.is_none() {
+                keep_the_parent_where_looser(
+                    &mut nodes[..],
+                    &mut depths,
+                    &mut surface_centred,
+                    start,
+                );
+            }
+        }
+        // The parents' pieces live on in their children's regions.
+        for &parent in &parents {
+            regions[parent] = Vec::new();
+        }
+        level_starts.push(nodes.len());
         if let Some(t) = tolerance {
             // Leaves are never divided: their pieces go.
             for (node, region) in nodes[start..].iter().zip(&mut regions[start..]) {
@@ -199,6 +225,182 @@ pub(crate) fn minimax_tree(
         level_starts,
         coverage: Vec::new(),
     })
+}
+
+/// A new child, before it joins the tree: the node, its region, its centre's signed depth
+/// and whether it was divided around the surface itself.
+type NewChild = (TreeNode, Vec<Piece>, f64, bool);
+
+/// A division's children as new nodes (their errors as the division found them, before
+/// certification).
+fn children_of(pieces: &[Piece], children: Vec<Child>, centred: bool) -> Vec<NewChild> {
+    children
+        .into_iter()
+        .map(|child| {
+            let region: Vec<Piece> = child.members.iter().map(|&m| pieces[m as usize]).collect();
+            let node = TreeNode {
+                sphere: child.sphere,
+                error: child.error,
+                level: 0,
+                parent: None,
+                children: 0..0,
+                region_samples: region.len() as u32,
+            };
+            (node, region, child.depth, centred)
+        })
+        .collect()
+}
+
+/// The tree's per-node arrays while a level is added to them.
+struct Level<'a> {
+    nodes: &'a mut Vec<TreeNode>,
+    regions: &'a mut Vec<Vec<Piece>>,
+    depths: &'a mut Vec<f64>,
+    surface_centred: &'a mut Vec<bool>,
+    level: u32,
+    max_nodes: usize,
+    tolerance: Option<f64>,
+}
+
+impl Level<'_> {
+    /// Appends `parent`'s children, refused past the node budget.
+    fn push(&mut self, parent: usize, children: Vec<NewChild>) -> Result<(), SphereTreeError> {
+        if self.nodes.len() + children.len() > self.max_nodes {
+            let level = self.level as usize - 1;
+            return Err(unreachable(
+                self.tolerance,
+                self.nodes,
+                level,
+                self.max_nodes,
+            ));
+        }
+        let first = self.nodes.len() as u32;
+        for (mut node, region, depth, centred) in children {
+            node.level = self.level;
+            node.parent = Some(parent as u32);
+            self.nodes.push(node);
+            self.regions.push(region);
+            self.depths.push(depth);
+            self.surface_centred.push(centred);
+        }
+        self.nodes[parent].children = first..self.nodes.len() as u32;
+        Ok(())
+    }
+}
+
+/// The parents (of those divided on the solid) one of whose children reaches farther
+/// than the parent by its certified error: on an open mesh taken as a solid, a child
+/// centred beside a hole pokes out through it (see [`on_the_surface`]).
+fn through_a_hole(
+    nodes: &[TreeNode],
+    depths: &[f64],
+    parents: &[usize],
+    on_surface: &[bool],
+) -> Vec<usize> {
+    parents
+        .iter()
+        .zip(on_surface)
+        .filter(|&(&p, &centred)| {
+            let parent = &nodes[p];
+            !centred
+                && nodes[parent.children.start as usize..parent.children.end as usize]
+                    .iter()
+                    .zip(&depths[parent.children.start as usize..parent.children.end as usize])
+                    .any(|(child, &depth)| {
+                        child.error > parent.error
+                            || child.error
+                                > THROUGH_A_HOLE * super::eq2(child.sphere.radius, depth).max(0.0)
+                    })
+        })
+        .map(|(&p, _)| p)
+        .collect()
+}
+
+/// Divides the `failed` parents of the level that starts at `start` again, around the
+/// surface itself (on the shell), and keeps for each the division whose worst certified
+/// child is tighter; the level is rebuilt in its parents' order.
+fn redivide_on_the_shell(
+    solid: &Surface,
+    shell: &Surface,
+    failed: &[usize],
+    parents: &[usize],
+    start: usize,
+    (goal, effort): (Goal, Plan),
+    mut level: Level<'_>,
+) -> Result<(), SphereTreeError> {
+    let surfaces = Surfaces {
+        solid,
+        shell: Some(shell),
+    };
+    let centred = vec![true; failed.len()];
+    let divided = divide_all(
+        &surfaces,
+        level.nodes,
+        level.depths,
+        level.regions,
+        failed,
+        &centred,
+        goal,
+        effort,
+        &|_| {},
+    )?;
+    let mut retried: Vec<Vec<NewChild>> = divided
+        .into_iter()
+        .map(|(pieces, children)| children_of(&pieces, children, true))
+        .collect();
+    // Every retried child certified at once (on every core), its error then its own.
+    let mut new: Vec<TreeNode> = retried.iter().flatten().map(|c| c.0.clone()).collect();
+    let all_centred = vec![true; new.len()];
+    certify_level(solid, &mut new, &all_centred, level.tolerance, false)?;
+    for (child, node) in retried.iter_mut().flatten().zip(new) {
+        child.0.error = node.error;
+    }
+    let worst = |children: &[NewChild]| children.iter().map(|c| c.0.error).fold(0.0, f64::max);
+    // The level as built, taken out to be put back parent by parent.
+    let mut built = level
+        .nodes
+        .split_off(start)
+        .into_iter()
+        .zip(level.regions.split_off(start))
+        .zip(level.depths.split_off(start))
+        .zip(level.surface_centred.split_off(start))
+        .map(|(((node, region), depth), centred)| (node, region, depth, centred));
+    let mut retried = failed.iter().zip(retried).peekable();
+    for &parent in parents {
+        let count = level.nodes[parent].children.len();
+        let solid_children: Vec<NewChild> = built.by_ref().take(count).collect();
+        let children = match retried.next_if(|(p, _)| **p == parent) {
+            Some((_, on_shell)) if worst(&on_shell) < worst(&solid_children) => on_shell,
+            _ => solid_children,
+        };
+        level.push(parent, children)?;
+    }
+    Ok(())
+}
+
+/// In a tree built to a depth on an open mesh taken as a solid: a child of the level
+/// starting at `start` that reaches farther than its parent, by their certified errors,
+/// after both divisions were tried ([`redivide_on_the_shell`]), takes its parent's sphere
+/// (which covers the child's region, being a part of the parent's), so no level is
+/// looser than the one above it. It happens where the surface's pieces are still too
+/// large for spheres around them to beat the medial balls pinned by a hole's dent.
+fn keep_the_parent_where_looser(
+    nodes: &mut [TreeNode],
+    depths: &mut [f64],
+    surface_centred: &mut [bool],
+    start: usize,
+) {
+    for child in start..nodes.len() {
+        let Some(parent) = nodes[child].parent.map(|p| p as usize) else {
+            continue;
+        };
+        if nodes[child].error > nodes[parent].error {
+            nodes[child].sphere = nodes[parent].sphere;
+            nodes[child].error = nodes[parent].error;
+            depths[child] = depths[parent];
+            surface_centred[child] = surface_centred[parent];
+        }
+    }
 }
 
 /// The error of a tolerance that cannot be met, from the tree as it stands.
