@@ -6,8 +6,8 @@
 //! number of spheres drawn (equal to the JSON report's count), its side panel shows every
 //! level's certified error as the report gives it, and a screenshot is not blank (pixels
 //! of the drawing differ from the background). The pages and screenshots stay in
-//! `target/browser-test/` as artefacts; `--update-images` also copies two screenshots to
-//! `docs/images/` for the README.
+//! `browser-test/` in the target directory as artefacts; `--update-images` also copies two
+//! screenshots to `docs/images/` for the README.
 //!
 //! Then the bunny with every layer (`--simplify`, `--hal`, `--hausdorff` against its own
 //! simplification, `--silhouette`): every surface of the page's menu is drawn with the
@@ -156,12 +156,13 @@ fn drawn(p: [u8; 3]) -> bool {
     p.iter().zip(BACKGROUND).any(|(&a, b)| a.abs_diff(b) > 8)
 }
 
-/// Runs `target/debug/sphaera` with `args`; its JSON report.
+/// Runs the dev profile's `sphaera` with `args`; its JSON report.
 fn sphaera_json(args: &[&str]) -> Result<serde_json::Value> {
-    let report = Command::new("target/debug/sphaera")
+    let cli = crate::debug_cli()?;
+    let report = Command::new(&cli)
         .args(args)
         .output()
-        .context("cannot run target/debug/sphaera")?;
+        .with_context(|| format!("cannot run {}", cli.display()))?;
     if !report.status.success() {
         bail!(
             "sphaera {} failed: {}",
@@ -189,7 +190,7 @@ fn percent(value: f64, diagonal: f64) -> String {
 pub fn browser_test(update_images: bool) -> Result<()> {
     let chromium = chromium()?;
     crate::cargo(&["build", "--locked", "-p", "sphaera-cli"])?;
-    let out = Path::new("target/browser-test");
+    let out = &crate::target_dir()?.join("browser-test");
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut problems = Vec::new();
     let levels = tree_levels(&chromium, out, &mut problems)?;

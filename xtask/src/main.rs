@@ -105,6 +105,64 @@ fn project_root() -> PathBuf {
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
 }
 
+/// The workspace's target directory as cargo resolves it (`CARGO_TARGET_DIR`,
+/// `build.target-dir` in a cargo configuration, or `target/`), from `cargo metadata`.
+fn target_dir() -> Result<PathBuf> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    let output = Command::new(&cargo)
+        .args([
+            "metadata",
+            "--format-version",
+            "1",
+            "--no-deps",
+            "--offline",
+        ])
+        .output()
+        .with_context(|| format!("cannot run {cargo} metadata"))?;
+    if !output.status.success() {
+        bail!(
+            "`cargo metadata` failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    let metadata: serde_json::Value =
+        serde_json::from_slice(&output.stdout).context("`cargo metadata` is not JSON")?;
+    metadata["target_directory"]
+        .as_str()
+        .map(PathBuf::from)
+        .context("`cargo metadata` names no target directory")
+}
+
+/// The `sphaera` binary of the dev profile, built by the tests (`cargo build -p
+/// sphaera-cli`).
+fn debug_cli() -> Result<PathBuf> {
+    let cli = target_dir()?.join("debug").join("sphaera");
+    std::fs::canonicalize(&cli).with_context(|| format!("cannot find {}", cli.display()))
+}
+
+/// Every command run so far with its time in seconds, for [`ci`]'s summary.
+static STEPS: std::sync::Mutex<Vec<(String, f64)>> = std::sync::Mutex::new(Vec::new());
+
+/// Records a step's time for the summary.
+fn record_step(command: &str, seconds: f64) {
+    if let Ok(mut steps) = STEPS.lock() {
+        steps.push((command.to_owned(), seconds));
+    }
+}
+
+/// Prints every step's time, longest first.
+fn print_steps() {
+    let Ok(mut steps) = STEPS.lock() else {
+        return;
+    };
+    steps.sort_by(|a, b| b.1.total_cmp(&a.1));
+    eprintln!("time per step:");
+    for (command, seconds) in steps.iter() {
+        let shown: String = command.chars().take(100).collect();
+        eprintln!("  {seconds:>7.1} s  {shown}");
+    }
+}
+
 /// Runs `cargo ARGS`, failing with the command line if it fails.
 fn cargo(args: &[&str]) -> Result<()> {
     cargo_with_env(args, &[])
@@ -119,11 +177,12 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
         .envs(env.iter().copied())
         .status()
         .with_context(|| format!("cannot run {cargo}"))?;
+    let seconds = started.elapsed().as_secs_f64();
     eprintln!(
-        "  ({:.1} s, {})",
-        started.elapsed().as_secs_f64(),
+        "  ({seconds:.1} s, {})",
         if status.success() { "ok" } else { "FAILED" }
     );
+    record_step(&format!("cargo {}", args.join(" ")), seconds);
     if !status.success() {
         bail!("`cargo {}` failed ({status})", args.join(" "));
     }
@@ -226,6 +285,7 @@ fn ci() -> Result<()> {
     charts(true, &[])?;
     tables::tables(true)?;
     browser::browser_test(false)?;
+    print_steps();
     eprintln!("ci passed in {:.0} s", started.elapsed().as_secs_f64());
     Ok(())
 }

@@ -1,5 +1,5 @@
 //! The Python bindings' tests: `crates/sphaera-py` built into a virtual environment that
-//! this creates (`target/python-venv`, packages from PyPI pinned in
+//! this creates (`python-venv` in the target directory, packages from PyPI pinned in
 //! `crates/sphaera-py/requirements-test.txt`) with `maturin develop`, then its pytest
 //! suite, which checks the numbers against the `sphaera` binary's (`SPHAERA_CLI`).
 
@@ -9,7 +9,8 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 
-const VENV: &str = "target/python-venv";
+/// The virtual environment's folder in the target directory.
+const VENV: &str = "python-venv";
 const REQUIREMENTS: &str = "crates/sphaera-py/requirements-test.txt";
 
 /// Runs `program` with `args` (and `envs`), echoing the command, failing on failure.
@@ -21,10 +22,14 @@ fn run(program: &Path, args: &[&str], envs: &[(&str, &std::ffi::OsStr)]) -> Resu
         .envs(envs.iter().copied())
         .status()
         .with_context(|| format!("cannot run {}", program.display()))?;
+    let seconds = started.elapsed().as_secs_f64();
     eprintln!(
-        "  ({:.1} s, {})",
-        started.elapsed().as_secs_f64(),
+        "  ({seconds:.1} s, {})",
         if status.success() { "ok" } else { "FAILED" }
+    );
+    crate::record_step(
+        &format!("{} {}", program.display(), args.join(" ")),
+        seconds,
     );
     if !status.success() {
         bail!(
@@ -36,9 +41,10 @@ fn run(program: &Path, args: &[&str], envs: &[(&str, &std::ffi::OsStr)]) -> Resu
     Ok(())
 }
 
-/// The virtual environment's Python, created (with the pinned packages) when missing.
-fn venv() -> Result<PathBuf> {
-    let python = Path::new(VENV).join("bin/python");
+/// The virtual environment's Python, created (with the pinned packages) in `venv` when
+/// missing.
+fn python_in(venv: &Path) -> Result<PathBuf> {
+    let python = venv.join("bin/python");
     if !python.exists() {
         let system = ["python3", "python"]
             .into_iter()
@@ -52,7 +58,8 @@ fn venv() -> Result<PathBuf> {
                 "the Python bindings' tests need Python 3.9 or later with `venv` \
                  (on Debian or Ubuntu: `sudo apt-get install python3 python3-venv`)",
             )?;
-        run(Path::new(system), &["-m", "venv", VENV], &[])?;
+        let folder = venv.to_string_lossy();
+        run(Path::new(system), &["-m", "venv", &folder], &[])?;
     }
     run(
         &python,
@@ -71,8 +78,10 @@ fn venv() -> Result<PathBuf> {
 }
 
 pub fn python_test() -> Result<()> {
-    let python = venv()?;
-    let venv = std::fs::canonicalize(VENV).with_context(|| format!("cannot find {VENV}"))?;
+    let folder = crate::target_dir()?.join(VENV);
+    let python = python_in(&folder)?;
+    let venv = std::fs::canonicalize(&folder)
+        .with_context(|| format!("cannot find {}", folder.display()))?;
     let bin = venv.join("bin");
     let path = std::env::join_paths(std::iter::once(bin.clone()).chain(std::env::split_paths(
         &std::env::var_os("PATH").unwrap_or_default(),
@@ -82,7 +91,7 @@ pub fn python_test() -> Result<()> {
         ("VIRTUAL_ENV", venv.as_os_str()),
         ("PATH", path.as_os_str()),
     ];
-    // The extension in the workspace's dev profile, sharing `target/debug`.
+    // The extension in the workspace's dev profile, sharing the target directory.
     run(
         &bin.join("maturin"),
         &[
@@ -96,8 +105,7 @@ pub fn python_test() -> Result<()> {
     )?;
     // The CLI the suite compares against (built by the Rust tests already).
     crate::cargo(&["build", "--locked", "-p", "sphaera-cli"])?;
-    let cli = std::fs::canonicalize("target/debug/sphaera")
-        .context("cannot find target/debug/sphaera")?;
+    let cli = crate::debug_cli()?;
     let mut envs = envs;
     envs.push(("SPHAERA_CLI", cli.as_os_str()));
     run(

@@ -500,7 +500,9 @@ fn certified_lower_bounds(
 
 /// The error of `sphere` at one point (a true value, so a lower bound on its certified
 /// error): the point of the sphere farthest out past the surface point nearest its centre,
-/// its distance to the surface when it lies outside the object, else 0.
+/// its distance to the surface when it lies outside the object (by the certified inside
+/// test: the fast one may err within its error bound of ½), else 0. The centre's side
+/// only chooses the direction, and any direction gives a true value.
 pub(crate) fn probe_error(surface: &Surface, sphere: &Sphere) -> f64 {
     let Ok(nearest) = surface.closest(sphere.center) else {
         return 0.0;
@@ -515,7 +517,7 @@ pub(crate) fn probe_error(surface: &Surface, sphere: &Sphere) -> f64 {
         return 0.0;
     };
     let probe = sphere.center + direction * sphere.radius;
-    if surface.is_inside(probe) {
+    if surface.is_inside_certified(probe) {
         return 0.0;
     }
     surface.closest(probe).map_or(0.0, |c| c.distance)
