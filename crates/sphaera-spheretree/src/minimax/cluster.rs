@@ -8,7 +8,7 @@ use sphaera_mesh::Surface;
 
 use super::candidates::Candidate;
 use super::pieces::{Piece, centroid, reach_squared};
-use super::polish::polish;
+use super::polish::{Corners, polish};
 use crate::SphereTreeError;
 
 /// A sphere being fitted: its centre, signed depth, the pieces it covers (indices, into
@@ -41,6 +41,8 @@ pub(crate) struct Region<'a> {
     pub(crate) surface: &'a Surface,
     /// Every piece of the region.
     pub(crate) pieces: &'a [Piece],
+    /// The pieces' corners, numbered.
+    pub(crate) corners: &'a Corners,
     /// The representatives, as indices into `pieces` (ascending).
     pub(crate) reps: Vec<u32>,
     /// The candidate centres.
@@ -339,7 +341,13 @@ impl Region<'_> {
             if !changed {
                 return Ok(c.clone());
             }
-            let (center, depth, reach) = polish(self.surface, self.pieces, &c.members, c.center)?;
+            let (center, depth, reach) = polish(
+                self.surface,
+                self.pieces,
+                self.corners,
+                &c.members,
+                c.center,
+            )?;
             Ok(Cluster {
                 center,
                 depth,

@@ -8,6 +8,7 @@ use sphaera_mesh::{Sphere, Surface};
 use super::candidates::{Candidate, medial_candidate};
 use super::cluster::{BRUTE_FORCE_SPHERES, Cluster, Region, worst};
 use super::pieces::{Piece, area, centroid};
+use super::polish::Corners;
 use super::search::Thresholds;
 use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::{Effort, SphereTreeError};
@@ -160,6 +161,7 @@ pub(crate) fn divide(
     let most = goal.most().max(1);
     let (mut candidates, mut origins) =
         candidates(surface, pieces, most, effort.candidates, parent.0.radius)?;
+    let corners = Corners::of(pieces);
     // The parent's centre, grown from the middle piece.
     candidates.push(Candidate {
         center: parent.0.center,
@@ -186,7 +188,16 @@ pub(crate) fn divide(
                 bias: 0.0,
             })
             .collect();
-        let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
+        let whole = region(
+            surface,
+            pieces,
+            &corners,
+            most,
+            effort.reps,
+            0,
+            &candidates,
+            &origins,
+        );
         finish(&whole, goal, &drafted, PROXY_ROUNDS)?
     } else {
         let starts = if pieces.len() <= effort.reps {
@@ -199,6 +210,7 @@ pub(crate) fn divide(
             region(
                 surface,
                 pieces,
+                &corners,
                 most,
                 effort.reps,
                 start,
@@ -223,7 +235,16 @@ pub(crate) fn divide(
         }
         best.unwrap_or_default()
     };
-    let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
+    let whole = region(
+        surface,
+        pieces,
+        &corners,
+        most,
+        effort.reps,
+        0,
+        &candidates,
+        &origins,
+    );
     if !proxied && effort.swaps > 0 && matches!(goal, Goal::Count(_)) {
         whole.swap(&mut clusters, effort.swaps, SWAP_ROUNDS)?;
     }
@@ -498,9 +519,11 @@ fn candidates(
 /// The region with the representatives of start number `start` (every `n`-th piece
 /// from another offset); each candidate belongs to the representative at or before the
 /// piece it was grown from.
+#[allow(clippy::too_many_arguments)]
 fn region<'a>(
     surface: &'a Surface,
     pieces: &'a [Piece],
+    corners: &'a Corners,
     most: usize,
     minimum: usize,
     start: usize,
@@ -520,6 +543,7 @@ fn region<'a>(
     Region {
         surface,
         pieces,
+        corners,
         reps,
         candidates: candidates.to_vec(),
         sources,

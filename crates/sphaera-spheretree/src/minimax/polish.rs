@@ -35,6 +35,7 @@ pub(crate) struct Reach<'a> {
     /// from the origin, each once, farthest first.
     outer: Vec<(f64, DVec3)>,
     pieces: &'a [Piece],
+    corners: &'a Corners,
     members: &'a [u32],
     /// Every corner, each once: only a point beyond [`NEAR`] asks for them.
     all: OnceCell<Vec<DVec3>>,
@@ -45,11 +46,17 @@ pub(crate) struct Reach<'a> {
 const NEAR: f64 = 0.25;
 
 impl<'a> Reach<'a> {
-    /// The corners of `members` (indices into `pieces`), about `origin`.
-    pub(crate) fn new(pieces: &'a [Piece], members: &'a [u32], origin: DVec3) -> Self {
-        let corners = || members.iter().flat_map(|&m| pieces[m as usize]);
+    /// The corners of `members` (indices into `pieces`, whose corners are numbered by
+    /// `corners`), about `origin`.
+    pub(crate) fn new(
+        pieces: &'a [Piece],
+        corners: &'a Corners,
+        members: &'a [u32],
+        origin: DVec3,
+    ) -> Self {
+        let all_corners = || members.iter().flat_map(|&m| pieces[m as usize]);
         // A corner counted twice changes no maximum.
-        let largest = corners()
+        let largest = all_corners()
             .map(|p| p.distance_squared(origin))
             .fold(0.0, f64::max)
             .sqrt();
@@ -59,17 +66,19 @@ impl<'a> Reach<'a> {
         // Below this squared distance a corner is surely within `inner` (its rounded
         // distance too): skipped without its square root.
         let surely_within = (inner * (1.0 - 1e-6)).powi(2);
-        let mut seen = CornerSet::with_capacity(3 * members.len());
+        let mut seen = corners.none_seen();
         let mut outer: Vec<(f64, DVec3)> = Vec::new();
-        for p in corners() {
-            let squared = p.distance_squared(origin);
-            if squared < surely_within {
-                continue;
-            }
-            // `distance` is the square root of `distance_squared`.
-            let d = squared.sqrt();
-            if d >= inner && seen.insert(p) {
-                outer.push((d, p));
+        for &m in members {
+            for (p, id) in pieces[m as usize].into_iter().zip(corners.ids[m as usize]) {
+                let squared = p.distance_squared(origin);
+                if squared < surely_within {
+                    continue;
+                }
+                // `distance` is the square root of `distance_squared`.
+                let d = squared.sqrt();
+                if d >= inner && first_sight(&mut seen, id) {
+                    outer.push((d, p));
+                }
             }
         }
         // The outer corners in the order of their first appearance, as sorted always.
@@ -79,6 +88,7 @@ impl<'a> Reach<'a> {
             largest,
             outer,
             pieces,
+            corners,
             members,
             all: OnceCell::new(),
         }
@@ -90,7 +100,7 @@ impl<'a> Reach<'a> {
         if shift > NEAR * self.largest {
             return self
                 .all
-                .get_or_init(|| unique_corners(self.pieces, self.members))
+                .get_or_init(|| self.corners.unique(self.pieces, self.members))
                 .iter()
                 .map(|p| p.distance_squared(x))
                 .fold(0.0, f64::max)
@@ -107,15 +117,57 @@ impl<'a> Reach<'a> {
     }
 }
 
-/// The corners of the pieces `members`, each once: neighbouring pieces share corners
-/// bit for bit (split midpoints are computed from the same two corners), so most corners
-/// appear several times.
-fn unique_corners(pieces: &[Piece], members: &[u32]) -> Vec<DVec3> {
-    let mut seen = CornerSet::with_capacity(3 * members.len());
-    for p in members.iter().flat_map(|&m| pieces[m as usize]) {
-        seen.insert(p);
+/// The corners of a region's pieces numbered, the same number for the same point:
+/// neighbouring pieces share corners bit for bit (split midpoints are computed from the
+/// same two corners), so most corners appear several times, and a [`Reach`] takes each
+/// once without hashing it again.
+pub(crate) struct Corners {
+    /// Per piece, its corners' numbers.
+    ids: Vec<[u32; 3]>,
+    /// Distinct corners.
+    count: usize,
+}
+
+impl Corners {
+    /// The corners of `pieces`, numbered in order of first appearance.
+    pub(crate) fn of(pieces: &[Piece]) -> Self {
+        let mut set = CornerSet::with_capacity(3 * pieces.len());
+        let ids = pieces
+            .iter()
+            .map(|piece| piece.map(|p| set.insert(p)))
+            .collect();
+        Self {
+            ids,
+            count: set.points.len(),
+        }
     }
-    seen.points
+
+    /// A mark per corner, none set.
+    fn none_seen(&self) -> Vec<u64> {
+        vec![0; self.count.div_ceil(64)]
+    }
+
+    /// The corners of the pieces `members`, each once, in order of first appearance.
+    fn unique(&self, pieces: &[Piece], members: &[u32]) -> Vec<DVec3> {
+        let mut seen = self.none_seen();
+        let mut out = Vec::new();
+        for &m in members {
+            for (p, id) in pieces[m as usize].into_iter().zip(self.ids[m as usize]) {
+                if first_sight(&mut seen, id) {
+                    out.push(p);
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Marks corner `id` in `seen`; whether it was not marked yet.
+fn first_sight(seen: &mut [u64], id: u32) -> bool {
+    let (word, bit) = ((id / 64) as usize, 1_u64 << (id % 64));
+    let new = seen[word] & bit == 0;
+    seen[word] |= bit;
+    new
 }
 
 /// A set of points by their bits (open addressing over indices into the points kept),
@@ -138,8 +190,8 @@ impl CornerSet {
         }
     }
 
-    /// Adds `p`; whether it was new.
-    fn insert(&mut self, p: DVec3) -> bool {
+    /// Adds `p`: its number, the count of points before it when it is new.
+    fn insert(&mut self, p: DVec3) -> u32 {
         let bits = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
         // Split midpoints are dyadic: their low bits are mostly zero, so the words are
         // multiplied up and the slot taken from the high bits.
@@ -153,12 +205,13 @@ impl CornerSet {
             match self.slots[slot] {
                 0 => {
                     self.points.push(p);
-                    // Lossless: at most 3 corners per piece, pieces counted in u32.
+                    // Lossless: a region has far fewer than 2³² corners (its pieces are
+                    // capped).
                     self.slots[slot] = self.points.len() as u32;
-                    return true;
+                    return self.slots[slot] - 1;
                 }
                 k if self.points[k as usize - 1].to_array().map(f64::to_bits) == bits => {
-                    return false;
+                    return k - 1;
                 }
                 _ => slot = (slot + 1) & mask,
             }
@@ -176,10 +229,11 @@ impl CornerSet {
 pub(crate) fn polish(
     surface: &Surface,
     pieces: &[Piece],
+    corners: &Corners,
     members: &[u32],
     start: DVec3,
 ) -> Result<(DVec3, f64, f64), SphereTreeError> {
-    let reach = Reach::new(pieces, members, start);
+    let reach = Reach::new(pieces, corners, members, start);
     let mut failure = None;
     // Points closer to the start than its distance to the surface are on its side: the
     // segment between them crosses no surface. Only the others ask for their side.
@@ -325,7 +379,8 @@ mod tests {
             })
             .collect();
         let members: Vec<u32> = (0..50).collect();
-        let reach = Reach::new(&pieces, &members, DVec3::ZERO);
+        let corners = Corners::of(&pieces);
+        let reach = Reach::new(&pieces, &corners, &members, DVec3::ZERO);
         for x in [
             DVec3::ZERO,
             DVec3::new(0.2, 0.1, 0.0),
@@ -352,7 +407,8 @@ mod tests {
             .collect();
         let members: Vec<u32> = (0..200).step_by(3).chain((1..200).step_by(3)).collect();
         for origin in [DVec3::ZERO, DVec3::new(10.0, 0.0, 0.1)] {
-            let reach = Reach::new(&pieces, &members, origin);
+            let corners = Corners::of(&pieces);
+            let reach = Reach::new(&pieces, &corners, &members, origin);
             let mut firsts: Vec<DVec3> = Vec::new();
             for &m in &members {
                 for p in pieces[m as usize] {
@@ -366,7 +422,7 @@ mod tests {
                 assert!(!outer[..i].contains(p), "{p} twice");
             }
             assert!(outer.iter().all(|p| firsts.contains(p)));
-            assert_eq!(unique_corners(&pieces, &members), firsts);
+            assert_eq!(corners.unique(&pieces, &members), firsts);
             for k in 0..40 {
                 let t = f64::from(k);
                 let x = origin + DVec3::new(t.cos(), (1.3 * t).sin(), 0.1 * t.sin()) * (0.05 * t);

@@ -329,7 +329,7 @@ impl Region<'_> {
             .map(|&m| centroid(&self.pieces[m as usize]))
             .sum::<DVec3>()
             / members.len().max(1) as f64;
-        let reach = Reach::new(self.pieces, &members, origin);
+        let reach = Reach::new(self.pieces, self.corners, &members, origin);
         let mut best = (f64::INFINITY, 0);
         for c in pool {
             let cand = self.candidates[c];
