@@ -5,7 +5,7 @@
 use glam::{DMat3, DVec3};
 
 use crate::bvh::BoxTree;
-use crate::{Aabb, MeshError, TriMesh};
+use crate::{MeshError, TriMesh};
 
 /// Most triangles in a leaf.
 pub(crate) const LEAF_SIZE: usize = 8;
@@ -65,6 +65,14 @@ impl Tree {
     /// triangles in tree order. `mesh` must have at least one triangle and
     /// fewer than `u32::MAX` (the caller checks both).
     pub(crate) fn build(mesh: &TriMesh) -> Result<Self, MeshError> {
+        let boxes = BoxTree::build(&crate::closest::triangle_boxes(mesh), LEAF_SIZE)?;
+        Ok(Self::with_boxes(mesh, &boxes))
+    }
+
+    /// The tree of `mesh` (at least one triangle, fewer than `u32::MAX`) on `boxes`, the
+    /// box tree over [`triangle_boxes`](crate::closest::triangle_boxes) with [`LEAF_SIZE`]
+    /// (built, or refined from a coarser build).
+    pub(crate) fn with_boxes(mesh: &TriMesh, boxes: &BoxTree) -> Self {
         let items: Vec<Item> = mesh
             .triangle_iter()
             .map(|t| {
@@ -85,12 +93,6 @@ impl Tree {
                 }
             })
             .collect();
-        let boxed: Vec<(Aabb, DVec3)> = items
-            .iter()
-            .map(|i| (Aabb::from_points(i.corners), i.centroid))
-            .collect();
-        let boxes = BoxTree::build(&boxed, LEAF_SIZE)?;
-        drop(boxed);
         // The items in tree order, so that every node's triangles are one contiguous run
         // of them (read in the same order as through `order`: the same sums).
         let mut slots: Vec<Option<Item>> = items.into_iter().map(Some).collect();
@@ -119,7 +121,7 @@ impl Tree {
         #[cfg(not(feature = "parallel"))]
         let nodes: Vec<Node> = boxes.nodes().iter().map(expand).collect();
         let corners = items.iter().map(|item| item.corners).collect();
-        Ok(Self { nodes, corners })
+        Self { nodes, corners }
     }
 }
 
