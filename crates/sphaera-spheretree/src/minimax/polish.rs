@@ -400,7 +400,7 @@ mod tests {
         // A strip of triangles sharing their corners, and the same triangles split apart.
         let corner = |i: u32| {
             let t = f64::from(i);
-            DVec3::new(0.1 * t, (0.7 * t).sin(), 0.2 * (i % 2) as f64)
+            DVec3::new(0.1 * t, (0.7 * t).sin(), 0.2 * f64::from(i % 2))
         };
         let pieces: Vec<Piece> = (0..200)
             .map(|i| [corner(i), corner(i + 1), corner(i + 2)])
