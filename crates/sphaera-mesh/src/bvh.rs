@@ -137,6 +137,54 @@ impl BoxTree {
         Ok(Self { nodes, order })
     }
 
+    /// The tree [`BoxTree::build`] gives for `items` and `leaf_size`, from this tree built
+    /// from the same items with a larger leaf size: the build decides each split from the
+    /// node's items and depth alone, so the finer tree is this one with every leaf of more
+    /// than `leaf_size` items built further, from the items as they stand in it. Costs the
+    /// small leaves' builds and a pass over the nodes, not a build.
+    pub(crate) fn refined(&self, items: &[(Aabb, DVec3)], leaf_size: usize) -> Self {
+        let builder = Builder {
+            items,
+            leaf_size: leaf_size.max(1),
+        };
+        let mut fine = Self {
+            nodes: Vec::with_capacity(2 * self.nodes.len()),
+            order: self.order.clone(),
+        };
+        if !self.nodes.is_empty() {
+            self.refine_subtree(0, 0, builder, &mut fine);
+        }
+        fine
+    }
+
+    /// [`BoxTree::refined`] from node `n` at depth `depth`, appending to `fine`.
+    fn refine_subtree(&self, n: usize, depth: usize, builder: Builder<'_>, fine: &mut Self) {
+        let node = self.nodes[n];
+        let at = fine.nodes.len();
+        match node.right() {
+            Some(right) => {
+                fine.nodes.push(node);
+                self.refine_subtree(n + 1, depth + 1, builder, fine);
+                // Lossless: the finer tree has fewer than 2³² nodes, as its build would.
+                fine.nodes[at].right = fine.nodes.len() as u32;
+                self.refine_subtree(right, depth + 1, builder, fine);
+            }
+            None if node.items().len() <= builder.leaf_size => fine.nodes.push(node),
+            None => {
+                let range = node.items();
+                let start = range.start;
+                let below = builder.node(&mut fine.order[range], start, depth);
+                // Its right children are numbered from its root.
+                fine.nodes.extend(below.into_iter().map(|mut b| {
+                    if b.right != 0 {
+                        b.right += at as u32;
+                    }
+                    b
+                }));
+            }
+        }
+    }
+
     /// The nodes, depth first (the root first; empty for no items).
     #[must_use]
     pub fn nodes(&self) -> &[BoxNode] {
@@ -501,6 +549,26 @@ mod tests {
                 DVec3::new((t * 0.37).sin(), (t * 0.71).cos(), (t * 0.13).sin()) * 3.0
             })
             .collect()
+    }
+
+    #[test]
+    fn a_refined_tree_is_the_finer_build() {
+        for n in [1, 7, 17, 333, 5000] {
+            let centroids = points(n);
+            let items: Vec<(Aabb, DVec3)> = centroids
+                .iter()
+                .enumerate()
+                .map(|(i, &c)| (Aabb::new(c - 0.01 * (i % 7) as f64, c + 0.1), c))
+                .collect();
+            for (coarse, fine) in [(16, 8), (16, 16), (9, 1), (64, 4)] {
+                let refined = BoxTree::build(&items, coarse)
+                    .unwrap()
+                    .refined(&items, fine);
+                let built = BoxTree::build(&items, fine).unwrap();
+                assert_eq!(refined.nodes, built.nodes, "{n} {coarse} {fine}");
+                assert_eq!(refined.order, built.order, "{n} {coarse} {fine}");
+            }
+        }
     }
 
     #[test]

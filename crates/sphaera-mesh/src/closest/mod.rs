@@ -26,6 +26,7 @@ mod triangle_tree;
 use glam::DVec3;
 
 pub use triangle_tree::{ApproxClosest, TreeCursor, TriangleTree};
+pub(crate) use triangle_tree::{LEAF_SIZE, triangle_boxes};
 
 /// The feature of a mesh a closest point lies on, in the mesh's vertex indices.
 ///

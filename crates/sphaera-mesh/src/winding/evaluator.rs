@@ -313,6 +313,24 @@ impl WindingNumber {
         })
     }
 
+    /// The evaluator of `mesh` with the default options on `boxes`, the box tree over
+    /// [`triangle_boxes`](crate::closest::triangle_boxes) with the winding tree's leaf
+    /// size (built, or refined from a coarser build); `mesh` has at least one triangle.
+    pub(crate) fn with_boxes(
+        mesh: &TriMesh,
+        boxes: &crate::bvh::BoxTree,
+    ) -> Result<Self, MeshError> {
+        if u32::try_from(mesh.triangle_count()).is_err() {
+            return Err(MeshError::TooManyTriangles {
+                count: mesh.triangle_count(),
+            });
+        }
+        Ok(Self {
+            tree: Tree::with_boxes(mesh, boxes),
+            options: WindingOptions::default(),
+        })
+    }
+
     /// The options this evaluator was built with.
     pub fn options(&self) -> WindingOptions {
         self.options

@@ -156,3 +156,4 @@ pub use evaluator::{Expansion, WindingEstimate, WindingNumber, WindingOptions};
 pub use ray_parity::inside_by_ray_parity;
 pub use solid_angle::{triangle_solid_angle, winding_number_brute};
 pub use solidity::{INWARD_THRESHOLD, SOLID_THRESHOLD, SolidityReport};
+pub(crate) use tree::LEAF_SIZE;

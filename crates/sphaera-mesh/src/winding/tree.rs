@@ -5,7 +5,7 @@
 use glam::{DMat3, DVec3};
 
 use crate::bvh::BoxTree;
-use crate::{Aabb, MeshError, TriMesh};
+use crate::{MeshError, TriMesh};
 
 /// Most triangles in a leaf.
 pub(crate) const LEAF_SIZE: usize = 8;
@@ -65,6 +65,14 @@ impl Tree {
     /// triangles in tree order. `mesh` must have at least one triangle and
     /// fewer than `u32::MAX` (the caller checks both).
     pub(crate) fn build(mesh: &TriMesh) -> Result<Self, MeshError> {
+        let boxes = BoxTree::build(&crate::closest::triangle_boxes(mesh), LEAF_SIZE)?;
+        Ok(Self::with_boxes(mesh, &boxes))
+    }
+
+    /// The tree of `mesh` (at least one triangle, fewer than `u32::MAX`) on `boxes`, the
+    /// box tree over [`triangle_boxes`](crate::closest::triangle_boxes) with [`LEAF_SIZE`]
+    /// (built, or refined from a coarser build).
+    pub(crate) fn with_boxes(mesh: &TriMesh, boxes: &BoxTree) -> Self {
         let items: Vec<Item> = mesh
             .triangle_iter()
             .map(|t| {
@@ -85,15 +93,19 @@ impl Tree {
                 }
             })
             .collect();
-        let boxed: Vec<(Aabb, DVec3)> = items
+        // The items in tree order, so that every node's triangles are one contiguous run
+        // of them (read in the same order as through `order`: the same sums).
+        let mut slots: Vec<Option<Item>> = items.into_iter().map(Some).collect();
+        let items: Vec<Item> = boxes
+            .order()
             .iter()
-            .map(|i| (Aabb::from_points(i.corners), i.centroid))
+            .filter_map(|&i| slots[i as usize].take())
             .collect();
-        let boxes = BoxTree::build(&boxed, LEAF_SIZE)?;
+        drop(slots);
         // Each node's expansion sums over its triangles in tree order: independent per
         // node, so computed side by side with `parallel`, with the same sums either way.
         let expand = |shape: &crate::bvh::BoxNode| {
-            let mut node = expansion_of(&items, &boxes.order()[shape.items()]);
+            let mut node = expansion_of(&items[shape.items()]);
             // Lossless: the caller checked that the triangle count fits a u32.
             (node.first, node.count) = match shape.right() {
                 Some(right) => (right as u32, 0),
@@ -108,30 +120,25 @@ impl Tree {
         };
         #[cfg(not(feature = "parallel"))]
         let nodes: Vec<Node> = boxes.nodes().iter().map(expand).collect();
-        let corners = boxes
-            .order()
-            .iter()
-            .map(|&i| items[i as usize].corners)
-            .collect();
-        Ok(Self { nodes, corners })
+        let corners = items.iter().map(|item| item.corners).collect();
+        Self { nodes, corners }
     }
 }
 
-/// The expansion (centre, radius, moments) of the triangles in `order`.
-fn expansion_of(items: &[Item], order: &[u32]) -> Node {
+/// The expansion (centre, radius, moments) of the triangles `items`.
+fn expansion_of(items: &[Item]) -> Node {
     let mut area = 0.0;
     let mut weighted = DVec3::ZERO;
     let mut plain = DVec3::ZERO;
     let mut normal_sum = DVec3::ZERO;
-    for &i in order {
-        let item = &items[i as usize];
+    for item in items {
         area += item.area;
         weighted += item.area * item.centroid;
         plain += item.centroid;
         normal_sum += item.area_normal;
     }
-    // `order` is never empty (the median split leaves at least LEAF_SIZE / 2 on each side).
-    let count = order.len().max(1) as f64;
+    // `items` is never empty (the median split leaves at least LEAF_SIZE / 2 on each side).
+    let count = items.len().max(1) as f64;
     let center = if area > 0.0 && (weighted / area).is_finite() {
         weighted / area
     } else {
@@ -140,8 +147,7 @@ fn expansion_of(items: &[Item], order: &[u32]) -> Node {
     let mut moment = DMat3::ZERO;
     let mut quadratic_moment = [DMat3::ZERO; 3];
     let mut radius_squared: f64 = 0.0;
-    for &i in order {
-        let item = &items[i as usize];
+    for item in items {
         let d = item.centroid - center;
         let n = item.area_normal;
         moment += outer(d, n);

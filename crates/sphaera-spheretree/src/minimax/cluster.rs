@@ -8,7 +8,7 @@ use sphaera_mesh::Surface;
 
 use super::candidates::Candidate;
 use super::pieces::{Piece, centroid, reach_squared};
-use super::polish::polish;
+use super::polish::{Corners, polish};
 use crate::SphereTreeError;
 
 /// A sphere being fitted: its centre, signed depth, the pieces it covers (indices, into
@@ -41,6 +41,8 @@ pub(crate) struct Region<'a> {
     pub(crate) surface: &'a Surface,
     /// Every piece of the region.
     pub(crate) pieces: &'a [Piece],
+    /// The pieces' corners, numbered.
+    pub(crate) corners: &'a Corners,
     /// The representatives, as indices into `pieces` (ascending).
     pub(crate) reps: Vec<u32>,
     /// The candidate centres.
@@ -183,8 +185,11 @@ impl Region<'_> {
             })
             .collect();
         if clusters.len() <= BRUTE_FORCE_SPHERES {
-            for (i, piece) in self.pieces.iter().enumerate() {
-                if let Some(k) = cheapest(&out, piece, 0..out.len()) {
+            // The members are not looked at: every piece's cluster at once.
+            let all = 0..out.len();
+            let homes = map_pieces(self.pieces, |piece| cheapest(&out, piece, all.clone()));
+            for (i, home) in homes.into_iter().enumerate() {
+                if let Some(k) = home {
                     out[k].members.push(i as u32);
                 }
             }
@@ -339,7 +344,13 @@ impl Region<'_> {
             if !changed {
                 return Ok(c.clone());
             }
-            let (center, depth, reach) = polish(self.surface, self.pieces, &c.members, c.center)?;
+            let (center, depth, reach) = polish(
+                self.surface,
+                self.pieces,
+                self.corners,
+                &c.members,
+                c.center,
+            )?;
             Ok(Cluster {
                 center,
                 depth,
@@ -384,10 +395,11 @@ impl Region<'_> {
                 moved[k].extend_from_slice(&c.members);
                 continue;
             }
-            for &m in &c.members {
-                let piece = &self.pieces[m as usize];
-                let to = cheapest(clusters, piece, neighbours[k].iter().map(|&j| j as usize))
-                    .unwrap_or(k);
+            let near = || neighbours[k].iter().map(|&j| j as usize);
+            let targets = map_members(&c.members, |m| {
+                cheapest(clusters, &self.pieces[m as usize], near()).unwrap_or(k)
+            });
+            for (&m, to) in c.members.iter().zip(targets) {
                 moved[to].push(m);
             }
         }
@@ -418,6 +430,35 @@ impl Region<'_> {
         }
         changed
     }
+}
+
+/// Pieces from which a pass over a region's pieces runs on every core (with `parallel`).
+#[cfg(feature = "parallel")]
+const PARALLEL_PIECES: usize = 1 << 15;
+
+/// `f` of every piece, in order (on every core with `parallel` for many pieces; the
+/// same results either way).
+fn map_pieces<T: Send>(pieces: &[Piece], f: impl Fn(&Piece) -> T + Sync) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    if pieces.len() >= PARALLEL_PIECES {
+        use rayon::prelude::*;
+        return pieces.par_iter().with_min_len(4096).map(&f).collect();
+    }
+    pieces.iter().map(f).collect()
+}
+
+/// `f` of every member, in order (as [`map_pieces`]).
+fn map_members<T: Send>(members: &[u32], f: impl Fn(u32) -> T + Sync) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    if members.len() >= PARALLEL_PIECES {
+        use rayon::prelude::*;
+        return members
+            .par_iter()
+            .with_min_len(4096)
+            .map(|&m| f(m))
+            .collect();
+    }
+    members.iter().map(|&m| f(m)).collect()
 }
 
 /// The largest distance from `center` to a corner of the pieces `members`.

@@ -8,6 +8,7 @@ use sphaera_mesh::{Sphere, Surface};
 use super::candidates::{Candidate, medial_candidate};
 use super::cluster::{BRUTE_FORCE_SPHERES, Cluster, Region, worst};
 use super::pieces::{Piece, area, centroid};
+use super::polish::Corners;
 use super::search::Thresholds;
 use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::{Effort, SphereTreeError};
@@ -158,20 +159,25 @@ pub(crate) fn divide(
         return divide_in_groups(surface, pieces, k, parent, effort);
     }
     let most = goal.most().max(1);
-    let (mut candidates, mut origins) =
-        candidates(surface, pieces, most, effort.candidates, parent.0.radius)?;
-    // The parent's centre, grown from the middle piece.
-    candidates.push(Candidate {
-        center: parent.0.center,
-        depth: parent.1,
-    });
-    origins.push((pieces.len() / 2) as u32);
+    let corners = Corners::of(pieces);
+    // The region's candidate centres and the pieces they were grown from, the parent's
+    // centre last (grown from the middle piece).
+    let all_candidates = || -> Result<(Vec<Candidate>, Vec<u32>), SphereTreeError> {
+        let (mut candidates, mut origins) =
+            candidates(surface, pieces, most, effort.candidates, parent.0.radius)?;
+        candidates.push(Candidate {
+            center: parent.0.center,
+            depth: parent.1,
+        });
+        origins.push((pieces.len() / 2) as u32);
+        Ok((candidates, origins))
+    };
     let wanted = effort
         .pieces
         .max(effort.pieces_per_child.saturating_mul(most))
         .max(1);
     let proxied = most <= BRUTE_FORCE_SPHERES && pieces.len() > PROXY_FACTOR.saturating_mul(wanted);
-    let mut clusters = if proxied {
+    let (mut clusters, (candidates, origins)) = if proxied {
         // Divided on every `stride`-th piece (each standing for its neighbours in Morton
         // order), then refined on every piece from there.
         let stride = pieces.len().div_ceil(wanted);
@@ -186,9 +192,31 @@ pub(crate) fn divide(
                 bias: 0.0,
             })
             .collect();
-        let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
-        finish(&whole, goal, &drafted, PROXY_ROUNDS)?
+        // The exact refinement moves centres off the candidates, and the balancing
+        // after it does not look at them: the region's own (the proxy had its) are grown
+        // only when children must be added.
+        let bare = region(surface, pieces, &corners, most, effort.reps, 0, &[], &[]);
+        let mut exact = refined(&bare, &drafted, PROXY_ROUNDS)?;
+        let found = if incomplete(&exact, goal) {
+            let (candidates, origins) = all_candidates()?;
+            let whole = region(
+                surface,
+                pieces,
+                &corners,
+                most,
+                effort.reps,
+                0,
+                &candidates,
+                &origins,
+            );
+            complete_to(&whole, goal, &mut exact, PROXY_ROUNDS)?;
+            (candidates, origins)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        (exact, found)
     } else {
+        let (candidates, origins) = all_candidates()?;
         let starts = if pieces.len() <= effort.reps {
             1
         } else {
@@ -199,6 +227,7 @@ pub(crate) fn divide(
             region(
                 surface,
                 pieces,
+                &corners,
                 most,
                 effort.reps,
                 start,
@@ -221,9 +250,19 @@ pub(crate) fn divide(
                 best = Some(refined);
             }
         }
-        best.unwrap_or_default()
+        (best.unwrap_or_default(), (candidates, origins))
     };
-    let whole = region(surface, pieces, most, effort.reps, 0, &candidates, &origins);
+    // Without the swaps (only when not proxied), the candidates are not looked at.
+    let whole = region(
+        surface,
+        pieces,
+        &corners,
+        most,
+        effort.reps,
+        0,
+        &candidates,
+        &origins,
+    );
     if !proxied && effort.swaps > 0 && matches!(goal, Goal::Count(_)) {
         whole.swap(&mut clusters, effort.swaps, SWAP_ROUNDS)?;
     }
@@ -498,9 +537,11 @@ fn candidates(
 /// The region with the representatives of start number `start` (every `n`-th piece
 /// from another offset); each candidate belongs to the representative at or before the
 /// piece it was grown from.
+#[allow(clippy::too_many_arguments)]
 fn region<'a>(
     surface: &'a Surface,
     pieces: &'a [Piece],
+    corners: &'a Corners,
     most: usize,
     minimum: usize,
     start: usize,
@@ -520,6 +561,7 @@ fn region<'a>(
     Region {
         surface,
         pieces,
+        corners,
         reps,
         candidates: candidates.to_vec(),
         sources,
@@ -573,27 +615,58 @@ fn finish(
     clusters: &[Cluster],
     rounds: usize,
 ) -> Result<Vec<Cluster>, SphereTreeError> {
+    let mut exact = refined(region, clusters, rounds)?;
+    complete_to(region, goal, &mut exact, rounds)?;
+    Ok(exact)
+}
+
+/// The first part of [`finish`]: the draft on every piece, refined exactly (neither looks
+/// at the region's candidates).
+fn refined(
+    region: &Region<'_>,
+    clusters: &[Cluster],
+    rounds: usize,
+) -> Result<Vec<Cluster>, SphereTreeError> {
     let mut exact = region.on_pieces(clusters);
     region.refine(&mut exact, rounds)?;
+    Ok(exact)
+}
+
+/// Whether [`complete_to`] would add children to `exact` for `goal`.
+fn incomplete(exact: &[Cluster], goal: Goal) -> bool {
+    match goal {
+        Goal::Count(k) => exact.len() < k,
+        Goal::Within { tolerance, most } => worst(exact) > tolerance && exact.len() < most,
+    }
+}
+
+/// The second part of [`finish`]: with fewer children than `goal` asks for, more (grown
+/// from the region's candidates), refined again.
+fn complete_to(
+    region: &Region<'_>,
+    goal: Goal,
+    exact: &mut Vec<Cluster>,
+    rounds: usize,
+) -> Result<(), SphereTreeError> {
     match goal {
         Goal::Count(k) => {
             if exact.len() < k {
-                region.complete(&mut exact, k)?;
-                region.refine(&mut exact, COMPLETION_ROUNDS)?;
+                region.complete(exact, k)?;
+                region.refine(exact, COMPLETION_ROUNDS)?;
             }
         }
         Goal::Within { tolerance, most } => {
-            while worst(&exact) > tolerance && exact.len() < most {
+            while worst(exact) > tolerance && exact.len() < most {
                 let before = exact.len();
-                region.complete(&mut exact, before + 1)?;
+                region.complete(exact, before + 1)?;
                 if exact.len() == before {
                     break;
                 }
-                region.refine(&mut exact, rounds)?;
+                region.refine(exact, rounds)?;
             }
         }
     }
-    Ok(exact)
+    Ok(())
 }
 
 #[cfg(test)]

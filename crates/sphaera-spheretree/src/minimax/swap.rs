@@ -329,7 +329,7 @@ impl Region<'_> {
             .map(|&m| centroid(&self.pieces[m as usize]))
             .sum::<DVec3>()
             / members.len().max(1) as f64;
-        let reach = Reach::new(self.pieces, &members, origin);
+        let reach = Reach::new(self.pieces, self.corners, &members, origin);
         let mut best = (f64::INFINITY, 0);
         for c in pool {
             let cand = self.candidates[c];
@@ -339,22 +339,21 @@ impl Region<'_> {
             }
         }
         let cand = self.candidates[best.1];
-        let mut fitted = Cluster {
-            center: cand.center,
-            depth: cand.depth,
-            members,
-            cost: best.0,
-            bias: 0.0,
-        };
+        let (mut center, mut depth, mut cost) = (cand.center, cand.depth, best.0);
         // The split cluster's own centre covers these pieces too.
-        if let Some((center, depth)) = fallback {
-            let cost = reach.at(center) - depth;
-            if cost < fitted.cost {
-                fitted.center = center;
-                fitted.depth = depth;
-                fitted.cost = cost;
+        if let Some((own, own_depth)) = fallback {
+            let own_cost = reach.at(own) - own_depth;
+            if own_cost < cost {
+                (center, depth, cost) = (own, own_depth, own_cost);
             }
         }
-        fitted
+        drop(reach);
+        Cluster {
+            center,
+            depth,
+            members,
+            cost,
+            bias: 0.0,
+        }
     }
 }

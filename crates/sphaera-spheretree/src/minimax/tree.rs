@@ -445,6 +445,14 @@ fn closed_chain(mesh: &sphaera_mesh::TriMesh) -> bool {
     // Every vertex named by its position's rank among the distinct positions: the same
     // name for the same position, names ordered as the positions' bits.
     let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    // Vertices at one position tie, and get one name whatever their order: the sorts are
+    // free to differ (on every core with `parallel`).
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        order.par_sort_unstable_by_key(|&v| key(v));
+    }
+    #[cfg(not(feature = "parallel"))]
     order.sort_unstable_by_key(|&v| key(v));
     let mut name = vec![0_u32; positions.len()];
     let mut rank = 0_u32;
@@ -467,6 +475,13 @@ fn closed_chain(mesh: &sphaera_mesh::TriMesh) -> bool {
             });
         }
     }
+    // Equal entries are the same entry: any sort gives the same sequence.
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        edges.par_sort_unstable();
+    }
+    #[cfg(not(feature = "parallel"))]
     edges.sort_unstable();
     // Per edge, as many forward as backward.
     edges
