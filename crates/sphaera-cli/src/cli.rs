@@ -960,24 +960,10 @@ impl ValueEnum for PlacementArg {
 }
 
 /// A length on the command line: an absolute distance (`0.002`) or a percentage of the
-/// bounding-box diagonal (`2%`).
+/// bounding-box diagonal (`2%`), as [`Length`]'s `FromStr` reads it.
 fn parse_length(text: &str) -> Result<Length, String> {
-    let (number, relative) = match text.strip_suffix('%') {
-        Some(number) => (number, true),
-        None => (text, false),
-    };
-    let value: f64 = number
-        .trim()
-        .parse()
-        .map_err(|e| format!("`{text}` is not a number or a percentage: {e}"))?;
-    if !value.is_finite() || value < 0.0 {
-        return Err(format!("`{text}` must be finite and non-negative"));
-    }
-    Ok(if relative {
-        Length::RelativeToDiagonal(value / 100.0)
-    } else {
-        Length::Absolute(value)
-    })
+    text.parse()
+        .map_err(|e: sphaera::mesh::ParseLengthError| e.to_string())
 }
 
 /// Arguments of `sphaera info`.

@@ -130,7 +130,7 @@ pub use aabb::Aabb;
 pub use error::MeshError;
 pub use glam;
 pub use glam::DVec3;
-pub use length::Length;
+pub use length::{Length, ParseLengthError};
 pub use mesh::TriMesh;
 pub use sphere::Sphere;
 pub use surface::Surface;

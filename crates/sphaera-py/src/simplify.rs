@@ -123,19 +123,6 @@ pub fn length(value: &Bound<'_, PyAny>) -> PyResult<Length> {
     let text: String = value.extract().map_err(|_| {
         value_error("a length is a number or a string such as \"1%\" of the diagonal")
     })?;
-    let trimmed = text.trim();
-    let (number, relative) = match trimmed.strip_suffix('%') {
-        Some(number) => (number.trim(), true),
-        None => (trimmed, false),
-    };
-    match number.parse::<f64>() {
-        Ok(n) if n.is_finite() && n >= 0.0 => Ok(if relative {
-            Length::RelativeToDiagonal(n / 100.0)
-        } else {
-            Length::Absolute(n)
-        }),
-        _ => Err(value_error(format!(
-            "{text:?} is not a length: give a number (0.01) or a percentage of the diagonal (\"1%\")"
-        ))),
-    }
+    text.parse()
+        .map_err(|e: sphaera::mesh::ParseLengthError| value_error(e.to_string()))
 }
