@@ -175,6 +175,16 @@ pub struct WindingEstimate {
     pub error_bound: f64,
 }
 
+/// The side of a point by the exact winding number `w` and a certified margin, as
+/// returned by [`WindingNumber::side_with_margin`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CertifiedSide {
+    /// Whether `w > ½` (as [`WindingNumber::is_inside_certified`] answers).
+    pub inside: bool,
+    /// A certified lower bound of `|w − ½|`, positive.
+    pub margin: f64,
+}
+
 /// The generalized winding number of a triangle mesh, accelerated by a bounding-volume
 /// hierarchy with far-field expansions (Barill et al. 2018; see the
 /// [module documentation](super)).
@@ -575,6 +585,64 @@ impl WindingNumber {
     /// Never.
     pub fn winding_numbers(&self, points: &[DVec3]) -> Vec<f64> {
         map_points(points, |p| self.winding_number(p))
+    }
+
+    /// [`WindingNumber::is_inside_certified`]'s answer together with a certified
+    /// **margin**: `|w − ½| ≥ margin > 0` for the exact winding number `w` at `p`, so that
+    /// every point whose winding number differs from `w` by less than the margin lies on
+    /// the same side. The certified traversals are refined (as `is_inside_certified` does)
+    /// until they decide the side, and further, through the finest of them, while the
+    /// margin is below `wanted` and the estimate leaves room for reaching it. `None` when
+    /// no certified traversal decides (`p` is within their error bound of `w = ½`: very
+    /// near the surface or across a hole): unlike `is_inside_certified`, no exact `O(n)`
+    /// evaluation is made. A non-finite `p` gives `None`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_mesh::{TriMesh, winding::WindingNumber};
+    ///
+    /// let mesh = TriMesh::new(
+    ///     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+    ///     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    /// )?;
+    /// let winding = WindingNumber::new(&mesh)?;
+    /// let side = winding.side_with_margin(DVec3::splat(0.1), 0.4).expect("decided");
+    /// assert!(side.inside && side.margin >= 0.4 && side.margin <= 0.5);
+    /// assert!(!winding.side_with_margin(DVec3::splat(3.0), 0.0).expect("decided").inside);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    ///
+    /// # Performance
+    ///
+    /// At most the two certified traversals of [`WindingNumber::is_inside_certified`]; the
+    /// finer one only when the coarser does not decide or its margin is below `wanted`.
+    pub fn side_with_margin(&self, p: DVec3, wanted: f64) -> Option<CertifiedSide> {
+        let half = 2.0 * PI;
+        let mut decided: Option<CertifiedSide> = None;
+        for node_tolerance in CERTIFICATION_NODE_TOLERANCES {
+            let (omega, bound) = self.evaluate::<true>(p, self.options.beta, node_tolerance);
+            let offset = (omega - half).abs();
+            if offset > bound {
+                let side = CertifiedSide {
+                    inside: omega > half,
+                    margin: (offset - bound) / (4.0 * PI),
+                };
+                // A finer traversal can at best shrink the bound to nothing.
+                if side.margin >= wanted || (offset + bound) / (4.0 * PI) < wanted {
+                    return Some(side);
+                }
+                decided = Some(side);
+            } else if decided.is_some() {
+                break; // a coarser traversal decided; keep its answer
+            }
+        }
+        decided
     }
 
     /// [`WindingNumber::is_inside`] for many points, in parallel with the `parallel`
