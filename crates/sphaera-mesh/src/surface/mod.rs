@@ -478,13 +478,43 @@ impl Surface {
     #[must_use]
     pub fn side_with_margin(&self, p: DVec3, wanted: f64) -> Option<CertifiedSide> {
         if self.solid {
-            self.winding.side_with_margin(p, wanted)
+            let boundary = self.winding_boundary();
+            if boundary.is_empty() {
+                self.winding.side_with_margin(p, wanted)
+            } else {
+                self.winding.side_with_boundary(p, boundary, wanted)
+            }
         } else {
             Some(CertifiedSide {
                 inside: false,
                 margin: f64::INFINITY,
             })
         }
+    }
+
+    /// On a mesh with holes taken as a solid: the integer winding number at `p` of the
+    /// mesh closed by the caps of its [`Surface::winding_boundary`], and the side and
+    /// margin it gives ([`WindingNumber::capped_side`]). `None` for a closed mesh or a
+    /// shell, and where it does not decide.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, Surface, TriMesh, shapes};
+    ///
+    /// let cube = shapes::cube(2.0, 1)?;
+    /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
+    /// let (closed, side) = Surface::new(&open)?.capped_side(DVec3::ZERO).expect("decided");
+    /// assert!(side.inside && closed == 1.0);
+    /// assert!(Surface::new(&cube)?.capped_side(DVec3::ZERO).is_none());
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    #[must_use]
+    pub fn capped_side(&self, p: DVec3) -> Option<(f64, CertifiedSide)> {
+        if !self.solid {
+            return None;
+        }
+        self.winding.capped_side(p, self.winding_boundary())
     }
 
     /// The boundary chain of the mesh (the rims of its holes, [`WindingBoundary`]), which
