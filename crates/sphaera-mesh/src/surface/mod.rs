@@ -65,7 +65,7 @@ mod tests;
 use glam::DVec3;
 
 use crate::closest::{ClosestPoint, TriangleTree};
-use crate::winding::WindingNumber;
+use crate::winding::{CertifiedSide, WindingBoundary, WindingNumber};
 use crate::{MeshError, TriMesh, sampling};
 
 pub use signed::{SideMethod, SignedClosest};
@@ -205,6 +205,8 @@ pub struct Surface {
     normals: pseudo_normal::VertexNormals,
     /// Whether the mesh bounds a solid; a shell ([`Surface::shell`]) has no inside.
     solid: bool,
+    /// The boundary chain (the holes), built on first use.
+    boundary: std::sync::OnceLock<WindingBoundary>,
 }
 
 impl Surface {
@@ -384,6 +386,7 @@ impl Surface {
             embedding: Ok(()),
             normals: pseudo_normal::VertexNormals::default(),
             solid: true,
+            boundary: std::sync::OnceLock::new(),
         })
     }
 
@@ -469,6 +472,91 @@ impl Surface {
     #[must_use]
     pub fn is_inside_certified(&self, p: DVec3) -> bool {
         self.solid && self.winding.is_inside_certified(p)
+    }
+
+    /// [`Surface::is_inside_certified`]'s answer with a certified margin of the winding
+    /// number from ½ ([`WindingNumber::side_with_margin`], refined while the margin is
+    /// below `wanted`), or `None` when the certified traversals do not decide (no exact
+    /// evaluation is made). A shell answers outside with an infinite margin: no point of
+    /// space is inside it.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, Surface, shapes};
+    ///
+    /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
+    /// let side = surface.side_with_margin(DVec3::new(0.0, 0.0, 0.5), 0.25).expect("decided");
+    /// assert!(side.inside && side.margin >= 0.25);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    #[must_use]
+    pub fn side_with_margin(&self, p: DVec3, wanted: f64) -> Option<CertifiedSide> {
+        if self.solid {
+            let boundary = self.winding_boundary();
+            if boundary.is_empty() {
+                self.winding.side_with_margin(p, wanted)
+            } else {
+                self.winding.side_with_boundary(p, boundary, wanted)
+            }
+        } else {
+            Some(CertifiedSide {
+                inside: false,
+                margin: f64::INFINITY,
+            })
+        }
+    }
+
+    /// On a mesh with holes taken as a solid: the integer winding number at `p` of the
+    /// mesh closed by the caps of its [`Surface::winding_boundary`], and the side and
+    /// margin it gives ([`WindingNumber::capped_side`]). `None` for a closed mesh or a
+    /// shell, and where it does not decide.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, Surface, TriMesh, shapes};
+    ///
+    /// let cube = shapes::cube(2.0, 1)?;
+    /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
+    /// let (closed, side) = Surface::new(&open)?.capped_side(DVec3::ZERO).expect("decided");
+    /// assert!(side.inside && closed == 1.0);
+    /// assert!(Surface::new(&cube)?.capped_side(DVec3::ZERO).is_none());
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    #[must_use]
+    pub fn capped_side(&self, p: DVec3) -> Option<(f64, CertifiedSide)> {
+        if !self.solid {
+            return None;
+        }
+        self.winding.capped_side(p, self.winding_boundary())
+    }
+
+    /// The boundary chain of the mesh (the rims of its holes, [`WindingBoundary`]), which
+    /// bounds how fast the winding number varies off the mesh: empty for a closed mesh.
+    /// Built on the first call (linear in the triangles) and kept; a certified embedded
+    /// solid ([`Surface::is_embedded_solid`]) has none and costs nothing.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{Surface, TriMesh, shapes};
+    ///
+    /// let cube = shapes::cube(2.0, 1)?;
+    /// assert!(Surface::new(&cube)?.winding_boundary().is_empty());
+    /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
+    /// assert_eq!(Surface::new(&open)?.winding_boundary().edge_count(), 3);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    #[must_use]
+    pub fn winding_boundary(&self) -> &WindingBoundary {
+        self.boundary.get_or_init(|| {
+            if self.embedding.is_ok() {
+                WindingBoundary::default()
+            } else {
+                WindingBoundary::new(&self.mesh)
+            }
+        })
     }
 
     /// The bounding-box diagonal of the mesh.

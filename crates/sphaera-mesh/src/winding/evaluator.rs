@@ -8,6 +8,8 @@ use std::cmp::Reverse;
 
 use crate::heap::{MaxHeap, Priority, TotalF64};
 
+use super::WindingBoundary;
+use super::boundary::side_from;
 use super::solid_angle::solid_angle_of_corners;
 use super::tree::{Node, Tree, trace};
 use crate::{MeshError, TriMesh};
@@ -173,6 +175,16 @@ pub struct WindingEstimate {
     /// covers the truncation of the expansions and a worst-case allowance for the rounding
     /// of the sum.
     pub error_bound: f64,
+}
+
+/// The side of a point by the exact winding number `w` and a certified margin, as
+/// returned by [`WindingNumber::side_with_margin`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CertifiedSide {
+    /// Whether `w > ½` (as [`WindingNumber::is_inside_certified`] answers).
+    pub inside: bool,
+    /// A certified lower bound of `|w − ½|`, positive.
+    pub margin: f64,
 }
 
 /// The generalized winding number of a triangle mesh, accelerated by a bounding-volume
@@ -593,6 +605,217 @@ impl WindingNumber {
     /// Never.
     pub fn winding_numbers(&self, points: &[DVec3]) -> Vec<f64> {
         map_points(points, |p| self.winding_number(p))
+    }
+
+    /// [`WindingNumber::is_inside_certified`]'s answer together with a certified
+    /// **margin**: `|w − ½| ≥ margin > 0` for the exact winding number `w` at `p`, so that
+    /// every point whose winding number differs from `w` by less than the margin lies on
+    /// the same side. The certified sum is refined as `is_inside_certified` refines it
+    /// (the expansions with the largest bounds first) until it decides the side, and
+    /// further while the margin is below `wanted` and refining can still reach it (the
+    /// bound left is more than a twentieth of the margin and the estimate leaves room for
+    /// `wanted`). `None` only when even the exact sum does not decide (`w` within rounding
+    /// of ½: on the surface) or `p` is not finite.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_mesh::{TriMesh, winding::WindingNumber};
+    ///
+    /// let mesh = TriMesh::new(
+    ///     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+    ///     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    /// )?;
+    /// let winding = WindingNumber::new(&mesh)?;
+    /// let side = winding.side_with_margin(DVec3::splat(0.1), 0.4).expect("decided");
+    /// assert!(side.inside && side.margin >= 0.4 && side.margin <= 0.5);
+    /// assert!(!winding.side_with_margin(DVec3::splat(3.0), 0.0).expect("decided").inside);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    ///
+    /// # Performance
+    ///
+    /// [`WindingNumber::is_inside_certified`]'s traversal and refinement, and further
+    /// refinement only while the margin is below `wanted` and within reach.
+    pub fn side_with_margin(&self, p: DVec3, wanted: f64) -> Option<CertifiedSide> {
+        let half = 2.0 * PI;
+        let full = 4.0 * PI;
+        if !p.is_finite() {
+            return None;
+        }
+        let mut sum = CertifiedSum::default();
+        let mut expanded = MaxHeap::new();
+        let mut first = Vec::new();
+        self.expand_certified(0, p, CERTIFICATION_NODE_TOLERANCE, &mut sum, &mut first);
+        expanded.extend(first);
+        loop {
+            let offset = (sum.omega - half).abs();
+            let bound = sum.bound();
+            let decided = (offset > bound).then(|| CertifiedSide {
+                inside: sum.omega > half,
+                margin: (offset - bound) / full,
+            });
+            if let Some(side) = decided {
+                // Refining can at best take the bound to nothing: stop once the margin
+                // is enough, out of reach, or within a twentieth of the best it can be.
+                if side.margin >= wanted
+                    || (offset + bound) / full < wanted
+                    || bound <= 0.05 * (offset - bound)
+                {
+                    return Some(side);
+                }
+            }
+            // The expansion with the largest bound is replaced by its triangles (a
+            // leaf) or its children. With none left the sum is exact.
+            let Some(top) = expanded.pop() else {
+                return decided;
+            };
+            sum.remove(top.term, top.bound);
+            let Some(node) = self.tree.nodes.get(top.index as usize) else {
+                continue; // invariant: queued indices are in range; never taken
+            };
+            if node.count > 0 {
+                self.leaf_exactly(node, p, &mut sum);
+            } else {
+                for child in [top.index + 1, node.first] {
+                    self.expand_certified(
+                        child,
+                        p,
+                        CERTIFICATION_NODE_TOLERANCE,
+                        &mut sum,
+                        &mut expanded,
+                    );
+                }
+            }
+        }
+    }
+
+    /// [`WindingNumber::side_with_margin`] for a mesh with holes, nearly exact and cheap
+    /// near them: the certified estimate of `w` at `p`, refined only until it is within
+    /// ¼ of the exact value (far coarser than deciding `w > ½` near a hole's span needs),
+    /// fixes the integer `k = w + w_C` of the mesh closed by the caps of `boundary` (its
+    /// [`WindingBoundary`] chain coned off, see `cap_solid_angle`), and `w = k − w_C` with
+    /// `w_C` summed exactly over the caps. The margin is then `|w − ½|` less the caps'
+    /// rounding. Where the caps' sum is ill-conditioned (within a tiny distance of a cap
+    /// triangle's edge) or `k` is not decided, falls back to
+    /// [`WindingNumber::side_with_margin`] with `wanted`. `boundary` must be that of this
+    /// mesh ([`WindingBoundary::new`]); an empty one takes the fallback.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_mesh::{TriMesh, shapes, winding::{WindingBoundary, WindingNumber, winding_number_brute}};
+    ///
+    /// let cube = shapes::cube(2.0, 1)?;
+    /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
+    /// let (winding, boundary) = (WindingNumber::new(&open)?, WindingBoundary::new(&open));
+    /// let p = DVec3::new(0.3, -0.2, 0.99);
+    /// let side = winding.side_with_boundary(p, &boundary, 0.0).expect("decided");
+    /// let exact = winding_number_brute(&open, p);
+    /// assert_eq!(side.inside, exact > 0.5);
+    /// assert!(side.margin <= (exact - 0.5).abs() && side.margin > (exact - 0.5).abs() - 1e-9);
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    ///
+    /// # Performance
+    ///
+    /// The first certified traversal of [`WindingNumber::is_inside_certified`] (rarely
+    /// refined) and one solid angle per boundary edge.
+    pub fn side_with_boundary(
+        &self,
+        p: DVec3,
+        boundary: &WindingBoundary,
+        wanted: f64,
+    ) -> Option<CertifiedSide> {
+        self.capped_side(p, boundary)
+            .map(|(_, side)| side)
+            .or_else(|| self.side_with_margin(p, wanted))
+    }
+
+    /// The capped evaluation of [`WindingNumber::side_with_boundary`]: the integer winding
+    /// number `k` at `p` of the mesh closed by the caps of `boundary` (constant along any
+    /// path meeting neither the mesh nor the caps, so that it can be handed on, see
+    /// [`WindingBoundary::side_given_closed`]) and the side it gives. `None` where it does
+    /// not decide (within rounding of the mesh or of a cap triangle's edge, or on the ½
+    /// level set).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use sphaera_mesh::{TriMesh, shapes, winding::{WindingBoundary, WindingNumber}};
+    ///
+    /// let cube = shapes::cube(2.0, 1)?;
+    /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
+    /// let (winding, boundary) = (WindingNumber::new(&open)?, WindingBoundary::new(&open));
+    /// let (k, side) = winding.capped_side(DVec3::ZERO, &boundary).expect("decided");
+    /// assert!(side.inside && k == k.round());
+    /// let near = DVec3::new(0.1, 0.0, 0.0);
+    /// assert!(boundary.caps_avoid_segment(DVec3::ZERO, near));
+    /// assert_eq!(boundary.side_given_closed(near, k), winding.capped_side(near, &boundary).map(|c| c.1));
+    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Panics
+    ///
+    /// Never.
+    #[must_use]
+    pub fn capped_side(
+        &self,
+        p: DVec3,
+        boundary: &WindingBoundary,
+    ) -> Option<(f64, CertifiedSide)> {
+        let full = 4.0 * PI;
+        if boundary.is_empty() {
+            return None;
+        }
+        let (cap, cap_error) = boundary.cap_solid_angle(p)?;
+        // The caps' error and the estimate's must stay below 2π (½ in `w`) together.
+        let half = 2.0 * PI;
+        if cap_error.is_nan() || cap_error >= 0.5 * half {
+            return None;
+        }
+        let mut sum = CertifiedSum::default();
+        let mut first = Vec::new();
+        self.expand_certified(0, p, CERTIFICATION_NODE_TOLERANCE, &mut sum, &mut first);
+        let mut expanded: Option<MaxHeap<Expanded>> = None;
+        loop {
+            let total = sum.omega + cap;
+            let rounding = 8.0 * f64::EPSILON * (sum.omega.abs() + cap.abs() + full);
+            if sum.bound() + cap_error + rounding < half {
+                // |total − 4πn| ≤ bound + cap_error + its rounding < 2π: `n` is the
+                // nearest multiple (the caps' possible 4π offsets included).
+                let k = (total / full).round();
+                return side_from(k, cap, cap_error).map(|side| (k, side));
+            }
+            let heap = expanded.get_or_insert_with(|| {
+                let mut heap = MaxHeap::new();
+                heap.extend(std::mem::take(&mut first));
+                heap
+            });
+            let top = heap.pop()?;
+            sum.remove(top.term, top.bound);
+            let Some(node) = self.tree.nodes.get(top.index as usize) else {
+                continue; // invariant: queued indices are in range; never taken
+            };
+            if node.count > 0 {
+                self.leaf_exactly(node, p, &mut sum);
+            } else {
+                for child in [top.index + 1, node.first] {
+                    self.expand_certified(child, p, CERTIFICATION_NODE_TOLERANCE, &mut sum, heap);
+                }
+            }
+        }
     }
 
     /// [`WindingNumber::is_inside`] for many points, in parallel with the `parallel`

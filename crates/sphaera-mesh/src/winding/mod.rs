@@ -144,6 +144,7 @@
 //! the `parallel` feature, and return the same bits with or without it (each point is
 //! evaluated independently, in a fixed traversal order).
 
+mod boundary;
 mod evaluator;
 mod ray_parity;
 mod solid_angle;
@@ -152,7 +153,8 @@ mod solidity;
 mod tests;
 mod tree;
 
-pub use evaluator::{Expansion, WindingEstimate, WindingNumber, WindingOptions};
+pub use boundary::WindingBoundary;
+pub use evaluator::{CertifiedSide, Expansion, WindingEstimate, WindingNumber, WindingOptions};
 pub use ray_parity::inside_by_ray_parity;
 pub use solid_angle::{triangle_solid_angle, winding_number_brute};
 pub use solidity::{INWARD_THRESHOLD, SOLID_THRESHOLD, SolidityReport};

@@ -351,3 +351,95 @@ fn error_table() {
         }
     }
 }
+
+/// A closed mesh whose vertices are duplicated per triangle (an unwelded soup).
+fn unwelded(mesh: &TriMesh) -> TriMesh {
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for t in mesh.triangles() {
+        let base = positions.len() as u32;
+        positions.extend(t.iter().map(|&v| mesh.positions()[v as usize]));
+        triangles.push([base, base + 1, base + 2]);
+    }
+    TriMesh::new(positions, triangles).unwrap()
+}
+
+#[test]
+fn closed_meshes_have_an_empty_boundary_even_unwelded() {
+    for (name, mesh) in test_meshes::closed_shapes() {
+        assert!(WindingBoundary::new(&mesh).is_empty(), "{name}");
+        assert!(WindingBoundary::new(&unwelded(&mesh)).is_empty(), "{name}");
+    }
+    assert!(WindingBoundary::new(&nested_spheres()).is_empty());
+    let open = WindingBoundary::new(&test_meshes::sphere_with_hole(32, 45.0));
+    assert!(!open.is_empty());
+    // The rim of the hole: a 32-gon of radius sin 45° (up to where the cut falls).
+    assert!(
+        open.length() > 3.0 && open.length() < 2.0 * std::f64::consts::PI,
+        "{}",
+        open.length()
+    );
+}
+
+/// The winding number's change over a short segment clear of the mesh, by brute force,
+/// never exceeds the segment's length times the gradient bound of the ball about its
+/// midpoint (the bound of the boundary chain, see `boundary.rs`).
+#[test]
+fn the_boundary_bounds_the_variation_of_the_winding_number() {
+    let open_box = {
+        let cube = test_meshes::unit_cube();
+        TriMesh::new(cube.positions().to_vec(), cube.triangles()[2..].to_vec()).unwrap()
+    };
+    let meshes = [
+        ("open sphere", test_meshes::sphere_with_hole(24, 45.0)),
+        ("small hole", test_meshes::sphere_with_hole(24, 15.0)),
+        ("open box", open_box),
+        ("sheet", test_meshes::unit_sheet(4)),
+    ];
+    let mut rng = ChaCha8Rng::seed_from_u64(36);
+    let mut tight = 0.0_f64;
+    for (name, mesh) in &meshes {
+        let boundary = WindingBoundary::new(mesh);
+        assert!(!boundary.is_empty(), "{name}");
+        for (p, distance) in random_points(mesh, 300, 7) {
+            let half = 0.45 * distance * rng.random_range(0.05..1.0);
+            let u = DVec3::new(
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+                rng.random_range(-1.0..1.0),
+            )
+            .normalize_or(DVec3::X);
+            let change = (winding_number_brute(mesh, p + half * u)
+                - winding_number_brute(mesh, p - half * u))
+            .abs();
+            let bound = 2.0 * half * boundary.gradient_bound(p, half);
+            assert!(change <= bound + 1e-12, "{name}: {p}: {change} > {bound}");
+            if bound.is_finite() && bound > 1e-6 {
+                tight = tight.max(change / bound);
+            }
+        }
+    }
+    // The bound is not vacuous: somewhere it is within a factor 20 of the change.
+    assert!(tight > 0.05, "{tight}");
+}
+
+#[test]
+fn the_margin_is_certified_and_the_side_is_the_certified_one() {
+    let mut decided_none = 0_usize;
+    for (name, mesh, winding) in shapes_with_evaluators() {
+        for (p, _) in random_points(mesh, 200, 11) {
+            let exact = winding_number_brute(mesh, p);
+            for wanted in [0.0, 0.2, 0.45, f64::INFINITY] {
+                let Some(side) = winding.side_with_margin(p, wanted) else {
+                    decided_none += 1;
+                    continue;
+                };
+                assert_eq!(side.inside, winding.is_inside_certified(p), "{name}: {p}");
+                assert!(side.margin > 0.0, "{name}: {p}");
+                assert!(side.margin <= (exact - 0.5).abs() + 1e-12, "{name}: {p}");
+            }
+        }
+    }
+    // Random points are almost all decided by a certified traversal.
+    assert!(decided_none < 40, "{decided_none}");
+}

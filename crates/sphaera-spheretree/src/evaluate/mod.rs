@@ -70,10 +70,20 @@
 //!   mesh the interval is rigorous up to floating-point rounding.
 //! - **Open meshes** (the Stanford bunny's holes). "Inside" is then the winding number's
 //!   region `w > ½`, whose boundary spans the holes where the mesh has none: a path from
-//!   inside to outside through a hole crosses no triangle, so the inside bound
-//!   `ρ − d(p)` can be too low for a patch whose points pass out through a hole, by at most
-//!   about the hole's size. On closed meshes (every shape of `sphaera_mesh::shapes`, the
-//!   low-res bunny) this does not arise.
+//!   inside to outside through a hole crosses no triangle, so neither the inside bound
+//!   `ρ − d(p)` nor a side inherited along a clear segment follows from the segment
+//!   alone. What holds instead: off the mesh, `w` varies only as fast as the rims of the
+//!   holes let it (`|∇w|` is bounded by the Biot–Savart field of the mesh's boundary
+//!   chain, [`WindingBoundary`](sphaera_mesh::winding::WindingBoundary)). Each probe's
+//!   side comes with a certified margin `m ≤ |w(p) − ½|`
+//!   ([`Surface::side_with_margin`](sphaera_mesh::Surface::side_with_margin)); the inside
+//!   bound is used only where `m` exceeds `ρ` times the gradient bound over the patch's
+//!   ball, and a side is inherited only while the margin, less the step times the
+//!   gradient bound, stays positive (the proof is on the search's `evaluate`). Elsewhere
+//!   the patch keeps the bounds valid on both sides and is split. The bounds are thus
+//!   certified for the winding number's solid, holes included, which is what the
+//!   independent check (`tests/checks`) measures. A closed mesh has no boundary chain:
+//!   nothing changes and nothing is paid for it.
 //! - **Floating point.** Every bound carries a relative slack of 10⁻¹², far above the
 //!   rounding of its few operations.
 //!
@@ -89,7 +99,7 @@
 //! # Performance
 //!
 //! Each patch costs one closest-point query and, away from the surface, one winding-number
-//! inside test. 512 spheres poking out of `bunny_lowres.obj` (3,674 triangles) by 0.1–0.8 %
+//! inside test (on a mesh with holes, also a descent of the tree over the holes' rims). 512 spheres poking out of `bunny_lowres.obj` (3,674 triangles) by 0.1–0.8 %
 //! of the diagonal, release build, 2 shared cores: 1.1 s at the default tolerance (10⁻⁴
 //! of the diagonal, 920 patches per sphere on average, 5,300 at most, all converged),
 //! 0.54 s at 10⁻³ (430 per sphere); the coverage of 100,000 samples, 35 ms

@@ -5,6 +5,7 @@ use std::cmp::Reverse;
 use glam::DVec3;
 use sphaera_mesh::Surface;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
+use sphaera_mesh::winding::WindingBoundary;
 
 use super::EvaluationOptions;
 use super::patch::{Patch, Probe, icosahedron, upper_bound};
@@ -63,12 +64,25 @@ struct Queued {
 }
 
 /// A probe whose side of the surface is known: its point, its distance to the surface
-/// and whether it is inside.
+/// and whether it is inside, with what its children need to inherit that side on a mesh
+/// with holes (see [`Search::evaluate`]).
 #[derive(Clone, Copy)]
 struct Side {
     point: DVec3,
     distance: f64,
     inside: Option<bool>,
+    /// A certified lower bound of `|w − ½|` at the point (infinite on a closed mesh, where
+    /// it is not needed).
+    margin: f64,
+    /// The chord of the probe's patch: every point of the patch, among them its
+    /// children's probes, lies within it.
+    reach: f64,
+    /// A bound of the winding number's gradient off the mesh within `reach` of the point
+    /// (0 on a closed mesh).
+    gradient: f64,
+    /// On a mesh with holes, the integer winding number at the point of the mesh closed
+    /// by its caps, when known (see [`Search::evaluate`]).
+    closed: Option<f64>,
 }
 
 /// A patch evaluated: its bound and what its probe found, or its inside test put off.
@@ -87,13 +101,23 @@ struct Deferred {
     patch: Patch,
     point: DVec3,
     probe: Probe,
+    /// The margin its inside bound needs (0 on a closed mesh, see [`Search::evaluate`]).
+    needed: f64,
 }
 
 impl Deferred {
     /// The patch's bound with its probe's side known: what the search would have dropped
     /// it with.
     fn settle(&self, search: &Search<'_>) -> f64 {
-        if !search.surface.is_inside_certified(self.point) {
+        let inside = if search.holes.is_none() {
+            search.surface.is_inside_certified(self.point)
+        } else {
+            search
+                .surface
+                .side_with_margin(self.point, self.needed)
+                .is_some_and(|side| side.inside && side.margin > self.needed)
+        };
+        if !inside {
             return self.upper;
         }
         let probe = Probe {
@@ -116,6 +140,9 @@ impl Priority for Queued {
 /// The state of one sphere's branch and bound.
 struct Search<'a> {
     surface: &'a Surface,
+    /// The boundary chain of a mesh with holes taken as a solid (`None` for a closed mesh
+    /// or a certified embedded solid, where the winding number changes only across it).
+    holes: Option<&'a WindingBoundary>,
     center: DVec3,
     radius: f64,
     guard: f64,
@@ -138,6 +165,28 @@ impl Search<'_> {
     /// and the patch's bound taken as outside, capped by `cap` (the parent's bound), is
     /// already within `tolerance` of the lower bound (so the patch is dropped whatever its
     /// side). Only the final upper bound may need its side ([`Deferred::settle`]).
+    ///
+    /// # Meshes with holes
+    ///
+    /// Across a hole the winding number `w` passes ½ without crossing a triangle, so
+    /// neither that inheritance nor the inside bound of [`upper_bound`] follows from a
+    /// clear segment alone. What does hold (the boundary bound, see
+    /// [`WindingBoundary`]): on a segment `[p, x]` that meets no triangle, `|w(x) − w(p)|`
+    /// is at most `|x − p|` times a bound `G` of `|∇w|` near it, which the rims of the holes
+    /// give. Each probe therefore carries a certified margin `m ≤ |w(p) − ½|`
+    /// ([`Surface::side_with_margin`]) and the bound `G` over the ball of its patch's chord
+    /// `ρ` (every point of the patch, and every child's probe, lies in that ball):
+    ///
+    /// - a child's probe `c` in the clear ball (`[p, c]` meets no triangle) with
+    ///   `m − |c − p| G > 0` has `|w(c) − w(p)| < m`, so it lies on `p`'s side, with the
+    ///   margin `m − |c − p| G`;
+    /// - `p` inside with `m > ρ G`: a point `x` of the patch outside (`w(x) ≤ ½`) differs
+    ///   from `w(p)` by at least `m > |x − p| G`, so `[p, x]` meets a triangle, at least
+    ///   `d(p)` from `p`, and `f(x) ≤ |x − p| − d(p)`: the inside bound holds. Otherwise
+    ///   the patch gets only the bounds valid on both sides, and is split until it is
+    ///   small enough (`ρ G` shrinks with `ρ` while the margin stays).
+    ///
+    /// On a closed mesh `G = 0` and this is the argument above, at no cost.
     fn evaluate(
         &mut self,
         patch: &Patch,
@@ -146,6 +195,7 @@ impl Search<'_> {
     ) -> Result<Evaluated, SphereTreeError> {
         self.patches += 1;
         let point = self.center + self.radius * patch.direction;
+        let reach = patch.chord(self.radius);
         // The parent's probe bounds the distance (the distance is 1-Lipschitz), which
         // prunes the descent from the start; the answer is the same.
         // On a certified embedded solid the side comes with the closest point at the cost
@@ -155,7 +205,16 @@ impl Search<'_> {
             let signed = self.surface.signed_closest(point)?;
             let distance = signed.closest.distance;
             let inside = (distance > self.guard).then_some(signed.inside);
-            let (upper, found) = self.record(patch, point, signed.closest.point, distance, inside);
+            let side = Side {
+                point,
+                distance,
+                inside,
+                margin: f64::INFINITY,
+                reach,
+                gradient: 0.0,
+                closed: None,
+            };
+            let (upper, found) = self.record(patch, signed.closest.point, side);
             return Ok(Evaluated::Known(upper, found));
         }
         let bound = parent.map(|(p, _)| (p.distance + point.distance(p.point)) * (1.0 + 1e-9));
@@ -167,20 +226,55 @@ impl Search<'_> {
             None => self.surface.closest(point)?,
         };
         let distance = closest.distance;
+        let mut side = Side {
+            point,
+            distance,
+            inside: None,
+            margin: 0.0,
+            reach,
+            gradient: 0.0,
+            closed: None,
+        };
         if distance <= self.guard {
-            let (upper, found) = self.record(patch, point, closest.point, distance, None);
+            let (upper, found) = self.record(patch, closest.point, side);
             return Ok(Evaluated::Known(upper, found));
         }
+        // On a mesh with holes: the gradient bound over the patch's ball and the margin
+        // the inside bound needs there (`m > ρ G`, see above).
+        let needed = match self.holes {
+            Some(holes) => {
+                side.gradient = holes.gradient_bound(point, reach);
+                reach * side.gradient * (1.0 + 1e-9)
+            }
+            None => 0.0,
+        };
         // A probe in the clear ball of its parent's probe, or with its parent's probe in
         // its own clear ball, is on the parent's side: the segment between them crosses
-        // no surface.
+        // no surface (on a mesh with holes, only while the parent's margin less the step
+        // times its gradient bound stays positive, and with that margin).
         let inherited = parent.and_then(|(p, _)| {
+            let step = point.distance(p.point);
             let clear = p.distance.max(distance) - self.guard;
-            p.inside.filter(|_| point.distance(p.point) < clear)
+            if self.holes.is_none() {
+                return p
+                    .inside
+                    .filter(|_| step < clear)
+                    .map(|inside| (inside, f64::INFINITY));
+            }
+            let margin = p.margin - step * p.gradient * (1.0 + 1e-9);
+            let inherits = step < clear && step <= p.reach && margin > 0.0;
+            p.inside.filter(|_| inherits).map(|inside| (inside, margin))
         });
-        if inherited.is_none()
+        // An inherited side that already gives what the bound can use (outside, or
+        // inside with the margin the inside bound needs) is final; otherwise the
+        // certified test is asked, or put off.
+        let settled = inherited.filter(|&(inside, margin)| !inside || margin > needed);
+        // A probe known to be inside (its margin too small for the inside bound) cannot
+        // raise `lower` either, wherever it lies.
+        let known_inside = inherited.is_some_and(|(inside, _)| inside);
+        if settled.is_none()
             && let Some((_, cap)) = parent
-            && distance <= self.lower
+            && (distance <= self.lower || known_inside)
         {
             let probe = Probe {
                 distance,
@@ -195,43 +289,78 @@ impl Search<'_> {
                     patch: *patch,
                     point,
                     probe,
+                    needed,
                 }));
             }
         }
-        let inside = inherited.unwrap_or_else(|| self.surface.is_inside_certified(point));
-        let (upper, found) = self.record(patch, point, closest.point, distance, Some(inside));
+        // On a mesh with holes, the closed winding number is handed on along a segment
+        // that meets neither the mesh (the clear balls) nor the caps, and gives the side
+        // and margin at the cost of the caps' solid angles.
+        let handed = match (self.holes, parent) {
+            (Some(holes), Some((p, _))) => p.closed.filter(|_| {
+                point.distance(p.point) < p.distance.max(distance) - self.guard
+                    && holes.caps_avoid_segment(p.point, point)
+            }),
+            _ => None,
+        };
+        side.closed = handed;
+        // A probe no certified evaluation decides (on the ½ level set within rounding, or
+        // within rounding of a cap's edge and near `w = ½`) stays unclassified, as in
+        // the guard band: its patch keeps the bounds valid on both sides and it never
+        // raises `lower`.
+        let decided = match settled {
+            Some(decided) => Some(decided),
+            None if self.holes.is_none() => {
+                Some((self.surface.is_inside_certified(point), f64::INFINITY))
+            }
+            None => {
+                let by_hand = handed.zip(self.holes).and_then(|(closed, holes)| {
+                    holes
+                        .side_given_closed(point, closed)
+                        .map(|c| (c.inside, c.margin))
+                });
+                by_hand
+                    .or_else(|| {
+                        let (closed, certified) = self.surface.capped_side(point)?;
+                        side.closed = Some(closed);
+                        Some((certified.inside, certified.margin))
+                    })
+                    .or_else(|| {
+                        self.surface
+                            .side_with_margin(point, needed)
+                            .map(|certified| (certified.inside, certified.margin))
+                    })
+                    .or(inherited)
+            }
+        };
+        if let Some((inside, margin)) = decided {
+            side.inside = Some(inside);
+            side.margin = margin;
+        }
+        let (upper, found) = self.record(patch, closest.point, side);
         Ok(Evaluated::Known(upper, found))
     }
 
     /// Raises the lower bound with a probe whose side is known (`None` within the guard
-    /// band) and returns the patch's upper bound and what the probe found.
-    fn record(
-        &mut self,
-        patch: &Patch,
-        point: DVec3,
-        closest: DVec3,
-        distance: f64,
-        inside: Option<bool>,
-    ) -> (f64, Side) {
-        let (trusted_outside, trusted_inside) = match inside {
+    /// band) and returns the patch's upper bound and what the probe found. The inside
+    /// bound is used only where the probe's margin covers the patch (`m > ρ G`, see
+    /// [`Search::evaluate`]; always on a closed mesh).
+    fn record(&mut self, patch: &Patch, closest: DVec3, side: Side) -> (f64, Side) {
+        let (trusted_outside, inside) = match side.inside {
             Some(inside) => (!inside, inside),
             None => (false, false),
         };
-        if trusted_outside && distance > self.lower {
-            self.lower = distance;
-            self.witness = Some(point);
+        let trusted_inside = inside && side.margin > side.reach * side.gradient * (1.0 + 1e-9);
+        if trusted_outside && side.distance > self.lower {
+            self.lower = side.distance;
+            self.witness = Some(side.point);
         }
         let probe = Probe {
-            distance,
+            distance: side.distance,
             closest,
             trusted_inside,
         };
-        let found = Side {
-            point,
-            distance,
-            inside,
-        };
-        (upper_bound(patch, self.center, self.radius, &probe), found)
+        (upper_bound(patch, self.center, self.radius, &probe), side)
     }
 }
 
@@ -307,8 +436,12 @@ pub(crate) fn fit(
     max_patches: usize,
     settle: f64,
 ) -> Result<SphereFit, SphereTreeError> {
+    let holes = (surface.has_inside() && !surface.is_embedded_solid())
+        .then(|| surface.winding_boundary())
+        .filter(|b| !b.is_empty());
     let mut search = Search {
         surface,
+        holes,
         center: sphere.center,
         radius: sphere.radius,
         guard: GUARD_FRACTION * tolerance,
@@ -332,6 +465,10 @@ pub(crate) fn fit(
                     point: d.point,
                     distance: d.probe.distance,
                     inside: None,
+                    margin: 0.0,
+                    reach: d.patch.chord(sphere.radius),
+                    gradient: 0.0,
+                    closed: None,
                 },
             ),
         };
