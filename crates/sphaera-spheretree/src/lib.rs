@@ -160,15 +160,16 @@
 //! - A tolerance asked for is met by every leaf, certified, or the build says it cannot
 //!   be ([`SphereTreeError::ToleranceUnreachable`]); a budget of `n` spheres gives `n`.
 //!   A node budget ([`SphereTreeOptions::max_nodes`]) bounds a tolerance tree.
-//! - Errors are certified on closed meshes and on shells. On an open mesh taken as a
-//!   solid (a scan with holes), whose inside the winding number extends across the holes,
-//!   node errors come from the certified evaluation, which assumes that a patch of a
-//!   sphere crossing no triangle lies on one side; across a hole it may not, so a sphere
-//!   poking through a hole can be under-estimated there. Close the holes, or build on
-//!   [`Surface::shell`](sphaera_mesh::Surface::shell), for errors certified everywhere.
+//! - Errors are certified on closed meshes, on shells, and on open meshes taken as solids
+//!   (a scan with holes, whose inside the winding number extends across the holes): there
+//!   node errors come from the certified evaluation, which lets a patch inherit its side
+//!   only while its margin exceeds the winding number's gradient bound from the holes'
+//!   rims (see [`evaluate`]).
 //! - Every node has a positive radius, and no child is built looser than its parent: its
 //!   error bound never exceeds a lower bound on the parent's certified error (else the
-//!   child takes the parent's sphere).
+//!   child takes the parent's sphere). On an open mesh taken as a solid, a region whose
+//!   children poke out through a hole is divided again around the surface itself, the
+//!   tighter division kept.
 //! - The same input, options and seed give the same tree, with or without `parallel`.
 //! - The tree moves with the mesh: it is built in the mesh's canonical pose
 //!   ([`sphaera_mesh::geometry::CanonicalPose`]: a frame taken from the mesh's own
