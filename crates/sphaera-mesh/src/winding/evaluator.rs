@@ -504,29 +504,39 @@ impl WindingNumber {
             if (sum.omega - half).abs() > sum.bound() {
                 return sum.omega > half;
             }
-            // Undecided: the expansion with the largest bound is replaced by its triangles
-            // (a leaf) or its children. With none left the sum is exact.
-            let Some(top) = expanded.pop() else {
+            // Undecided: refined where the bound is largest. With nothing left the sum
+            // is exact.
+            if !self.refine_largest(p, &mut sum, &mut expanded) {
                 return sum.omega > half;
-            };
-            sum.remove(top.term, top.bound);
-            let Some(node) = self.tree.nodes.get(top.index as usize) else {
-                continue; // invariant: queued indices are in range; never taken
-            };
-            if node.count > 0 {
-                self.leaf_exactly(node, p, &mut sum);
-            } else {
-                for child in [top.index + 1, node.first] {
-                    self.expand_certified(
-                        child,
-                        p,
-                        CERTIFICATION_NODE_TOLERANCE,
-                        &mut sum,
-                        &mut expanded,
-                    );
-                }
             }
         }
+    }
+
+    /// One step of a certified evaluation's refinement: the expansion with the largest
+    /// bound is taken out of `sum` and replaced by its triangles summed exactly (a leaf)
+    /// or its children's expansions. `false` when nothing is left to refine (the sum is
+    /// then exact).
+    fn refine_largest(
+        &self,
+        p: DVec3,
+        sum: &mut CertifiedSum,
+        expanded: &mut MaxHeap<Expanded>,
+    ) -> bool {
+        let Some(top) = expanded.pop() else {
+            return false;
+        };
+        sum.remove(top.term, top.bound);
+        let Some(node) = self.tree.nodes.get(top.index as usize) else {
+            return true; // invariant: queued indices are in range; never taken
+        };
+        if node.count > 0 {
+            self.leaf_exactly(node, p, sum);
+        } else {
+            for child in [top.index + 1, node.first] {
+                self.expand_certified(child, p, CERTIFICATION_NODE_TOLERANCE, sum, expanded);
+            }
+        }
+        true
     }
 
     /// The certified traversal of the subtree at `start` for
@@ -670,27 +680,9 @@ impl WindingNumber {
                     return Some(side);
                 }
             }
-            // The expansion with the largest bound is replaced by its triangles (a
-            // leaf) or its children. With none left the sum is exact.
-            let Some(top) = expanded.pop() else {
+            // Refined where the bound is largest; with nothing left the sum is exact.
+            if !self.refine_largest(p, &mut sum, &mut expanded) {
                 return decided;
-            };
-            sum.remove(top.term, top.bound);
-            let Some(node) = self.tree.nodes.get(top.index as usize) else {
-                continue; // invariant: queued indices are in range; never taken
-            };
-            if node.count > 0 {
-                self.leaf_exactly(node, p, &mut sum);
-            } else {
-                for child in [top.index + 1, node.first] {
-                    self.expand_certified(
-                        child,
-                        p,
-                        CERTIFICATION_NODE_TOLERANCE,
-                        &mut sum,
-                        &mut expanded,
-                    );
-                }
             }
         }
     }
@@ -803,17 +795,8 @@ impl WindingNumber {
                 heap.extend(std::mem::take(&mut first));
                 heap
             });
-            let top = heap.pop()?;
-            sum.remove(top.term, top.bound);
-            let Some(node) = self.tree.nodes.get(top.index as usize) else {
-                continue; // invariant: queued indices are in range; never taken
-            };
-            if node.count > 0 {
-                self.leaf_exactly(node, p, &mut sum);
-            } else {
-                for child in [top.index + 1, node.first] {
-                    self.expand_certified(child, p, CERTIFICATION_NODE_TOLERANCE, &mut sum, heap);
-                }
+            if !self.refine_largest(p, &mut sum, heap) {
+                return None;
             }
         }
     }

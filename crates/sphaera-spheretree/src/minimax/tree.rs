@@ -152,49 +152,36 @@ pub(crate) fn minimax_tree(
             {
                 built.push(parent, children_of(&pieces, children, centred))?;
             }
-        }
-        if nodes.len() == start {
-            break;
-        }
-        certify_level(
-            surface,
-            &mut nodes[start..],
-            &surface_centred[start..],
-            tolerance,
-            eq2_bounds,
-        )?;
-        if !eq2_bounds {
-            let failed = through_a_hole(&nodes, &depths, &parents, &on_surface);
-            if !failed.is_empty() {
-                let shell = match &mut shell {
-                    Some(shell) => &*shell,
-                    none => none.insert(Surface::shell(mesh)?),
-                };
-                redivide_on_the_shell(
-                    surface,
-                    shell,
-                    &failed,
-                    &parents,
-                    start,
-                    (goal, effort),
-                    Level {
-                        nodes: &mut nodes,
-                        regions: &mut regions,
-                        depths: &mut depths,
-                        surface_centred: &mut surface_centred,
-                        level: level as u32,
-                        max_nodes,
-                        tolerance,
-                    },
-                )?;
+            if built.nodes.len() == start {
+                break;
             }
-            if tolerance.is_none() {
-                keep_the_parent_where_looser(
-                    &mut nodes[..],
-                    &mut depths,
-                    &mut surface_centred,
-                    start,
-                );
+            certify_level(
+                surface,
+                &mut built.nodes[start..],
+                &built.surface_centred[start..],
+                tolerance,
+                eq2_bounds,
+            )?;
+            if !eq2_bounds {
+                let failed = through_a_hole(built.nodes, built.depths, &parents, &on_surface);
+                if !failed.is_empty() {
+                    let shell = match &mut shell {
+                        Some(shell) => &*shell,
+                        none => none.insert(Surface::shell(mesh)?),
+                    };
+                    let retry = (goal, effort);
+                    redivide_on_the_shell(
+                        surface, shell, &failed, &parents, start, retry, &mut built,
+                    )?;
+                }
+                if tolerance.is_none() {
+                    keep_the_parent_where_looser(
+                        built.nodes,
+                        built.depths,
+                        built.surface_centred,
+                        start,
+                    );
+                }
             }
         }
         // The parents' pieces live on in their children's regions.
@@ -326,7 +313,7 @@ fn redivide_on_the_shell(
     parents: &[usize],
     start: usize,
     (goal, effort): (Goal, Plan),
-    mut level: Level<'_>,
+    level: &mut Level<'_>,
 ) -> Result<(), SphereTreeError> {
     let surfaces = Surfaces {
         solid,
