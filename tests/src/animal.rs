@@ -87,7 +87,7 @@ pub fn quadruped() -> TriMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use sphaera_mesh::Surface;
+    use sphaera_query::Surface;
 
     /// Closed and outward: the winding number is 1 just outside-in of the body's top and
     /// 0 beyond it; a point inside a leg is inside, a point between the legs is not.

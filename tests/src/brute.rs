@@ -81,11 +81,11 @@ pub fn triangle_distance(a: &Triangle, b: &Triangle) -> f64 {
 ///
 /// # Panics
 ///
-/// When a mesh is not valid for a [`sphaera_mesh::Surface`].
+/// When a mesh is not valid for a [`sphaera_query::Surface`].
 #[must_use]
 pub fn solid_distance(a: &TriMesh, b: &TriMesh) -> f64 {
     let inside = |outer: &TriMesh, inner: &TriMesh| {
-        let surface = sphaera_mesh::Surface::new(outer).expect("a closed mesh");
+        let surface = sphaera_query::Surface::new(outer).expect("a closed mesh");
         inner
             .positions()
             .first()

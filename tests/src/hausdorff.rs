@@ -12,7 +12,7 @@
 //! projection, not our own closest-point routine (which appears here only for degenerate
 //! triangles, see [`DistanceToMesh`]).
 //!
-//! The sample set and the maxima are `sphaera-mesh`'s ([`sphaera_mesh::measure`], the
+//! The sample set and the maxima are `sphaera-mesh`'s ([`sphaera_query::measure`], the
 //! same code behind `sphaera simplify --measure`), measured here with the parry oracle;
 //! the local refinement (below) is this module's own.
 //!
@@ -32,7 +32,7 @@
 //! often at vertices: corners that were cut or pushed by a simplification; unreferenced
 //! vertex records are not on the surface and are ignored), every **edge midpoint** (one
 //! per distinct undirected edge), and `samples_per_mesh` **uniform random points**
-//! ([`sphaera_mesh::sampling::random`], reproducible from the seed; the second mesh's
+//! ([`sphaera_query::sampling::random`], reproducible from the seed; the second mesh's
 //! seed is offset by a fixed constant, 2⁶⁴ over the golden ratio): a [`SurfaceSamples`]
 //! with the default [`SampleOptions`] but for the random points and the seed. Then a
 //! **local refinement** around the best few samples: each triangle that holds one of them
@@ -41,7 +41,7 @@
 //!
 //! # Determinism
 //!
-//! Distances are computed in parallel (by [`sphaera_mesh::measure::distances`] with
+//! Distances are computed in parallel (by [`sphaera_query::measure::distances`] with
 //! `sphaera-mesh`'s `parallel` feature, and by rayon for the refinement) but collected in
 //! order, and every maximum breaks ties by the lowest sample index, so the result (value
 //! and location) is the same on every run and for any number of threads.
@@ -61,7 +61,7 @@
 //! assert!((h.a_to_b - 0.05).abs() < 1e-12);
 //! assert!((h.b_to_a - 0.05 * 3f64.sqrt()).abs() < 1e-12);
 //! assert_eq!(h.symmetric(), h.b_to_a);
-//! # Ok::<(), sphaera_mesh::MeshError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 
 use parry3d_f64::{
@@ -70,10 +70,11 @@ use parry3d_f64::{
 };
 use rayon::prelude::*;
 use sphaera_mesh::{
-    DVec3, MeshError, TriMesh,
+    DVec3, TriMesh,
     geometry::{Triangle, closest_point_on_triangle},
-    measure::{self, DirectedDistance, SampleOptions, SampleOrigin, SurfaceSamples},
 };
+use sphaera_query::QueryError;
+use sphaera_query::measure::{self, DirectedDistance, SampleOptions, SampleOrigin, SurfaceSamples};
 
 use crate::pattern_search::{Boundary, PatternSearch, SIX_DIRECTIONS, SearchBudget};
 
@@ -200,7 +201,7 @@ impl DistanceToMesh {
     /// let cube = DistanceToMesh::new(&shapes::cube(2.0, 1)?);
     /// assert!((cube.distance(DVec3::new(3.0, 0.0, 0.0)) - 2.0).abs() < 1e-12);
     /// assert!((cube.distance(DVec3::ZERO) - 1.0).abs() < 1e-12); // unsigned, to the surface
-    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -243,7 +244,7 @@ impl DistanceToMesh {
     /// assert_eq!(target.degenerate_triangle_count(), 1);
     /// // The degenerate triangle is still part of the surface.
     /// assert!((target.distance(DVec3::new(2.0, 0.5, 0.0)) - 0.5).abs() < 1e-12);
-    /// # Ok::<(), sphaera_mesh::MeshError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     pub fn degenerate_triangle_count(&self) -> usize {
         self.degenerate.len()
@@ -281,7 +282,7 @@ impl DistanceToMesh {
 /// # Panics
 ///
 /// If `n > 0` and random sampling fails: the mesh has no triangle of positive area, or `n`
-/// exceeds [`sphaera_mesh::sampling::MAX_SAMPLES`].
+/// exceeds [`sphaera_query::sampling::MAX_SAMPLES`].
 fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> SurfaceSamples {
     let options = SampleOptions::default()
         .with_random_points(n)
@@ -292,9 +293,9 @@ fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> SurfaceSamples {
         // The library skips the random points of a surface without area; this helper has
         // always refused it.
         let e = if mesh.is_empty() {
-            MeshError::EmptyMesh
+            QueryError::EmptyMesh
         } else {
-            MeshError::ZeroSurfaceArea {
+            QueryError::ZeroSurfaceArea {
                 triangle_count: mesh.triangle_count(),
             }
         };
@@ -305,7 +306,7 @@ fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> SurfaceSamples {
 
 /// The points of `mesh` that [`reference_hausdorff`] measures before refinement: every
 /// referenced vertex, the midpoint of every distinct edge, and `n` uniform random points
-/// from [`sphaera_mesh::sampling::random`] with `seed`, in that order
+/// from [`sphaera_query::sampling::random`] with `seed`, in that order
 /// ([`SurfaceSamples`]).
 ///
 /// # Examples
@@ -316,13 +317,13 @@ fn sample_set(mesh: &TriMesh, n: usize, seed: u64) -> SurfaceSamples {
 ///
 /// let cube = shapes::cube(1.0, 1)?; // 8 vertices, 18 edges (12 sides, 6 diagonals)
 /// assert_eq!(surface_points(&cube, 100, 3).len(), 8 + 18 + 100);
-/// # Ok::<(), sphaera_mesh::MeshError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Panics
 ///
 /// If `n > 0` and random sampling fails: the mesh has no triangle of positive area, or `n`
-/// exceeds [`sphaera_mesh::sampling::MAX_SAMPLES`].
+/// exceeds [`sphaera_query::sampling::MAX_SAMPLES`].
 pub fn surface_points(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
     sample_set(mesh, n, seed).into_points()
 }
@@ -345,7 +346,7 @@ pub fn surface_points(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
 /// assert!((d - 3.0).abs() < 1e-12);
 /// assert_eq!(at, points[1]); // ties go to the lowest index
 /// assert!(directed_max(&[], &target).is_none());
-/// # Ok::<(), sphaera_mesh::MeshError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Panics
@@ -411,7 +412,7 @@ pub fn reference_hausdorff(
 /// let fine = reference_hausdorff_with(&inner, &outer, &refined);
 /// assert!(fine.a_to_b >= coarse.a_to_b && fine.b_to_a >= coarse.b_to_a);
 /// assert!((fine.symmetric() - 0.25).abs() < 0.02);
-/// # Ok::<(), sphaera_mesh::MeshError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Panics

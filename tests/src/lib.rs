@@ -20,7 +20,7 @@
 //! | item | what | used by |
 //! |---|---|---|
 //! | [`data_dir`], [`mesh_files`], [`expected_stats`] | the shared real meshes | tests of every crate, benches, `sphaera-eval` |
-//! | [`hausdorff`] | the sampled Hausdorff distance measured with parry3d-f64 (samples and maxima from `sphaera_mesh::measure`, plus a local refinement), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
+//! | [`hausdorff`] | the sampled Hausdorff distance measured with parry3d-f64 (samples and maxima from `sphaera_query::measure`, plus a local refinement), a lower bound to check certified upper bounds against | the simplify, sweep and sphere-tree tests, this crate's tests, `sphaera-eval` |
 //! | [`animal`] | a procedural horned quadruped with thin legs and a tail, the unseen mesh of issue 36 | `sphaera-eval`'s `spheres_vs_count` experiment |
 //! | [`awkward`] | generated meshes users bring: a pinched vertex, slivers, a tiny detached component, far-apart components, a thin rod, horns, spikes | the sphere-tree's `awkward` tests (every method, every output format) |
 //! | [`brute`] | brute-force point-to-mesh distances and the closeness of exact answers | the closest-point tests of mesh and sweep |

@@ -3,7 +3,8 @@
 //! bit-identical positions): closed, 2-manifold, genus, boundary edges, components, χ,
 //! triangle and vertex-record counts, and the bounding-box diagonal.
 
-use sphaera_mesh::{io, topology};
+use sphaera_io as io;
+use sphaera_mesh::topology;
 use sphaera_tests::{data_dir, expected_stats};
 
 #[test]

@@ -5,7 +5,9 @@ use parry3d_f64::{
     query::PointQuery,
     shape::{TriMesh as ParryTriMesh, TriMeshFlags},
 };
-use sphaera_mesh::{geometry, io, sampling};
+use sphaera_io as io;
+use sphaera_mesh::geometry;
+use sphaera_query::sampling;
 use sphaera_tests::data_dir;
 
 #[test]

@@ -4,7 +4,8 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use sphaera_mesh::{TriMesh, geometry, io, shapes};
+use sphaera_io as io;
+use sphaera_mesh::{TriMesh, geometry, shapes};
 use sphaera_tests::{
     data_dir,
     hausdorff::{

@@ -24,10 +24,12 @@
 //! side; up to 280 forming points and 1,430 Voronoi vertices per shape after the last
 //! step, with cover spheres on all but the capsule's adaptive build).
 
+use sphaera_io as io;
 use sphaera_medial::{
     MedialApproximation, MedialOptions, MedialSphere, RegionOptions, SphereKind, Surface,
 };
-use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_query::sampling;
 use sphaera_sweep::{Session, Sweeper, build_hierarchy};
 
 /// Surface samples per shape.

@@ -49,7 +49,8 @@
 use std::collections::HashMap;
 use std::path::Path;
 
-use sphaera_mesh::{Length, TriMesh, io};
+use sphaera_io as io;
+use sphaera_mesh::{Length, TriMesh};
 use sphaera_simplify::{SimplifyOptions, simplify};
 use sphaera_sweep::{HausdorffOptions, hausdorff};
 

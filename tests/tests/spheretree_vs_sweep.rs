@@ -1,6 +1,6 @@
 //! Sphere-trees of `sphaera-spheretree` checked with `sphaera-sweep`'s exact closest
 //! points (Meshsweeper sessions: a different algorithm from the triangle tree that the
-//! sphere-tree crate itself queries through `sphaera_mesh::Surface`) and
+//! sphere-tree crate itself queries through `sphaera_query::Surface`) and
 //! `sphaera-mesh`'s independent random surface samples, on a capsule, a torus, the
 //! embedded low-resolution bunny and a Franka Panda link.
 //!
@@ -43,8 +43,10 @@
 //! 8.5 s wall in the test profile on the shared 2-core machine, the four meshes side by
 //! side with seven methods each (the default method alone took 1.7–3.1 s).
 
-use sphaera_mesh::Surface;
-use sphaera_mesh::{DVec3, TriMesh, io, sampling, shapes};
+use sphaera_io as io;
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_query::Surface;
+use sphaera_query::sampling;
 use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions, TreeNode, build};
 use sphaera_sweep::{Session, Sweeper, build_hierarchy};

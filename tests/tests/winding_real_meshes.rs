@@ -9,10 +9,9 @@ use parry3d_f64::{
 };
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use sphaera_mesh::{
-    TriMesh, io,
-    winding::{WindingNumber, inside_by_ray_parity},
-};
+use sphaera_io as io;
+use sphaera_mesh::TriMesh;
+use sphaera_query::winding::{WindingNumber, inside_by_ray_parity};
 use sphaera_tests::data_dir;
 
 /// Closed, consistently oriented meshes of the test data.

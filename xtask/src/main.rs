@@ -47,6 +47,8 @@ const USAGE: &str = "usage: cargo xtask <test | ci | doc | package | bench [ARGS
 /// workspace member must say `publish = false` ([`check_publish_settings`]).
 const PUBLISHED: &[&str] = &[
     "sphaera-mesh",
+    "sphaera-io",
+    "sphaera-query",
     "sphaera-simplify",
     "sphaera-sweep",
     "sphaera-medial",
@@ -190,7 +192,7 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 }
 
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
-/// `tests/`, and the doctests (all run by `cargo test`); then the mesh, simplification,
+/// `tests/`, and the doctests (all run by `cargo test`); then the query, simplification,
 /// medial, sphere-tree and scene crates again without their default `parallel` feature, whose
 /// results must be identical (their tests compare digests of their results with the same
 /// recorded values both ways),
@@ -202,7 +204,7 @@ fn test() -> Result<()> {
     // (`cargo tree -e features` confirms).
     let mut args = vec!["test", "--locked"];
     for crate_name in [
-        "sphaera-mesh",
+        "sphaera-query",
         "sphaera-simplify",
         "sphaera-medial",
         "sphaera-spheretree",

@@ -9,7 +9,7 @@
 //! and the simplifier's certified bound can never be below it.
 
 use sphaera::mesh::{
-    MeshError, TriMesh,
+    QueryError, TriMesh,
     measure::{self, MeasureOptions, SampleOptions},
 };
 
@@ -44,7 +44,7 @@ fn options() -> MeasureOptions {
 ///
 /// One nearest-triangle query (`O(log T)` on well-spread meshes) per sample, in parallel;
 /// about `V + 1.5 T + 100,000` samples per mesh.
-pub fn sampled_hausdorff(a: &TriMesh, b: &TriMesh) -> Result<f64, MeshError> {
+pub fn sampled_hausdorff(a: &TriMesh, b: &TriMesh) -> Result<f64, QueryError> {
     if a.is_empty() || b.is_empty() {
         return Ok(0.0);
     }

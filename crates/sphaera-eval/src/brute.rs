@@ -11,7 +11,7 @@
 //! its distance oracle, on one thread.
 
 use sphaera::mesh::{
-    DVec3, MeshError, TriMesh,
+    DVec3, QueryError, TriMesh,
     geometry::{Triangle, point_triangle_distance_squared},
     measure::{self, MeasureOptions, SampleOptions, SurfaceSamples},
 };
@@ -72,7 +72,7 @@ pub fn naive_hausdorff(
     a: &TriMesh,
     b: &TriMesh,
     stride: usize,
-) -> Result<NaiveHausdorff, MeshError> {
+) -> Result<NaiveHausdorff, QueryError> {
     let (to_a, to_b) = (BruteForce::new(a), BruteForce::new(b));
     let options = MeasureOptions::default()
         .with_samples(vertex_samples(stride))

@@ -406,7 +406,7 @@ mod tests {
         ];
         if let Some(data) = sphaera_tests::data_dir("volumes_hold_their_patch_faces") {
             // Coplanar-rich: flat bulges and half-spaces.
-            meshes.push(sphaera_mesh::io::load(data.join("fandisk.obj")).unwrap());
+            meshes.push(sphaera_io::load(data.join("fandisk.obj")).unwrap());
         }
         for mesh in &meshes {
             let tree = HalTree3::build(mesh).unwrap();

@@ -182,7 +182,7 @@ fn real_genus_zero_meshes_build() {
         return;
     };
     for file in ["spot.obj", "bunny_lowres.obj", "fandisk.obj"] {
-        let mesh = sphaera_mesh::io::load(data.join(file)).unwrap();
+        let mesh = sphaera_io::load(data.join(file)).unwrap();
         let tree = HalTree3::build(&mesh).unwrap_or_else(|e| panic!("{file}: {e}"));
         check(file, &mesh, &tree);
     }
@@ -237,7 +237,7 @@ fn point_inclusion_equals_brute_force_and_the_winding_number() {
     let mut rng = SplitMix64::new(31);
     for (name, mesh) in meshes() {
         let tree = HalTree3::build(&mesh).unwrap();
-        let surface = sphaera_mesh::Surface::new(&mesh).unwrap();
+        let surface = sphaera_query::Surface::new(&mesh).unwrap();
         let (lo, hi) = mesh
             .positions()
             .iter()

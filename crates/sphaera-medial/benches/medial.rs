@@ -13,8 +13,10 @@
 use std::{hint::black_box, path::Path, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use sphaera_io as io;
 use sphaera_medial::{DVec3, MedialApproximation, MedialOptions, Surface};
-use sphaera_mesh::{TriMesh, io, sampling};
+use sphaera_mesh::TriMesh;
+use sphaera_query::sampling;
 
 fn samples(mesh: &TriMesh, n: usize) -> Vec<DVec3> {
     sampling::poisson_disk(mesh, n, 1)

@@ -5,8 +5,10 @@
 
 use std::time::Instant;
 
+use sphaera_io as io;
 use sphaera_medial::{MedialApproximation, MedialOptions, Surface};
-use sphaera_mesh::{io, sampling, shapes};
+use sphaera_mesh::shapes;
+use sphaera_query::sampling;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();

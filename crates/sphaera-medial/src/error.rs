@@ -112,6 +112,10 @@ pub enum MedialError {
     /// The mesh is empty or invalid.
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
+    /// The surface has no meaningful inside, or a sampling or query parameter is out of
+    /// range.
+    #[error(transparent)]
+    Query(#[from] sphaera_query::QueryError),
     /// A surface sample has a NaN or infinite coordinate.
     #[error("surface sample {index} has a NaN or infinite coordinate")]
     NonFiniteSample {

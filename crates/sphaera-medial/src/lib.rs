@@ -40,7 +40,8 @@
 //!
 //! ```
 //! use sphaera_medial::{MedialApproximation, MedialOptions, SphereKind, Surface};
-//! use sphaera_mesh::{sampling, shapes};
+//! use sphaera_query::sampling;
+//! use sphaera_mesh::shapes;
 //!
 //! let mesh = shapes::capsule(0.5, 2.0, 8)?;
 //! let surface = Surface::new(&mesh)?;
@@ -165,7 +166,7 @@
 //! - `sphaera-spheretree`: sphere-trees for collision detection built from this
 //!   approximation, with coverage of the surface certified at every level.
 //! - [`sphaera_mesh`]: the [`Surface`] (inside test and exact closest points) and the
-//!   surface samples ([`sphaera_mesh::sampling::poisson_disk`]).
+//!   surface samples ([`sphaera_query::sampling::poisson_disk`]).
 //! - `sphaera` (the facade, as `sphaera::medial`) and the `sphaera medial` command of
 //!   `sphaera-cli`, which approximates a mesh file and certifies surface coverage.
 
@@ -182,7 +183,7 @@ pub use medial::{
 };
 /// The mesh a medial approximation describes (defined in `sphaera-mesh`): its inside test
 /// and exact closest points.
-pub use sphaera_mesh::Surface;
+pub use sphaera_query::Surface;
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
 /// that it stays true.

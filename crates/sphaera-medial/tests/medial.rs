@@ -4,11 +4,13 @@
 
 #![allow(clippy::print_stderr)]
 
+use sphaera_io as io;
 use sphaera_medial::{
     CoverCriterion, MedialApproximation, MedialError, MedialOptions, RegionOptions, SphereKind,
     Surface,
 };
-use sphaera_mesh::{DVec3, MeshError, TriMesh, io, sampling, shapes};
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_query::{QueryError, sampling};
 use sphaera_tests::hausdorff::DistanceToMesh;
 
 fn samples(mesh: &TriMesh, n: usize) -> Vec<DVec3> {
@@ -278,7 +280,7 @@ fn bad_input_gets_clear_errors() {
     )
     .unwrap();
     let err = Surface::new(&sheet).unwrap_err();
-    assert!(matches!(err, MeshError::NoInside { .. }), "{err}");
+    assert!(matches!(err, QueryError::NoInside { .. }), "{err}");
     eprintln!("flat sheet: {err}");
 
     let cube = shapes::cube(1.0, 2).unwrap();

@@ -1,8 +1,9 @@
-//! The one error type of `sphaera-mesh`.
+//! The error type of `sphaera-mesh`: invalid meshes and parameters, topology edits,
+//! geometric constructions and shapes.
 
-use std::path::PathBuf;
-
-/// Everything that can go wrong in `sphaera-mesh`.
+/// Everything that can go wrong in `sphaera-mesh` (reading and writing files fail with
+/// `sphaera-io`'s `IoError`, spatial queries with `sphaera-query`'s `QueryError`, both of
+/// which wrap this type).
 ///
 /// Every variant says what was wrong and where (vertex, triangle, file line or byte offset),
 /// so a user can fix the input without a debugger. Messages are lowercase and carry no final
@@ -62,58 +63,6 @@ pub enum MeshError {
         value: f64,
         /// What the value must be, e.g. `"finite and positive"`.
         requirement: &'static str,
-    },
-
-    // ----------------------------------------------------------------------------------
-    // File input and output (io/).
-    // ----------------------------------------------------------------------------------
-    /// The operating system refused to read or write a file.
-    #[error("cannot access {}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        #[source]
-        source: std::io::Error,
-    },
-
-    /// A mesh file (or byte buffer) is malformed: the data do not follow the format, or they
-    /// describe invalid geometry (a NaN coordinate, an index out of range, a face with fewer
-    /// than three vertices).
-    ///
-    /// `location` is a 1-based line for text formats, a 0-based byte offset for binary
-    /// ones, a JSON line and column or the glTF object (mesh primitive, node, buffer) for
-    /// glTF; `reason` is a structured [`crate::io::ParseReason`].
-    #[error(
-        "malformed {format} data{} at {location}: {reason}",
-        crate::io::describe_path(path.as_deref())
-    )]
-    Parse {
-        /// The file, when the data came from one ([`crate::io::read`] fills it in).
-        path: Option<PathBuf>,
-        /// The format the data were parsed as.
-        format: crate::io::Format,
-        /// Where in the data the problem is.
-        location: crate::io::Location,
-        /// What is wrong.
-        reason: crate::io::ParseReason,
-    },
-    /// The mesh format of a file could not be determined: its extension is not one of
-    /// `obj`, `ply`, `stl`, `off`, `gltf`, `glb` (in any case), and its content does not
-    /// look like any of them.
-    #[error(
-        "cannot tell the mesh format{}: the extension is not obj, ply, stl, off, gltf or glb and the content is not recognised",
-        crate::io::describe_path(path.as_deref())
-    )]
-    UnknownFormat {
-        /// The file, when the data came from one.
-        path: Option<PathBuf>,
-    },
-    /// Writing this format is not supported (only OBJ and PLY are written).
-    #[error("writing {format} files is not supported (write obj or ply instead)")]
-    UnsupportedWriteFormat {
-        /// The requested format.
-        format: crate::io::Format,
     },
 
     // ----------------------------------------------------------------------------------
@@ -197,9 +146,6 @@ pub enum MeshError {
     #[error("invalid transform: {0}")]
     InvalidTransform(crate::geometry::TransformDefect),
 
-    // ----------------------------------------------------------------------------------
-    // Inside/outside (winding/).
-    // ----------------------------------------------------------------------------------
     /// The mesh has more triangles than `u32` half-edge indices can address (three
     /// half-edges per triangle: at most 1,431,655,764 triangles).
     #[error(
@@ -209,58 +155,9 @@ pub enum MeshError {
         /// Number of triangles supplied.
         count: usize,
     },
-    /// Inside/outside is not meaningful: the mesh does not enclose a volume (for example a
-    /// lone open sheet), as measured by `winding::WindingNumber::check_solid`.
-    #[error(
-        "the mesh does not enclose a volume: the largest |winding number| next to its surface is {max_abs_winding:.3}, below {threshold} (is it an open sheet?)"
-    )]
-    NotSolid {
-        /// The largest `|w|` found at the probe points next to the surface (about ½ for a
-        /// sheet, 1 for a solid).
-        max_abs_winding: f64,
-        /// The smallest value accepted.
-        threshold: f64,
-    },
-    /// The mesh encloses a volume but its triangles face inward, so the winding number is
-    /// −1 inside and every point reads as outside.
-    #[error(
-        "the mesh is oriented inward: the median winding number just behind its triangles is {median_inner_winding:.3} instead of about 1 (flip the triangles)"
-    )]
-    InwardOrientation {
-        /// The median winding number just behind the probe triangles (about 0 when every
-        /// triangle faces inward).
-        median_inner_winding: f64,
-    },
-
-    /// Inside and outside are meaningless for this mesh as a [`Surface`](crate::Surface)
-    /// sees it: too few probes across its surface see the winding number jump from about
-    /// 1 inside to about 0 outside (a flat sheet, an open patch, an inside-out mesh).
-    #[error(
-        "the mesh has no meaningful inside: only {:.0} % of probes across its surface see \
-         the winding number jump from 1 to 0 (a flat sheet or open patch?)",
-        fraction * 100.0
-    )]
-    NoInside {
-        /// Fraction of probes with a clear jump (at least one half is required).
-        fraction: f64,
-    },
 
     // ----------------------------------------------------------------------------------
-    // Closest points (closest/).
-    // ----------------------------------------------------------------------------------
-    /// A query point has a NaN or infinite coordinate.
-    #[error("the query point ({x}, {y}, {z}) is not finite")]
-    NonFiniteQuery {
-        /// The x coordinate given.
-        x: f64,
-        /// The y coordinate given.
-        y: f64,
-        /// The z coordinate given.
-        z: f64,
-    },
-
-    // ----------------------------------------------------------------------------------
-    // Sampling and shapes (sampling/, shapes/).
+    // Shapes (shapes/).
     // ----------------------------------------------------------------------------------
     /// A procedural shape's parameters ask for more vertices than the shape builders allow.
     #[error(
@@ -273,13 +170,5 @@ pub enum MeshError {
         vertices: f64,
         /// The largest number of vertices a shape builder produces.
         limit: usize,
-    },
-    /// The triangles of a mesh to be sampled have zero total area.
-    #[error(
-        "the mesh's {triangle_count} triangles have zero total area, so it has no surface to sample"
-    )]
-    ZeroSurfaceArea {
-        /// Number of triangles in the mesh.
-        triangle_count: usize,
     },
 }

@@ -150,6 +150,17 @@ impl TriMesh {
         Ok(())
     }
 
+    /// Checks positions as [`TriMesh::new`] does: no more than `u32` indices address, every
+    /// coordinate finite (a failure names the vertex and axis). For structures that take
+    /// new positions for a mesh they already hold.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::TooManyVertices`], [`MeshError::NonFiniteCoordinate`].
+    pub fn check_positions(positions: &[DVec3]) -> Result<(), MeshError> {
+        check_positions(positions)
+    }
+
     /// Splits the mesh into its positions and triangles.
     pub fn into_parts(self) -> (Vec<DVec3>, Vec<[u32; 3]>) {
         (self.positions, self.triangles)

@@ -67,7 +67,7 @@ pub enum RobotError {
         /// The mesh file.
         path: PathBuf,
         /// Why it could not be loaded.
-        source: Box<sphaera_mesh::MeshError>,
+        source: Box<sphaera_io::IoError>,
     },
     /// A link's geometry could not be spherized (a closed mesh facing inward, a mesh
     /// without area), with the sphere-tree's or the surface's reason.

@@ -402,10 +402,10 @@ fn collisions(link: &str, spheres: &[Sphere], indent: &str) -> String {
 ///
 /// [`RobotError::Write`] naming the file.
 pub fn write_atomic(path: &Path, text: &str) -> Result<(), RobotError> {
-    sphaera_mesh::io::write_atomic(path, |w| std::io::Write::write_all(w, text.as_bytes())).map_err(
-        |e| RobotError::Write {
+    sphaera_io::write_atomic(path, |w| std::io::Write::write_all(w, text.as_bytes())).map_err(|e| {
+        RobotError::Write {
             path: path.to_path_buf(),
             message: e.to_string(),
-        },
-    )
+        }
+    })
 }

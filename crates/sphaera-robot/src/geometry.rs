@@ -90,7 +90,7 @@ impl MeshResolver {
     pub fn candidates(&self, uri: &str) -> Vec<PathBuf> {
         let mut paths = self.candidates_as_written(uri);
         let is_uri = uri.starts_with("package://") || uri.starts_with("file://");
-        let decoded = sphaera_mesh::io::percent_decode(uri).and_then(|d| String::from_utf8(d).ok());
+        let decoded = sphaera_io::percent_decode(uri).and_then(|d| String::from_utf8(d).ok());
         if let Some(decoded) = decoded.filter(|d| is_uri && d != uri) {
             for path in self.candidates_as_written(&decoded) {
                 if !paths.contains(&path) {
@@ -230,26 +230,25 @@ impl LinkGeometry {
             let shape = match &element.geometry {
                 Geometry::Mesh { filename, scale } => {
                     let path = resolver.resolve(&link.name, filename)?;
-                    let mesh =
-                        sphaera_mesh::io::load(&path).map_err(|source| RobotError::Mesh {
-                            link: link.name.clone(),
-                            path: path.clone(),
-                            source: Box::new(source),
-                        })?;
+                    let mesh = sphaera_io::load(&path).map_err(|source| RobotError::Mesh {
+                        link: link.name.clone(),
+                        path: path.clone(),
+                        source: Box::new(source),
+                    })?;
                     // A file of no triangles (an STL of only its header) must not drop
                     // the link silently: a planner would never see it.
                     if mesh.triangle_count() == 0 {
                         return Err(RobotError::Mesh {
                             link: link.name.clone(),
                             path,
-                            source: Box::new(sphaera_mesh::MeshError::EmptyMesh),
+                            source: Box::new(sphaera_mesh::MeshError::EmptyMesh.into()),
                         });
                     }
                     append(&mut positions, &mut triangles, &mesh, pose, *scale).map_err(
                         |source| RobotError::Mesh {
                             link: link.name.clone(),
                             path: path.clone(),
-                            source: Box::new(source),
+                            source: Box::new(source.into()),
                         },
                     )?;
                     files.push(path);
@@ -275,7 +274,7 @@ impl LinkGeometry {
                 TriMesh::new(positions, triangles).map_err(|source| RobotError::Mesh {
                     link: link.name.clone(),
                     path: files.last().cloned().unwrap_or_default(),
-                    source: Box::new(source),
+                    source: Box::new(source.into()),
                 })?,
             )
         };

@@ -7,7 +7,8 @@ use std::time::Instant;
 use glam::DVec3;
 use serde::Serialize;
 use sphaera_mesh::geometry::minimum_enclosing_ball_of_balls;
-use sphaera_mesh::{Length, Sphere, Surface};
+use sphaera_mesh::{Length, Sphere};
+use sphaera_query::Surface;
 use sphaera_spheretree::{
     Effort, EvaluationOptions, Method, SphereTree, SphereTreeOptions, evaluate_set_bounded,
 };
@@ -791,7 +792,7 @@ fn spherize_link(
 /// (meshes exported per triangle, as OBJ and STL files often are, become the closed
 /// manifolds they are, certified embedded solids), then a solid when it has an inside,
 /// else a shell. The geometry is unchanged.
-fn prepare_surface(mesh: &sphaera_mesh::TriMesh) -> Result<Surface, sphaera_mesh::MeshError> {
+fn prepare_surface(mesh: &sphaera_mesh::TriMesh) -> Result<Surface, sphaera_query::QueryError> {
     let (welded, _) = sphaera_mesh::topology::weld_vertices(mesh, 0.0)?;
     Surface::solid_or_shell(&welded)
 }

@@ -26,7 +26,7 @@ fn panda_mesh(name: &str, test: &str) -> Option<TriMesh> {
     let path = data
         .join("robots/franka_panda/collision")
         .join(format!("{name}.obj"));
-    Some(sphaera_mesh::io::load(&path).expect("the Panda's mesh loads"))
+    Some(sphaera_io::load(&path).expect("the Panda's mesh loads"))
 }
 
 fn panda_urdf(test: &str) -> Option<PathBuf> {

@@ -243,7 +243,7 @@ fn powers_of_two_scale_the_spheres_exactly() {
 fn the_same_spheres_with_and_without_parallel() {
     let dir = tempfile::tempdir().expect("a folder");
     let mesh = sphaera_mesh::shapes::capsule(0.04, 0.2, 12).expect("capsule");
-    sphaera_mesh::io::save(dir.path().join("arm.obj"), &mesh).expect("save");
+    sphaera_io::save(dir.path().join("arm.obj"), &mesh).expect("save");
     let text = r#"<robot name="r">
       <link name="base"><collision><geometry><box size="0.3 0.2 0.1"/></geometry></collision>
         <collision><origin xyz="0 0 0.1"/><geometry><cylinder radius="0.05" length="0.1"/></geometry></collision></link>
@@ -359,7 +359,7 @@ proptest! {
                 .collect(),
         )
         .expect("placed");
-        let surface = sphaera_mesh::Surface::new(&placed).expect("surface");
+        let surface = sphaera_query::Surface::new(&placed).expect("surface");
         let unit = Primitive::new(Shape::Sphere { radius: 1.0 }, DAffine3::IDENTITY).surface_points(200);
         let mut measured: f64 = 0.0;
         for s in &link.spheres {

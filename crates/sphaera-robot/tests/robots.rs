@@ -47,9 +47,9 @@ fn link_points(urdf: &Urdf, link: &str) -> Vec<DVec3> {
             continue;
         };
         let relative = filename.strip_prefix("package://").unwrap_or(filename);
-        let mesh = sphaera_mesh::io::load(urdf.folder().join(relative)).expect("the mesh loads");
+        let mesh = sphaera_io::load(urdf.folder().join(relative)).expect("the mesh loads");
         let pose = element_pose(element.origin.xyz, element.origin.rpy);
-        let samples = sphaera_mesh::sampling::random(&mesh, 4_000, 7).expect("samples");
+        let samples = sphaera_query::sampling::random(&mesh, 4_000, 7).expect("samples");
         points.extend(
             mesh.positions()
                 .iter()
@@ -292,7 +292,7 @@ fn every_format_reads_back_with_the_same_spheres() {
 fn frames_are_right() {
     let dir = tempfile::tempdir().expect("a folder");
     let mesh = sphaera_mesh::shapes::capsule(0.05, 0.3, 10).expect("capsule");
-    sphaera_mesh::io::save(dir.path().join("rod.obj"), &mesh).expect("write");
+    sphaera_io::save(dir.path().join("rod.obj"), &mesh).expect("write");
     let (xyz, rpy, scale) = (
         DVec3::new(0.4, -0.2, 0.3),
         DVec3::new(0.3, -0.5, 1.2),

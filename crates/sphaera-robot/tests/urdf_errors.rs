@@ -288,7 +288,7 @@ fn a_mirroring_scale_keeps_the_inside() {
     )
     .expect("geometry");
     let mesh = geometry.mesh.expect("a mesh");
-    let surface = sphaera_mesh::Surface::new(&mesh).expect("a closed mesh");
+    let surface = sphaera_query::Surface::new(&mesh).expect("a closed mesh");
     assert!(surface.is_inside(glam::DVec3::ZERO));
     assert!(matches!(
         urdf.links[0].collisions[0].geometry,

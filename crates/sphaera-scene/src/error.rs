@@ -24,6 +24,12 @@ pub enum SceneError {
     /// A mesh is empty or invalid, or a pose is not a similarity.
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
+    /// A mesh file named in a scene could not be read.
+    #[error(transparent)]
+    File(#[from] sphaera_io::IoError),
+    /// A model's surface has no meaningful inside, or a query parameter is out of range.
+    #[error(transparent)]
+    Query(#[from] sphaera_query::QueryError),
     /// A model's simplification hierarchy could not be built.
     #[error(transparent)]
     Simplify(#[from] sphaera_simplify::SimplifyError),

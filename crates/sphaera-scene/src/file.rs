@@ -215,7 +215,7 @@ impl SceneDescription {
     /// cannot be read or its model cannot be built.
     pub fn build(&self, options: &ModelOptions) -> Result<LoadedScene, SceneError> {
         self.build_with(|name, path| {
-            let mesh = sphaera_mesh::io::load(path)?;
+            let mesh = sphaera_io::load(path)?;
             ObjectModel::build(name, mesh, options)
         })
     }

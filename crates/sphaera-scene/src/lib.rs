@@ -99,7 +99,7 @@
 //! }
 //! ```
 //!
-//! - `meshes` maps a name to a mesh file (any format `sphaera_mesh::io` reads: OBJ, PLY,
+//! - `meshes` maps a name to a mesh file (any format `sphaera_io` reads: OBJ, PLY,
 //!   STL, OFF, glTF/GLB), relative to the scene file's folder unless absolute. A name
 //!   given twice is an error.
 //! - Each instance names its mesh and may give a `name` (default `MESH-INDEX`), a

@@ -7,7 +7,8 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use sphaera_mesh::geometry::minimum_enclosing_ball;
-use sphaera_mesh::{Length, Sphere, Surface, TriMesh};
+use sphaera_mesh::{Length, Sphere, TriMesh};
+use sphaera_query::Surface;
 use sphaera_simplify::{Hierarchy, Simplified, SimplifyOptions};
 use sphaera_spheretree::{Effort, SphereTree, SphereTreeOptions};
 

@@ -6,7 +6,8 @@ use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
 
 use sphaera_mesh::geometry::minimum_enclosing_ball_of_balls;
-use sphaera_mesh::{Length, Sphere, Surface};
+use sphaera_mesh::{Length, Sphere};
+use sphaera_query::Surface;
 use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
 use sphaera_spheretree::{SphereTree, SphereTreeError, SphereTreeOptions, TreeNode};
 

@@ -3,7 +3,8 @@
 
 use std::path::Path;
 
-use sphaera_mesh::{DVec3, io, shapes};
+use sphaera_io as io;
+use sphaera_mesh::{DVec3, shapes};
 use sphaera_scene::{SceneDescription, SceneError, Tolerance};
 
 mod common;

@@ -612,7 +612,7 @@ fn the_four_shared_meshes_meet_two_percent() {
     let mut scene = Scene::new();
     let mut models = Vec::new();
     for (k, file) in files.iter().enumerate() {
-        let mesh = sphaera_mesh::io::load(data.join(file)).expect(file);
+        let mesh = sphaera_io::load(data.join(file)).expect(file);
         let model = Arc::new(ObjectModel::build(*file, mesh, &options).expect(file));
         scene.add(
             *file,

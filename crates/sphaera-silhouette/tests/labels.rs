@@ -324,7 +324,7 @@ fn real_meshes_label_their_silhouettes_zero() {
         return;
     };
     for file in ["bunny_lowres.obj", "spot.obj", "fandisk.obj"] {
-        let mesh = sphaera_mesh::io::load(data.join(file)).unwrap();
+        let mesh = sphaera_io::load(data.join(file)).unwrap();
         for d in directions() {
             let labels = label_view(
                 &mesh,

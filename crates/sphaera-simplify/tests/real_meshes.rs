@@ -4,7 +4,7 @@
 
 #![allow(clippy::print_stderr)]
 
-use sphaera_mesh::io;
+use sphaera_io as io;
 use sphaera_simplify::{Hierarchy, SimplifyOptions, simplify};
 
 /// Meshes above this size are measured by `sphaera-eval` instead (test time).

@@ -14,7 +14,9 @@
 use std::{hint::black_box, time::Duration};
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sphaera_mesh::{Length, Surface, TriMesh, io};
+use sphaera_io as io;
+use sphaera_mesh::{Length, TriMesh};
+use sphaera_query::Surface;
 use sphaera_spheretree::{
     EvaluationOptions, Method, SphereTree, SphereTreeError, SphereTreeOptions, build, evaluate_set,
 };

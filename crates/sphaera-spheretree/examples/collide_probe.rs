@@ -7,7 +7,8 @@
 
 use std::time::{Duration, Instant};
 
-use sphaera_mesh::{Surface, io};
+use sphaera_io as io;
+use sphaera_query::Surface;
 use sphaera_spheretree::collide::{Budget, CostModel, Similarity, collide, overlaps};
 use sphaera_spheretree::{DVec3, SphereTreeOptions, build};
 

@@ -8,7 +8,9 @@
 
 use std::time::Instant;
 
-use sphaera_mesh::{Length, Surface, io, shapes};
+use sphaera_io as io;
+use sphaera_mesh::{Length, shapes};
+use sphaera_query::Surface;
 use sphaera_spheretree::{
     EvaluationOptions, Method, SphereTreeOptions, build, evaluate_set, evaluate_set_bounded,
 };

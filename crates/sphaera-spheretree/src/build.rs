@@ -4,7 +4,7 @@ use glam::DVec3;
 use sphaera_medial::{MedialApproximation, MedialOptions, RegionOptions, Surface};
 use sphaera_mesh::Sphere;
 use sphaera_mesh::geometry::{CanonicalPose, minimum_enclosing_ball};
-use sphaera_mesh::sampling;
+use sphaera_query::sampling;
 
 use crate::SphereTreeError;
 use crate::baseline;
@@ -35,7 +35,8 @@ const REFINE_STEPS_PER_SPHERE: usize = 4;
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::{Surface, shapes};
+/// use sphaera_query::Surface;
+/// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::{Method, SphereTreeOptions, build};
 ///
 /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
@@ -67,7 +68,8 @@ pub fn build(
 ///
 /// ```
 /// use std::sync::atomic::{AtomicUsize, Ordering};
-/// use sphaera_mesh::{Surface, shapes};
+/// use sphaera_query::Surface;
+/// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::{SphereTreeOptions, SphereTreeProgress, build_with_progress};
 ///
 /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 8)?)?;

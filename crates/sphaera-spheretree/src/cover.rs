@@ -40,7 +40,7 @@ type Piece = [DVec3; 3];
 /// deepest level (a tree built to a tolerance); in a tree built to a depth, the level
 /// itself.
 pub(crate) fn certify_tree(
-    surface: &sphaera_mesh::Surface,
+    surface: &sphaera_query::Surface,
     tree: &mut crate::SphereTree,
     resolution: f64,
 ) {

@@ -22,10 +22,16 @@ use crate::tree::TreeDefect;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum SphereTreeError {
-    /// The mesh is empty or invalid, has no meaningful inside, or a transform is not a
-    /// similarity.
+    /// The mesh is empty or invalid, or a transform is not a similarity.
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
+    /// A spatial query failed: the mesh has no meaningful inside, a parameter of the
+    /// sampling or the winding number is out of range.
+    #[error(transparent)]
+    Query(#[from] sphaera_query::QueryError),
+    /// A writer given to an exporter failed.
+    #[error("cannot write the sphere-tree: {0}")]
+    Write(#[source] std::io::Error),
     /// The medial approximation failed (too few distinct samples, …).
     #[error(transparent)]
     Medial(#[from] sphaera_medial::MedialError),
@@ -96,7 +102,7 @@ pub enum SphereTreeError {
     #[error("invalid sphere-tree: {0}")]
     InvalidTree(TreeDefect),
     /// One of the paper's medial methods (or a baseline) was asked to build on a shell, a
-    /// surface without inside ([`Surface::shell`](sphaera_mesh::Surface::shell)): their
+    /// surface without inside ([`Surface::shell`](sphaera_query::Surface::shell)): their
     /// spheres sit on the medial axis of a solid. The minimax method (the default) covers
     /// shells.
     #[error(

@@ -103,7 +103,7 @@
 //! **The paper's Algorithm 1**, for the medial methods ([`Method::is_medial`]):
 //!
 //! 1. **Samples.** The surface is represented by [`SphereTreeOptions::samples`]
-//!    Poisson-disk samples ([`sphaera_mesh::sampling::poisson_disk`]); each stands for
+//!    Poisson-disk samples ([`sphaera_query::sampling::poisson_disk`]); each stands for
 //!    the surface within half the sample spacing of it. A node's *region* is the set of
 //!    samples it must cover.
 //! 2. **Root.** The minimum enclosing ball of the mesh's vertices
@@ -261,7 +261,8 @@ pub use options::{
     SphereTreeOptions, SphereTreeProgress,
 };
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
-pub use sphaera_mesh::{Sphere, Surface};
+pub use sphaera_mesh::Sphere;
+pub use sphaera_query::Surface;
 pub use tree::{SphereTree, TreeDefect, TreeNode};
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so

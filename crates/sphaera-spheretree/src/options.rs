@@ -443,7 +443,8 @@ impl SphereTreeOptions {
     /// # Examples
     ///
     /// ```
-    /// use sphaera_mesh::{Length, Surface, shapes};
+    /// use sphaera_mesh::{Length, shapes};
+    /// use sphaera_query::Surface;
     /// use sphaera_spheretree::{SphereTreeOptions, build};
     ///
     /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;

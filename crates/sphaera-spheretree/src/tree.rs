@@ -268,7 +268,8 @@ impl SphereTree {
     /// # Examples
     ///
     /// ```
-    /// use sphaera_mesh::{Surface, shapes};
+    /// use sphaera_query::Surface;
+    /// use sphaera_mesh::shapes;
     /// use sphaera_spheretree::{SphereTreeOptions, build};
     ///
     /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;
@@ -293,7 +294,8 @@ impl SphereTree {
     /// # Examples
     ///
     /// ```
-    /// use sphaera_mesh::{Length, Surface, shapes};
+    /// use sphaera_mesh::{Length, shapes};
+    /// use sphaera_query::Surface;
     /// use sphaera_spheretree::{SphereTreeOptions, build};
     ///
     /// let surface = Surface::new(&shapes::capsule(0.5, 2.0, 12)?)?;

@@ -6,7 +6,8 @@
 //! are named after what broke. (The spread left where a transform's rounding crosses the
 //! pose's snapping grid is measured by `sphaera-eval`'s `spheretree_similarity` chart.)
 
-use sphaera_mesh::{DVec3, TriMesh, sampling, shapes};
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_query::sampling;
 use sphaera_spheretree::export::{
     CollisionLink, SphFile, collision_spheres_yaml, read_sph, tree_from_json, tree_to_json,
     write_sph,
@@ -174,8 +175,7 @@ fn every_shared_mesh_builds_and_writes_every_format() {
     let options = small(Method::default()).with_samples(600);
     for relative in sphaera_tests::mesh_files(&data) {
         let name = relative.display().to_string();
-        let mesh =
-            sphaera_mesh::io::load(data.join(&relative)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mesh = sphaera_io::load(data.join(&relative)).unwrap_or_else(|e| panic!("{name}: {e}"));
         let surface = Surface::new(&mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
         let tree = build(&surface, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
         check_tree_and_formats(&name, Method::default(), &tree);

@@ -1,7 +1,8 @@
 //! The baseline sphere-trees (octree, grid, Hubbard): structure, coverage of the samples
 //! at every level, clear errors, and the octree's loose fit against the medial build.
 
-use sphaera_mesh::{DVec3, Length, Surface, TriMesh, sampling, shapes};
+use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
+use sphaera_query::{Surface, sampling};
 use sphaera_spheretree::{
     EvaluationOptions, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, Method, SphereTree,
     SphereTreeError, SphereTreeOptions, build, evaluate_set,
@@ -198,7 +199,7 @@ fn bunny_baselines_are_consistent_and_the_octree_is_looser_than_the_medial_build
     let Some(dir) = sphaera_tests::data_dir("bunny_baselines") else {
         return;
     };
-    let mesh = sphaera_mesh::io::load(dir.join("bunny_lowres.obj")).unwrap();
+    let mesh = sphaera_io::load(dir.join("bunny_lowres.obj")).unwrap();
     let params = SphereTreeOptions::default()
         .with_samples(3_000)
         .with_forming_points(300);

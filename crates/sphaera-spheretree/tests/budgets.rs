@@ -9,7 +9,8 @@
 
 mod checks;
 
-use sphaera_mesh::{Surface, TriMesh, shapes};
+use sphaera_mesh::{TriMesh, shapes};
+use sphaera_query::Surface;
 use sphaera_spheretree::{Effort, SphereTree, SphereTreeOptions, build};
 use sphaera_tests::awkward;
 

@@ -1,7 +1,8 @@
 //! Sphere-tree construction: structure, coverage of the samples at every level, the
 //! trivial cases and clear errors.
 
-use sphaera_mesh::{DVec3, MeshError, TriMesh, sampling, shapes};
+use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_query::{QueryError, sampling};
 use sphaera_spheretree::{Method, SphereTree, SphereTreeError, SphereTreeOptions, Surface, build};
 
 /// Every node's children are in the next level and point back to it; no node has more
@@ -111,7 +112,7 @@ fn bad_input_gets_clear_errors() {
     let triangle = TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap();
     assert!(matches!(
         Surface::new(&triangle),
-        Err(MeshError::NoInside { .. })
+        Err(QueryError::NoInside { .. })
     ));
     let mesh = shapes::sphere(1.0, 8).unwrap();
     assert!(matches!(

@@ -3,7 +3,8 @@
 
 use proptest::prelude::*;
 use sphaera_medial::{MedialApproximation, MedialOptions, Surface};
-use sphaera_mesh::{DVec3, Sphere, TriMesh, sampling, shapes};
+use sphaera_mesh::{DVec3, Sphere, TriMesh, shapes};
+use sphaera_query::sampling;
 use sphaera_spheretree::reduce::{Candidate, FittedSphere, ReductionInput, burst, merge, worst};
 
 /// Every point lies in a sphere that lists it, and every listed point is inside.

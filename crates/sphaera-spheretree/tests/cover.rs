@@ -3,7 +3,8 @@
 //! triangles and spheres.
 
 use proptest::prelude::*;
-use sphaera_mesh::{DVec3, Sphere, TriMesh, io, shapes};
+use sphaera_io as io;
+use sphaera_mesh::{DVec3, Sphere, TriMesh, shapes};
 use sphaera_spheretree::cover::certify_coverage;
 use sphaera_spheretree::evaluate::coverage;
 use sphaera_spheretree::{EvaluationOptions, Method, SphereTreeOptions, Surface, build};

@@ -7,8 +7,9 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 use proptest::prelude::*;
-use sphaera_mesh::Surface;
-use sphaera_mesh::{Length, TriMesh, sampling, shapes};
+use sphaera_mesh::{Length, TriMesh, shapes};
+use sphaera_query::Surface;
+use sphaera_query::sampling;
 use sphaera_spheretree::evaluate::{
     EvaluationOptions, coverage, evaluate_set, sphere_error, sphere_errors,
 };
@@ -410,7 +411,7 @@ fn bunny_fixed_sampling_under_estimates_the_certified_error() {
     let Some(dir) = sphaera_tests::data_dir("bunny_fixed_sampling_under_estimates") else {
         return;
     };
-    let mesh = sphaera_mesh::io::load(dir.join("bunny_lowres.obj")).unwrap();
+    let mesh = sphaera_io::load(dir.join("bunny_lowres.obj")).unwrap();
     let surface = Surface::new(&mesh).unwrap();
     let diagonal = surface.diagonal();
     // Shallow caps (the sphere pokes out by a third of its radius) and narrow caps (by a
@@ -464,7 +465,7 @@ fn bunny_512_spheres_timing() {
     let Some(dir) = sphaera_tests::data_dir("bunny_512_spheres_timing") else {
         return;
     };
-    let mesh = sphaera_mesh::io::load(dir.join("bunny_lowres.obj")).unwrap();
+    let mesh = sphaera_io::load(dir.join("bunny_lowres.obj")).unwrap();
     let surface = Surface::new(&mesh).unwrap();
     let spheres = poking_spheres(&mesh, 512, 5, (0.03, 0.08), (0.001, 0.008));
     for relative in [1e-3, 1e-4] {

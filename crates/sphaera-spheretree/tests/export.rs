@@ -10,8 +10,8 @@ use proptest::prelude::*;
 use serde_json::Value;
 use sphaera_mesh::{DVec3, Sphere, shapes};
 use sphaera_spheretree::export::{
-    CollisionLink, TreeJson, collision_spheres_yaml, tree_from_json, tree_to_json,
-    write_collision_spheres_yaml, write_tree_json,
+    CollisionLink, TreeFormat, TreeJson, collision_spheres_yaml, tree_from_json, tree_to_json,
+    tree_to_text, write_collision_spheres_yaml, write_tree, write_tree_json,
 };
 use sphaera_spheretree::select::cut_for_tolerance;
 use sphaera_spheretree::{SphereTree, SphereTreeError};
@@ -19,10 +19,6 @@ use sphaera_spheretree::{SphereTree, SphereTreeError};
 fn tree() -> &'static SphereTree {
     static TREE: OnceLock<SphereTree> = OnceLock::new();
     TREE.get_or_init(|| small_tree(&shapes::capsule(0.5, 2.0, 10).unwrap()))
-}
-
-fn temp_path(name: &str) -> std::path::PathBuf {
-    std::env::temp_dir().join(format!("sphaera-export-{}-{name}", std::process::id()))
 }
 
 #[test]
@@ -49,13 +45,20 @@ fn json_round_trip_is_exact() {
         assert!(root.get(key).is_some(), "{key}");
     }
     assert!(root["parent"].is_null());
-    let path = temp_path("tree.json");
-    write_tree_json(&path, tree).unwrap();
+    let mut written = Vec::new();
+    write_tree_json(&mut written, tree).unwrap();
     assert_eq!(
-        &tree_from_json(&std::fs::read_to_string(&path).unwrap()).unwrap(),
+        &tree_from_json(std::str::from_utf8(&written).unwrap()).unwrap(),
         tree
     );
-    std::fs::remove_file(&path).unwrap();
+    for format in [TreeFormat::Json, TreeFormat::Sph, TreeFormat::Yaml] {
+        let mut written = Vec::new();
+        write_tree(&mut written, tree, format, "capsule").unwrap();
+        assert_eq!(
+            std::str::from_utf8(&written).unwrap(),
+            tree_to_text(tree, format, "capsule").unwrap()
+        );
+    }
 }
 
 /// Edits the JSON of the test tree and reads it back.
@@ -266,10 +269,9 @@ fn yaml_lists_the_spheres_of_a_level_and_a_cut_per_link() {
         assert_eq!(&link.name, name);
         assert_eq!(&link.spheres, spheres);
     }
-    let path = temp_path("spheres.yaml");
-    write_collision_spheres_yaml(&path, &links).unwrap();
-    assert_eq!(std::fs::read_to_string(&path).unwrap(), yaml);
-    std::fs::remove_file(&path).unwrap();
+    let mut written = Vec::new();
+    write_collision_spheres_yaml(&mut written, &links).unwrap();
+    assert_eq!(std::str::from_utf8(&written).unwrap(), yaml);
 }
 
 #[test]

@@ -2,7 +2,9 @@
 //! non-manifold dragon, robot collision meshes, more spheres than samples. Each builds
 //! a valid tree whose every level covers the surface (the certificate) and every sample.
 
-use sphaera_mesh::{TriMesh, io, sampling, shapes};
+use sphaera_io as io;
+use sphaera_mesh::{TriMesh, shapes};
+use sphaera_query::sampling;
 use sphaera_spheretree::{Method, SphereTree, SphereTreeOptions, Surface, build};
 
 fn light() -> SphereTreeOptions {

@@ -7,7 +7,8 @@ mod checks;
 
 use proptest::prelude::*;
 use sphaera_mesh::glam::DQuat;
-use sphaera_mesh::{DVec3, Length, Surface, TriMesh, shapes};
+use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
+use sphaera_query::Surface;
 use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
 use sphaera_spheretree::{Effort, Sphere, SphereTreeOptions, build};
 
@@ -77,7 +78,7 @@ fn node_errors_bound_the_protrusion_of_the_open_stanford_bunny() {
     else {
         return;
     };
-    let mesh = sphaera_mesh::io::load(data.join("stanford-bunny.obj")).expect("loads");
+    let mesh = sphaera_io::load(data.join("stanford-bunny.obj")).expect("loads");
     let surface = Surface::new(&mesh).expect("a solid by its winding number");
     let options = SphereTreeOptions::default()
         .with_effort(Effort::Quick)
@@ -99,7 +100,7 @@ fn tolerance_trees_on_meshes_with_holes_meet_small_tolerances() {
         let link6 = data.join("robots/franka_panda/collision/link6.obj");
         cases.push((
             "panda link6".to_owned(),
-            sphaera_mesh::io::load(link6).expect("loads"),
+            sphaera_io::load(link6).expect("loads"),
         ));
     }
     for (name, mesh) in cases {
@@ -144,7 +145,7 @@ fn depth_trees_on_meshes_with_holes_do_not_loosen_down_a_branch() {
             ("panda link6", "robots/franka_panda/collision/link6.obj"),
             ("stanford bunny", "stanford-bunny.obj"),
         ] {
-            let mesh = sphaera_mesh::io::load(data.join(file)).expect("loads");
+            let mesh = sphaera_io::load(data.join(file)).expect("loads");
             cases.push((name.to_owned(), mesh));
         }
     }

@@ -3,7 +3,8 @@
 
 mod checks;
 
-use sphaera_mesh::{DVec3, Length, Surface, TriMesh, shapes};
+use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
+use sphaera_query::Surface;
 use sphaera_spheretree::{Method, SphereTreeError, SphereTreeOptions, build};
 use sphaera_tests::awkward;
 

@@ -6,7 +6,8 @@
 mod checks;
 
 use proptest::prelude::*;
-use sphaera_mesh::{DVec3, Length, Surface, TriMesh, shapes};
+use sphaera_mesh::{DVec3, Length, TriMesh, shapes};
+use sphaera_query::Surface;
 use sphaera_spheretree::{Effort, SphereTree, SphereTreeError, SphereTreeOptions, build};
 use sphaera_tests::awkward;
 

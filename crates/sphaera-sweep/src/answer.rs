@@ -1,7 +1,7 @@
 //! What queries return besides exact closest points ([`ClosestPoint`], defined in
 //! `sphaera-mesh`): certified distance intervals, tolerances and session counters.
 
-use sphaera_mesh::closest::ClosestPoint;
+use sphaera_query::closest::ClosestPoint;
 
 /// A certified interval for the distance from a query point to the mesh: the true distance
 /// `d` satisfies `lower ≤ d ≤ upper`.

@@ -86,7 +86,7 @@ pub enum SweepError {
     /// The triangle tree over the input mesh could not be built (more triangles than
     /// 32-bit indices address).
     #[error("cannot build the triangle tree of the input: {0}")]
-    Tree(#[source] sphaera_mesh::MeshError),
+    Tree(#[source] sphaera_query::QueryError),
 }
 
 /// What makes a list of points not a [`Polyline`](crate::polyline::Polyline), in

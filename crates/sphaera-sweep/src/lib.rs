@@ -153,9 +153,9 @@
 //! - [`sphaera_simplify`]: the error-sphere simplification and the progressive
 //!   [`Hierarchy`](sphaera_simplify::Hierarchy) the sessions refine.
 //! - [`sphaera_mesh`]: the [`TriangleTree`] and its closest points, and the sampled
-//!   Hausdorff distance ([`sphaera_mesh::measure`]), a cheaper lower bound.
+//!   Hausdorff distance ([`sphaera_query::measure`]), a cheaper lower bound.
 //! - `sphaera-spheretree` and `sphaera-medial`, which use the same exact closest points
-//!   through [`sphaera_mesh::Surface`]; the facade `sphaera` (as `sphaera::sweep`) and the
+//!   through [`sphaera_query::Surface`]; the facade `sphaera` (as `sphaera::sweep`) and the
 //!   `sphaera distance` and `sphaera hausdorff` commands of `sphaera-cli`.
 
 mod answer;
@@ -181,7 +181,7 @@ pub use session::{Session, SessionOptions};
 /// The exact closest point a query returns, and the mesh feature it lies on; the
 /// triangle tree that answers exact queries without a hierarchy, and its cursor for
 /// coherent streams (all defined in `sphaera-mesh`).
-pub use sphaera_mesh::closest::{ApproxClosest, ClosestPoint, Feature, TreeCursor, TriangleTree};
+pub use sphaera_query::closest::{ApproxClosest, ClosestPoint, Feature, TreeCursor, TriangleTree};
 pub use sweeper::{Sweeper, build_hierarchy};
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so

@@ -414,17 +414,13 @@ fn real_meshes_agree_with_the_parry_sampler() {
     let Some(dir) = sphaera_tests::data_dir("real_meshes_agree_with_the_parry_sampler") else {
         return;
     };
-    let read = |name: &str| {
-        sphaera_mesh::io::read(dir.join(name))
-            .expect("readable")
-            .mesh
-    };
+    let read = |name: &str| sphaera_io::read(dir.join(name)).expect("readable").mesh;
     let pairs = [
         ("bunny_lowres.obj", None),
         ("stanford-bunny.obj", Some("stanford-bunny-qem15.obj")),
     ];
     for (a_name, b_name) in pairs {
-        let Ok(a) = sphaera_mesh::io::read(dir.join(a_name)).map(|l| l.mesh) else {
+        let Ok(a) = sphaera_io::read(dir.join(a_name)).map(|l| l.mesh) else {
             continue;
         };
         let b = match b_name {

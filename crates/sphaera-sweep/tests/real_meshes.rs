@@ -7,8 +7,9 @@
 
 use std::time::Instant;
 
+use sphaera_io as io;
 use sphaera_mesh::geometry::point_triangle_distance_squared;
-use sphaera_mesh::{DVec3, TriMesh, io};
+use sphaera_mesh::{DVec3, TriMesh};
 use sphaera_sweep::{Session, SessionOptions, Sweeper, Tolerance, build_hierarchy};
 use sphaera_tests::SplitMix64;
 use sphaera_tests::hausdorff::DistanceToMesh;

@@ -12,7 +12,9 @@
 //!
 //! | module | crate | paper | what it does |
 //! |---|---|---|---|
-//! | [`mesh`] | `sphaera-mesh` | | indexed triangle meshes, half-edge topology, validation and repair, file I/O (OBJ, PLY, STL, OFF; glTF 2.0 with the default feature `gltf`), geometric primitives, the box tree and exact closest points, the `Surface` (inside test and closest points), winding numbers, surface sampling, sampled Hausdorff distances, procedural test shapes |
+//! | [`mesh`] | `sphaera-mesh` | | the kernel: indexed triangle meshes, half-edge topology, validation and repair, geometric primitives, procedural test shapes (and, under their old paths, the two crates below) |
+//! | [`io`] | `sphaera-io` | | file I/O: OBJ, PLY, STL, OFF; glTF 2.0 with the default feature `gltf`; atomic writes |
+//! | [`query`] | `sphaera-query` | | the box tree and exact closest points, winding numbers, the `Surface` (inside test and signed closest points), surface sampling, sampled Hausdorff distances |
 //! | `simplify` (feature `simplify`) | `sphaera-simplify` | Guéziec 2001 (error spheres) | edge-collapse simplification whose reported error bound holds in both directions, and its progressive hierarchy |
 //! | `sweep` (feature `sweep`) | `sphaera-sweep` | Guéziec 2001 (Meshsweeper) | exact and anytime closest-point queries, coherent sessions, motion, polylines and certified Hausdorff distances |
 //! | `medial` (feature `medial`) | `sphaera-medial` | Bradshaw & O'Sullivan 2004 | robust incremental 3D Delaunay tetrahedralization, its Voronoi dual, and the adaptive medial-axis approximation with guaranteed sample coverage |
@@ -173,9 +175,22 @@
 
 #[cfg(feature = "hal")]
 pub use sphaera_hal as hal;
+pub use sphaera_io as io;
 #[cfg(feature = "medial")]
 pub use sphaera_medial as medial;
-pub use sphaera_mesh as mesh;
+pub use sphaera_query as query;
+
+/// The triangle-mesh kernel (`sphaera-mesh`), with the file formats (`sphaera-io`, also
+/// [`sphaera::io`](crate::io)) and the spatial queries (`sphaera-query`, also
+/// [`sphaera::query`](crate::query)) under the paths they had before the three were cut
+/// apart: `sphaera::mesh::io`, `sphaera::mesh::winding`, `sphaera::mesh::Surface`...
+pub mod mesh {
+    pub use sphaera_io as io;
+    pub use sphaera_mesh::*;
+    pub use sphaera_query::{
+        QueryError, Surface, bvh, closest, measure, sampling, surface, winding,
+    };
+}
 #[cfg(feature = "robot")]
 pub use sphaera_robot as robot;
 #[cfg(feature = "scene")]
@@ -213,9 +228,15 @@ pub use sphaera_sweep as sweep;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// From `sphaera-mesh`: invalid or empty meshes, malformed files, bad transforms.
+    /// From `sphaera-mesh`: invalid or empty meshes, refused edits, bad transforms.
     #[error(transparent)]
     Mesh(Box<sphaera_mesh::MeshError>),
+    /// From `sphaera-io`: files that cannot be read or written, malformed files.
+    #[error(transparent)]
+    File(Box<sphaera_io::IoError>),
+    /// From `sphaera-query`: meshes without a meaningful inside, bad query parameters.
+    #[error(transparent)]
+    Query(Box<sphaera_query::QueryError>),
     /// From `sphaera-simplify`.
     #[cfg(feature = "simplify")]
     #[error(transparent)]
@@ -274,6 +295,8 @@ macro_rules! from_boxed {
 
 from_boxed! {
     Mesh(sphaera_mesh::MeshError),
+    File(sphaera_io::IoError),
+    Query(sphaera_query::QueryError),
     #[cfg(feature = "simplify")]
     Simplify(sphaera_simplify::SimplifyError),
     #[cfg(feature = "sweep")]
@@ -301,8 +324,9 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 ///
 /// Names that two crates share (`Tolerance`, `Camera`) are left to their modules.
 pub mod prelude {
-    pub use sphaera_mesh::closest::TriangleTree;
-    pub use sphaera_mesh::{Aabb, DVec3, Length, MeshError, Sphere, Surface, TriMesh};
+    pub use sphaera_mesh::{Aabb, DVec3, Length, MeshError, Sphere, TriMesh};
+    pub use sphaera_query::closest::TriangleTree;
+    pub use sphaera_query::{QueryError, Surface};
     #[cfg(feature = "scene")]
     pub use sphaera_scene::{Budget, ModelOptions, ObjectModel, Scene};
     #[cfg(feature = "simplify")]

@@ -215,7 +215,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
         .map_err(anyhow::Error::from)
         .and_then(|poisson| {
             let surface = Surface::new(mesh).map_err(|error| {
-                let hint = if matches!(error, sphaera::mesh::MeshError::NoInside { .. }) {
+                let hint = if matches!(error, sphaera::query::QueryError::NoInside { .. }) {
                     " (`--spheres N` covers a surface without inside)"
                 } else {
                     ""

@@ -16,9 +16,7 @@ use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use sphaera::mesh::io::write_atomic;
 use sphaera::mesh::{Length, Sphere, Surface};
-use sphaera::spheretree::export::{
-    CollisionLink, SphFile, write_collision_spheres_yaml, write_sph, write_tree_json,
-};
+use sphaera::spheretree::export::{SphFile, TreeFormat, tree_to_text};
 use sphaera::spheretree::{
     CoverageCertificate, Effort, EvaluationOptions, MAX_BRANCH, MAX_TREE_NODES, Method, SphereTree,
     SphereTreeError, SphereTreeOptions, SphereTreeProgress, build_with_progress,
@@ -443,58 +441,28 @@ fn mean_and_variance(values: &[f64]) -> (f64, f64) {
     (mean, variance)
 }
 
-/// The output formats, by extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Format {
-    Json,
-    Sph,
-    Yaml,
-}
-
-fn output_format(path: &Path) -> Result<Format> {
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase)
-        .as_deref()
-    {
-        Some("json") => Ok(Format::Json),
-        Some("sph") => Ok(Format::Sph),
-        Some("yaml" | "yml") => Ok(Format::Yaml),
-        _ => bail!(
+/// The output format of `path`, by its extension.
+fn output_format(path: &Path) -> Result<TreeFormat> {
+    TreeFormat::from_path(path).with_context(|| {
+        format!(
             "{}: unknown output format (use .json, .sph or .yaml)",
             path.display()
-        ),
-    }
+        )
+    })
 }
 
-/// Writes the tree: JSON (the library's format, read back by `tree_from_json`), `.sph`,
-/// or a YAML collision-spheres list of the tree's leaves (which meet the tolerance of a
-/// tree built to one), named after the mesh.
+/// Writes the tree atomically in the format of the path's extension: JSON (the library's
+/// format, read back by `tree_from_json`), `.sph`, or a YAML collision-spheres list of the
+/// tree's leaves (which meet the tolerance of a tree built to one), named after the mesh.
 fn write_tree(path: &Path, tree: &SphereTree, name: &str) -> Result<()> {
-    let written = match output_format(path)? {
-        Format::Json => write_tree_json(path, tree).map_err(anyhow::Error::from),
-        Format::Sph => {
-            let file =
-                sph_layout(tree).with_context(|| format!("cannot write {}", path.display()))?;
-            write_sph(&file, sphaera::mesh::DVec3::ZERO)
-                .map_err(anyhow::Error::from)
-                .and_then(|text| {
-                    write_atomic(path, |w| w.write_all(text.as_bytes()))
-                        .map_err(anyhow::Error::from)
-                })
-        }
-        Format::Yaml => {
-            let leaves = tree
-                .leaves()
-                .into_iter()
-                .map(|i| tree.nodes()[i].sphere)
-                .collect();
-            write_collision_spheres_yaml(path, &[CollisionLink::new(name, leaves)])
-                .map_err(anyhow::Error::from)
-        }
-    };
-    written.with_context(|| format!("cannot write {}", path.display()))
+    let format = output_format(path)?;
+    let context = || format!("cannot write {}", path.display());
+    if format == TreeFormat::Sph {
+        // The library's error, with what to do instead.
+        sph_layout(tree).with_context(context)?;
+    }
+    let text = tree_to_text(tree, format, name).with_context(context)?;
+    write_atomic(path, |w| w.write_all(text.as_bytes())).with_context(context)
 }
 
 /// The `.sph` layout of `tree`, or the library's error with what to do instead when the

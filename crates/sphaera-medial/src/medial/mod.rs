@@ -19,7 +19,7 @@
 //!    ([`MedialApproximation::refine_region`]).
 //!
 //! **Error** (the paper's eq. 2): for a centre `v` inside, `e = r − ‖q − v‖` with `q` the
-//! closest surface point (exact, from the mesh's [`sphaera_mesh::closest::TriangleTree`]): any point of the sphere outside the
+//! closest surface point (exact, from the mesh's [`sphaera_query::closest::TriangleTree`]): any point of the sphere outside the
 //! object is at most `e` from the surface, since the radius through it crosses the surface
 //! at least `‖q − v‖` from `v`. For a centre outside (cover spheres), `e = r + ‖q − v‖`:
 //! every point of the sphere is within `r` of `v`, which is within `‖q − v‖` of the surface.
@@ -111,7 +111,8 @@ pub struct RegionOutcome {
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::{sampling, shapes};
+/// use sphaera_query::sampling;
+/// use sphaera_mesh::shapes;
 /// use sphaera_medial::{MedialApproximation, MedialOptions, Surface};
 ///
 /// let mesh = shapes::capsule(0.5, 2.0, 12)?;
@@ -155,7 +156,7 @@ pub struct MedialApproximation<'s> {
 
 impl<'s> MedialApproximation<'s> {
     /// Builds the adaptive approximation of `surface` covering `samples` (points on the
-    /// surface, e.g. from [`sphaera_mesh::sampling::poisson_disk`]), improved until
+    /// surface, e.g. from [`sphaera_query::sampling::poisson_disk`]), improved until
     /// `options`' target is reached (the first of [`MedialOptions::target_spheres`] and
     /// [`MedialOptions::max_error`]; with neither, coverage only).
     ///

@@ -7,19 +7,32 @@ use glam::DVec3;
 
 use super::Triangle;
 
+/// The feature of a mesh a closest point lies on, in the mesh's vertex indices.
+///
+/// A single triangle's closest point names its feature by corner number instead
+/// ([`TriangleFeature`]); its [`in_mesh`](TriangleFeature::in_mesh) gives this one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Feature {
+    /// A vertex of the mesh.
+    Vertex(u32),
+    /// The interior of the edge between two vertices (in the triangle's corner order).
+    Edge(u32, u32),
+    /// The interior of the triangle.
+    Face,
+}
+
 /// The part of a triangle a closest point lies on, in the triangle's own corner numbers.
 ///
 /// Corner `i` is `a`, `b`, `c` for `i = 0, 1, 2`; edge `i` runs from corner `i` to corner
 /// `(i + 1) % 3` (edge 0 is `ab`, edge 1 is `bc`, edge 2 is `ca`). For a triangle of a
 /// mesh, [`TriangleFeature::in_mesh`] names the same feature by the mesh's vertex
-/// indices (the [`Feature`](crate::closest::Feature) a mesh query reports).
+/// indices (the [`Feature`](Feature) a mesh query reports).
 ///
 /// # Examples
 ///
 /// ```
 /// use glam::DVec3;
-/// use sphaera_mesh::closest::Feature;
-/// use sphaera_mesh::geometry::{Triangle, TriangleFeature, closest_point_on_triangle};
+/// use sphaera_mesh::geometry::{Feature, Triangle, TriangleFeature, closest_point_on_triangle};
 ///
 /// let t = Triangle::new(DVec3::ZERO, DVec3::X, DVec3::Y);
 /// let hit = closest_point_on_triangle(DVec3::new(2.0, -1.0, 0.0), &t);
@@ -42,8 +55,8 @@ impl TriangleFeature {
     /// The same feature named by mesh vertex indices, for a triangle whose corners are
     /// the mesh vertices `corners` (an edge keeps the triangle's corner order).
     #[must_use]
-    pub fn in_mesh(self, corners: [u32; 3]) -> crate::closest::Feature {
-        use crate::closest::Feature;
+    pub fn in_mesh(self, corners: [u32; 3]) -> Feature {
+        use Feature;
         match self {
             Self::Vertex(k) => Feature::Vertex(corners[usize::from(k) % 3]),
             Self::Edge(k) => {

@@ -50,7 +50,7 @@ mod triangle;
 
 pub use circumsphere::{ball_through_two_points, circumball_of_triangle, circumsphere};
 pub use closest_point::{
-    SegmentClosestPoint, SegmentFeature, TriangleClosestPoint, TriangleFeature,
+    Feature, SegmentClosestPoint, SegmentFeature, TriangleClosestPoint, TriangleFeature,
     closest_point_on_segment, closest_point_on_triangle, point_triangle_distance_squared,
 };
 pub use enclosing_ball::{

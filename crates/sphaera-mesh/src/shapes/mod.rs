@@ -22,7 +22,7 @@
 //!
 //! Two open builders stand apart: [`square_sheet`] and [`ring_sheet`] (a disc, or a
 //! sheet with a hole) are flat sheets of zero thickness, with no inside, for
-//! [`Surface::shell`](crate::Surface::shell) and the methods that cover sheets.
+//! [`Surface::shell`](sphaera_query::Surface::shell) and the methods that cover sheets.
 //!
 //! In every direction other than the one `resolution` counts, the builders pick the number
 //! of pieces so that edges are about as long as around the main circle, so triangles stay
@@ -74,6 +74,8 @@
 
 mod block;
 mod catalog;
+#[cfg(any(test, feature = "fixtures"))]
+pub mod fixtures;
 mod loft;
 mod round;
 mod sheet;

@@ -1,5 +1,5 @@
 //! Sheets: open surfaces of zero thickness (a square, a disc, a ring), the shapes a
-//! [`Surface::shell`](crate::Surface::shell) stands for (a sign, a cloth, a plate modelled
+//! [`Surface::shell`](sphaera_query::Surface::shell) stands for (a sign, a cloth, a plate modelled
 //! as one surface). Unlike the other builders these are not closed: they have no inside.
 
 use glam::DVec3;

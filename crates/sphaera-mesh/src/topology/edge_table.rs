@@ -1,9 +1,15 @@
 //! Undirected edges of a triangle soup, matched in linear time by bucketing half-edges on
 //! their lower vertex index (a counting sort), then sorting each small bucket.
 
-/// Half-edge `3 t + i` of triangle `t` goes from corner `i` to corner `(i + 1) % 3`.
+/// The vertices of half-edge `he`: half-edge `3 t + i` of triangle `t` goes from corner `i`
+/// to corner `(i + 1) % 3`.
+///
+/// # Panics
+///
+/// If `he` is not below `3 × triangles.len()` (the half-edges of an [`EdgeTable`] of the
+/// same triangles always are).
 #[inline]
-pub(crate) fn halfedge_vertices(triangles: &[[u32; 3]], he: u32) -> (u32, u32) {
+pub fn halfedge_vertices(triangles: &[[u32; 3]], he: u32) -> (u32, u32) {
     let tri = triangles[(he / 3) as usize];
     let i = (he % 3) as usize;
     (tri[i], tri[(i + 1) % 3])
@@ -15,7 +21,7 @@ pub(crate) fn halfedge_vertices(triangles: &[[u32; 3]], he: u32) -> (u32, u32) {
 /// increasing half-edge index (so in triangle order). Self-loops (`a == b`, from a triangle
 /// with a repeated index) are edges like any other.
 #[derive(Clone, Debug)]
-pub(crate) struct EdgeTable {
+pub struct EdgeTable {
     /// `halfedges[starts[e]..starts[e + 1]]` are the half-edges of edge `e`.
     pub(crate) starts: Vec<u32>,
     /// Half-edge indices (`3 t + i`), grouped by edge.
@@ -23,12 +29,19 @@ pub(crate) struct EdgeTable {
 }
 
 impl EdgeTable {
-    /// Matches the half-edges of `triangles`, whose indices are all below `vertex_count`
-    /// (an invariant guaranteed by `TriMesh::new` for every caller).
+    /// Matches the half-edges of `triangles`. `vertex_count` is the number of vertices
+    /// they index (a larger index only costs a longer count array).
     ///
     /// Linear time and memory: one counting pass, one fill pass, and a sort of each
     /// vertex's bucket (a handful of entries).
-    pub(crate) fn new(triangles: &[[u32; 3]], vertex_count: usize) -> Self {
+    pub fn new(triangles: &[[u32; 3]], vertex_count: usize) -> Self {
+        let vertex_count = triangles
+            .iter()
+            .flatten()
+            .map(|&v| v as usize + 1)
+            .max()
+            .unwrap_or(0)
+            .max(vertex_count);
         let he_count = triangles.len() * 3;
         let mut offsets = vec![0u32; vertex_count + 1];
         for tri in triangles {
@@ -69,17 +82,17 @@ impl EdgeTable {
     }
 
     /// Number of undirected edges.
-    pub(crate) fn edge_count(&self) -> usize {
+    pub fn edge_count(&self) -> usize {
         self.starts.len() - 1
     }
 
     /// The half-edges of edge `e` (`e < edge_count()`).
-    pub(crate) fn edge(&self, e: usize) -> &[u32] {
+    pub fn edge(&self, e: usize) -> &[u32] {
         &self.halfedges[self.starts[e] as usize..self.starts[e + 1] as usize]
     }
 
     /// Iterator over the half-edge groups, one per edge.
-    pub(crate) fn iter(&self) -> impl Iterator<Item = &[u32]> + '_ {
+    pub fn iter(&self) -> impl Iterator<Item = &[u32]> + '_ {
         (0..self.edge_count()).map(|e| self.edge(e))
     }
 }

@@ -5,15 +5,15 @@ use proptest::prelude::*;
 
 use super::testing::check_invariants;
 use super::{HalfEdgeId, HalfEdgeMesh, VertexId, analyze};
-use crate::{MeshError, TriMesh, test_meshes};
+use crate::{MeshError, TriMesh, shapes::fixtures};
 
 #[test]
 fn closed_meshes_have_all_twins() {
     for mesh in [
-        test_meshes::tetrahedron(),
-        test_meshes::octahedron(),
-        test_meshes::unit_cube(),
-        test_meshes::torus(5, 4),
+        fixtures::tetrahedron(),
+        fixtures::octahedron(),
+        fixtures::unit_cube(),
+        fixtures::torus(5, 4),
     ] {
         let he = HalfEdgeMesh::from_trimesh(&mesh);
         check_invariants(&he);
@@ -31,7 +31,7 @@ fn closed_meshes_have_all_twins() {
 
 #[test]
 fn grid_boundary_and_rings() {
-    let mesh = test_meshes::grid(3, 2);
+    let mesh = fixtures::grid(3, 2);
     let he = HalfEdgeMesh::from_trimesh(&mesh);
     check_invariants(&he);
     let loops = he.boundary_loops();
@@ -107,7 +107,7 @@ fn isolated_and_degenerate_are_tolerated() {
 #[test]
 fn tetrahedron_and_lone_triangle_refuse_every_collapse() {
     for mesh in [
-        test_meshes::tetrahedron(),
+        fixtures::tetrahedron(),
         TriMesh::new(vec![DVec3::ZERO, DVec3::X, DVec3::Y], vec![[0, 1, 2]]).unwrap(),
     ] {
         let he = HalfEdgeMesh::from_trimesh(&mesh);
@@ -122,7 +122,7 @@ fn tetrahedron_and_lone_triangle_refuse_every_collapse() {
 
 #[test]
 fn locked_and_non_manifold_vertices_refuse() {
-    let mut he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let mut he = HalfEdgeMesh::from_trimesh(&fixtures::octahedron());
     he.set_locked(VertexId(2), true);
     let err = he.collapse_edge(HalfEdgeId(0), DVec3::ZERO).unwrap_err();
     assert_eq!(
@@ -144,7 +144,7 @@ fn locked_and_non_manifold_vertices_refuse() {
 #[test]
 fn interior_edge_between_boundary_vertices_is_refused() {
     // A strip of two squares: the middle rung's ends are both on the boundary.
-    let he = HalfEdgeMesh::from_trimesh(&test_meshes::grid(2, 1));
+    let he = HalfEdgeMesh::from_trimesh(&fixtures::grid(2, 1));
     // Face 0 = [0, 1, 4]; half-edge 1 goes 1 -> 4, the interior rung.
     assert!(he.twin(HalfEdgeId(1)).is_some());
     assert!(matches!(
@@ -158,7 +158,7 @@ fn interior_edge_between_boundary_vertices_is_refused() {
 
 #[test]
 fn split_twice_is_an_error() {
-    let mut he = HalfEdgeMesh::from_trimesh(&test_meshes::torus(6, 5));
+    let mut he = HalfEdgeMesh::from_trimesh(&fixtures::torus(6, 5));
     let a = he.collapse_edge(HalfEdgeId(0), DVec3::ZERO).unwrap();
     let h = (0..he.halfedge_count() as u32)
         .map(HalfEdgeId)
@@ -172,7 +172,7 @@ fn split_twice_is_an_error() {
         Err(MeshError::SplitMismatch { .. })
     ));
     he.split_vertex(&a).unwrap();
-    assert_eq!(he, HalfEdgeMesh::from_trimesh(&test_meshes::torus(6, 5)));
+    assert_eq!(he, HalfEdgeMesh::from_trimesh(&fixtures::torus(6, 5)));
 }
 
 #[test]
@@ -226,7 +226,7 @@ fn independent_collapses_split_in_any_order() {
 
 #[test]
 fn set_position_rejects_non_finite_so_to_trimesh_never_empties() {
-    let mut he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let mut he = HalfEdgeMesh::from_trimesh(&fixtures::octahedron());
     let before = he.clone();
     for bad in [DVec3::NAN, DVec3::new(0.0, 0.0, f64::INFINITY)] {
         assert!(matches!(
@@ -262,7 +262,7 @@ fn moving_one_copy_of_a_non_manifold_vertex_keeps_the_first_copy_position() {
 
 #[test]
 fn handle_arithmetic_at_u32_max_does_not_overflow() {
-    let he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let he = HalfEdgeMesh::from_trimesh(&fixtures::octahedron());
     let h = HalfEdgeId(u32::MAX);
     assert!(!he.is_valid_halfedge(he.prev(h)));
     assert!(!he.is_valid_halfedge(he.next(h)));
@@ -277,20 +277,20 @@ fn handle_arithmetic_at_u32_max_does_not_overflow() {
 #[test]
 #[should_panic(expected = "index out of bounds")]
 fn out_of_range_halfedge_hits_the_documented_panic() {
-    let he = HalfEdgeMesh::from_trimesh(&test_meshes::octahedron());
+    let he = HalfEdgeMesh::from_trimesh(&fixtures::octahedron());
     let _ = he.target(he.prev(HalfEdgeId(u32::MAX)));
 }
 
 /// Meshes for the collapse properties: closed and open, genus 0 to 2.
 fn base_mesh(kind: u8, n: u32) -> TriMesh {
     match kind {
-        0 => test_meshes::octahedron(),
-        1 => test_meshes::unit_cube(),
-        2 => test_meshes::torus(n + 3, 3 + n % 3),
-        3 => test_meshes::grid(n + 1, 2),
-        _ => test_meshes::union(
-            &test_meshes::torus(4, 3),
-            &test_meshes::shifted(&test_meshes::torus(4, 4), 9.0),
+        0 => fixtures::octahedron(),
+        1 => fixtures::unit_cube(),
+        2 => fixtures::torus(n + 3, 3 + n % 3),
+        3 => fixtures::grid(n + 1, 2),
+        _ => fixtures::union(
+            &fixtures::torus(4, 3),
+            &fixtures::shifted(&fixtures::torus(4, 4), 9.0),
         ),
     }
 }

@@ -113,7 +113,7 @@
 //! mesh and a report of what changed.
 
 mod collapse;
-pub(crate) mod edge_table;
+mod edge_table;
 mod halfedge;
 mod halfedge_queries;
 #[cfg(test)]
@@ -126,6 +126,7 @@ mod union_find;
 mod weld;
 
 pub use collapse::{CollapseRecord, CollapseRefusal};
+pub use edge_table::{EdgeTable, halfedge_vertices};
 pub use halfedge::{FaceId, HalfEdgeId, HalfEdgeMesh, Neighbors, Outgoing, VertexId};
 pub use halfedge_queries::LiveMesh;
 pub use repair::{

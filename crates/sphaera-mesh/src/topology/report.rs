@@ -426,7 +426,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::test_meshes;
+    use crate::shapes::fixtures;
 
     /// Every number of the report, computed naively (maps, BFS, quadratic loops).
     fn brute_force(mesh: &TriMesh, merge: bool) -> TopologyReport {
@@ -602,23 +602,23 @@ mod tests {
     #[test]
     fn closed_solids_have_expected_genus() {
         for (mesh, chi, genus, components) in [
-            (test_meshes::tetrahedron(), 2, 0, 1),
-            (test_meshes::octahedron(), 2, 0, 1),
-            (test_meshes::unit_cube(), 2, 0, 1),
-            (test_meshes::torus(6, 4), 0, 1, 1),
+            (fixtures::tetrahedron(), 2, 0, 1),
+            (fixtures::octahedron(), 2, 0, 1),
+            (fixtures::unit_cube(), 2, 0, 1),
+            (fixtures::torus(6, 4), 0, 1, 1),
             (
-                test_meshes::union(
-                    &test_meshes::torus(5, 3),
-                    &test_meshes::shifted(&test_meshes::torus(4, 4), 9.0),
+                fixtures::union(
+                    &fixtures::torus(5, 3),
+                    &fixtures::shifted(&fixtures::torus(4, 4), 9.0),
                 ),
                 0,
                 2,
                 2,
             ),
             (
-                test_meshes::union(
-                    &test_meshes::unit_cube(),
-                    &test_meshes::shifted(&test_meshes::octahedron(), 5.0),
+                fixtures::union(
+                    &fixtures::unit_cube(),
+                    &fixtures::shifted(&fixtures::octahedron(), 5.0),
                 ),
                 4,
                 0,
@@ -636,7 +636,7 @@ mod tests {
 
     #[test]
     fn open_grid_is_a_disc() {
-        let r = analyze(&test_meshes::grid(4, 3));
+        let r = analyze(&fixtures::grid(4, 3));
         assert_eq!(r.boundary_edge_count, 14);
         assert_eq!(r.boundary_loop_count, 1);
         assert_eq!((r.euler_characteristic, r.genus), (1, Some(0)));
@@ -644,7 +644,7 @@ mod tests {
 
     #[test]
     fn flipped_face_is_inconsistent_and_has_no_genus() {
-        let (p, mut t) = test_meshes::octahedron().into_parts();
+        let (p, mut t) = fixtures::octahedron().into_parts();
         t[0] = [t[0][0], t[0][2], t[0][1]];
         let r = analyze(&TriMesh::new(p, t).unwrap());
         assert_eq!(r.inconsistent_edge_count, 3);

@@ -1,5 +1,5 @@
 //! Checks of the half-edge structure for the topology tests (the meshes are in
-//! `crate::test_meshes`).
+//! `crate::shapes::fixtures`).
 
 use super::halfedge::{HalfEdgeMesh, VertexId};
 

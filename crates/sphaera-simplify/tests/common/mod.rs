@@ -104,7 +104,7 @@ pub fn worst_containment(out: &Simplified, original: &TriMesh, n: u32) -> f64 {
 /// Original surface samples: all vertices plus `n` random points.
 pub fn original_samples(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
     let mut xs = mesh.positions().to_vec();
-    if let Ok(samples) = sphaera_mesh::sampling::random(mesh, n, seed) {
+    if let Ok(samples) = sphaera_query::sampling::random(mesh, n, seed) {
         xs.extend(samples.iter().map(|s| s.position));
     }
     xs

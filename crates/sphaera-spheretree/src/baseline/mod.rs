@@ -7,9 +7,10 @@ mod hubbard;
 mod octree;
 
 use glam::DVec3;
-use sphaera_mesh::Surface;
+use sphaera_mesh::Sphere;
 use sphaera_mesh::geometry::minimum_enclosing_ball;
-use sphaera_mesh::{Sphere, sampling};
+use sphaera_query::Surface;
+use sphaera_query::sampling;
 
 use crate::SphereTreeError;
 use crate::options::{SphereTreeOptions, SphereTreeProgress};

@@ -1,7 +1,8 @@
 //! How much of the surface a sphere set leaves uncovered, on independent samples.
 
 use glam::DVec3;
-use sphaera_mesh::{TriMesh, sampling};
+use sphaera_mesh::TriMesh;
+use sphaera_query::sampling;
 
 use super::EvaluationOptions;
 use super::sphere_bvh::SphereBvh;

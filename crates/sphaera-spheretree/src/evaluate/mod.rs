@@ -10,7 +10,7 @@
 //! # Quick start
 //!
 //! ```
-//! use sphaera_mesh::Surface;
+//! use sphaera_query::Surface;
 //! use sphaera_mesh::shapes;
 //! use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 //! use sphaera_spheretree::{DVec3, Sphere};
@@ -36,8 +36,8 @@
 //! live patches always tile the whole sphere. Each patch is probed at its representative
 //! point `p` (the normalised sum of its corners): the exact closest surface point `q` and
 //! distance `d(p)` (`sphaera-mesh`'s triangle tree, through
-//! [`Surface::closest`](sphaera_mesh::Surface::closest)) and the inside test
-//! ([`Surface::is_inside_certified`](sphaera_mesh::Surface::is_inside_certified)). With `ρ` the largest
+//! [`Surface::closest`](sphaera_query::Surface::closest)) and the inside test
+//! ([`Surface::is_inside_certified`](sphaera_query::Surface::is_inside_certified)). With `ρ` the largest
 //! distance from `p` to the patch (the chord of the cap through its corners: a cap of at
 //! most 90° is spherically convex, so it contains the geodesic triangle), `f` is bounded
 //! on the patch by the smallest of:
@@ -61,7 +61,7 @@
 //! # What the certificate assumes
 //!
 //! - **The inside test.**
-//!   [`Surface::is_inside_certified`](sphaera_mesh::Surface::is_inside_certified) gives
+//!   [`Surface::is_inside_certified`](sphaera_query::Surface::is_inside_certified) gives
 //!   the exact generalized winding number's answer (it refines the fast approximation
 //!   until its error bound decides, exactly as a last resort), except within rounding of
 //!   the surface itself. A probe closer to the surface than a **guard band** (a quarter of
@@ -74,9 +74,9 @@
 //!   `ρ − d(p)` nor a side inherited along a clear segment follows from the segment
 //!   alone. What holds instead: off the mesh, `w` varies only as fast as the rims of the
 //!   holes let it (`|∇w|` is bounded by the Biot–Savart field of the mesh's boundary
-//!   chain, [`WindingBoundary`](sphaera_mesh::winding::WindingBoundary)). Each probe's
+//!   chain, [`WindingBoundary`](sphaera_query::winding::WindingBoundary)). Each probe's
 //!   side comes with a certified margin `m ≤ |w(p) − ½|`
-//!   ([`Surface::side_with_margin`](sphaera_mesh::Surface::side_with_margin)); the inside
+//!   ([`Surface::side_with_margin`](sphaera_query::Surface::side_with_margin)); the inside
 //!   bound is used only where `m` exceeds `ρ` times the gradient bound over the patch's
 //!   ball, and a side is inherited only while the margin, less the step times the
 //!   gradient bound, stays positive (the proof is on the search's `evaluate`). Elsewhere
@@ -90,7 +90,7 @@
 //! # Coverage
 //!
 //! [`coverage`] draws independent, area-weighted random samples of the surface
-//! ([`sampling::random`](sphaera_mesh::sampling::random)), tests each against the union of
+//! ([`sampling::random`](sphaera_query::sampling::random)), tests each against the union of
 //! the balls with a bounding-volume hierarchy over the spheres, and reports the uncovered
 //! fraction and the largest gap (the largest distance from an uncovered sample to the
 //! nearest sphere's surface). Both are estimates from samples, not certificates (the

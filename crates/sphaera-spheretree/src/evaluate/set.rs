@@ -2,7 +2,8 @@
 
 use std::time::{Duration, Instant};
 
-use sphaera_mesh::{Length, Surface};
+use sphaera_mesh::Length;
+use sphaera_query::Surface;
 
 use super::coverage::{Coverage, coverage};
 use super::sphere_fit::{SphereFit, check_spheres, sphere_errors};
@@ -15,7 +16,7 @@ use crate::{Sphere, SphereTreeError};
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 /// use sphaera_spheretree::{DVec3, Sphere};
@@ -102,7 +103,8 @@ fn screened_errors(
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::{Surface, shapes};
+/// use sphaera_query::Surface;
+/// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set, evaluate_set_bounded};
 /// use sphaera_spheretree::{SphereTreeOptions, build};
 ///
@@ -209,7 +211,7 @@ const BOUNDED_BATCH: usize = 8;
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, evaluate_set};
 /// use sphaera_spheretree::{DVec3, Sphere};

@@ -4,7 +4,7 @@ use std::ops::{ControlFlow, Range};
 
 use glam::DVec3;
 use sphaera_mesh::Aabb;
-use sphaera_mesh::bvh::{BoxTree, NearestFirst};
+use sphaera_query::bvh::{BoxTree, NearestFirst};
 
 use crate::Sphere;
 
@@ -27,7 +27,7 @@ impl SphereBvh {
     ///
     /// [`MeshError::TooManyItems`](sphaera_mesh::MeshError::TooManyItems) for more
     /// spheres than 32-bit indices address.
-    pub fn new(spheres: &[Sphere]) -> Result<Self, sphaera_mesh::MeshError> {
+    pub fn new(spheres: &[Sphere]) -> Result<Self, sphaera_query::QueryError> {
         let items: Vec<(Aabb, DVec3)> = spheres
             .iter()
             .map(|s| (s.bounding_box(), s.center))

@@ -3,9 +3,9 @@
 use std::cmp::Reverse;
 
 use glam::DVec3;
-use sphaera_mesh::Surface;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
-use sphaera_mesh::winding::WindingBoundary;
+use sphaera_query::Surface;
+use sphaera_query::winding::WindingBoundary;
 
 use super::EvaluationOptions;
 use super::patch::{Patch, Probe, icosahedron, upper_bound};
@@ -21,7 +21,7 @@ const GUARD_FRACTION: f64 = 0.25;
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
 /// use sphaera_spheretree::{DVec3, Sphere};
@@ -375,7 +375,7 @@ impl Search<'_> {
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_error};
 /// use sphaera_spheretree::{DVec3, Sphere};
@@ -540,7 +540,7 @@ pub(crate) fn fit(
 /// # Examples
 ///
 /// ```
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_mesh::shapes;
 /// use sphaera_spheretree::evaluate::{EvaluationOptions, sphere_errors};
 /// use sphaera_spheretree::{DVec3, Sphere};

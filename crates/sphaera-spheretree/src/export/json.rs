@@ -1,6 +1,6 @@
 //! The JSON form of a sphere-tree, written and read back with validation.
 
-use std::path::Path;
+use std::io::Write;
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -352,8 +352,8 @@ pub fn tree_from_json(text: &str) -> Result<SphereTree, SphereTreeError> {
     json.to_tree()
 }
 
-/// Writes `tree` as JSON ([`tree_to_json`]) to `path`, atomically: a temporary file in
-/// the same directory renamed over `path`, so a failure never leaves half a file.
+/// Writes `tree` as JSON ([`tree_to_json`]) to any writer: a file (write it atomically
+/// with `sphaera_io::write_atomic`), a socket, a buffer.
 ///
 /// # Examples
 ///
@@ -369,25 +369,19 @@ pub fn tree_from_json(text: &str) -> Result<SphereTree, SphereTreeError> {
 ///     .with_initial_spheres(60)
 ///     .with_min_spheres_per_node(20);
 /// let tree = build(&Surface::new(&mesh)?, &options)?;
-/// let path = std::env::temp_dir().join(format!("doc-tree-{}.json", std::process::id()));
-/// write_tree_json(&path, &tree)?;
-/// assert_eq!(tree_from_json(&std::fs::read_to_string(&path)?)?, tree);
-/// std::fs::remove_file(&path)?;
+/// let mut text = Vec::new();
+/// write_tree_json(&mut text, &tree)?;
+/// assert_eq!(tree_from_json(std::str::from_utf8(&text)?)?, tree);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
 ///
-/// [`SphereTreeError::Mesh`] wrapping the I/O error (naming `path`) when the file cannot
-/// be written.
+/// The writer's error.
 ///
 /// # Panics
 ///
 /// Never.
-pub fn write_tree_json(path: impl AsRef<Path>, tree: &SphereTree) -> Result<(), SphereTreeError> {
-    let text = tree_to_json(tree);
-    sphaera_mesh::io::write_atomic(path.as_ref(), |w| {
-        std::io::Write::write_all(w, text.as_bytes())
-    })?;
-    Ok(())
+pub fn write_tree_json(mut out: impl Write, tree: &SphereTree) -> std::io::Result<()> {
+    out.write_all(tree_to_json(tree).as_bytes())
 }

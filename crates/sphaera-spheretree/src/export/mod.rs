@@ -3,15 +3,17 @@
 //! feature) a `parry3d-f64` compound of balls; and the classic `.sph` text format of
 //! the original toolkit ([`SphFile`], [`read_sph`], [`write_sph`]).
 //!
-//! Files are written atomically: to a temporary file in the same directory, renamed over
-//! the target.
+//! Writers take any [`std::io::Write`]; a front end writes files atomically with
+//! `sphaera_io::write_atomic` (this crate reads and writes no files itself).
 
+mod format;
 mod json;
 #[cfg(feature = "parry")]
 mod parry;
 mod sph;
 mod yaml;
 
+pub use format::{ParseTreeFormatError, TreeFormat, tree_to_text, write_tree};
 pub use json::{
     JSON_FORMAT, JSON_VERSION, LevelJson, NodeJson, TreeJson, tree_from_json, tree_to_json,
     write_tree_json,

@@ -2,7 +2,7 @@
 //! configurations, `MoveIt`-style sphere lists): per link name, a list of spheres.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::io::Write;
 
 use sphaera_mesh::Sphere;
 
@@ -188,8 +188,8 @@ pub fn collision_spheres_yaml(links: &[CollisionLink]) -> Result<String, SphereT
     Ok(out)
 }
 
-/// Writes [`collision_spheres_yaml`] to `path`, atomically (a temporary file in the same
-/// directory renamed over `path`).
+/// Writes [`collision_spheres_yaml`] to any writer (a file: write it atomically with
+/// `sphaera_io::write_atomic`).
 ///
 /// # Examples
 ///
@@ -197,31 +197,27 @@ pub fn collision_spheres_yaml(links: &[CollisionLink]) -> Result<String, SphereT
 /// use sphaera_spheretree::export::{CollisionLink, write_collision_spheres_yaml};
 /// use sphaera_spheretree::{DVec3, Sphere};
 ///
-/// let path = std::env::temp_dir().join(format!("doc-spheres-{}.yaml", std::process::id()));
 /// let link = CollisionLink::new("base", vec![Sphere::new(DVec3::ZERO, 0.1)]);
-/// write_collision_spheres_yaml(&path, &[link])?;
-/// assert!(std::fs::read_to_string(&path)?.starts_with("collision_spheres:"));
-/// std::fs::remove_file(&path)?;
+/// let mut text = Vec::new();
+/// write_collision_spheres_yaml(&mut text, &[link])?;
+/// assert!(text.starts_with(b"collision_spheres:"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
 ///
-/// As [`collision_spheres_yaml`]; [`SphereTreeError::Mesh`] wrapping the I/O error when
-/// the file cannot be written.
+/// As [`collision_spheres_yaml`]; [`SphereTreeError::Write`] when the writer fails.
 ///
 /// # Panics
 ///
 /// Never.
 pub fn write_collision_spheres_yaml(
-    path: impl AsRef<Path>,
+    mut out: impl Write,
     links: &[CollisionLink],
 ) -> Result<(), SphereTreeError> {
     let text = collision_spheres_yaml(links)?;
-    sphaera_mesh::io::write_atomic(path.as_ref(), |w| {
-        std::io::Write::write_all(w, text.as_bytes())
-    })?;
-    Ok(())
+    out.write_all(text.as_bytes())
+        .map_err(SphereTreeError::Write)
 }
 
 #[cfg(test)]

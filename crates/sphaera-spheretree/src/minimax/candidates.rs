@@ -14,7 +14,7 @@
 //! On a shell (no inside) the candidates are the surface points themselves.
 
 use glam::DVec3;
-use sphaera_mesh::Surface;
+use sphaera_query::Surface;
 
 use crate::SphereTreeError;
 

@@ -4,7 +4,7 @@
 //! minimax objective), first on the representatives, then exactly on every piece.
 
 use glam::DVec3;
-use sphaera_mesh::Surface;
+use sphaera_query::Surface;
 
 use super::candidates::Candidate;
 use super::pieces::{Piece, centroid, reach_squared};

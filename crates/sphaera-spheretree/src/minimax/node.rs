@@ -3,7 +3,8 @@
 //! from a few starts, keeping the best.
 
 use glam::DVec3;
-use sphaera_mesh::{Sphere, Surface};
+use sphaera_mesh::Sphere;
+use sphaera_query::Surface;
 
 use super::candidates::{Candidate, medial_candidate};
 use super::cluster::{BRUTE_FORCE_SPHERES, Cluster, Region, worst};

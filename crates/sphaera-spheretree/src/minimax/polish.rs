@@ -11,7 +11,7 @@
 use std::cell::OnceCell;
 
 use glam::DVec3;
-use sphaera_mesh::Surface;
+use sphaera_query::Surface;
 
 use super::candidates::{signed_depth, signed_depth_fast};
 use super::pieces::Piece;

@@ -3,8 +3,8 @@
 //! to a fixed depth or, with a tolerance, only where a node's certified error exceeds it,
 //! as deep as needed.
 
-use sphaera_mesh::Surface;
 use sphaera_mesh::geometry::minimum_enclosing_ball;
+use sphaera_query::Surface;
 
 use super::candidates::signed_depth;
 use super::node::{Child, Goal, Plan, divide};

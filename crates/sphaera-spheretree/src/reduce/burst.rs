@@ -123,7 +123,7 @@ struct State<'a> {
 ///
 /// ```
 /// use sphaera_mesh::{DVec3, Sphere, shapes};
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_spheretree::reduce::{Candidate, ReductionInput, burst};
 ///
 /// let mesh = shapes::capsule(0.5, 2.0, 12)?;

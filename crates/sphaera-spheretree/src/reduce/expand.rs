@@ -88,7 +88,7 @@ impl Expandable {
 ///
 /// ```
 /// use sphaera_mesh::{DVec3, Sphere, shapes};
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_spheretree::reduce::{Candidate, ReductionInput, Selection, expand_select};
 ///
 /// let mesh = shapes::capsule(0.5, 2.0, 12)?;

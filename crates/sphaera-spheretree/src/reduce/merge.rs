@@ -82,7 +82,7 @@ impl Priority for PairMerge {
 ///
 /// ```
 /// use sphaera_mesh::{DVec3, Sphere, shapes};
-/// use sphaera_mesh::Surface;
+/// use sphaera_query::Surface;
 /// use sphaera_spheretree::reduce::{Candidate, ReductionInput, merge};
 ///
 /// let mesh = shapes::capsule(0.5, 2.0, 12)?;

@@ -27,7 +27,7 @@ pub use merge::merge;
 
 use glam::DVec3;
 use sphaera_mesh::Sphere;
-use sphaera_mesh::Surface;
+use sphaera_query::Surface;
 
 use crate::SphereTreeError;
 

@@ -2,7 +2,8 @@
 //! random surface samples, and the protrusion of points sampled on the spheres measured
 //! with exact closest points.
 
-use sphaera_mesh::{DVec3, Sphere, Surface, sampling};
+use sphaera_mesh::{DVec3, Sphere};
+use sphaera_query::{Surface, sampling};
 use sphaera_spheretree::SphereTree;
 
 /// Points spread over a sphere's surface (a Fibonacci lattice of `n` points).

@@ -21,9 +21,10 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 use smallvec::SmallVec;
-use sphaera_mesh::closest::{ClosestPoint, Feature, TriangleTree};
+use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
-use sphaera_mesh::{MeshError, TriMesh};
+use sphaera_query::QueryError;
+use sphaera_query::closest::{ClosestPoint, Feature, TriangleTree};
 
 use super::bound::{CornerAnswer, ROUNDING, TrianglePair, triangle_upper_bound};
 use super::target::Rows;
@@ -48,7 +49,7 @@ impl<'m> TreeTarget<'m> {
     /// Builds the tree of `mesh`.
     pub(super) fn new(mesh: &'m TriMesh) -> Result<Self, SweepError> {
         let tree = TriangleTree::new(mesh).map_err(|e| match e {
-            MeshError::EmptyMesh => SweepError::EmptyMesh,
+            QueryError::EmptyMesh => SweepError::EmptyMesh,
             other => SweepError::Tree(other),
         })?;
         let pairs = mesh
@@ -328,10 +329,10 @@ impl<'m> TreeSide<'m> {
 
 /// A tree query failed: only a non-finite point can make it (a midpoint of finite
 /// samples is finite).
-fn query_error(e: MeshError) -> SweepError {
+fn query_error(e: QueryError) -> SweepError {
     match e {
-        MeshError::NonFiniteQuery { x, y, z } => SweepError::NonFiniteQuery { x, y, z },
-        MeshError::EmptyMesh => SweepError::EmptyMesh,
+        QueryError::NonFiniteQuery { x, y, z } => SweepError::NonFiniteQuery { x, y, z },
+        QueryError::EmptyMesh => SweepError::EmptyMesh,
         other => SweepError::Tree(other),
     }
 }

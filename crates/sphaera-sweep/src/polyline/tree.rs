@@ -6,7 +6,7 @@ use std::ops::{ControlFlow, Range};
 
 use glam::DVec3;
 use sphaera_mesh::Aabb;
-use sphaera_mesh::bvh::{BoxTree, NearestFirst};
+use sphaera_query::bvh::{BoxTree, NearestFirst};
 
 use super::point::{PolylinePoint, closest_on_segment};
 use crate::SweepError;

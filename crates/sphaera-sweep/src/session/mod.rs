@@ -1,8 +1,8 @@
 //! A query session: the refined mesh and the priority queue, kept between queries.
 
 use glam::DVec3;
-use sphaera_mesh::closest::TreeCursor;
 use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
+use sphaera_query::closest::TreeCursor;
 use sphaera_simplify::{Hierarchy, Refinement};
 
 use crate::error::{check_non_negative, check_point};

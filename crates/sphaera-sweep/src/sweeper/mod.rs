@@ -1,6 +1,7 @@
 //! The shared, read-only part of the distance engine.
 
-use sphaera_mesh::{DVec3, TriMesh, closest::TriangleTree};
+use sphaera_mesh::{DVec3, TriMesh};
+use sphaera_query::closest::TriangleTree;
 use sphaera_simplify::{Hierarchy, SimplifyError, SimplifyOptions};
 
 mod warm_start;
@@ -178,9 +179,10 @@ fn finest_tree(hierarchy: &Hierarchy) -> Result<(TriangleTree, Vec<u32>), SweepE
         .unzip();
     // The hierarchy's positions are finite and its live triangles index them (the
     // simplifier's invariants), so the mesh is valid; an empty one is reported as such.
-    let mesh = TriMesh::new(hierarchy.positions().to_vec(), triangles).map_err(SweepError::Tree)?;
+    let mesh = TriMesh::new(hierarchy.positions().to_vec(), triangles)
+        .map_err(|e| SweepError::Tree(e.into()))?;
     let tree = TriangleTree::new(&mesh).map_err(|e| match e {
-        sphaera_mesh::MeshError::EmptyMesh => SweepError::EmptyMesh,
+        sphaera_query::QueryError::EmptyMesh => SweepError::EmptyMesh,
         other => SweepError::Tree(other),
     })?;
     Ok((tree, ids))

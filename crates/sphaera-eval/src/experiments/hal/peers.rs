@@ -6,7 +6,7 @@
 use sphaera::hal::{HalTree2, Polyline2, ray_crossing};
 use sphaera::mesh::bvh::BoxTree;
 use sphaera::mesh::glam::{DVec2, DVec3};
-use sphaera::mesh::{Aabb, MeshError};
+use sphaera::mesh::{Aabb, QueryError};
 
 /// One strip: the chord `a → b` of a part, and the rectangle with sides parallel to it
 /// holding every vertex of the part: along the chord from `along.0` to `along.1` (chord
@@ -167,7 +167,7 @@ pub struct EdgeBoxTree<'a> {
 const LEAF_EDGES: usize = 4;
 
 impl<'a> EdgeBoxTree<'a> {
-    pub fn build(polygon: &'a Polyline2) -> Result<Self, MeshError> {
+    pub fn build(polygon: &'a Polyline2) -> Result<Self, QueryError> {
         let items: Vec<(Aabb, DVec3)> = (0..polygon.edge_count())
             .map(|i| {
                 let (a, b) = polygon.edge(i);
