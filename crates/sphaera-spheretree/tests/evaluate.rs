@@ -379,7 +379,7 @@ fn invalid_input_is_reported() {
     }
     assert!(matches!(
         coverage(&s.mesh, &[good], &options.with_coverage_samples(usize::MAX)),
-        Err(SphereTreeError::Mesh(_))
+        Err(SphereTreeError::Query(_))
     ));
 }
 
