@@ -428,7 +428,7 @@ pub fn load(path: impl AsRef<Path>) -> Result<TriMesh, IoError> {
 /// let loaded = read_from_bytes(quad, Format::Off)?;
 /// assert_eq!(loaded.mesh.triangles(), &[[0, 1, 2], [0, 2, 3]]);
 /// assert_eq!(loaded.report.polygons_triangulated, 1);
-/// # Ok::<(), sphaera_mesh::IoError>(())
+/// # Ok::<(), sphaera_io::IoError>(())
 /// ```
 ///
 /// # Errors

@@ -171,7 +171,7 @@ pub fn write_obj(path: impl AsRef<Path>, mesh: &TriMesh) -> Result<(), IoError> 
 /// write_ply_to(&mut bytes, &mesh, PlyEncoding::Ascii, Some(&colors))?;
 /// assert!(String::from_utf8_lossy(&bytes).contains("property uchar red"));
 /// assert_eq!(read_from_bytes(&bytes, Format::Ply)?.mesh, mesh);
-/// # Ok::<(), sphaera_mesh::IoError>(())
+/// # Ok::<(), sphaera_io::IoError>(())
 /// ```
 ///
 /// # Errors

@@ -34,7 +34,7 @@
 //! let leaves: usize = tree.nodes().iter().filter(|n| n.is_leaf()).map(|n| n.items().len()).sum();
 //! assert_eq!(leaves, 10);
 //! # let _ = tree.order();
-//! # Ok::<(), crate::QueryError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 
 use std::ops::{ControlFlow, Range};
@@ -214,7 +214,7 @@ impl BoxTree {
     ///     Aabb::new(p, p)
     /// });
     /// assert_eq!(tree.nodes()[0].bounds, Aabb::new(DVec3::Y, DVec3::new(9.0, 1.0, 0.0)));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     pub fn refit(&mut self, bounds: impl Fn(usize) -> Aabb + Sync) {
         refit_subtree(&mut self.nodes, 0, &bounds);
@@ -263,7 +263,7 @@ impl BoxTree {
     /// let brute = points.iter().map(|&q| p.distance_squared(q)).fold(f64::INFINITY, f64::min);
     /// assert_eq!(search.best, brute);
     /// assert!(search.leaves < 250 / 4);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     pub fn search_nearest_first(&self, p: DVec3, search: &mut impl NearestFirst) {
         self.search_nearest_first_by(|bounds| bounds.distance_squared_to_point(p), search);
@@ -305,7 +305,7 @@ impl BoxTree {
     /// let key = |bounds: &Aabb| bounds.distance_squared_to_point(a).max(bounds.distance_squared_to_point(b));
     /// tree.search_nearest_first_by(key, &mut search);
     /// assert_eq!(search.best, 26.0); // the point at x = 105
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     pub fn search_nearest_first_by(
         &self,

@@ -19,7 +19,7 @@
 //! let corner = tree.closest(DVec3::splat(3.0))?;
 //! assert_eq!(corner.point, DVec3::ONE);
 //! assert!(matches!(corner.feature, Feature::Vertex(_)));
-//! # Ok::<(), crate::QueryError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 
 mod triangle_tree;

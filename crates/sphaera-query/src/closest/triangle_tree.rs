@@ -53,7 +53,7 @@ pub(crate) fn triangle_boxes(mesh: &TriMesh) -> Vec<(Aabb, DVec3)> {
 /// assert!((answer.point.x - 1.0).abs() < 1e-12);
 /// // Nothing within 0.5 of the centre.
 /// assert!(tree.closest_within(DVec3::ZERO, 0.5)?.is_none());
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct TriangleTree {
@@ -131,13 +131,13 @@ impl TriangleTree {
     /// tree.refit(&moved)?;
     /// let d = tree.closest(DVec3::new(3.0, 0.0, 0.0))?.distance;
     /// assert!((d - 1.0).abs() < 0.02);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
     ///
     /// [`QueryError::VertexCountMismatch`] for another number of positions;
-    /// [`QueryError::NonFiniteCoordinate`] for a NaN or infinite coordinate (the tree is
+    /// [`QueryError::Mesh`] (`MeshError::NonFiniteCoordinate`) for a NaN or infinite coordinate (the tree is
     /// left unchanged either way).
     ///
     /// # Performance
@@ -249,7 +249,7 @@ impl TriangleTree {
     ///     let answer = cursor.closest(p)?;
     ///     assert!((answer.distance - tree.closest(p)?.distance).abs() < 1e-12);
     /// }
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     #[must_use]
     pub fn cursor(&self) -> TreeCursor<'_> {
@@ -275,7 +275,7 @@ impl TriangleTree {
     /// let points: Vec<DVec3> = (0..100).map(|i| DVec3::new(2.0 + f64::from(i), 0.0, 0.0)).collect();
     /// let answers = tree.closest_many(&points)?;
     /// assert_eq!(answers[7].distance, 8.0);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -340,7 +340,7 @@ impl TriangleTree {
     /// assert!(approx.lower <= exact && exact <= approx.upper);
     /// assert!(approx.upper - approx.lower <= 0.05);
     /// assert_eq!(approx.nearest.distance, approx.upper);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -395,7 +395,7 @@ impl TriangleTree {
     /// // A large one straddles several: no single triangle lies under it, the bound grows.
     /// let large = [DVec3::new(-0.9, -0.9, 1.5), DVec3::new(0.9, -0.9, 1.5), DVec3::new(0.0, 0.9, 1.5)];
     /// assert!(tree.triangle_upper_bound(large, 0.0)? > 0.6);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -466,7 +466,7 @@ impl TriangleTree {
     /// let tree = TriangleTree::new(&shapes::cube(2.0, 2)?)?; // the cube [-1, 1]³
     /// assert!((tree.distance(DVec3::new(3.0, 0.5, 0.0))? - 2.0).abs() < 1e-12);
     /// assert!(tree.distance(DVec3::NAN).is_err());
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -703,7 +703,7 @@ impl TreeCursor<'_> {
     ///     assert!(approx.lower <= exact && exact <= approx.upper);
     ///     assert!(approx.upper - approx.lower <= 0.01);
     /// }
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors

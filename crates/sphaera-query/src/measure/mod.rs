@@ -59,7 +59,7 @@
 //! assert!((corner.abs() - glam::DVec3::splat(0.55)).length() < 1e-12);
 //! // 26 vertices, 72 edge midpoints and 10,000 random points on each cube.
 //! assert_eq!(h.a_to_b.measured, 26 + 72 + 10_000);
-//! # Ok::<(), crate::QueryError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 //!
 //! # Errors
@@ -259,7 +259,7 @@ pub fn sampled_hausdorff(
 /// let by_tree = measure::sampled_hausdorff(&a, &b, &options)?;
 /// assert!((by_brute.symmetric() - by_tree.symmetric()).abs() < 1e-12);
 /// assert_eq!(by_brute.b_to_a.measured, by_tree.b_to_a.measured);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Errors

@@ -142,7 +142,7 @@ pub enum SampleOrigin {
 ///     .with_edge_midpoints(false)
 ///     .with_random_points(0);
 /// assert_eq!(SurfaceSamples::new(&cube, &options)?.len(), 3); // vertices 0, 3 and 6
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct SurfaceSamples {

@@ -35,7 +35,7 @@
 //! assert_eq!(even.samples.len(), 1000);
 //! // Random points come much closer to each other than Poisson-disk points.
 //! assert!(even.relative_min_distance() > 0.5);
-//! # Ok::<(), crate::QueryError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 //!
 //! # Errors
@@ -92,7 +92,7 @@ pub const MAX_SAMPLES: usize = 1 << 24;
 ///     assert!((u + v + w - 1.0).abs() < 1e-12);
 ///     assert!((s.position - (u * a + v * b + w * c)).length() < 1e-12);
 /// }
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceSample {

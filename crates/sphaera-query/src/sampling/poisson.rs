@@ -118,7 +118,7 @@ impl PoissonDiskSamples {
 /// assert_eq!(set.samples.len(), 2000);
 /// assert!(set.relative_min_distance() > 0.5);
 /// assert_eq!(set, sampling::poisson_disk(&mesh, 2000, 1)?);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Errors
@@ -153,7 +153,7 @@ pub fn poisson_disk(mesh: &TriMesh, n: usize, seed: u64) -> Result<PoissonDiskSa
 ///
 /// let bad = PoissonDiskOptions::default().with_oversampling(0.5);
 /// assert!(sampling::poisson_disk_with(&mesh, 500, 9, &bad).is_err());
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Errors

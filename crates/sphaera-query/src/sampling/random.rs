@@ -29,7 +29,7 @@ use sphaera_mesh::TriMesh;
 /// // Each point lies on the surface of the cylinder: on a cap or on the side.
 /// assert!(samples.iter().all(|s| s.position.z.abs() <= 1.0 + 1e-12));
 /// assert_ne!(samples, sampling::random(&mesh, 500, 43)?);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Errors

@@ -36,7 +36,7 @@
 //!     assert_eq!(answer.inside, surface.is_inside_certified(p));
 //!     assert_eq!(answer.closest, surface.closest(p)?);
 //! }
-//! # Ok::<(), crate::QueryError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 //!
 //! # The embedded-solid certificate
@@ -94,7 +94,7 @@ pub use signed::{SideMethod, SignedClosest};
 ///     surface.embedding_defect(),
 ///     Some(EmbeddingDefect::SelfIntersection { .. })
 /// ));
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, thiserror::Error)]
 #[non_exhaustive]
@@ -193,7 +193,7 @@ const INSIDE_QUORUM: f64 = 0.5;
 /// // The inscribed polyhedron: within 1, its faces a little closer.
 /// assert!(closest.distance <= 1.0 && closest.distance > 0.9);
 /// assert_eq!(surface.mesh().triangle_count(), mesh.triangle_count());
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Debug)]
 pub struct Surface {
@@ -238,7 +238,7 @@ impl Surface {
     /// // The inner equator is 0.7 from the centre, up to the tessellation.
     /// let inner = surface.closest(DVec3::ZERO)?.distance;
     /// assert!((inner - 0.7).abs() < 0.05, "{inner}");
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -289,7 +289,7 @@ impl Surface {
     /// assert!(!shell.has_inside());
     /// let below = shell.signed_closest(DVec3::new(0.5, 0.5, -0.25))?;
     /// assert!(!below.inside && below.signed_distance() == 0.25);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -321,9 +321,9 @@ impl Surface {
     /// let inward = TriMesh::new(cube.positions().to_vec(), flipped)?;
     /// assert!(matches!(
     ///     Surface::solid_or_shell(&inward),
-    ///     Err(crate::QueryError::InwardOrientation { .. })
+    ///     Err(sphaera_query::QueryError::InwardOrientation { .. })
     /// ));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -471,7 +471,7 @@ impl Surface {
     /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
     /// assert!(surface.is_inside_certified(DVec3::new(0.0, 0.0, 0.9)));
     /// assert!(!surface.is_inside_certified(DVec3::new(0.0, 0.0, 1.01)));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Performance
@@ -498,7 +498,7 @@ impl Surface {
     /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
     /// let side = surface.side_with_margin(DVec3::new(0.0, 0.0, 0.5), 0.25).expect("decided");
     /// assert!(side.inside && side.margin >= 0.25);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     #[must_use]
     pub fn side_with_margin(&self, p: DVec3, wanted: f64) -> Option<CertifiedSide> {
@@ -533,7 +533,7 @@ impl Surface {
     /// let (closed, side) = Surface::new(&open)?.capped_side(DVec3::ZERO).expect("decided");
     /// assert!(side.inside && closed == 1.0);
     /// assert!(Surface::new(&cube)?.capped_side(DVec3::ZERO).is_none());
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     #[must_use]
     pub fn capped_side(&self, p: DVec3) -> Option<(f64, CertifiedSide)> {
@@ -558,7 +558,7 @@ impl Surface {
     /// assert!(Surface::new(&cube)?.winding_boundary().is_empty());
     /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
     /// assert_eq!(Surface::new(&open)?.winding_boundary().edge_count(), 3);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     #[must_use]
     pub fn winding_boundary(&self) -> &WindingBoundary {
@@ -609,7 +609,7 @@ impl Surface {
     /// use sphaera_mesh::shapes;
     ///
     /// assert!(Surface::new(&shapes::capsule(0.5, 2.0, 16)?)?.is_embedded_solid());
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     #[must_use]
     pub fn is_embedded_solid(&self) -> bool {
@@ -629,7 +629,7 @@ impl Surface {
     /// let open = TriMesh::new(cube.positions().to_vec(), cube.triangles()[1..].to_vec())?;
     /// let defect = Surface::new(&open)?.embedding_defect();
     /// assert!(matches!(defect, Some(EmbeddingDefect::OpenOrNonManifoldEdge { triangles: 1, .. })));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     #[must_use]
     pub fn embedding_defect(&self) -> Option<EmbeddingDefect> {
@@ -659,7 +659,7 @@ impl Surface {
     /// assert_eq!(corner.method, SideMethod::PseudoNormal);
     /// let centre = surface.signed_closest(DVec3::new(0.1, 0.2, 0.3))?;
     /// assert!(centre.inside && centre.signed_distance() < 0.0);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -691,7 +691,7 @@ impl Surface {
     ///
     /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
     /// assert!(surface.signed_closest_approx(DVec3::new(0.0, 0.3, 0.0))?.inside);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors
@@ -713,7 +713,7 @@ impl Surface {
     /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
     /// let answers = surface.signed_closest_many(&[DVec3::ZERO, DVec3::splat(2.0)])?;
     /// assert_eq!(answers.iter().map(|a| a.inside).collect::<Vec<_>>(), [true, false]);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Errors

@@ -61,7 +61,7 @@ pub(crate) const TIE_SLACK: f64 = 1.0 / 68_719_476_736.0;
 /// assert!(answer.inside);
 /// assert_eq!(answer.signed_distance(), -0.5);
 /// assert_eq!(answer.closest, surface.closest(DVec3::new(0.5, 0.0, 0.0))?);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SignedClosest {
@@ -96,7 +96,7 @@ impl SignedClosest {
 /// let surface = Surface::new(&shapes::sphere(1.0, 16)?)?;
 /// let answer = surface.signed_closest(DVec3::new(0.2, 0.1, 0.3))?;
 /// assert_eq!(answer.method, SideMethod::PseudoNormal);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]

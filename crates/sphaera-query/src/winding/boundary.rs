@@ -141,7 +141,7 @@ struct Node {
 /// // Far from the hole the winding number hardly varies; a ball touching it, unbounded.
 /// assert!(boundary.gradient_bound(DVec3::splat(50.0), 1.0) < 1e-3);
 /// assert_eq!(boundary.gradient_bound(DVec3::ZERO, 2.0), f64::INFINITY);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Debug, Default)]
 pub struct WindingBoundary {
@@ -291,7 +291,7 @@ impl WindingBoundary {
     ///     let total = winding_number_brute(&open, p) + omega / (4.0 * std::f64::consts::PI);
     ///     assert!((total - total.round()).abs() < 1e-9 && error < 1e-9);
     /// }
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics

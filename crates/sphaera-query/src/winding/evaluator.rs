@@ -212,7 +212,7 @@ pub struct CertifiedSide {
 ///     winding.classify(&[DVec3::splat(0.1), DVec3::new(2.0, 0.0, 0.0)]),
 ///     vec![true, false]
 /// );
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct WindingNumber {
@@ -269,7 +269,7 @@ impl WindingNumber {
     /// let exact = WindingNumber::exact(&mesh)?;
     /// let p = DVec3::new(0.3, -0.2, 0.9);
     /// assert!((exact.winding_number(p) - winding_number_brute(&mesh, p)).abs() < 1e-14);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     pub fn exact(mesh: &TriMesh) -> Result<Self, QueryError> {
         Self::with_options(mesh, &WindingOptions::default().with_beta(f64::INFINITY))
@@ -308,7 +308,7 @@ impl WindingNumber {
     /// )
     /// .unwrap_err();
     /// assert!(matches!(err, QueryError::InvalidParameter { name: "beta", .. }));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     pub fn with_options(mesh: &TriMesh, options: &WindingOptions) -> Result<Self, QueryError> {
         if options.beta.is_nan() || options.beta <= 1.0 {
@@ -378,7 +378,7 @@ impl WindingNumber {
     /// assert!((winding.winding_number(DVec3::splat(0.2)) - 1.0).abs() < 1e-9);
     /// assert!(winding.winding_number(DVec3::new(5.0, 1.0, 0.0)).abs() < 1e-3);
     /// assert!(winding.winding_number(DVec3::new(f64::NAN, 0.0, 0.0)).is_nan());
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -415,7 +415,7 @@ impl WindingNumber {
     /// let estimate = WindingNumber::new(&mesh)?.winding_number_with_bound(p);
     /// let exact = winding_number_brute(&mesh, p);
     /// assert!((estimate.value - exact).abs() <= estimate.error_bound + 1e-12);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -450,7 +450,7 @@ impl WindingNumber {
     /// let winding = WindingNumber::new(&mesh)?;
     /// assert!(winding.is_inside(DVec3::new(0.1, 0.2, 0.3)));
     /// assert!(!winding.is_inside(DVec3::new(-0.1, 0.2, 0.3)));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -482,7 +482,7 @@ impl WindingNumber {
     /// let winding = WindingNumber::new(&mesh)?;
     /// let p = DVec3::new(0.33, 0.33, 0.33); // just inside the slanted face
     /// assert_eq!(winding.is_inside_certified(p), winding_number_brute(&mesh, p) > 0.5);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -619,7 +619,7 @@ impl WindingNumber {
     /// )?;
     /// let w = WindingNumber::new(&mesh)?.winding_numbers(&[DVec3::splat(0.1), DVec3::splat(3.0)]);
     /// assert!((w[0] - 1.0).abs() < 1e-9 && w[1].abs() < 1e-3);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -654,7 +654,7 @@ impl WindingNumber {
     /// let side = winding.side_with_margin(DVec3::splat(0.1), 0.4).expect("decided");
     /// assert!(side.inside && side.margin >= 0.4 && side.margin <= 0.5);
     /// assert!(!winding.side_with_margin(DVec3::splat(3.0), 0.0).expect("decided").inside);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -726,7 +726,7 @@ impl WindingNumber {
     /// let exact = winding_number_brute(&open, p);
     /// assert_eq!(side.inside, exact > 0.5);
     /// assert!(side.margin <= (exact - 0.5).abs() && side.margin > (exact - 0.5).abs() - 1e-9);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -770,7 +770,7 @@ impl WindingNumber {
     /// let near = DVec3::new(0.1, 0.0, 0.0);
     /// assert!(boundary.caps_avoid_segment(DVec3::ZERO, near));
     /// assert_eq!(boundary.side_given_closed(near, k), winding.capped_side(near, &boundary).map(|c| c.1));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -832,7 +832,7 @@ impl WindingNumber {
     /// )?;
     /// let inside = WindingNumber::new(&mesh)?.classify(&[DVec3::splat(0.1), DVec3::splat(3.0)]);
     /// assert_eq!(inside, vec![true, false]);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics
@@ -859,7 +859,7 @@ impl WindingNumber {
     /// let winding = WindingNumber::new(&mesh)?;
     /// let inside = winding.classify_certified(&[DVec3::splat(0.1), DVec3::splat(3.0)]);
     /// assert_eq!(inside, vec![true, false]);
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Panics

@@ -46,7 +46,7 @@
 //! let open_box = WindingNumber::new(&TriMesh::new(positions, triangles)?)?;
 //! assert!((open_box.winding_number(DVec3::splat(0.5)) - 5.0 / 6.0).abs() < 1e-2);
 //! assert!(open_box.is_inside(DVec3::splat(0.5)));
-//! # Ok::<(), crate::QueryError>(())
+//! # Ok::<(), sphaera_query::QueryError>(())
 //! ```
 //!
 //! # Method

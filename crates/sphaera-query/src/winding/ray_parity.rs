@@ -48,7 +48,7 @@ const VOTES: usize = 3;
 /// assert_eq!(inside_by_ray_parity(&mesh, DVec3::splat(0.2)), Some(true));
 /// assert_eq!(inside_by_ray_parity(&mesh, DVec3::splat(0.4)), Some(false));
 /// assert_eq!(inside_by_ray_parity(&mesh, DVec3::ZERO), None); // a corner
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Panics

@@ -82,7 +82,7 @@ pub(crate) fn solid_angle_of_corners(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 /// )?;
 /// assert!((winding_number_brute(&mesh, DVec3::splat(0.1)) - 1.0).abs() < 1e-12);
 /// assert!(winding_number_brute(&mesh, DVec3::splat(2.0)).abs() < 1e-12);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 ///
 /// # Panics

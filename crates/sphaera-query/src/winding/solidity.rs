@@ -44,7 +44,7 @@ pub const INWARD_THRESHOLD: f64 = 0.25;
 /// assert_eq!(report.probes, 4);
 /// assert!((report.max_abs_winding - 1.0).abs() < 1e-3);
 /// assert!((report.median_inner_winding - 1.0).abs() < 1e-3);
-/// # Ok::<(), crate::QueryError>(())
+/// # Ok::<(), sphaera_query::QueryError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SolidityReport {
@@ -141,7 +141,7 @@ impl WindingNumber {
     /// )?;
     /// let err = WindingNumber::new(&square)?.check_solid().unwrap_err();
     /// assert!(matches!(err, QueryError::NotSolid { .. }));
-    /// # Ok::<(), crate::QueryError>(())
+    /// # Ok::<(), sphaera_query::QueryError>(())
     /// ```
     ///
     /// # Performance
