@@ -1,18 +1,22 @@
 //! A static box tree over a mesh's triangles, for exact closest points of independent
 //! queries (no coherence to exploit, no session state).
 
-use std::ops::{ControlFlow, Range};
+mod cursor;
+mod descent;
+#[cfg(test)]
+mod tests;
 
 use glam::DVec3;
 
 use crate::QueryError;
-use crate::bvh::{BoxTree, NearestFirst};
-use sphaera_mesh::geometry::{
-    Triangle, TriangleClosestPoint, closest_point_on_triangle, point_triangle_distance_squared,
-};
+use crate::bvh::BoxTree;
+use sphaera_mesh::geometry::{Triangle, TriangleClosestPoint, closest_point_on_triangle};
 use sphaera_mesh::{Aabb, TriMesh};
 
 use super::ClosestPoint;
+
+pub use cursor::TreeCursor;
+use descent::{CornersBound, Distance, Search};
 
 /// Triangles per leaf. Measured on the 69k bunny against 2, 4, 8 and 12: a leaf's
 /// triangles are rejected by their boxes at little cost, and fewer levels mean fewer box
@@ -230,37 +234,6 @@ impl TriangleTree {
         Ok(search.best.map(|(i, _)| self.answer_at(i, p)))
     }
 
-    /// A cursor for a stream of queries that move a little at a time (a path, a moving
-    /// body): see [`TreeCursor`].
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use sphaera_mesh::{DVec3, shapes};
-    /// use sphaera_query::closest::TriangleTree;
-    ///
-    /// let sphere = shapes::sphere(1.0, 32)?;
-    /// let tree = TriangleTree::new(&sphere)?;
-    /// let mut cursor = tree.cursor();
-    /// for i in 0..1000 {
-    ///     let a = f64::from(i) * 1e-3;
-    ///     let p = DVec3::new(2.0 * a.cos(), 2.0 * a.sin(), 0.3);
-    ///     // The same distance an independent query finds.
-    ///     let answer = cursor.closest(p)?;
-    ///     assert!((answer.distance - tree.closest(p)?.distance).abs() < 1e-12);
-    /// }
-    /// # Ok::<(), sphaera_query::QueryError>(())
-    /// ```
-    #[must_use]
-    pub fn cursor(&self) -> TreeCursor<'_> {
-        TreeCursor {
-            tree: self,
-            last: None,
-            queries: 0,
-            shortcuts: 0,
-        }
-    }
-
     /// The exact closest point of every point of `points`, in order: [`TriangleTree::closest`]
     /// for each, on every core with the `parallel` feature (the answers are the same
     /// either way).
@@ -454,8 +427,9 @@ impl TriangleTree {
 
     /// The distance from `p` to the mesh, for callers that need only the number: the
     /// same descent as [`TriangleTree::closest`] with the cheaper
-    /// [`point_triangle_distance_squared`] per triangle (about three times faster; it may
-    /// differ from `closest(p)?.distance` in the last bit).
+    /// [`point_triangle_distance_squared`](sphaera_mesh::geometry::point_triangle_distance_squared)
+    /// per triangle (about three times faster; it may differ from `closest(p)?.distance` in
+    /// the last bit).
     ///
     /// # Examples
     ///
@@ -499,90 +473,6 @@ impl TriangleTree {
     }
 }
 
-/// The state of one closest-point descent. Candidates are compared by
-/// [`point_triangle_distance_squared`] (a third of the cost of the closest point with its
-/// feature, which only the winner gets).
-struct Search<'a> {
-    corners: &'a [[DVec3; 3]],
-    p: DVec3,
-    best_squared: f64,
-    /// What may still be worth a look: the square of the best distance less the gap an
-    /// approximate query allows (the best distance itself for an exact one).
-    limit_squared: f64,
-    /// The gap allowed for a best distance (`None`: exact).
-    gap: Option<&'a dyn Fn(f64) -> f64>,
-    /// The best triangle so far (its position in tree order) and its squared distance.
-    best: Option<(usize, f64)>,
-    /// The smallest squared distance (or lower bound of one) of every other triangle.
-    runner_up_squared: f64,
-}
-
-impl Search<'_> {
-    /// A new best triangle at squared distance `d`.
-    fn set_best(&mut self, i: usize, d: f64) {
-        self.best_squared = d;
-        self.best = Some((i, d));
-        self.limit_squared = match self.gap {
-            None => d,
-            Some(gap) => {
-                let best = d.sqrt();
-                let limit = (best - gap(best)).max(0.0);
-                limit * limit
-            }
-        };
-    }
-}
-
-impl NearestFirst for Search<'_> {
-    fn may_improve(&self, distance_squared: f64) -> bool {
-        // An approximate search needs boxes that can bring the distance *below* the best
-        // less the gap (one exactly there leaves the interval exactly as wide as allowed).
-        match self.gap {
-            None => distance_squared <= self.limit_squared,
-            Some(_) => distance_squared < self.limit_squared,
-        }
-    }
-
-    fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
-        let current = self.best.map(|(i, _)| i);
-        for i in positions {
-            if Some(i) == current {
-                // A seed is not compared with itself.
-                continue;
-            }
-            let [a, b, c] = self.corners[i];
-            // The triangle's box first: the distance costs several times more.
-            let bounds = Aabb::new(a.min(b).min(c), a.max(b).max(c));
-            let to_box = bounds.distance_squared_to_point(self.p);
-            if to_box > self.limit_squared {
-                self.runner_up_squared = self.runner_up_squared.min(to_box);
-                continue;
-            }
-            let d = point_triangle_distance_squared(self.p, &Triangle::new(a, b, c));
-            let better = d < self.best_squared || (self.best.is_none() && d <= self.best_squared);
-            if better {
-                if let Some((_, previous)) = self.best {
-                    self.runner_up_squared = self.runner_up_squared.min(previous);
-                }
-                self.set_best(i, d);
-                if self.gap.is_some() && self.limit_squared <= 0.0 {
-                    // The best is within the gap of 0: `[0, best]` is narrow enough, and
-                    // nothing else needs a look (nor bounds the interval from below).
-                    self.runner_up_squared = 0.0;
-                    return ControlFlow::Break(());
-                }
-            } else {
-                self.runner_up_squared = self.runner_up_squared.min(d);
-            }
-        }
-        ControlFlow::Continue(())
-    }
-
-    fn pruned(&mut self, distance_squared: f64) {
-        self.runner_up_squared = self.runner_up_squared.min(distance_squared);
-    }
-}
-
 /// What [`TriangleTree::closest_approx`] returns: a certified interval for the distance
 /// and a point of the mesh at its upper end.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -594,348 +484,4 @@ pub struct ApproxClosest {
     /// The closest point of the nearest triangle found (the exact answer when
     /// `lower == upper`).
     pub nearest: ClosestPoint,
-}
-
-/// Exact closest points for a stream of queries that move a little at a time, from
-/// [`TriangleTree::cursor`].
-///
-/// Each full search also bounds the distance of every other triangle (the nearest one
-/// it did not take, or the nearest box it pruned). The next query checks the previous
-/// answer's triangle first: if it is nearer than that bound minus the distance moved, it
-/// is still the closest, found in constant time. Otherwise the descent starts with that
-/// triangle's distance as its bound, which prunes most of the tree. Answers are exact,
-/// as [`TriangleTree::closest`]'s; where two triangles are exactly as near, the one
-/// chosen may differ from an independent query's.
-#[derive(Clone, Debug)]
-pub struct TreeCursor<'t> {
-    tree: &'t TriangleTree,
-    last: Option<Last>,
-    queries: usize,
-    shortcuts: usize,
-}
-
-/// What a cursor keeps of its last answer.
-#[derive(Clone, Copy, Debug)]
-struct Last {
-    query: DVec3,
-    /// The answer's tree position.
-    position: usize,
-    /// A lower bound on the distance from `query` of every other triangle.
-    runner_up: f64,
-}
-
-impl TreeCursor<'_> {
-    /// The exact closest point of the mesh to `p`.
-    ///
-    /// # Errors
-    ///
-    /// [`QueryError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
-    pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
-        self.queries += 1;
-        let tree = self.tree;
-        let (search, runner_up) = match self.last {
-            Some(last) => {
-                let moved = (p - last.query).length();
-                // Every other triangle is at least this far from `p`.
-                let others = last.runner_up - moved;
-                let answer = tree.answer_at(last.position, p);
-                if answer.distance < others {
-                    self.shortcuts += 1;
-                    self.last = Some(Last {
-                        query: p,
-                        position: last.position,
-                        runner_up: others,
-                    });
-                    return Ok(answer);
-                }
-                let [a, b, c] = tree.corners[last.position];
-                let bound = point_triangle_distance_squared(p, &Triangle::new(a, b, c));
-                let search = tree.search(p, bound, Some(last.position), None);
-                let runner_up = search.runner_up_squared.sqrt();
-                (search, runner_up)
-            }
-            None => {
-                let search = tree.search(p, f64::INFINITY, None, None);
-                let runner_up = search.runner_up_squared.sqrt();
-                (search, runner_up)
-            }
-        };
-        // A finite query on a non-empty tree always finds a triangle (invariant).
-        let Some((position, _)) = search.best else {
-            return Err(QueryError::EmptyMesh);
-        };
-        let answer = tree.answer_at(position, p);
-        self.last = Some(Last {
-            query: p,
-            position,
-            runner_up,
-        });
-        Ok(answer)
-    }
-
-    /// A certified interval for the distance from `p` to the mesh, at most `gap(upper)`
-    /// wide, as [`TriangleTree::closest_approx`] gives, with the previous answer's
-    /// triangle as the starting bound: on a path of small steps, once the distance is
-    /// within the gap of 0 (or the previous triangle is still within the gap of the
-    /// best possible), most queries prune the whole tree at its root.
-    ///
-    /// # Examples
-    ///
-    /// ```
-    /// use sphaera_mesh::{DVec3, shapes};
-    /// use sphaera_query::closest::TriangleTree;
-    ///
-    /// let sphere = shapes::sphere(1.0, 32)?;
-    /// let tree = TriangleTree::new(&sphere)?;
-    /// let mut cursor = tree.cursor();
-    /// for i in 0..100 {
-    ///     let a = f64::from(i) * 1e-3;
-    ///     let p = DVec3::new(1.5 * a.cos(), 1.5 * a.sin(), 0.2);
-    ///     let approx = cursor.closest_approx(p, &|_| 0.01)?;
-    ///     let exact = tree.closest(p)?.distance;
-    ///     assert!(approx.lower <= exact && exact <= approx.upper);
-    ///     assert!(approx.upper - approx.lower <= 0.01);
-    /// }
-    /// # Ok::<(), sphaera_query::QueryError>(())
-    /// ```
-    ///
-    /// # Errors
-    ///
-    /// [`QueryError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
-    pub fn closest_approx(
-        &mut self,
-        p: DVec3,
-        gap: &dyn Fn(f64) -> f64,
-    ) -> Result<ApproxClosest, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
-        self.queries += 1;
-        let tree = self.tree;
-        // After a small step, a search asks for half the gap: that leaves room for the
-        // next queries' shortcut below (a jump would not use it, and a search for half
-        // the gap costs more).
-        let half = |upper: f64| 0.5 * gap(upper);
-        let search = match self.last {
-            Some(last) => {
-                let [a, b, c] = tree.corners[last.position];
-                let bound = point_triangle_distance_squared(p, &Triangle::new(a, b, c));
-                // Every other triangle is at least `others` from `p`: if that is within
-                // the gap of the previous triangle's distance, the interval between them
-                // is narrow enough without a search.
-                let moved = (p - last.query).length();
-                let others = last.runner_up - moved;
-                let upper = bound.sqrt();
-                if others >= upper - gap(upper) {
-                    self.shortcuts += 1;
-                    self.last = Some(Last {
-                        query: p,
-                        position: last.position,
-                        runner_up: others,
-                    });
-                    let nearest = tree.answer_at(last.position, p);
-                    return Ok(ApproxClosest {
-                        lower: others.max(0.0).min(nearest.distance),
-                        upper: nearest.distance,
-                        nearest,
-                    });
-                }
-                if moved < 0.25 * gap(upper) {
-                    tree.search(p, bound, Some(last.position), Some(&half))
-                } else {
-                    tree.search(p, bound, Some(last.position), Some(gap))
-                }
-            }
-            None => tree.search(p, f64::INFINITY, None, Some(gap)),
-        };
-        // A finite query on a non-empty tree always finds a triangle (invariant).
-        let Some((position, _)) = search.best else {
-            return Err(QueryError::EmptyMesh);
-        };
-        let nearest = tree.answer_at(position, p);
-        let runner_up = search.runner_up_squared.sqrt();
-        // Every other triangle is at least `runner_up` away, so the exact shortcut of
-        // the next query may use it too.
-        self.last = Some(Last {
-            query: p,
-            position,
-            runner_up,
-        });
-        Ok(ApproxClosest {
-            lower: runner_up.min(nearest.distance),
-            upper: nearest.distance,
-            nearest,
-        })
-    }
-
-    /// The tree this cursor walks.
-    #[must_use]
-    pub fn tree(&self) -> &TriangleTree {
-        self.tree
-    }
-
-    /// Queries answered so far.
-    #[must_use]
-    pub fn queries(&self) -> usize {
-        self.queries
-    }
-
-    /// Queries answered from the previous answer's triangle alone.
-    #[must_use]
-    pub fn shortcuts(&self) -> usize {
-        self.shortcuts
-    }
-}
-
-/// The state of one [`TriangleTree::triangle_upper_bound`] descent.
-struct CornersBound<'a> {
-    corners: &'a [[DVec3; 3]],
-    x: [DVec3; 3],
-    best_squared: f64,
-    enough_squared: f64,
-}
-
-impl NearestFirst for CornersBound<'_> {
-    fn may_improve(&self, key: f64) -> bool {
-        key < self.best_squared
-    }
-
-    fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
-        for &[a, b, c] in &self.corners[positions] {
-            let bounds = Aabb::new(a.min(b).min(c), a.max(b).max(c));
-            if self
-                .x
-                .iter()
-                .any(|&p| bounds.distance_squared_to_point(p) >= self.best_squared)
-            {
-                continue;
-            }
-            let triangle = Triangle::new(a, b, c);
-            let mut worst = 0.0_f64;
-            for &p in &self.x {
-                worst = worst.max(point_triangle_distance_squared(p, &triangle));
-                if worst >= self.best_squared {
-                    break;
-                }
-            }
-            self.best_squared = self.best_squared.min(worst);
-            if self.best_squared <= self.enough_squared {
-                return ControlFlow::Break(());
-            }
-        }
-        ControlFlow::Continue(())
-    }
-}
-
-/// The state of one distance-only descent.
-struct Distance<'a> {
-    corners: &'a [[DVec3; 3]],
-    p: DVec3,
-    best_squared: f64,
-}
-
-impl NearestFirst for Distance<'_> {
-    fn may_improve(&self, distance_squared: f64) -> bool {
-        distance_squared < self.best_squared
-    }
-
-    fn visit_leaf(&mut self, positions: Range<usize>) -> ControlFlow<()> {
-        for &[a, b, c] in &self.corners[positions] {
-            let d = point_triangle_distance_squared(self.p, &Triangle::new(a, b, c));
-            self.best_squared = self.best_squared.min(d);
-        }
-        ControlFlow::Continue(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #![allow(clippy::float_cmp)]
-
-    use super::*;
-    use sphaera_mesh::shapes;
-
-    fn brute(mesh: &TriMesh, p: DVec3) -> f64 {
-        (0..mesh.triangle_count())
-            .filter_map(|t| mesh.triangle(t))
-            .map(|t| point_triangle_distance_squared(p, &t))
-            .fold(f64::INFINITY, f64::min)
-            .sqrt()
-    }
-
-    #[test]
-    fn agrees_with_brute_force_on_a_torus() -> Result<(), Box<dyn std::error::Error>> {
-        let mesh = shapes::torus(1.0, 0.3, 20)?;
-        let tree = TriangleTree::new(&mesh)?;
-        assert_eq!(tree.triangle_count(), mesh.triangle_count());
-        for i in 0..200 {
-            let f = f64::from(i);
-            let p = DVec3::new(
-                (f * 0.37).sin() * 1.7,
-                (f * 0.91).cos() * 1.6,
-                (f * 0.13).sin(),
-            );
-            let answer = tree.closest(p)?;
-            assert!((answer.distance - brute(&mesh, p)).abs() < 1e-12);
-            assert!((tree.distance(p)? - answer.distance).abs() <= 1e-15 * (1.0 + answer.distance));
-            let t = mesh.triangle(answer.triangle as usize).ok_or("triangle")?;
-            assert!((point_triangle_distance_squared(answer.point, &t)).sqrt() < 1e-12);
-        }
-        Ok(())
-    }
-
-    #[test]
-    fn points_on_the_surface_are_at_distance_zero() -> Result<(), Box<dyn std::error::Error>> {
-        let cube = shapes::cube(2.0, 3)?;
-        let tree = TriangleTree::new(&cube)?;
-        for &p in cube.positions() {
-            assert!(tree.distance(p)? < 1e-12);
-        }
-        Ok(())
-    }
-
-    #[test]
-    fn a_bound_prunes_and_is_inclusive() -> Result<(), Box<dyn std::error::Error>> {
-        let mesh = shapes::cube(2.0, 2)?;
-        let tree = TriangleTree::new(&mesh)?;
-        let p = DVec3::new(0.5, 0.0, 0.0);
-        assert!(tree.closest_within(p, 0.4)?.is_none());
-        let at = tree.closest_within(p, 0.5)?.ok_or("inclusive bound")?;
-        assert_eq!(at.distance, 0.5);
-        Ok(())
-    }
-
-    #[test]
-    fn bad_queries_are_errors() -> Result<(), Box<dyn std::error::Error>> {
-        let tree = TriangleTree::new(&shapes::cube(2.0, 2)?)?;
-        assert!(matches!(
-            tree.closest(DVec3::new(f64::NAN, 0.0, 0.0)),
-            Err(QueryError::NonFiniteQuery { .. })
-        ));
-        assert!(matches!(
-            tree.closest_within(DVec3::ZERO, -1.0),
-            Err(QueryError::InvalidParameter { .. })
-        ));
-        assert!(matches!(
-            tree.closest_within(DVec3::ZERO, f64::NAN),
-            Err(QueryError::InvalidParameter { .. })
-        ));
-        let empty = TriMesh::new(vec![DVec3::ZERO], Vec::new())?;
-        assert!(matches!(
-            TriangleTree::new(&empty),
-            Err(QueryError::EmptyMesh)
-        ));
-        Ok(())
-    }
 }

@@ -146,7 +146,9 @@
 //! evaluated independently, in a fixed traversal order).
 
 mod boundary;
+mod certified;
 mod evaluator;
+mod expansion;
 mod ray_parity;
 mod solid_angle;
 mod solidity;
@@ -155,7 +157,9 @@ mod tests;
 mod tree;
 
 pub use boundary::WindingBoundary;
-pub use evaluator::{CertifiedSide, Expansion, WindingEstimate, WindingNumber, WindingOptions};
+pub use certified::CertifiedSide;
+pub use evaluator::{WindingEstimate, WindingNumber, WindingOptions};
+pub use expansion::Expansion;
 pub use ray_parity::inside_by_ray_parity;
 pub use solid_angle::{triangle_solid_angle, winding_number_brute};
 pub use solidity::{INWARD_THRESHOLD, SOLID_THRESHOLD, SolidityReport};

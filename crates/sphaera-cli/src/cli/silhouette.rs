@@ -1,0 +1,127 @@
+//! Arguments of `sphaera silhouette`: the view, the contours and the distance transform.
+
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use sphaera::mesh::Length;
+
+use super::{OutputArgs, parse_length};
+/// Arguments of `sphaera silhouette`.
+#[derive(Debug, Args)]
+pub struct SilhouetteArgs {
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
+    pub mesh: Option<PathBuf>,
+
+    /// Degrees between cameras of the regular view set (it must divide 180; 15 gives 266
+    /// views).
+    #[arg(long, default_value_t = 15.0)]
+    pub step: f64,
+
+    /// Cells a side of every view's label grid.
+    #[arg(long, default_value_t = 512)]
+    pub resolution: usize,
+
+    /// The contour region: triangles with a corner at most this many cells from the
+    /// silhouette.
+    #[arg(long, default_value_t = 2.0)]
+    pub threshold: f32,
+
+    /// The contour region's allowed error as a fraction of `--error` (0: exact there).
+    #[arg(long, default_value_t = 0.25)]
+    pub factor: f64,
+
+    /// The error allowed away from the contour: a distance (`0.002`) or a percentage of
+    /// the bounding-box diagonal (`1%`).
+    #[arg(long, value_parser = parse_length, default_value = "1%")]
+    pub error: Length,
+
+    /// The view: the direction toward the camera, `x,y,z`.
+    #[arg(long, value_parser = parse_direction, default_value = "0,0,1", allow_hyphen_values = true)]
+    pub view: [f64; 3],
+
+    /// Labels for the view: those of the nearest camera (1) or the average of this many
+    /// nearest cameras.
+    #[arg(long, default_value_t = 1)]
+    pub nearest: usize,
+
+    /// Which silhouettes the labels measure from.
+    #[arg(long, value_enum, default_value_t = ContoursArg::Outline)]
+    pub contours: ContoursArg,
+
+    /// The distance transform of the label images.
+    #[arg(long, value_enum, default_value_t = TransformArg::Euclidean)]
+    pub transform: TransformArg,
+
+    /// Perspective cameras this many bounding radii from the centre (more than 1);
+    /// orthographic when omitted.
+    #[arg(long)]
+    pub perspective: Option<f64>,
+
+    /// Write the extracted mesh, atomically (`.obj` or `.ply`).
+    #[arg(long, short)]
+    pub output: Option<PathBuf>,
+
+    /// Write the labels seen from the view as grey levels (PNG, the paper's Fig. 3):
+    /// black at the silhouette, lighter with distance.
+    #[arg(long)]
+    pub labels_png: Option<PathBuf>,
+
+    /// Write the silhouettes of the original and the result overlaid (PNG): grey where
+    /// both cover, red where only the original does, blue where only the result does.
+    #[arg(long)]
+    pub compare_png: Option<PathBuf>,
+
+    #[command(flatten)]
+    pub print: OutputArgs,
+}
+
+/// `--contours`: which silhouettes labels measure from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ContoursArg {
+    /// The outline only (the better silhouette per triangle on scanned meshes).
+    Outline,
+    /// The outline and the internal silhouettes (the paper's Fig. 2).
+    All,
+}
+
+/// `--transform`: the distance transform of the label images.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum TransformArg {
+    /// Exact Euclidean distances.
+    Euclidean,
+    /// The paper's two-pass 3–4 chamfer (within 8 % of Euclidean).
+    Chamfer,
+}
+
+/// A direction on the command line: `x,y,z`, finite and not zero.
+fn parse_direction(text: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(format!("`{text}` is not a direction `x,y,z`"));
+    };
+    let mut out = [0.0_f64; 3];
+    for (o, part) in out.iter_mut().zip([x, y, z]) {
+        *o = part
+            .trim()
+            .parse()
+            .map_err(|e| format!("`{part}` in `{text}` is not a number: {e}"))?;
+    }
+    if out.iter().any(|c| !c.is_finite()) || out.iter().all(|&c| c == 0.0) {
+        return Err(format!("`{text}` must be finite and not zero"));
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn directions_parse_as_three_numbers() {
+        assert_eq!(parse_direction("0,0,1"), Ok([0.0, 0.0, 1.0]));
+        assert_eq!(parse_direction(" -1, 0.5 ,2"), Ok([-1.0, 0.5, 2.0]));
+        for bad in ["1,2", "1,2,3,4", "a,b,c", "0,0,0", "inf,0,1", "NaN,0,1"] {
+            assert!(parse_direction(bad).is_err(), "{bad}");
+        }
+    }
+}

@@ -1,0 +1,147 @@
+//! `cargo xtask test` and `cargo xtask ci`: every test, and every check CI runs.
+
+use std::{process::Command, time::Instant};
+
+use anyhow::{Context, Result, bail};
+
+use crate::{browser, cargo, cargo_with_env, charts, doc, package, print_steps, python, tables};
+
+/// Every test: unit and integration tests of every crate, the cross-crate tests in
+/// `tests/`, and the doctests (all run by `cargo test`); then the query, simplification,
+/// medial, sphere-tree and scene crates again without their default `parallel` feature, whose
+/// results must be identical (their tests compare digests of their results with the same
+/// recorded values both ways),
+/// and the sphere-tree's export and awkward-mesh tests with its optional `parry` feature.
+pub fn test() -> Result<()> {
+    cargo(&["test", "--workspace", "--locked"])?;
+    // One invocation for all of them: one build, its crates compiled in parallel. No
+    // dev-dependency of theirs asks for `parallel`, so none of them gets it
+    // (`cargo tree -e features` confirms).
+    let mut args = vec!["test", "--locked"];
+    for crate_name in [
+        "sphaera-query",
+        "sphaera-simplify",
+        "sphaera-medial",
+        "sphaera-spheretree",
+        "sphaera-scene",
+        "sphaera-robot",
+    ] {
+        args.extend(["-p", crate_name]);
+    }
+    // The every-shared-mesh build (the 871k dragon among them) checks no digest: once,
+    // in parallel, is enough.
+    args.extend([
+        "--no-default-features",
+        "--lib",
+        "--tests",
+        "--",
+        "--skip",
+        "every_shared_mesh_builds_and_writes_every_format",
+    ]);
+    cargo(&args)?;
+    // The sphere-tree's parry3d export, behind its optional feature (the awkward meshes
+    // write it too).
+    cargo(&[
+        "test",
+        "--locked",
+        "-p",
+        "sphaera-spheretree",
+        "--features",
+        "parry",
+        "--test",
+        "export",
+        "--test",
+        "awkward",
+        // The tests that write the compound.
+        "--",
+        "parry",
+        "every_method_and_format_on_every_awkward_mesh",
+    ])?;
+    // The Python bindings, built with maturin into a virtual environment and tested with
+    // pytest against the CLI's numbers.
+    python::python_test()?;
+    Ok(())
+}
+
+pub fn ci() -> Result<()> {
+    let started = Instant::now();
+    cargo(&["fmt", "--all", "--check"])?;
+    check_single_glam()?;
+    cargo(&[
+        "clippy",
+        "--workspace",
+        "--all-targets",
+        "--locked",
+        "--",
+        "-D",
+        "warnings",
+    ])?;
+    cargo(&[
+        "clippy",
+        "-p",
+        "sphaera-spheretree",
+        "--features",
+        "parry",
+        "--all-targets",
+        "--locked",
+        "--",
+        "-D",
+        "warnings",
+    ])?;
+    // The published crates as docs.rs documents them (every feature), then the whole
+    // workspace with default features, as a user's `cargo doc` builds it: a link that
+    // resolves only with an optional feature on fails there, and the CLI, the evaluation
+    // crate, the test helpers and this tool are documented too.
+    doc()?;
+    cargo_with_env(
+        &["doc", "--workspace", "--no-deps", "--locked"],
+        &[("RUSTDOCFLAGS", "-D warnings")],
+    )?;
+    package()?;
+    test()?;
+    charts(true, &[])?;
+    tables::tables(true)?;
+    browser::browser_test(false)?;
+    print_steps();
+    eprintln!("ci passed in {:.0} s", started.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// Fails if the dependency graph holds two versions of glam: our `DVec3` must be the one
+/// parry3d-f64 uses, or values cannot cross between the crates.
+fn check_single_glam() -> Result<()> {
+    eprintln!("$ cargo tree --workspace -d -e normal,build,dev --depth 0 --locked");
+    let output = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned()))
+        .args([
+            "tree",
+            "--workspace",
+            "-d",
+            "-e",
+            "normal,build,dev",
+            "--depth",
+            "0",
+            "--locked",
+        ])
+        .output()
+        .context("cannot run cargo tree")?;
+    if !output.status.success() {
+        bail!(
+            "cargo tree failed: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    let tree = String::from_utf8_lossy(&output.stdout);
+    let glams: Vec<&str> = tree
+        .lines()
+        .filter(|line| line.starts_with("glam v"))
+        .collect();
+    if !glams.is_empty() {
+        bail!(
+            "two versions of glam in the dependency graph ({}): pin `glam` in the root \
+             Cargo.toml to the version parry3d-f64 uses",
+            glams.join(", ")
+        );
+    }
+    eprintln!("  (one glam: ok)");
+    Ok(())
+}
