@@ -179,9 +179,9 @@ pub use error::{DelaunayError, MedialError, Violation};
 pub use glam::DVec3;
 pub use medial::{
     CoverCriterion, MedialApproximation, MedialOptions, MedialProgress, MedialSphere, MedialStats,
-    RegionOptions, RegionOutcome, SphereKind,
+    RegionOptions, RegionOutcome, SphereKind, eq2_error, surface_eq2_error,
 };
-/// The mesh a medial approximation describes (defined in `sphaera-mesh`): its inside test
+/// The mesh a medial approximation describes (defined in `sphaera-query`): its inside test
 /// and exact closest points.
 pub use sphaera_query::Surface;
 

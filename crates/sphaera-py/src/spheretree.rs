@@ -4,19 +4,16 @@
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple, PyType};
-use sphaera::mesh::{Length, Sphere, Surface};
+use sphaera::mesh::{Length, Surface};
 use sphaera::spheretree::{
     Effort, EvaluationOptions, MAX_BRANCH, MAX_TREE_NODES, Method, SphereTreeError,
-    SphereTreeOptions, build, evaluate_set_bounded,
+    SphereTreeOptions, build, evaluate_level,
 };
 
 use crate::arrays;
 use crate::errors::{ToleranceUnreachableError, to_py, value_error};
 use crate::mesh::Mesh;
 use crate::simplify::length;
-
-/// The certified evaluation's tolerance, as a fraction of the diagonal (the CLI's).
-const EVALUATION_TOLERANCE: f64 = 1e-3;
 
 /// A sphere-tree: per level an `(n, 4)` array of spheres (`x, y, z, r`), each sphere's
 /// parent in the level above and its certified error, and per level the certified worst
@@ -611,9 +608,7 @@ pub fn spheretree(
     let built = py.detach(|| -> Result<_, sphaera::Error> {
         let surface = Surface::solid_or_shell(&mesh.inner)?;
         let tree = build(&surface, &options)?;
-        let evaluation = EvaluationOptions::default()
-            .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE))
-            .with_screening(true);
+        let evaluation = EvaluationOptions::level_report();
         // Nodes are stored level by level: a node's index less its level's first
         // index is its row.
         let mut first = 0_usize;
@@ -622,22 +617,9 @@ pub fn spheretree(
         for l in 0..tree.level_count() {
             let nodes = tree.level(l);
             let error = if evaluate && !nodes.is_empty() {
-                // Each node's error is a certified upper bound of its sphere's: the
-                // evaluation settles the worst with it and spends nothing on spheres that
-                // cannot be the worst. Both bounds are certified: the smaller is the
-                // tighter (as the CLI reports it).
-                let cut = tree.cut_at(l);
-                let cut_spheres: Vec<Sphere> =
-                    cut.iter().map(|&i| tree.nodes()[i].sphere).collect();
-                let bounds: Vec<f64> = cut.iter().map(|&i| tree.nodes()[i].error).collect();
-                let fit = evaluate_set_bounded(&surface, &cut_spheres, &bounds, &evaluation)?;
-                let upper = fit
-                    .fits
-                    .iter()
-                    .zip(&bounds)
-                    .map(|(f, &b)| f.upper.min(b))
-                    .fold(0.0, f64::max);
-                Some((fit.worst_lower, upper))
+                // The level's cut certified as the CLI reports it.
+                let level = evaluate_level(&surface, &tree, l, &evaluation)?;
+                Some((level.worst_lower, level.worst_upper))
             } else {
                 None
             };

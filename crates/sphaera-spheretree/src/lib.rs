@@ -252,7 +252,8 @@ pub use collide::{
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{
-    EvaluationOptions, SetEvaluation, SphereFit, evaluate_set, evaluate_set_bounded,
+    EvaluationOptions, LevelEvaluation, SetEvaluation, SphereFit, evaluate_level, evaluate_set,
+    evaluate_set_bounded,
 };
 pub use glam::DVec3;
 pub use minimax::MAX_TREE_NODES;

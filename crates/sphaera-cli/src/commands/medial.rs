@@ -23,6 +23,7 @@ use serde::Serialize;
 use sphaera::{
     medial::{
         CoverCriterion, MedialApproximation, MedialOptions, MedialProgress, SphereKind, Surface,
+        surface_eq2_error,
     },
     mesh::{DVec3, Sphere, io::write_atomic, sampling},
     spheretree::{CoverageCertificate, Method, SphereTreeOptions, build, cover::certify_coverage},
@@ -532,25 +533,12 @@ fn certify(
         }
         sphere.radius = ball.radius;
         sphere.growth = g;
-        sphere.error = eq2_error(surface, sphere.centre, sphere.radius);
+        sphere.error = surface_eq2_error(surface, sphere.centre, sphere.radius);
         let within = |p: &DVec3| p.distance(sphere.centre) <= sphere.radius + tolerance;
         sphere.covered_samples = samples.iter().filter(|p| within(p)).count();
         uncovered.retain(|&i| !samples.get(i as usize).is_some_and(within));
     }
     certificate
-}
-
-/// The eq. 2 error of the sphere `(centre, radius)`, as `sphaera-medial` measures it.
-fn eq2_error(surface: &Surface, centre: DVec3, radius: f64) -> f64 {
-    let Ok(closest) = surface.closest(centre) else {
-        return f64::INFINITY;
-    };
-    let error = if surface.is_inside(centre) {
-        radius - closest.distance
-    } else {
-        radius + closest.distance
-    };
-    error.max(0.0)
 }
 
 impl crate::output::Report for Report {

@@ -15,12 +15,11 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use sphaera::mesh::io::write_atomic;
-use sphaera::mesh::{Length, Sphere, Surface};
+use sphaera::mesh::{Length, Surface};
 use sphaera::spheretree::export::{SphFile, TreeFormat, tree_to_text};
 use sphaera::spheretree::{
     CoverageCertificate, Effort, EvaluationOptions, MAX_BRANCH, MAX_TREE_NODES, Method, SphereTree,
-    SphereTreeError, SphereTreeOptions, SphereTreeProgress, build_with_progress,
-    evaluate_set_bounded,
+    SphereTreeError, SphereTreeOptions, SphereTreeProgress, build_with_progress, evaluate_level,
 };
 
 use crate::{
@@ -29,9 +28,6 @@ use crate::{
     output::{check_target, print_report, thousands},
     progress,
 };
-
-/// The certified evaluation's tolerance, as a fraction of the diagonal.
-const EVALUATION_TOLERANCE: f64 = 1e-3;
 
 /// What the tree is built to.
 #[derive(Debug, Clone, Copy)]
@@ -365,80 +361,64 @@ fn input_name(mesh: Option<&Path>) -> String {
 }
 
 /// Per level, its cut: sizes, construction error, certificate and (unless skipped) the
-/// certified evaluation of the cut's spheres on the surface the tree was built on.
+/// certified evaluation of the cut's spheres on the surface the tree was built on
+/// ([`evaluate_level`]).
 fn evaluate_levels(
     surface: &Surface,
     tree: &SphereTree,
     skip: bool,
     quiet: bool,
 ) -> Result<Vec<LevelReport>> {
-    // The worst error to the tolerance; the other spheres (the mean) more coarsely.
-    let options = EvaluationOptions::default()
-        .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE))
-        .with_screening(true);
+    let options = EvaluationOptions::level_report();
     let bar = progress::bar(quiet, "evaluating", tree.level_count() as u64);
     let mut out = Vec::with_capacity(tree.level_count());
     for level in 0..tree.level_count() {
         bar.set_message(format!("evaluating level {level}"));
-        let cut = tree.cut_at(level);
-        let spheres: Vec<Sphere> = cut.iter().map(|&i| tree.nodes()[i].sphere).collect();
-        let errors: Vec<f64> = cut.iter().map(|&i| tree.nodes()[i].error).collect();
         let started = Instant::now();
-        let evaluation = if skip {
-            None
+        let certificate = tree.coverage().get(level).copied();
+        let report = if skip {
+            let cut = tree.cut_at(level);
+            LevelReport {
+                level,
+                spheres: cut.len(),
+                leaves_above: cut.len() - tree.level(level).len(),
+                construction_error: cut
+                    .iter()
+                    .map(|&i| tree.nodes()[i].error)
+                    .fold(0.0, f64::max),
+                worst_error_lower: None,
+                worst_error_upper: None,
+                mean_error: None,
+                error_variance: None,
+                uncovered_fraction: None,
+                largest_gap: None,
+                certificate,
+                evaluation_seconds: 0.0,
+            }
         } else {
-            // Each node's error is a certified upper bound of its sphere's: the evaluation
-            // settles the worst with it and spends nothing on spheres that cannot be the
-            // worst.
-            Some(
-                evaluate_set_bounded(surface, &spheres, &errors, &options)
-                    .with_context(|| format!("cannot evaluate level {level}"))?,
-            )
+            let evaluated = evaluate_level(surface, tree, level, &options)
+                .with_context(|| format!("cannot evaluate level {level}"))?;
+            let coverage = &evaluated.evaluation.coverage;
+            LevelReport {
+                level,
+                spheres: evaluated.spheres.len(),
+                leaves_above: evaluated.leaves_above,
+                construction_error: evaluated.construction_error,
+                worst_error_lower: Some(evaluated.worst_lower),
+                worst_error_upper: Some(evaluated.worst_upper),
+                mean_error: Some(evaluated.mean_upper),
+                error_variance: Some(evaluated.upper_variance),
+                uncovered_fraction: Some(coverage.uncovered_fraction),
+                largest_gap: Some(coverage.largest_gap),
+                certificate,
+                evaluation_seconds: started.elapsed().as_secs_f64(),
+            }
         };
-        // Both the evaluation's upper bound and the construction error are certified
-        // upper bounds of a sphere's error: the smaller is the tighter.
-        let uppers: Option<Vec<f64>> = evaluation.as_ref().map(|e| {
-            e.fits
-                .iter()
-                .zip(&errors)
-                .map(|(fit, &error)| fit.upper.min(error))
-                .collect()
-        });
-        let (mean, variance) = uppers.as_deref().map_or((None, None), |u| {
-            let (mean, variance) = mean_and_variance(u);
-            (Some(mean), Some(variance))
-        });
-        out.push(LevelReport {
-            level,
-            spheres: cut.len(),
-            leaves_above: cut.len() - tree.level(level).len(),
-            construction_error: errors.iter().copied().fold(0.0, f64::max),
-            worst_error_lower: evaluation.as_ref().map(|e| e.worst_lower),
-            worst_error_upper: uppers
-                .as_ref()
-                .map(|u| u.iter().copied().fold(0.0, f64::max)),
-            mean_error: mean,
-            error_variance: variance,
-            uncovered_fraction: evaluation.as_ref().map(|e| e.coverage.uncovered_fraction),
-            largest_gap: evaluation.as_ref().map(|e| e.coverage.largest_gap),
-            certificate: tree.coverage().get(level).copied(),
-            evaluation_seconds: started.elapsed().as_secs_f64(),
-        });
+        out.push(report);
         bar.inc(1);
     }
     bar.finish_and_clear();
     Ok(out)
-}
-
-/// The mean and the population variance of `values` (0 and 0 for none).
-fn mean_and_variance(values: &[f64]) -> (f64, f64) {
-    if values.is_empty() {
-        return (0.0, 0.0);
-    }
-    let n = values.len() as f64;
-    let mean = values.iter().sum::<f64>() / n;
-    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n;
-    (mean, variance)
 }
 
 /// The output format of `path`, by its extension.
@@ -627,12 +607,5 @@ mod tests {
             .to_string();
         assert!(message.contains("--spheres"), "{message}");
         assert!(check_goal(Goal::Depth(3), Method::Hubbard).is_ok());
-    }
-
-    #[test]
-    fn mean_and_variance_of_a_few_values() {
-        assert_eq!(mean_and_variance(&[]), (0.0, 0.0));
-        let (mean, variance) = mean_and_variance(&[1.0, 3.0]);
-        assert!((mean - 2.0).abs() < 1e-15 && (variance - 1.0).abs() < 1e-15);
     }
 }

@@ -12,11 +12,10 @@
 //!   &SphereTreeOptions::default())`: wall-clock seconds, with the `parallel` feature on
 //!   every core;
 //! - **certified evaluation**: for every level `l` from 0 to the deepest, the cut
-//!   `tree.cut_at(l)` evaluated by `evaluate_set_bounded(&surface, &spheres, &node_errors,
-//!   &EvaluationOptions::default().with_tolerance(Length::RelativeToDiagonal(1e-3))
-//!   .with_screening(true))` (each node's error is a certified upper bound of its sphere's,
-//!   the evaluation settles the worst with it), exactly the CLI's calls; seconds for all
-//!   levels together, and per level;
+//!   `tree.cut_at(l)` evaluated by `evaluate_level(&surface, &tree, l,
+//!   &EvaluationOptions::level_report())` (each node's error is a certified upper bound of
+//!   its sphere's, the evaluation settles the worst with it), exactly the CLI's call;
+//!   seconds for all levels together, and per level;
 //! - **total**: build plus evaluation (what a user of the CLI waits for, loading aside).
 //!
 //! Per level the CSV has the cut's spheres, the certified worst error `[lower, upper]`
@@ -43,9 +42,9 @@ use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
-use sphaera::mesh::{Length, Sphere, Surface, TriMesh};
+use sphaera::mesh::{Sphere, Surface, TriMesh};
 use sphaera::spheretree::{
-    EvaluationOptions, SphereTree, SphereTreeOptions, build, evaluate_set, evaluate_set_bounded,
+    EvaluationOptions, SphereTree, SphereTreeOptions, build, evaluate_level, evaluate_set,
 };
 
 use super::load_or_skip;
@@ -59,9 +58,6 @@ pub(super) const NAME: &str = "main_job";
 
 /// The meshes of `shared/data`.
 pub(super) const MESHES: &[&str] = &["bunny_lowres.obj", "stanford-bunny.obj", "dragon_vrip.ply"];
-
-/// The certified evaluation's tolerance, as a fraction of the diagonal (the CLI's).
-const EVALUATION_TOLERANCE: f64 = 1e-3;
 
 /// Timed runs of build and evaluation per mesh (the shortest is kept).
 const RUNS: usize = 2;
@@ -194,9 +190,7 @@ fn one_run(mesh: &TriMesh) -> Result<Run> {
 
 /// The options of both evaluations: the CLI's.
 fn evaluation_options() -> EvaluationOptions {
-    EvaluationOptions::default()
-        .with_tolerance(Length::RelativeToDiagonal(EVALUATION_TOLERANCE))
-        .with_screening(true)
+    EvaluationOptions::level_report()
 }
 
 /// Every level's cut evaluated again without the node errors (untimed): fills each
@@ -238,24 +232,15 @@ fn evaluate_cuts(surface: &Surface, tree: &SphereTree) -> Result<Vec<Level>> {
     let options = evaluation_options();
     let mut levels = Vec::with_capacity(tree.level_count());
     for level in 0..tree.level_count() {
-        let cut = tree.cut_at(level);
-        let spheres: Vec<Sphere> = cut.iter().map(|&i| tree.nodes()[i].sphere).collect();
-        let errors: Vec<f64> = cut.iter().map(|&i| tree.nodes()[i].error).collect();
         let started = Instant::now();
-        let evaluation = evaluate_set_bounded(surface, &spheres, &errors, &options)
+        let evaluated = evaluate_level(surface, tree, level, &options)
             .with_context(|| format!("cannot evaluate level {level}"))?;
-        let worst_upper = evaluation
-            .fits
-            .iter()
-            .zip(&errors)
-            .map(|(fit, &error)| fit.upper.min(error))
-            .fold(0.0, f64::max);
         levels.push(Level {
             level,
-            spheres: cut.len(),
-            worst_lower: evaluation.worst_lower,
-            worst_upper,
-            node_error: errors.iter().copied().fold(0.0, f64::max),
+            spheres: evaluated.spheres.len(),
+            worst_lower: evaluated.worst_lower,
+            worst_upper: evaluated.worst_upper,
+            node_error: evaluated.construction_error,
             seconds: started.elapsed().as_secs_f64(),
             check: None,
         });

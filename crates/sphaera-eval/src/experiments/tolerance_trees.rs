@@ -52,7 +52,7 @@ pub(super) const MESHES: &[&str] = &["bunny_lowres.obj", "spot.obj", "fandisk.ob
 pub(super) const TOLERANCES: &[f64] = &[4.0, 2.0, 1.0, 0.5];
 
 /// The certified evaluation's tolerance, as a fraction of the diagonal (the CLI's).
-const EVALUATION_TOLERANCE: f64 = 1e-3;
+const EVALUATION_TOLERANCE: f64 = sphaera::spheretree::evaluate::LEVEL_REPORT_TOLERANCE;
 
 /// Timed runs per tree (the shortest is kept).
 const RUNS: usize = 2;

@@ -723,20 +723,58 @@ impl<'s> MedialApproximation<'s> {
     }
 }
 
+/// The paper's eq. 2: how far a sphere of radius `radius` reaches beyond the solid, at
+/// most, when its center is `depth` from the surface, inside the solid or not: `r − d`
+/// for a center inside (0 when the whole sphere is inside), `r + d` outside. The one
+/// formula every crate uses for a sphere's error.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::eq2_error;
+///
+/// assert_eq!(eq2_error(1.0, 0.25, true), 0.75);
+/// assert_eq!(eq2_error(0.1, 0.25, true), 0.0);
+/// assert_eq!(eq2_error(1.0, 0.25, false), 1.25);
+/// ```
+#[must_use]
+pub fn eq2_error(radius: f64, depth: f64, inside: bool) -> f64 {
+    if inside {
+        (radius - depth).max(0.0)
+    } else {
+        radius + depth
+    }
+}
+
+/// [`eq2_error`] of the sphere `(center, radius)` as the medial approximation measures it:
+/// the surface's inside test and exact closest point (infinite for a non-finite sphere).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_medial::{DVec3, Surface, surface_eq2_error};
+///
+/// let surface = Surface::new(&sphaera_mesh::shapes::cube(2.0, 1)?)?;
+/// assert_eq!(surface_eq2_error(&surface, DVec3::ZERO, 0.5), 0.0);
+/// assert_eq!(surface_eq2_error(&surface, DVec3::ZERO, 1.5), 0.5);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[must_use]
+pub fn surface_eq2_error(surface: &Surface, center: DVec3, radius: f64) -> f64 {
+    measure_sphere(surface, center, radius).error
+}
+
 /// The record of the sphere `(centre, radius)`: inside or not, its error and closest
 /// surface point; not a member yet.
 fn measure_sphere(surface: &Surface, centre: DVec3, radius: f64) -> Record {
     let (inside, error, closest) = if centre.is_finite() && radius.is_finite() {
         let inside = surface.is_inside(centre);
         match surface.closest(centre) {
-            Ok(answer) => {
-                let error = if inside {
-                    radius - answer.distance
-                } else {
-                    radius + answer.distance
-                };
-                (inside, error.max(0.0), answer.point)
-            }
+            Ok(answer) => (
+                inside,
+                eq2_error(radius, answer.distance, inside),
+                answer.point,
+            ),
             Err(_) => (false, f64::INFINITY, centre),
         }
     } else {

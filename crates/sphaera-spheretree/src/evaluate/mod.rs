@@ -114,6 +114,7 @@
 //! sample, per task) gives identical results. Only [`SetEvaluation::elapsed`] varies.
 
 mod coverage;
+mod level;
 mod options;
 mod patch;
 mod set;
@@ -121,9 +122,10 @@ mod sphere_bvh;
 mod sphere_fit;
 
 pub use coverage::{Coverage, coverage};
+pub use level::{LevelEvaluation, evaluate_level};
 pub use options::{
     DEFAULT_COVERAGE_SAMPLES, DEFAULT_COVERAGE_SEED, DEFAULT_MAX_PATCHES,
-    DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions, SCREENING_FACTOR,
+    DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions, LEVEL_REPORT_TOLERANCE, SCREENING_FACTOR,
 };
 pub use set::{SetEvaluation, evaluate_set, evaluate_set_bounded};
 pub use sphere_fit::{SphereFit, sphere_error, sphere_errors};

@@ -13,6 +13,10 @@ pub const DEFAULT_MAX_PATCHES: usize = 50_000;
 /// Default number of independent surface samples of the coverage measure.
 pub const DEFAULT_COVERAGE_SAMPLES: usize = 100_000;
 
+/// The tolerance of [`EvaluationOptions::level_report`], as a fraction of the diagonal:
+/// what the CLI, the Python bindings and the experiments evaluate each level's cut to.
+pub const LEVEL_REPORT_TOLERANCE: f64 = 1e-3;
+
 /// Default seed of the coverage samples.
 pub const DEFAULT_COVERAGE_SEED: u64 = 0x5EA1;
 
@@ -100,6 +104,18 @@ impl EvaluationOptions {
     pub fn with_coverage_samples(mut self, samples: usize) -> Self {
         self.coverage_samples = samples;
         self
+    }
+
+    /// The options every front end reports a tree's levels with ([`evaluate_level`]): the
+    /// worst error to [`LEVEL_REPORT_TOLERANCE`] of the diagonal, the other spheres (the
+    /// mean) more coarsely (screening on).
+    ///
+    /// [`evaluate_level`]: crate::evaluate::evaluate_level
+    #[must_use]
+    pub fn level_report() -> Self {
+        Self::default()
+            .with_tolerance(Length::RelativeToDiagonal(LEVEL_REPORT_TOLERANCE))
+            .with_screening(true)
     }
 
     /// With screening on or off ([`EvaluationOptions::screening`]).

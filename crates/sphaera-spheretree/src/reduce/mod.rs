@@ -101,14 +101,8 @@ pub(crate) fn centre_depth(surface: &Surface, centre: DVec3) -> (f64, bool) {
 }
 
 /// The eq. 2 error of a sphere of radius `radius` whose centre is `depth` from the
-/// surface, inside or not.
-pub(crate) fn eq2_error(radius: f64, depth: f64, inside: bool) -> f64 {
-    if inside {
-        (radius - depth).max(0.0)
-    } else {
-        radius + depth
-    }
-}
+/// surface, inside or not (the medial crate's, the one formula).
+pub(crate) use sphaera_medial::eq2_error;
 
 /// Indices (ascending) of `points` within `sphere` (with a relative tolerance for
 /// rounding).

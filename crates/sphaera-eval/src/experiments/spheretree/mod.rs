@@ -126,7 +126,7 @@ pub const RUNS: usize = 2;
 
 /// Width of the certified error interval of each sphere, as a fraction of the diagonal
 /// (the value `sphaera spheretree` uses).
-pub const EVALUATION_TOLERANCE: f64 = 1e-3;
+pub const EVALUATION_TOLERANCE: f64 = sphaera::spheretree::evaluate::LEVEL_REPORT_TOLERANCE;
 
 /// The original toolkit on `bunny_lowres.obj`, from issue 6 (not measured here): name,
 /// CPU seconds (single thread) if the issue gives them, worst error in % of the diagonal
