@@ -170,9 +170,9 @@ pub fn box_of_slivers(height: f64) -> TriMesh {
     let mut triangles = Vec::new();
     for quad in quads {
         let [p, q] = [quad[0], quad[1]].map(|i| positions[i as usize]);
-        let centre = quad.iter().map(|&i| positions[i as usize]).sum::<DVec3>() * 0.25;
+        let center = quad.iter().map(|&i| positions[i as usize]).sum::<DVec3>() * 0.25;
         let middle = (p + q) * 0.5;
-        let m = middle + (centre - middle).normalize() * height;
+        let m = middle + (center - middle).normalize() * height;
         let mi = positions.len() as u32;
         positions.push(m);
         for k in 0..4 {

@@ -71,9 +71,9 @@ fn check(name: &str, mesh: &TriMesh) {
     checker.step("adaptive build", &medial, true);
 
     // Two halves of the samples, refined one after the other (as sphere-tree siblings).
-    let centre = samples.iter().copied().sum::<DVec3>() / samples.len() as f64;
+    let center = samples.iter().copied().sum::<DVec3>() / samples.len() as f64;
     let (low, high): (Vec<u32>, Vec<u32>) =
-        (0..samples.len() as u32).partition(|&s| samples[s as usize].x < centre.x);
+        (0..samples.len() as u32).partition(|&s| samples[s as usize].x < center.x);
     for (half, region) in [("low", &low), ("high", &high)] {
         let mut goal = RegionOptions::default()
             .with_min_spheres(80)
@@ -124,7 +124,7 @@ impl Checker<'_, '_> {
             for &s in &sphere.covers {
                 let p = medial.samples()[s as usize];
                 assert!(
-                    p.distance(sphere.centre) <= sphere.radius + 1e-9 * self.diagonal,
+                    p.distance(sphere.center) <= sphere.radius + 1e-9 * self.diagonal,
                     "{at}: sample {s} listed but outside its sphere"
                 );
             }
@@ -138,7 +138,7 @@ impl Checker<'_, '_> {
                 assert!(
                     spheres
                         .iter()
-                        .any(|b| p.distance(b.centre) <= b.radius + 1e-9 * self.diagonal),
+                        .any(|b| p.distance(b.center) <= b.radius + 1e-9 * self.diagonal),
                     "{at}: sample {s} ({p}) is in no sphere"
                 );
             }
@@ -159,11 +159,11 @@ impl Checker<'_, '_> {
             let tolerance = 1e-9 * (self.diagonal + sphere.radius);
             let mut on = 0;
             for &p in &forming {
-                let d = p.distance(sphere.centre);
+                let d = p.distance(sphere.center);
                 assert!(
                     d >= sphere.radius - tolerance,
                     "{at}: forming point {p} is inside the Voronoi sphere at {} (r = {}) by {}",
-                    sphere.centre,
+                    sphere.center,
                     sphere.radius,
                     sphere.radius - d
                 );
@@ -172,7 +172,7 @@ impl Checker<'_, '_> {
             assert!(
                 on >= 4,
                 "{at}: the Voronoi sphere at {} passes through {on} forming points",
-                sphere.centre
+                sphere.center
             );
         }
     }
@@ -181,14 +181,14 @@ impl Checker<'_, '_> {
     fn error_is_eq2(&mut self, at: &str, sphere: &MedialSphere) {
         let exact = self
             .session
-            .closest(sphere.centre)
-            .unwrap_or_else(|e| panic!("{at}: closest point of {}: {e}", sphere.centre));
+            .closest(sphere.center)
+            .unwrap_or_else(|e| panic!("{at}: closest point of {}: {e}", sphere.center));
         let tolerance = 1e-9 * (self.diagonal + sphere.radius);
         assert!(
-            (exact.distance - sphere.closest.distance(sphere.centre)).abs() <= tolerance,
+            (exact.distance - sphere.closest.distance(sphere.center)).abs() <= tolerance,
             "{at}: the sphere at {} has its closest surface point {} away; sweep says {}",
-            sphere.centre,
-            sphere.closest.distance(sphere.centre),
+            sphere.center,
+            sphere.closest.distance(sphere.center),
             exact.distance
         );
         let expected = match sphere.kind {
@@ -200,7 +200,7 @@ impl Checker<'_, '_> {
             "{at}: {:?} sphere at {} (r = {}): error {} but eq. 2 with sweep's distance {} \
              gives {expected}",
             sphere.kind,
-            sphere.centre,
+            sphere.center,
             sphere.radius,
             sphere.error,
             exact.distance

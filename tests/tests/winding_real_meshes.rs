@@ -126,7 +126,7 @@ fn open_and_non_manifold_scans_get_sensible_answers() {
     let bunny = io::load(data.join("stanford-bunny.obj")).expect("the bunny loads");
     let winding = WindingNumber::new(&bunny).expect("a non-empty mesh");
     let w = winding.winding_number(bunny.bounding_box().center());
-    assert!(w > 0.95, "w = {w} at the bunny's centre");
+    assert!(w > 0.95, "w = {w} at the bunny's center");
 }
 
 #[test]

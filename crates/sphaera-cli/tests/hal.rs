@@ -187,7 +187,7 @@ fn a_genus_zero_mesh_gets_a_3d_tree_and_a_torus_a_clear_error() {
     let points = dir.path().join("p.txt");
     std::fs::write(
         &points,
-        "# centre, outside, a vertex\n0 0 0\n2 0 0\n0 0 -1\n",
+        "# center, outside, a vertex\n0 0 0\n2 0 0\n0 0 -1\n",
     )
     .unwrap();
     let report = json(&sphaera(&[

@@ -20,14 +20,14 @@ fn written_spheres(path: &Path) -> (serde_json::Value, Vec<(DVec3, f64)>) {
         .expect("an array")
         .iter()
         .map(|s| {
-            let centre: Vec<f64> = s["centre"]
+            let center: Vec<f64> = s["center"]
                 .as_array()
-                .expect("a centre")
+                .expect("a center")
                 .iter()
                 .map(|c| c.as_f64().expect("a coordinate"))
                 .collect();
             let radius = s["radius"].as_f64().expect("a radius");
-            (DVec3::new(centre[0], centre[1], centre[2]), radius)
+            (DVec3::new(center[0], center[1], center[2]), radius)
         })
         .collect();
     (file, spheres)
@@ -49,7 +49,7 @@ fn outside_every_sphere(mesh: &TriMesh, spheres: &[(DVec3, f64)]) -> Vec<DVec3> 
         .filter(|&p| {
             !spheres
                 .iter()
-                .any(|&(centre, radius)| centre.distance(p) <= radius + tolerance)
+                .any(|&(center, radius)| center.distance(p) <= radius + tolerance)
         })
         .collect()
 }
@@ -168,7 +168,7 @@ fn medial_json_reports_the_certificate_and_grown_spheres_consistently() {
     assert_eq!(ungrown.len(), spheres.len());
     let field = |s: &serde_json::Value, name: &str| s[name].as_f64().expect(name);
     for ((s, before), g) in spheres.iter().zip(ungrown).zip(&growths) {
-        assert_eq!(s["centre"], before["centre"]);
+        assert_eq!(s["center"], before["center"]);
         let radius = field(s, "radius");
         assert!((radius - (field(before, "radius") + g)).abs() <= 1e-12 * radius.max(1.0));
         if *g > 0.0 {

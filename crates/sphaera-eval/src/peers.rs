@@ -222,7 +222,7 @@ fn parse_morphit(line: &str) -> Result<MorphitRun> {
     };
     if centers.len() != radii.len() {
         bail!(
-            "morphit_spheres.py printed {} centres and {} radii",
+            "morphit_spheres.py printed {} centers and {} radii",
             centers.len(),
             radii.len()
         );

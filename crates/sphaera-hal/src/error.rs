@@ -7,10 +7,10 @@ use std::path::PathBuf;
 #[non_exhaustive]
 pub enum HalError {
     /// Too few vertices: a polygon needs three, a polyline two.
-    #[error("a {what} needs at least {needed} vertices, got {count}")]
+    #[error("a {shape} needs at least {needed} vertices, got {count}")]
     TooFewVertices {
         /// `"polygon"` or `"polyline"`.
-        what: &'static str,
+        shape: &'static str,
         /// The vertices given.
         count: usize,
         /// The vertices needed.

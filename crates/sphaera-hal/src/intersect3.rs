@@ -236,9 +236,9 @@ fn hull(a: Region, b: Region) -> Region {
                 b
             } else {
                 let radius = 0.5 * (gap + r + s);
-                let centre = c + (d - c) * ((radius - r) / gap);
+                let center = c + (d - c) * ((radius - r) / gap);
                 // A relative margin for the rounding of the centre.
-                Region::Ball(centre, radius * (1.0 + 1e-12))
+                Region::Ball(center, radius * (1.0 + 1e-12))
             }
         }
         _ => Region::Everything,
@@ -256,12 +256,12 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
         .map(|v| map.point(mesh.positions()[v as usize]));
     let Some(bound) = node.bound else {
         // A leaf: the ball around its face.
-        let centre = (corners[0] + corners[1] + corners[2]) / 3.0;
+        let center = (corners[0] + corners[1] + corners[2]) / 3.0;
         let radius = corners
             .iter()
-            .map(|c| c.distance(centre))
+            .map(|c| c.distance(center))
             .fold(0.0, f64::max);
-        let ball = Region::Ball(centre, radius);
+        let ball = Region::Ball(center, radius);
         return Volume {
             regions: [ball, ball],
         };
@@ -276,27 +276,27 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
 /// ball around both, twice, for a union (which is not convex); everything for a
 /// degenerate triangle.
 pub(crate) fn bound_regions(bound: &Bound3, corners: [DVec3; 3]) -> [Region; 2] {
-    let Some((centre, radius, normal)) = circle(corners) else {
+    let Some((center, radius, normal)) = circle(corners) else {
         return [Region::Everything, Region::Everything];
     };
     let region = |k: f64| {
         if k == f64::INFINITY {
-            Region::HalfSpace(centre, normal)
+            Region::HalfSpace(center, normal)
         } else if k == f64::NEG_INFINITY {
-            Region::HalfSpace(centre, -normal)
+            Region::HalfSpace(center, -normal)
         } else if k.abs() > FLAT_BULGE {
             // A ball this flat has a radius too large to compare distances with; the
             // half-space just beyond its cap holds it (twice the cap's depth below the
             // plane, `R / (√(1 + k²) + |k|)`).
             let depth = 2.0 * radius / ((1.0 + k * k).sqrt() + k.abs());
             if k > 0.0 {
-                Region::HalfSpace(centre - normal * depth, normal)
+                Region::HalfSpace(center - normal * depth, normal)
             } else {
-                Region::HalfSpace(centre + normal * depth, -normal)
+                Region::HalfSpace(center + normal * depth, -normal)
             }
         } else {
             Region::Ball(
-                centre + normal * (k * radius),
+                center + normal * (k * radius),
                 radius * (1.0 + k * k).sqrt(),
             )
         }

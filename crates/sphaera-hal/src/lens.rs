@@ -41,7 +41,7 @@ pub enum SignedDisc {
     /// side of the chord from the vertex that defines it.
     Disc {
         /// The centre.
-        centre: DVec2,
+        center: DVec2,
         /// The signed radius.
         radius: f64,
     },
@@ -204,7 +204,7 @@ fn signed_disc(a: DVec2, b: DVec2, k: f64, side: f64) -> SignedDisc {
     let t = k * h;
     let radius = h.hypot(t);
     SignedDisc::Disc {
-        centre: 0.5 * (a + b) + normal * t,
+        center: 0.5 * (a + b) + normal * t,
         radius: if t * side < 0.0 { -radius } else { radius },
     }
 }

@@ -45,7 +45,7 @@ impl Polyline2 {
         };
         if points.len() < needed {
             return Err(HalError::TooFewVertices {
-                what,
+                shape: what,
                 count: points.len(),
                 needed,
             });

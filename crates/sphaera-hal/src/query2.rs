@@ -89,9 +89,9 @@ impl HalTree2 {
         if !self.polyline().is_closed() {
             return Err(HalError::OpenPolyline);
         }
-        if let Some((centre, radius)) = self.root_disc() {
-            let slack = CONTAINMENT_SLACK * (radius + centre.abs().max_element());
-            if x.distance(centre) > radius + slack {
+        if let Some((center, radius)) = self.root_disc() {
+            let slack = CONTAINMENT_SLACK * (radius + center.abs().max_element());
+            if x.distance(center) > radius + slack {
                 return Ok(Location::Outside);
             }
         }
@@ -249,8 +249,8 @@ impl Placed<'_> {
                     [Region::Everything, Region::Everything]
                 } else {
                     lens.discs(a, b).map(|d| match d {
-                        crate::SignedDisc::Disc { centre, radius } => {
-                            Region::Disc(centre, radius.abs())
+                        crate::SignedDisc::Disc { center, radius } => {
+                            Region::Disc(center, radius.abs())
                         }
                         crate::SignedDisc::HalfPlane { point, inward } => {
                             Region::HalfPlane(point, inward)

@@ -171,17 +171,17 @@ impl GenusZeroSurface {
             }
         }
         let s = s.max(0.0);
-        let centre = middle + direction * s;
+        let center = middle + direction * s;
         let radius = (h2 + s * s).sqrt().max(
             used.iter()
-                .map(|&v| at(v).distance(centre))
+                .map(|&v| at(v).distance(center))
                 .fold(0.0, f64::max),
         );
         let mut three = [a, b, third];
         three.sort_unstable();
         Ok(RootBall {
             vertices: three,
-            sphere: Sphere::new(centre, radius),
+            sphere: Sphere::new(center, radius),
         })
     }
 

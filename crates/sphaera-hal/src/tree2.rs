@@ -367,26 +367,26 @@ pub struct Approximation {
 fn level_zero(points: &[DVec2]) -> Result<(usize, usize, (DVec2, f64)), HalError> {
     let lifted: Vec<DVec3> = points.iter().map(|p| p.extend(0.0)).collect();
     let ball = minimum_enclosing_ball_with_support(&lifted)?;
-    let centre = ball.sphere.center.truncate();
+    let center = ball.sphere.center.truncate();
     let radius = ball.sphere.radius;
     let on: Vec<usize> = (0..points.len())
-        .filter(|&i| points[i].distance(centre) >= radius * (1.0 - ON_DISC))
+        .filter(|&i| points[i].distance(center) >= radius * (1.0 - ON_DISC))
         .collect();
     // Every vertex at the centre (a polygon of one repeated point): any two.
-    let pair = farthest_pair(points, &on, centre).unwrap_or((0, 1));
-    Ok((pair.0, pair.1, (centre, radius)))
+    let pair = farthest_pair(points, &on, center).unwrap_or((0, 1));
+    Ok((pair.0, pair.1, (center, radius)))
 }
 
-/// The two of `on` (vertices on a circle around `centre`) farthest apart, lowest indices
+/// The two of `on` (vertices on a circle around `center`) farthest apart, lowest indices
 /// on ties, `(i, j)` with `i < j`: the most nearly antipodal pair, found by sorting by
 /// angle and looking across (`O(k log k)` for `k` vertices on the circle, which is every
 /// vertex of a regular polygon).
-fn farthest_pair(points: &[DVec2], on: &[usize], centre: DVec2) -> Option<(usize, usize)> {
+fn farthest_pair(points: &[DVec2], on: &[usize], center: DVec2) -> Option<(usize, usize)> {
     if on.len() < 2 {
         return None;
     }
     let angle = |i: usize| {
-        let d = points[i] - centre;
+        let d = points[i] - center;
         d.y.atan2(d.x)
     };
     let mut by_angle: Vec<(f64, usize)> = on.iter().map(|&i| (angle(i), i)).collect();

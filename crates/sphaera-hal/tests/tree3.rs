@@ -141,13 +141,13 @@ fn check_bound(name: &str, mesh: &TriMesh, node: &Node3) {
     let n = normal.normalize();
     // Circumcentre.
     let (ab, ac) = (b - a, c - a);
-    let centre = a
+    let center = a
         + (normal.cross(ab) * ac.length_squared() + ac.cross(normal) * ab.length_squared())
             / (2.0 * normal.length_squared());
-    let r = centre.distance(a);
+    let r = center.distance(a);
     let inside = |k: f64, x: DVec3| {
-        let power = x.distance_squared(centre) - r * r;
-        let h = (x - centre).dot(n);
+        let power = x.distance_squared(center) - r * r;
+        let h = (x - center).dot(n);
         if k == f64::INFINITY {
             return h >= -1e-9 * r;
         }

@@ -49,12 +49,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     spheres.sort_by(|a, b| b.error.total_cmp(&a.error));
     for s in spheres.iter().take(5) {
         println!(
-            "  {:?} centre {:.3?} r {:.4} e {:.4} d {:.4} covers {}",
+            "  {:?} center {:.3?} r {:.4} e {:.4} d {:.4} covers {}",
             s.kind,
-            s.centre.to_array(),
+            s.center.to_array(),
             s.radius,
             s.error,
-            (s.closest - s.centre).length(),
+            (s.closest - s.center).length(),
             s.covers.len()
         );
     }

@@ -267,14 +267,14 @@ fn voronoi_cells_surround_their_points() {
         let cell = delaunay.voronoi_cell(v).unwrap();
         total += cell.tetrahedra.len();
         for &t in &cell.tetrahedra {
-            let (centre, radius) = delaunay.circumsphere(t).unwrap();
+            let (center, radius) = delaunay.circumsphere(t).unwrap();
             // The Voronoi vertex is equidistant from the cell's point and its other
             // forming points, and no point is closer.
-            let to_v = (delaunay.point(v) - centre).length();
+            let to_v = (delaunay.point(v) - center).length();
             assert!((to_v - radius).abs() <= 1e-9 * radius.max(1.0));
             let nearest = points
                 .iter()
-                .map(|p| (*p - centre).length())
+                .map(|p| (*p - center).length())
                 .fold(f64::INFINITY, f64::min);
             assert!(nearest >= radius * (1.0 - 1e-9) - 1e-12);
         }

@@ -32,14 +32,14 @@ fn check(mesh: &TriMesh, medial: &MedialApproximation<'_>, name: &str) {
         assert!(
             spheres
                 .iter()
-                .any(|s| (p - s.centre).length() <= s.radius + tolerance),
+                .any(|s| (p - s.center).length() <= s.radius + tolerance),
             "{name}: sample {i} is not covered"
         );
     }
     assert!(medial.uncovered_samples().is_empty(), "{name}");
     let brute = DistanceToMesh::new(mesh);
     for s in &spheres {
-        let d = brute.distance(s.centre);
+        let d = brute.distance(s.center);
         let expected = match s.kind {
             SphereKind::Internal => s.radius - d,
             SphereKind::Cover | SphereKind::External => s.radius + d,
@@ -51,7 +51,7 @@ fn check(mesh: &TriMesh, medial: &MedialApproximation<'_>, name: &str) {
         );
         for &c in &s.covers {
             let q = medial.samples()[c as usize];
-            assert!((q - s.centre).length() <= s.radius + tolerance);
+            assert!((q - s.center).length() <= s.radius + tolerance);
         }
     }
 }
@@ -138,7 +138,7 @@ fn the_same_input_gives_the_same_spheres() {
 fn digest(spheres: &[sphaera_medial::MedialSphere]) -> u64 {
     let mut hash = 0xcbf2_9ce4_8422_2325_u64;
     for s in spheres {
-        for bits in [s.centre.x, s.centre.y, s.centre.z, s.radius, s.error].map(f64::to_bits) {
+        for bits in [s.center.x, s.center.y, s.center.z, s.radius, s.error].map(f64::to_bits) {
             hash = (hash ^ bits).wrapping_mul(0x0100_0000_01b3);
         }
     }

@@ -244,39 +244,39 @@ fn group_spheres(spheres: &[Sphere]) -> Vec<Vec<usize>> {
         return vec![(0..n).collect()];
     }
     let k = (n as f64).sqrt().round() as usize;
-    let nearest = |p: glam::DVec3, centres: &[glam::DVec3]| -> usize {
+    let nearest = |p: glam::DVec3, centers: &[glam::DVec3]| -> usize {
         let mut best = 0;
-        for (j, c) in centres.iter().enumerate() {
-            if p.distance_squared(*c) < p.distance_squared(centres[best]) {
+        for (j, c) in centers.iter().enumerate() {
+            if p.distance_squared(*c) < p.distance_squared(centers[best]) {
                 best = j;
             }
         }
         best
     };
-    let mut centres = vec![spheres[0].center];
-    while centres.len() < k {
+    let mut centers = vec![spheres[0].center];
+    while centers.len() < k {
         let mut far = (0, -1.0);
         for (i, s) in spheres.iter().enumerate() {
             let d = s
                 .center
-                .distance_squared(centres[nearest(s.center, &centres)]);
+                .distance_squared(centers[nearest(s.center, &centers)]);
             if d > far.1 {
                 far = (i, d);
             }
         }
-        centres.push(spheres[far.0].center);
+        centers.push(spheres[far.0].center);
     }
     let mut assignment = vec![0; n];
     for _ in 0..20 {
         for (a, s) in assignment.iter_mut().zip(spheres) {
-            *a = nearest(s.center, &centres);
+            *a = nearest(s.center, &centers);
         }
         let mut sums = vec![(glam::DVec3::ZERO, 0usize); k];
         for (&a, s) in assignment.iter().zip(spheres) {
             sums[a].0 += s.center;
             sums[a].1 += 1;
         }
-        for (c, (sum, count)) in centres.iter_mut().zip(sums) {
+        for (c, (sum, count)) in centers.iter_mut().zip(sums) {
             if count > 0 {
                 *c = sum / count as f64;
             }

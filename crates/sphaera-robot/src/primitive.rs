@@ -226,12 +226,12 @@ impl Primitive {
                     (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
                     |(lo, hi), &p| (lo.min(p), hi.max(p)),
                 );
-                let centre = 0.5 * (lo + hi);
+                let center = 0.5 * (lo + hi);
                 let scale = 2.0 * half / (hi - lo);
                 let positions = cube
                     .positions()
                     .iter()
-                    .map(|&p| (p - centre) * scale)
+                    .map(|&p| (p - center) * scale)
                     .collect();
                 (
                     sphaera_mesh::TriMesh::new(positions, cube.triangles().to_vec()).ok()?,
@@ -513,9 +513,9 @@ fn box_spheres(half: DVec3, count: usize) -> Vec<Sphere> {
                     .iter()
                     .any(|&(a, m)| a == 0 || a + 1 == m);
                 if on_boundary {
-                    let centre =
+                    let center =
                         -half + cell * DVec3::new(i as f64 + 0.5, j as f64 + 0.5, k as f64 + 0.5);
-                    spheres.push(Sphere::new(centre, radius));
+                    spheres.push(Sphere::new(center, radius));
                 }
             }
         }

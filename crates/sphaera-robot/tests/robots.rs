@@ -146,7 +146,7 @@ fn every_format_reads_back_with_the_same_spheres() {
             .collect();
         assert_eq!(spheres.len(), link.spheres.len());
         for (s, expected) in spheres.iter().zip(&link.spheres) {
-            let centre: Vec<f64> = s
+            let center: Vec<f64> = s
                 .attribute("center")
                 .expect("center")
                 .split_whitespace()
@@ -157,7 +157,7 @@ fn every_format_reads_back_with_the_same_spheres() {
                 .expect("radius")
                 .parse()
                 .expect("a number");
-            assert_eq!(DVec3::from_slice(&centre), expected.center);
+            assert_eq!(DVec3::from_slice(&center), expected.center);
             assert_eq!(radius, expected.radius);
         }
     }
@@ -204,13 +204,13 @@ fn every_format_reads_back_with_the_same_spheres() {
             .expect("a list per link");
         assert_eq!(list.len(), link.spheres.len());
         for (entry, expected) in list.iter().zip(&link.spheres) {
-            let centre: Vec<f64> = entry["center"]
+            let center: Vec<f64> = entry["center"]
                 .as_vec()
                 .expect("center")
                 .iter()
                 .map(|v| v.as_f64().expect("a float"))
                 .collect();
-            assert_eq!(DVec3::from_slice(&centre), expected.center);
+            assert_eq!(DVec3::from_slice(&center), expected.center);
             assert!(close(
                 entry["radius"].as_f64().expect("radius"),
                 expected.radius
@@ -318,10 +318,10 @@ fn frames_are_right() {
     for &p in &placed {
         assert!(covered(&link.spheres, p), "{p} uncovered");
     }
-    let centre = placed.iter().copied().sum::<DVec3>() / placed.len() as f64;
+    let center = placed.iter().copied().sum::<DVec3>() / placed.len() as f64;
     assert!(
-        link.bounding_sphere.center.distance(centre) < 0.05,
-        "{} against {centre}",
+        link.bounding_sphere.center.distance(center) < 0.05,
+        "{} against {center}",
         link.bounding_sphere.center
     );
     assert!(link.bounding_sphere.center.distance(DVec3::ZERO) > 0.3);

@@ -31,6 +31,7 @@ use crate::{InstanceDetail, SceneError};
 /// assert_eq!(options.mesh_ladder_step, 2f64.sqrt());
 /// ```
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ModelOptions {
     /// The base sphere-tree's options: the tree built with the model (default:
     /// [`SphereTreeOptions::default`] to depth 2, 64 spheres at branch 8; any method).
@@ -81,6 +82,7 @@ pub struct ModelOptions {
 /// assert_eq!((options.step_degrees, options.resolution, options.outline_only), (30.0, 128, true));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SilhouetteOptions {
     /// The views: a latitude–longitude grid every this many degrees (must divide 180
     /// and lie in `(0, 90]`; default 30, 62 views).
@@ -144,6 +146,51 @@ impl ModelOptions {
     #[must_use]
     pub fn with_simplify(mut self, simplify: SimplifyOptions) -> Self {
         self.simplify = simplify;
+        self
+    }
+
+    /// With the given ratio between the error bounds of successive mesh levels.
+    #[must_use]
+    pub fn with_mesh_ladder_step(mut self, step: f64) -> Self {
+        self.mesh_ladder_step = step;
+        self
+    }
+
+    /// With at most this many mesh levels between the base mesh and the input.
+    #[must_use]
+    pub fn with_mesh_ladder_levels(mut self, levels: usize) -> Self {
+        self.mesh_ladder_levels = levels;
+        self
+    }
+
+    /// With the given silhouette-label options.
+    #[must_use]
+    pub fn with_silhouette(mut self, silhouette: SilhouetteOptions) -> Self {
+        self.silhouette = silhouette;
+        self
+    }
+}
+
+impl SilhouetteOptions {
+    /// With views every `degrees` degrees of latitude and longitude.
+    #[must_use]
+    pub fn with_step_degrees(mut self, degrees: f64) -> Self {
+        self.step_degrees = degrees;
+        self
+    }
+
+    /// With `resolution` cells across each view's image.
+    #[must_use]
+    pub fn with_resolution(mut self, resolution: usize) -> Self {
+        self.resolution = resolution;
+        self
+    }
+
+    /// Labelling the distance to the outline alone (`true`) or to the internal
+    /// silhouettes too.
+    #[must_use]
+    pub fn with_outline_only(mut self, outline_only: bool) -> Self {
+        self.outline_only = outline_only;
         self
     }
 }

@@ -19,6 +19,7 @@ use crate::{Camera, Instance, Scene, SceneError, Tolerance};
 /// assert_eq!((options.interior, options.threshold_cells), (4.0, 2.0));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct SilhouetteDetailOptions {
     /// How many times the tolerance the interior may be off (at least 1; default 4). An
     /// error inside the outline moves shading, not the outline, and shows far less.
@@ -35,6 +36,22 @@ impl Default for SilhouetteDetailOptions {
             interior: 4.0,
             threshold_cells: 2.0,
         }
+    }
+}
+
+impl SilhouetteDetailOptions {
+    /// With the interior allowed `interior` times the tolerance.
+    #[must_use]
+    pub fn with_interior(mut self, interior: f64) -> Self {
+        self.interior = interior;
+        self
+    }
+
+    /// With the contour region `cells` label cells wide.
+    #[must_use]
+    pub fn with_threshold_cells(mut self, cells: f32) -> Self {
+        self.threshold_cells = cells;
+        self
     }
 }
 

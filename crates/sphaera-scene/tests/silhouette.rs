@@ -13,15 +13,11 @@ use proptest::prelude::*;
 use sphaera_mesh::geometry::Similarity;
 use sphaera_mesh::{DVec3, shapes};
 use sphaera_scene::{
-    Camera, ModelOptions, ObjectModel, Scene, SceneError, SilhouetteDetailOptions,
-    SilhouetteOptions, Tolerance,
+    Camera, ObjectModel, Scene, SceneError, SilhouetteDetailOptions, SilhouetteOptions, Tolerance,
 };
 
 fn options(interior: f64) -> SilhouetteDetailOptions {
-    SilhouetteDetailOptions {
-        interior,
-        ..SilhouetteDetailOptions::default()
-    }
+    SilhouetteDetailOptions::default().with_interior(interior)
 }
 
 fn camera(eye: DVec3) -> Camera {
@@ -207,10 +203,7 @@ fn bad_options_are_refused_with_the_reason() {
         options(0.5),
         options(f64::NAN),
         options(f64::INFINITY),
-        SilhouetteDetailOptions {
-            threshold_cells: f32::NAN,
-            ..SilhouetteDetailOptions::default()
-        },
+        SilhouetteDetailOptions::default().with_threshold_cells(f32::NAN),
     ] {
         let error = scene
             .silhouette_detail(&camera, Tolerance::Pixels(1.0), &bad)
@@ -230,14 +223,8 @@ fn bad_options_are_refused_with_the_reason() {
     assert!(matches!(error, SceneError::InvalidTolerance { .. }));
 
     // A view step that does not divide 180°: the model has no labels, and says why.
-    let mut model_options = ModelOptions {
-        silhouette: SilhouetteOptions {
-            step_degrees: 7.0,
-            ..SilhouetteOptions::default()
-        },
-        ..common::options()
-    };
-    model_options.tree = common::options().tree;
+    let model_options =
+        common::options().with_silhouette(SilhouetteOptions::default().with_step_degrees(7.0));
     let model = ObjectModel::build(
         "odd-views",
         shapes::sphere(1.0, 8).expect("sphere"),

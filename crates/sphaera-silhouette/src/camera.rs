@@ -10,7 +10,7 @@ use crate::views::Projection;
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
     /// The bounding sphere's centre.
-    centre: DVec3,
+    center: DVec3,
     /// The bounding radius (1 for a mesh that is a single point).
     radius: f64,
     /// Right, up and toward the camera (orthonormal).
@@ -43,7 +43,7 @@ impl Camera {
             )),
         };
         Self {
-            centre: bounds.center,
+            center: bounds.center,
             radius,
             u,
             v,
@@ -57,7 +57,7 @@ impl Camera {
     pub fn project(&self, p: DVec3) -> DVec2 {
         match self.eye {
             None => {
-                let d = p - self.centre;
+                let d = p - self.center;
                 DVec2::new(d.dot(self.u), d.dot(self.v)) / self.radius
             }
             Some((eye, cotangent)) => {

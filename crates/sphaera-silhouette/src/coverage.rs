@@ -41,7 +41,7 @@ pub fn coverage(
     let image = project_all(mesh, &camera);
     let mut covered = vec![false; resolution * resolution];
     for t in mesh.triangles() {
-        for_each_covered_centre(t.map(|v| image[v as usize]), resolution, |cell, _| {
+        for_each_covered_center(t.map(|v| image[v as usize]), resolution, |cell, _| {
             covered[cell] = true;
         });
     }
@@ -67,9 +67,9 @@ pub(crate) fn project_all(mesh: &TriMesh, camera: &Camera) -> Vec<DVec2> {
         .collect()
 }
 
-/// Calls `visit(cell, centre)` for every cell (row-major from the bottom) whose centre the
+/// Calls `visit(cell, center)` for every cell (row-major from the bottom) whose centre the
 /// image triangle `t` covers, edges included.
-pub(crate) fn for_each_covered_centre(
+pub(crate) fn for_each_covered_center(
     t: [DVec2; 3],
     resolution: usize,
     mut visit: impl FnMut(usize, DVec2),
@@ -77,12 +77,12 @@ pub(crate) fn for_each_covered_centre(
     let size = 2.0 / resolution as f64;
     let last = resolution as f64 - 1.0;
     // The cell whose centre is at or after `x` (centres at −1 + (i + ½)·size).
-    let first_centre = |x: f64| ((x + 1.0) / size - 0.5).ceil().clamp(0.0, last + 1.0) as usize;
-    let last_centre = |x: f64| ((x + 1.0) / size - 0.5).floor().clamp(-1.0, last) as i64;
+    let first_center = |x: f64| ((x + 1.0) / size - 0.5).ceil().clamp(0.0, last + 1.0) as usize;
+    let last_center = |x: f64| ((x + 1.0) / size - 0.5).floor().clamp(-1.0, last) as i64;
     let [a, b, c] = t;
     let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-    let (i0, i1) = (first_centre(lo.x), last_centre(hi.x));
-    let (j0, j1) = (first_centre(lo.y), last_centre(hi.y));
+    let (i0, i1) = (first_center(lo.x), last_center(hi.x));
+    let (j0, j1) = (first_center(lo.y), last_center(hi.y));
     if i1 < 0 || j1 < 0 {
         return;
     }

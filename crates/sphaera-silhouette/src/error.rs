@@ -50,10 +50,10 @@ pub enum SilhouetteError {
     NotSubset,
     /// An allowed error that is negative or not finite, a factor outside `[0, 1]`, a NaN
     /// threshold or a non-positive scale.
-    #[error("{what} must be {requirement}, got {value}")]
+    #[error("{name} must be {requirement}, got {value}")]
     InvalidParameter {
         /// Which parameter.
-        what: &'static str,
+        name: &'static str,
         /// Its value.
         value: f64,
         /// What it must be.

@@ -31,7 +31,7 @@ pub fn contour_weights(
     check("factor", factor)?;
     if threshold.is_nan() {
         return Err(SilhouetteError::InvalidParameter {
-            what: "threshold",
+            name: "threshold",
             value: f64::from(threshold),
             requirement: "a number",
         });
@@ -53,12 +53,12 @@ pub fn contour_weights(
         .collect())
 }
 
-fn check(what: &'static str, value: f64) -> Result<(), SilhouetteError> {
+fn check(name: &'static str, value: f64) -> Result<(), SilhouetteError> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
         Err(SilhouetteError::InvalidParameter {
-            what,
+            name,
             value,
             requirement: "finite and non-negative",
         })
@@ -183,14 +183,14 @@ impl<'h> ViewDependent<'h> {
         check("factor", tolerance.factor)?;
         if tolerance.factor > 1.0 {
             return Err(SilhouetteError::InvalidParameter {
-                what: "factor",
+                name: "factor",
                 value: tolerance.factor,
                 requirement: "at most 1 (the contour is allowed no more error than elsewhere)",
             });
         }
         if tolerance.threshold.is_nan() {
             return Err(SilhouetteError::InvalidParameter {
-                what: "threshold",
+                name: "threshold",
                 value: f64::NAN,
                 requirement: "a number",
             });

@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::SilhouetteError;
-use crate::coverage::{checked_camera, for_each_covered_centre, project_all};
+use crate::coverage::{checked_camera, for_each_covered_center, project_all};
 use crate::views::Projection;
 
 /// A square RGB picture, 8 bits a channel, top row first.
@@ -65,7 +65,7 @@ pub fn shaded_picture(
     }
     if !(scale.is_finite() && scale > 0.0) {
         return Err(SilhouetteError::InvalidParameter {
-            what: "scale",
+            name: "scale",
             value: f64::from(scale),
             requirement: "positive and finite",
         });
@@ -91,7 +91,7 @@ pub fn shaded_picture(
         };
         let [za, zb, zc] = t.map(|v| depth[v as usize]);
         let [va, vb, vc] = t.map(|v| f64::from(values[v as usize]));
-        for_each_covered_centre(corners, resolution, |cell, x| {
+        for_each_covered_center(corners, resolution, |cell, x| {
             let [wa, wb, wc] = weights(x);
             let z = wa * za + wb * zb + wc * zc;
             if z > nearest[cell].0 {

@@ -73,7 +73,7 @@ fn full_and_empty_images_and_one_pixel() {
     for transform in [DistanceTransform::Euclidean, DistanceTransform::Chamfer] {
         // All object: distance to the outside ring.
         let full = transform.apply(&[true; 25], 5, 5);
-        assert_eq!(full[12], 3.0, "{transform:?}: the centre of 5 × 5");
+        assert_eq!(full[12], 3.0, "{transform:?}: the center of 5 × 5");
         assert_eq!(full[0], 1.0, "{transform:?}: a corner");
         assert!(transform.apply(&[false; 9], 3, 3).iter().all(|&d| d == 0.0));
         assert_eq!(transform.apply(&[true], 1, 1), vec![1.0]);

@@ -81,10 +81,10 @@ fn silhouette_vertices_have_label_zero_and_labels_grow_inward() {
     for pair in upper.windows(2) {
         assert!(pair[1].1 <= pair[0].1 + 1.5, "{pair:?}");
     }
-    let centre = upper[0].1;
+    let center = upper[0].1;
     assert!(
-        centre > 55.0 && centre < 65.0,
-        "the pole is about 64 cells in: {centre}"
+        center > 55.0 && center < 65.0,
+        "the pole is about 64 cells in: {center}"
     );
 }
 

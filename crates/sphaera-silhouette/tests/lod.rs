@@ -171,7 +171,7 @@ fn static_weights_freeze_the_contour_of_every_view() {
     assert!(zeros(&one) < zeros(&weights));
     assert!(matches!(
         contour_weights(&labels, &[], 1.0, -1.0),
-        Err(SilhouetteError::InvalidParameter { what: "factor", .. })
+        Err(SilhouetteError::InvalidParameter { name: "factor", .. })
     ));
 }
 

@@ -115,9 +115,9 @@ fn the_shaded_picture_shows_the_coverage_and_the_values() {
         }
     }
     // Dark at the outline, light at the centre.
-    let centre = pixel(n / 2, n / 2)[0];
+    let center = pixel(n / 2, n / 2)[0];
     let rim = (0..n).find(|&i| covered[(n / 2) * n + i]).unwrap();
-    assert!(pixel(rim, n / 2)[0] < 40 && centre > 200, "{rim} {centre}");
+    assert!(pixel(rim, n / 2)[0] < 40 && center > 200, "{rim} {center}");
 
     // Bad inputs are named.
     assert!(matches!(
@@ -143,7 +143,7 @@ fn the_shaded_picture_shows_the_coverage_and_the_values() {
                 &labels.vertices,
                 scale
             ),
-            Err(SilhouetteError::InvalidParameter { what: "scale", .. })
+            Err(SilhouetteError::InvalidParameter { name: "scale", .. })
         ));
     }
     assert!(matches!(

@@ -366,12 +366,12 @@ fn local_index(ids: &mut Vec<VertexId>, x: VertexId) -> usize {
     }
 }
 
-/// Whether the planar fan of triangles `(centre, a, b)` is positively oriented (corner
-/// sines above [`MIN_SINE`]) and turns exactly once around `centre`.
-fn is_one_turn(centre: DVec2, fan: impl Iterator<Item = (DVec2, DVec2)>) -> bool {
+/// Whether the planar fan of triangles `(center, a, b)` is positively oriented (corner
+/// sines above [`MIN_SINE`]) and turns exactly once around `center`.
+fn is_one_turn(center: DVec2, fan: impl Iterator<Item = (DVec2, DVec2)>) -> bool {
     let mut sum = 0.0;
     for (a, b) in fan {
-        let (da, db) = (a - centre, b - centre);
+        let (da, db) = (a - center, b - center);
         let cross = da.perp_dot(db);
         if cross.is_nan() || cross <= MIN_SINE * da.length() * db.length() {
             return false;

@@ -239,7 +239,7 @@ mod tests {
     }
 
     /// The half-edge from the centre to rim vertex 1.
-    fn centre_to_rim(mesh: &HalfEdgeMesh) -> HalfEdgeId {
+    fn center_to_rim(mesh: &HalfEdgeMesh) -> HalfEdgeId {
         mesh.outgoing(VertexId(0))
             .find(|&g| mesh.target(g) == VertexId(1))
             .unwrap()
@@ -248,7 +248,7 @@ mod tests {
     #[test]
     fn flat_fan_collapses_at_the_rounding_margin_only() {
         let mesh = hexagon(0.0);
-        let h = centre_to_rim(&mesh);
+        let h = center_to_rim(&mesh);
         let r = collapse_radius(&mesh, &[0.0; 7], h, BoundaryPolicy::Lock).unwrap();
         // Only the rounding margin (1e-12 of the coordinates); the simple map would need 1.
         assert!(r < 2e-12, "flat collapse costs {r}");
@@ -258,7 +258,7 @@ mod tests {
     fn raised_centre_needs_at_least_its_height() {
         let height = 0.3;
         let mesh = hexagon(height);
-        let h = centre_to_rim(&mesh);
+        let h = center_to_rim(&mesh);
         let r = collapse_radius(&mesh, &[0.0; 7], h, BoundaryPolicy::Lock).unwrap();
         // The centre must be covered, and every new point is at least `height` from it.
         assert!(r >= height);

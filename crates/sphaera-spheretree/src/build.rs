@@ -12,7 +12,7 @@ use crate::evaluate::{EvaluationOptions, sphere_error};
 use crate::minimax::minimax_tree;
 use crate::options::{Effort, Method, SphereTreeOptions, SphereTreeProgress};
 use crate::reduce::{
-    Candidate, FittedSphere, Reducer, ReductionInput, centre_depth, eq2_error, reduce,
+    Candidate, FittedSphere, Reducer, ReductionInput, center_depth, eq2_error, reduce,
 };
 use crate::segment::divide;
 use crate::tree::{SphereTree, TreeNode};
@@ -276,7 +276,7 @@ fn medial_tree(
     // Each sample stands for the surface within half the sample spacing of it.
     let owned = 0.5 * sampled.ideal_spacing;
     let root_ball = minimum_enclosing_ball(mesh.positions())?;
-    let (depth, inside) = centre_depth(surface, root_ball.center);
+    let (depth, inside) = center_depth(surface, root_ball.center);
     let mut nodes = vec![TreeNode {
         sphere: root_ball,
         error: eq2_error(root_ball.radius, depth, inside),
@@ -425,7 +425,7 @@ fn children_of(
         }
     }
     let eq2 = |sphere: Sphere| {
-        let (depth, inside) = centre_depth(surface, sphere.center);
+        let (depth, inside) = center_depth(surface, sphere.center);
         (sphere, eq2_error(sphere.radius, depth, inside))
     };
     let children: Vec<(Sphere, f64, Vec<u32>)> = fitted
@@ -533,7 +533,7 @@ fn candidates(region: &[u32], spheres: &[sphaera_medial::MedialSphere]) -> Vec<C
     spheres
         .iter()
         .map(|m| Candidate {
-            sphere: Sphere::new(m.centre, m.radius),
+            sphere: Sphere::new(m.center, m.radius),
             covers: m.covers.iter().filter_map(|&s| local(s)).collect(),
         })
         .filter(|c| !c.covers.is_empty())

@@ -196,7 +196,7 @@ fn assert_scaled(a: &SphereTree, b: &SphereTree, factor: f64, what: &str) {
         assert_eq!(
             bits(x.sphere.center * factor),
             bits(y.sphere.center),
-            "{what}: node {i} centre"
+            "{what}: node {i} center"
         );
         assert_eq!(
             (x.sphere.radius * factor).to_bits(),
@@ -287,12 +287,12 @@ fn a_turned_rescaled_or_moved_cube_gives_the_same_tree_mapped() {
                 let size = mesh.bounding_box_diagonal() * scale;
                 let close = 1e-9 * size + 64.0 * f64::EPSILON * shift.abs().max_element();
                 for (i, (a, b)) in base.nodes().iter().zip(tree.nodes()).enumerate() {
-                    let centre = rotation * a.sphere.center * scale + shift;
+                    let center = rotation * a.sphere.center * scale + shift;
                     assert!(
-                        centre.distance(b.sphere.center) <= close,
-                        "{what}: node {i} centre {} against {}",
+                        center.distance(b.sphere.center) <= close,
+                        "{what}: node {i} center {} against {}",
                         b.sphere.center,
-                        centre
+                        center
                     );
                     for (x, y) in [(a.sphere.radius, b.sphere.radius), (a.error, b.error)] {
                         assert!(

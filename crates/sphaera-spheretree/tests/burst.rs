@@ -31,8 +31,8 @@ fn assert_covers(points: &[DVec3], spheres: &[FittedSphere]) {
 }
 
 /// Candidates around random points: each covers the points within its radius.
-fn cover_candidates(points: &[DVec3], centres: &[(DVec3, f64)]) -> Vec<Candidate> {
-    let mut candidates: Vec<Candidate> = centres
+fn cover_candidates(points: &[DVec3], centers: &[(DVec3, f64)]) -> Vec<Candidate> {
+    let mut candidates: Vec<Candidate> = centers
         .iter()
         .map(|&(c, r)| {
             let covers: Vec<u32> = (0..points.len() as u32)
@@ -73,11 +73,11 @@ proptest! {
     #[test]
     fn burst_keeps_every_point_covered(
         points in prop::collection::vec(point(), 1..60),
-        centres in prop::collection::vec((point(), 0.05..0.8f64), 1..40),
+        centers in prop::collection::vec((point(), 0.05..0.8f64), 1..40),
         target in 1usize..10,
     ) {
         let (_, surface) = unit_sphere();
-        let candidates = cover_candidates(&points, &centres);
+        let candidates = cover_candidates(&points, &centers);
         let input = ReductionInput { surface: &surface, points: &points, candidates: &candidates };
         let reduced = burst(&input, target).unwrap();
         prop_assert!(!reduced.is_empty());
@@ -127,7 +127,7 @@ fn burst_reduces_a_capsule_medial_set() {
         .spheres()
         .iter()
         .map(|m| Candidate {
-            sphere: Sphere::new(m.centre, m.radius),
+            sphere: Sphere::new(m.center, m.radius),
             covers: m.covers.clone(),
         })
         .filter(|c| !c.covers.is_empty())

@@ -233,7 +233,7 @@ fn read_yaml(text: &str) -> Vec<(String, Vec<Sphere>)> {
             center = Some(DVec3::new(numbers[0], numbers[1], numbers[2]));
         } else if let Some(rest) = line.strip_prefix("      radius: ") {
             let radius = rest.parse().unwrap();
-            let c = center.take().expect("a radius follows a centre");
+            let c = center.take().expect("a radius follows a center");
             links.last_mut().unwrap().1.push(Sphere::new(c, radius));
         } else if let Some(rest) = line.strip_prefix("  ") {
             assert!(!rest.starts_with(' '), "{line}");

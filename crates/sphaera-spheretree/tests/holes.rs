@@ -245,7 +245,7 @@ fn holed_mesh(kind: usize, size: f64) -> TriMesh {
 /// through the holes or sitting inside them), inside, and around the whole object.
 fn probe_spheres(mesh: &TriMesh, seed: u64) -> Vec<Sphere> {
     let diagonal = mesh.bounding_box_diagonal();
-    let centre = mesh.bounding_box().center();
+    let center = mesh.bounding_box().center();
     // The vertices of the boundary: those of edges used by one triangle.
     let mut uses = std::collections::HashMap::new();
     for t in mesh.triangles() {
@@ -276,9 +276,9 @@ fn probe_spheres(mesh: &TriMesh, seed: u64) -> Vec<Sphere> {
                 let v = rim[(next() * rim.len() as f64) as usize % rim.len()];
                 let p = mesh.positions()[v as usize];
                 // Towards the centre or away from it: through the hole or across it.
-                p + (centre - p) * (next() - 0.3)
+                p + (center - p) * (next() - 0.3)
             }
-            _ => centre,
+            _ => center,
         };
         spheres.push(Sphere::new(base + offset, radius));
     }

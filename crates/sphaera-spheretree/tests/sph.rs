@@ -37,7 +37,7 @@ fn levels_include_the_root_and_nodes_are_level_by_level() {
 }
 
 #[test]
-fn offset_is_added_to_every_centre() {
+fn offset_is_added_to_every_center() {
     let text = "2 1\n1 2 3 4 1\n0 0 0 1 1\n";
     let tree = read_sph(text, DVec3::new(10.0, 20.0, 30.0)).unwrap();
     assert_eq!(tree.level(0)[0].center, DVec3::new(11.0, 22.0, 33.0));

@@ -291,7 +291,7 @@ fn book(pages: usize, rows: usize) -> TriMesh {
 // ---------------------------------------------------------------------------------------
 
 #[test]
-fn centre_of_a_sphere_mesh_is_exact() {
+fn center_of_a_sphere_mesh_is_exact() {
     // 64 segments: 2 · 64 · 31 = 3968 triangles, every one at almost the same distance.
     let sphere = shapes::sphere(1.0, 64).expect("sphere");
     let hierarchy = build_hierarchy(&sphere).expect("hierarchy");
@@ -305,7 +305,7 @@ fn centre_of_a_sphere_mesh_is_exact() {
         // Measured (2026-11-21): 765 splits and 13,385 distance evaluations for 3968
         // triangles: linear, as the paper predicts for this query.
         eprintln!(
-            "sphere centre: {} triangles, distance {}, {stats:?}",
+            "sphere center: {} triangles, distance {}, {stats:?}",
             sphere.triangle_count(),
             answer.distance
         );
@@ -318,7 +318,7 @@ fn centre_of_a_sphere_mesh_is_exact() {
 }
 
 #[test]
-fn centre_of_a_polygonal_circle_is_exact() {
+fn center_of_a_polygonal_circle_is_exact() {
     // A flat annulus: the query at its centre is at the same distance cos(π/n) from the
     // middle of every inner edge.
     let n = 512;
@@ -331,7 +331,7 @@ fn centre_of_a_polygonal_circle_is_exact() {
     assert!(matches!(answer.feature, Feature::Edge(..)));
     // Measured (2026-11-21): 1001 splits and 4560 distance evaluations for the 1024
     // triangles: every collapse is undone.
-    eprintln!("annulus centre: {n} segments, {:?}", session.stats());
+    eprintln!("annulus center: {n} segments, {:?}", session.stats());
     // Above the centre, and on the axis of an open cylindrical band (a circle in 3D).
     check(&ring, &mut session, DVec3::new(0.0, 0.0, 0.5));
     let tube = band(256, 4);
@@ -883,8 +883,8 @@ fn one_session_through_every_case_in_sequence() {
     ] {
         let mut s = sweeper.session_with(&options);
         let vertex = mesh.positions()[5];
-        let cube_centre = DVec3::ZERO;
-        check(&mesh, &mut s, cube_centre);
+        let cube_center = DVec3::ZERO;
+        check(&mesh, &mut s, cube_center);
         check(&mesh, &mut s, vertex);
         assert!(s.closest(DVec3::new(f64::NAN, 0.0, 0.0)).is_err());
         check(&mesh, &mut s, vertex + DVec3::splat(1e-12));
@@ -913,7 +913,7 @@ fn one_session_through_every_case_in_sequence() {
         check(&mesh, &mut s, DVec3::new(1.9, 0.0, 0.1));
         s.reset();
         check(&mesh, &mut s, DVec3::new(1.9, 0.0, 0.1));
-        check(&mesh, &mut s, cube_centre);
+        check(&mesh, &mut s, cube_center);
         assert!(s.memory_bytes() > 0);
         let stats = s.stats();
         assert!(stats.queries >= 15, "{stats:?}");

@@ -274,13 +274,13 @@ fn the_centre_of_a_polygonal_circle_splits_every_capsule_and_is_exact() {
             .map(|v| DVec3::new(v.x, v.y * 0.6, v.y * 0.8) + DVec3::splat(5.0))
             .collect();
         let polyline = Polyline::closed(tilted).expect("valid");
-        let centre = DVec3::splat(5.0);
+        let center = DVec3::splat(5.0);
         for options in [paper, PolylineSessionOptions::default()] {
             let answer = polyline
                 .session_with(&options)
-                .closest(centre)
+                .closest(center)
                 .expect("finite");
-            check_exact(&polyline, centre, &answer);
+            check_exact(&polyline, center, &answer);
         }
     }
 }

@@ -444,11 +444,11 @@ fn lens_outline(tree: &HalTree2, node: &Node2) -> Vec<DVec2> {
 /// Points along the circle through `from`, `apex` and `to`, from `from` to `to` through
 /// `apex` (the straight segment when the three are collinear).
 fn arc(from: DVec2, to: DVec2, apex: DVec2) -> Vec<DVec2> {
-    let Some(centre) = circumcentre(from, to, apex) else {
+    let Some(center) = circumcentre(from, to, apex) else {
         return vec![from, to];
     };
-    let radius = centre.distance(from);
-    let angle = |p: DVec2| (p - centre).to_angle();
+    let radius = center.distance(from);
+    let angle = |p: DVec2| (p - center).to_angle();
     let tau = std::f64::consts::TAU;
     let turn = |x: f64| (x - angle(from)).rem_euclid(tau);
     let (to_end, to_apex) = (turn(angle(to)), turn(angle(apex)));
@@ -460,7 +460,7 @@ fn arc(from: DVec2, to: DVec2, apex: DVec2) -> Vec<DVec2> {
     (0..=32)
         .map(|k| {
             let t = angle(from) + sweep * f64::from(k) / 32.0;
-            centre + DVec2::from_angle(t) * radius
+            center + DVec2::from_angle(t) * radius
         })
         .collect()
 }

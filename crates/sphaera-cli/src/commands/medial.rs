@@ -137,7 +137,7 @@ struct Seconds {
 /// One sphere in the `-o` file.
 #[derive(Debug, Serialize)]
 struct SphereRecord {
-    centre: [f64; 3],
+    center: [f64; 3],
     /// The radius, grown when the certificate needed it.
     radius: f64,
     /// The eq. 2 error of the sphere as written (with its grown radius).
@@ -184,7 +184,7 @@ struct SphereFile<'a> {
 /// A sphere of the final set: the medial sphere, grown if the certificate needed it.
 #[derive(Debug, Clone)]
 struct FinalSphere {
-    centre: DVec3,
+    center: DVec3,
     radius: f64,
     error: f64,
     kind: SphereKind,
@@ -322,7 +322,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
                 spheres: spheres
                     .iter()
                     .map(|s| SphereRecord {
-                        centre: s.centre.to_array(),
+                        center: s.center.to_array(),
                         radius: s.radius,
                         error: s.error,
                         kind: s.kind.into(),
@@ -421,7 +421,7 @@ fn run_minimax(args: &MedialArgs, input: &Input, count: usize, quiet: bool) -> R
                 spheres: nodes
                     .iter()
                     .map(|n| SphereRecord {
-                        centre: n.sphere.center.to_array(),
+                        center: n.sphere.center.to_array(),
                         radius: n.sphere.radius,
                         error: n.error,
                         kind: Kind::Minimax,
@@ -484,7 +484,7 @@ fn final_spheres(medial: &MedialApproximation<'_>) -> Vec<FinalSphere> {
         .spheres()
         .into_iter()
         .map(|s| FinalSphere {
-            centre: s.centre,
+            center: s.center,
             radius: s.radius,
             error: s.error,
             kind: s.kind,
@@ -523,7 +523,7 @@ fn certify(
 ) -> CoverageCertificate {
     let mut balls: Vec<Sphere> = spheres
         .iter()
-        .map(|s| Sphere::new(s.centre, s.radius))
+        .map(|s| Sphere::new(s.center, s.radius))
         .collect();
     let (certificate, growth) = certify_coverage(surface.mesh(), &mut balls, resolution);
     let tolerance = COVER_TOLERANCE * surface.diagonal();
@@ -533,8 +533,8 @@ fn certify(
         }
         sphere.radius = ball.radius;
         sphere.growth = g;
-        sphere.error = surface_eq2_error(surface, sphere.centre, sphere.radius);
-        let within = |p: &DVec3| p.distance(sphere.centre) <= sphere.radius + tolerance;
+        sphere.error = surface_eq2_error(surface, sphere.center, sphere.radius);
+        let within = |p: &DVec3| p.distance(sphere.center) <= sphere.radius + tolerance;
         sphere.covered_samples = samples.iter().filter(|p| within(p)).count();
         uncovered.retain(|&i| !samples.get(i as usize).is_some_and(within));
     }

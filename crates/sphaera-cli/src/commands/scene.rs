@@ -194,10 +194,7 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
     let silhouette = camera
         .as_ref()
         .map(|camera| {
-            let options = SilhouetteDetailOptions {
-                interior: args.silhouette,
-                ..SilhouetteDetailOptions::default()
-            };
+            let options = SilhouetteDetailOptions::default().with_interior(args.silhouette);
             scene
                 .silhouette_detail(camera, tolerance, &options)
                 .context("--silhouette")

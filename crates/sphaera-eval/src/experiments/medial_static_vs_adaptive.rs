@@ -235,13 +235,13 @@ impl Coverage {
         for &p in points {
             let covered = grid.candidates(p).iter().any(|&i| {
                 let s = &spheres[i as usize];
-                (p - s.centre).length() <= s.radius + tolerance
+                (p - s.center).length() <= s.radius + tolerance
             });
             if !covered {
                 uncovered += 1;
                 let gap = spheres
                     .iter()
-                    .map(|s| (p - s.centre).length() - s.radius)
+                    .map(|s| (p - s.center).length() - s.radius)
                     .fold(f64::INFINITY, f64::min);
                 if gap.is_finite() {
                     largest_gap = largest_gap.max(gap);
@@ -327,12 +327,12 @@ impl SphereGrid {
     /// Calls `f(cell, sphere)` for every cell each finite sphere's bounding box overlaps.
     fn each_cell(&self, spheres: &[MedialSphere], mut f: impl FnMut(usize, u32)) {
         for (i, s) in spheres.iter().enumerate() {
-            if !(s.centre.is_finite() && s.radius.is_finite()) {
+            if !(s.center.is_finite() && s.radius.is_finite()) {
                 continue;
             }
             let (Some(a), Some(b)) = (
-                self.clamped_cell(s.centre - DVec3::splat(s.radius)),
-                self.clamped_cell(s.centre + DVec3::splat(s.radius)),
+                self.clamped_cell(s.center - DVec3::splat(s.radius)),
+                self.clamped_cell(s.center + DVec3::splat(s.radius)),
             ) else {
                 continue;
             };
@@ -495,12 +495,12 @@ mod tests {
     use super::*;
     use sphaera_tests::random::Lcg64;
 
-    fn sphere(centre: DVec3, radius: f64) -> MedialSphere {
+    fn sphere(center: DVec3, radius: f64) -> MedialSphere {
         MedialSphere {
-            centre,
+            center,
             radius,
             error: 0.0,
-            closest: centre,
+            closest: center,
             kind: SphereKind::Internal,
             covers: Vec::new(),
         }
@@ -518,7 +518,7 @@ mod tests {
         for &p in points {
             let gap = spheres
                 .iter()
-                .map(|s| (p - s.centre).length() - s.radius)
+                .map(|s| (p - s.center).length() - s.radius)
                 .fold(f64::INFINITY, f64::min);
             if gap > 0.0 {
                 uncovered += 1;

@@ -70,7 +70,7 @@ impl HalTree3 {
     pub(super) fn bound(&self, corners: [u32; 3], faces: &[u32]) -> Bound3 {
         let positions = self.surface.mesh().positions();
         let points = corners.map(|v| positions[v as usize]);
-        let Some((centre, radius, normal)) = circle(points) else {
+        let Some((center, radius, normal)) = circle(points) else {
             // A degenerate approximating triangle: bound nothing away.
             return Bound3 {
                 above: f64::INFINITY,
@@ -86,10 +86,10 @@ impl HalTree3 {
                 coord(points[2]),
                 coord(x),
             );
-            let power = x.distance_squared(centre) - radius * radius;
+            let power = x.distance_squared(center) - radius * radius;
             // robust's orient3d is positive when x lies below the plane of a
             // counter-clockwise triangle (its convention); the height above is `h`.
-            let h = (x - centre).dot(normal);
+            let h = (x - center).dot(normal);
             if side == 0.0 || h == 0.0 || (h > 0.0) != (side < 0.0) {
                 if power > 0.0 {
                     above = f64::INFINITY;

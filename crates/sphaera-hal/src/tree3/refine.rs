@@ -12,16 +12,16 @@ impl HalTree3 {
         let points = node.corners.map(|v| positions[v as usize]);
         let inner = self.inner_vertices(node.corners, &node.faces);
         let bound = node.bound?;
-        let (centre, radius, normal) = circle(points)?;
+        let (center, radius, normal) = circle(points)?;
         let mut best: Option<(f64, u32)> = None;
         let want_above = bound.above > -bound.below;
         for &v in &inner {
             let x = positions[v as usize];
-            let h = (x - centre).dot(normal);
+            let h = (x - center).dot(normal);
             if h == 0.0 || (h > 0.0) != want_above {
                 continue;
             }
-            let k = (x.distance_squared(centre) - radius * radius) / (2.0 * radius * h);
+            let k = (x.distance_squared(center) - radius * radius) / (2.0 * radius * h);
             let key = if want_above { k } else { -k };
             if best.is_none_or(|(b, _)| key > b) {
                 best = Some((key, v));

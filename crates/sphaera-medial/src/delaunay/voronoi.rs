@@ -166,9 +166,9 @@ mod tests {
             DVec3::new(-0.7, 0.9, 0.1),
             DVec3::new(0.2, 0.4, 1.3),
         ];
-        let (centre, radius) = circumsphere(p[0], p[1], p[2], p[3]);
+        let (center, radius) = circumsphere(p[0], p[1], p[2], p[3]);
         for q in p {
-            assert!(((q - centre).length() - radius).abs() < 1e-12);
+            assert!(((q - center).length() - radius).abs() < 1e-12);
         }
     }
 }

@@ -70,13 +70,13 @@ impl SampleGrid {
         }
     }
 
-    /// Appends to `out` the samples within distance `radius` of `centre`, in increasing
+    /// Appends to `out` the samples within distance `radius` of `center`, in increasing
     /// index order.
-    pub(crate) fn within(&self, points: &[DVec3], centre: DVec3, radius: f64, out: &mut Vec<u32>) {
+    pub(crate) fn within(&self, points: &[DVec3], center: DVec3, radius: f64, out: &mut Vec<u32>) {
         let start = out.len();
         let r2 = radius * radius;
-        let lo = ((centre - DVec3::splat(radius) - self.origin) / self.cell).floor();
-        let hi = ((centre + DVec3::splat(radius) - self.origin) / self.cell).floor();
+        let lo = ((center - DVec3::splat(radius) - self.origin) / self.cell).floor();
+        let hi = ((center + DVec3::splat(radius) - self.origin) / self.cell).floor();
         let range = |l: f64, h: f64, d: usize| -> Option<(usize, usize)> {
             if h < 0.0 || l > (d - 1) as f64 {
                 return None;
@@ -93,7 +93,7 @@ impl SampleGrid {
         let cells = (x.1 - x.0 + 1) * (y.1 - y.0 + 1) * (z.1 - z.0 + 1);
         if cells > self.ids.len() {
             for (i, &p) in points.iter().enumerate() {
-                if (p - centre).length_squared() <= r2 {
+                if (p - center).length_squared() <= r2 {
                     out.push(i as u32);
                 }
             }
@@ -107,7 +107,7 @@ impl SampleGrid {
                     self.starts[row + x.1 + 1] as usize,
                 );
                 for &i in &self.ids[a..b] {
-                    if (points[i as usize] - centre).length_squared() <= r2 {
+                    if (points[i as usize] - center).length_squared() <= r2 {
                         out.push(i);
                     }
                 }

@@ -52,7 +52,7 @@ const PARALLEL_MIN_SPHERES: usize = 8;
 /// One Voronoi vertex's sphere.
 #[derive(Debug, Clone)]
 struct Record {
-    centre: DVec3,
+    center: DVec3,
     radius: f64,
     error: f64,
     closest: DVec3,
@@ -278,7 +278,7 @@ impl<'s> MedialApproximation<'s> {
     fn sphere(&self, t: TetId) -> Option<MedialSphere> {
         let r = self.records.get(t as usize)?.as_ref()?;
         Some(MedialSphere {
-            centre: r.centre,
+            center: r.center,
             radius: r.radius,
             error: r.error,
             closest: r.closest,
@@ -482,7 +482,7 @@ impl<'s> MedialApproximation<'s> {
         let deepest = record
             .covers
             .iter()
-            .map(|&s| (s, (self.samples[s as usize] - record.centre).length()))
+            .map(|&s| (s, (self.samples[s as usize] - record.center).length()))
             .filter(|&(_, d)| d < record.radius - self.tolerance)
             .min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
             .map(|(s, _)| self.samples[s as usize]);
@@ -525,8 +525,8 @@ impl<'s> MedialApproximation<'s> {
     /// internal ones join the set, in the order given.
     fn evaluate_all(&mut self, tets: &[TetId]) {
         let measure = |&t: &TetId| {
-            let (centre, radius) = self.delaunay.circumsphere(t)?;
-            Some((t, measure_sphere(self.surface, centre, radius)))
+            let (center, radius) = self.delaunay.circumsphere(t)?;
+            Some((t, measure_sphere(self.surface, center, radius)))
         };
         #[cfg(feature = "parallel")]
         let measured: Vec<Option<(TetId, Record)>> = {
@@ -558,11 +558,11 @@ impl<'s> MedialApproximation<'s> {
         if record.member.is_some() {
             return;
         }
-        let (centre, radius) = (record.centre, record.radius);
+        let (center, radius) = (record.center, record.radius);
         let mut covers = Vec::new();
         if radius.is_finite() {
             self.grid
-                .within(&self.samples, centre, radius + self.tolerance, &mut covers);
+                .within(&self.samples, center, radius + self.tolerance, &mut covers);
         }
         for &s in &covers {
             self.cover_count[s as usize] += 1;
@@ -630,7 +630,7 @@ impl<'s> MedialApproximation<'s> {
                     self.record(t).is_some_and(|r| {
                         r.member.is_none()
                             && r.radius <= sane
-                            && (is_forming || (p - r.centre).length() <= r.radius + self.tolerance)
+                            && (is_forming || (p - r.center).length() <= r.radius + self.tolerance)
                     })
                 })
                 .collect();
@@ -685,7 +685,7 @@ impl<'s> MedialApproximation<'s> {
                     let mut inside = Vec::new();
                     self.grid.within(
                         &self.samples,
-                        r.centre,
+                        r.center,
                         r.radius + self.tolerance,
                         &mut inside,
                     );
@@ -764,24 +764,24 @@ pub fn surface_eq2_error(surface: &Surface, center: DVec3, radius: f64) -> f64 {
     measure_sphere(surface, center, radius).error
 }
 
-/// The record of the sphere `(centre, radius)`: inside or not, its error and closest
+/// The record of the sphere `(center, radius)`: inside or not, its error and closest
 /// surface point; not a member yet.
-fn measure_sphere(surface: &Surface, centre: DVec3, radius: f64) -> Record {
-    let (inside, error, closest) = if centre.is_finite() && radius.is_finite() {
-        let inside = surface.is_inside(centre);
-        match surface.closest(centre) {
+fn measure_sphere(surface: &Surface, center: DVec3, radius: f64) -> Record {
+    let (inside, error, closest) = if center.is_finite() && radius.is_finite() {
+        let inside = surface.is_inside(center);
+        match surface.closest(center) {
             Ok(answer) => (
                 inside,
                 eq2_error(radius, answer.distance, inside),
                 answer.point,
             ),
-            Err(_) => (false, f64::INFINITY, centre),
+            Err(_) => (false, f64::INFINITY, center),
         }
     } else {
-        (false, f64::INFINITY, centre)
+        (false, f64::INFINITY, center)
     };
     Record {
-        centre,
+        center,
         radius,
         error,
         closest,

@@ -92,11 +92,11 @@ pub fn ring_sheet(outer: f64, inner: f64, resolution: usize) -> Result<TriMesh, 
     let rings = (((outer - inner) / cell).ceil() as usize).max(1);
     check_vertex_budget("ring sheet", ((rings + 1) * segments + 1) as f64)?;
     let mut positions = Vec::new();
-    let centre = inner == 0.0;
-    if centre {
+    let center = inner == 0.0;
+    if center {
         positions.push(DVec3::ZERO);
     }
-    let first_ring = usize::from(centre);
+    let first_ring = usize::from(center);
     for r in first_ring..=rings {
         let radius = inner + (outer - inner) * r as f64 / rings as f64;
         for s in 0..segments {
@@ -104,15 +104,15 @@ pub fn ring_sheet(outer: f64, inner: f64, resolution: usize) -> Result<TriMesh, 
             positions.push(DVec3::new(radius * angle.cos(), radius * angle.sin(), 0.0));
         }
     }
-    let ring_start = |r: usize| u32::from(centre) + ((r - first_ring) * segments) as u32;
+    let ring_start = |r: usize| u32::from(center) + ((r - first_ring) * segments) as u32;
     let at = |r: usize, s: usize| ring_start(r) + (s % segments) as u32;
     let mut triangles = Vec::new();
-    if centre {
+    if center {
         for s in 0..segments {
             triangles.push([0, at(1, s), at(1, s + 1)]);
         }
     }
-    for r in first_ring.max(usize::from(centre))..rings {
+    for r in first_ring.max(usize::from(center))..rings {
         for s in 0..segments {
             let (a, b, c, d) = (at(r, s), at(r + 1, s), at(r + 1, s + 1), at(r, s + 1));
             triangles.push([a, b, c]);

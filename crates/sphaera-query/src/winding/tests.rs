@@ -230,8 +230,8 @@ fn open_sphere_with_a_small_hole_is_about_one_inside() {
     // 2π (1 − cos 22.5°) ≈ 0.478 sr, so w(0) ≈ 1 − 0.038.
     let mesh = fixtures::sphere_with_hole(32, 22.5);
     let winding = WindingNumber::new(&mesh).unwrap();
-    let centre = winding.winding_number(DVec3::ZERO);
-    assert!((centre - 0.962).abs() < 1e-2, "{centre}");
+    let center = winding.winding_number(DVec3::ZERO);
+    assert!((center - 0.962).abs() < 1e-2, "{center}");
     for p in [
         DVec3::new(0.5, 0.0, -0.5),
         DVec3::new(0.0, -0.7, 0.0),

@@ -378,16 +378,16 @@ fn raised_target_needs_at_least_its_height() {
 fn a_spike_overlapping_the_other_star_is_not_taken_for_injective() {
     // Projections where each star turns once around its centre but the stars overlap:
     // the new fan is not star-shaped, so the tight map must give up.
-    let centre = DVec2::ZERO;
+    let center = DVec2::ZERO;
     let fan = [
         (DVec2::new(1.0, 0.0), DVec2::new(0.0, 1.0)),
         (DVec2::new(0.0, 1.0), DVec2::new(-1.0, 0.0)),
         (DVec2::new(-1.0, 0.0), DVec2::new(0.0, -1.0)),
         (DVec2::new(0.0, -1.0), DVec2::new(1.0, 0.0)),
     ];
-    assert!(is_one_turn(centre, fan.into_iter()));
+    assert!(is_one_turn(center, fan.into_iter()));
     assert!(!is_one_turn(DVec2::new(2.0, 0.0), fan.into_iter()));
-    assert!(!is_one_turn(centre, fan.into_iter().take(3)));
+    assert!(!is_one_turn(center, fan.into_iter().take(3)));
 }
 
 #[test]

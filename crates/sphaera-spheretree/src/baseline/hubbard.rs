@@ -10,7 +10,7 @@ use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::{Child, Start, assemble};
 use crate::options::{SphereTreeOptions, SphereTreeProgress};
-use crate::reduce::{centre_depth, eq2_error};
+use crate::reduce::{center_depth, eq2_error};
 use crate::segment::divide;
 use crate::{SphereTree, SphereTreeError};
 
@@ -52,7 +52,7 @@ pub(crate) fn hubbard(
     let medial_spheres = medial.spheres();
     let spheres: Vec<Sphere> = medial_spheres
         .iter()
-        .map(|m| Sphere::new(m.centre, m.radius))
+        .map(|m| Sphere::new(m.center, m.radius))
         .collect();
     // Per sample, the medial spheres covering it.
     let mut covering: Vec<Vec<u32>> = vec![Vec::new(); start.samples.len()];
@@ -110,9 +110,9 @@ fn enclose(a: &Sphere, b: &Sphere) -> Sphere {
     }
     let radius = 0.5 * (d + a.radius + b.radius);
     // d > 0 here: otherwise one sphere contains the other.
-    let centre = a.center + (b.center - a.center) * ((radius - a.radius) / d);
+    let center = a.center + (b.center - a.center) * ((radius - a.radius) / d);
     // A hair larger, so that both spheres stay inside despite rounding.
-    Sphere::new(centre, radius * (1.0 + 1e-12))
+    Sphere::new(center, radius * (1.0 + 1e-12))
 }
 
 /// A queued merge (smallest error first, then the smallest ids).
@@ -168,7 +168,7 @@ fn merge_bounding(surface: &Surface, set: &[Sphere], target: usize) -> Vec<Spher
     }
     let mut count = n;
     let error = |s: &Sphere| {
-        let (d, inside) = centre_depth(surface, s.center);
+        let (d, inside) = center_depth(surface, s.center);
         eq2_error(s.radius, d, inside)
     };
     let push = |live: &[Option<(Sphere, u32)>], a: usize, b: usize, heap: &mut MaxHeap<Pair>| {

@@ -14,7 +14,7 @@ use sphaera_query::sampling;
 
 use crate::SphereTreeError;
 use crate::options::{SphereTreeOptions, SphereTreeProgress};
-use crate::reduce::{centre_depth, eq2_error};
+use crate::reduce::{center_depth, eq2_error};
 use crate::tree::{SphereTree, TreeNode};
 
 /// The octree tree of `surface` (`options` validated).
@@ -89,7 +89,7 @@ pub(crate) fn assemble(
     mut split: impl FnMut(usize, usize, &[u32]) -> Result<Vec<Child>, SphereTreeError>,
 ) -> Result<SphereTree, SphereTreeError> {
     let error = |sphere: &Sphere| {
-        let (d, inside) = centre_depth(start.surface, sphere.center);
+        let (d, inside) = center_depth(start.surface, sphere.center);
         eq2_error(sphere.radius, d, inside)
     };
     let mut nodes = vec![TreeNode {
@@ -164,9 +164,9 @@ impl CellGrid {
     /// the surface inside the cell, not only the samples there.
     pub(crate) fn cell_sphere(&self, c: [u64; 3]) -> Sphere {
         let corner = self.origin + DVec3::new(c[0] as f64, c[1] as f64, c[2] as f64) * self.cell;
-        let centre = corner + DVec3::splat(0.5 * self.cell);
+        let center = corner + DVec3::splat(0.5 * self.cell);
         // A hair more than half the diagonal, so that corners survive rounding.
-        Sphere::new(centre, 0.5 * self.cell * 3f64.sqrt() * (1.0 + 1e-12))
+        Sphere::new(center, 0.5 * self.cell * 3f64.sqrt() * (1.0 + 1e-12))
     }
 }
 

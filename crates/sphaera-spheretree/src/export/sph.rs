@@ -113,7 +113,7 @@ pub enum SphDefect {
         fields: usize,
     },
     /// A centre overflows once the offset is added.
-    #[error("the centre is not finite once the offset is added")]
+    #[error("the center is not finite once the offset is added")]
     CentreNotFinite,
     /// A used sphere follows the complete tree.
     #[error("a used sphere beyond the {nodes} nodes of the complete tree")]
@@ -151,7 +151,7 @@ pub enum SphDefect {
         found: usize,
     },
     /// A sphere to be written has a NaN or infinite centre or radius.
-    #[error("node {node} (level {level}) has a non-finite centre or radius")]
+    #[error("node {node} (level {level}) has a non-finite center or radius")]
     NonFiniteSphere {
         /// The node's slot.
         node: usize,

@@ -6,7 +6,7 @@
 //!
 //! A node must cover its part of the surface, its *region*, with at most `branch` child
 //! spheres, so that the largest error among the children is as small as it can be; the
-//! error of a sphere is the paper's eq. 2, `radius − depth(centre)` (the signed distance
+//! error of a sphere is the paper's eq. 2, `radius − depth(center)` (the signed distance
 //! from the centre to the surface, positive inside), an upper bound on how far the sphere
 //! pokes out of the object that is exact for convex parts. For fixed centres, the best
 //! assignment gives every bit of surface to the sphere that covers it with the least

@@ -6,7 +6,7 @@ use std::cmp::Reverse;
 use sphaera_mesh::Sphere;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
-use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
+use super::{FittedSphere, ReductionInput, center_depth, eq2_error};
 use crate::SphereTreeError;
 
 /// A live sphere of the burst.
@@ -205,7 +205,7 @@ impl<'a> State<'a> {
                     count[p as usize] += 1;
                     listers[p as usize].push(i as u32);
                 }
-                let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+                let (depth, inside) = center_depth(input.surface, c.sphere.center);
                 Some(Live {
                     sphere: c.sphere,
                     error: eq2_error(c.sphere.radius, depth, inside),

@@ -5,7 +5,7 @@
 use sphaera_mesh::Sphere;
 
 use super::window_bits::{WindowBits, all_of, morton_positions};
-use super::{FittedSphere, ReductionInput, centre_depth};
+use super::{FittedSphere, ReductionInput, center_depth};
 use crate::SphereTreeError;
 
 /// Bisection steps of the standoff search at most.
@@ -47,7 +47,7 @@ pub struct ExpandOutcome {
 
 /// One candidate, expanded.
 struct Expandable {
-    centre: glam::DVec3,
+    center: glam::DVec3,
     depth: f64,
     inside: bool,
     /// Every point's distance from the centre, in point order.
@@ -125,7 +125,7 @@ pub fn expand_select(
         .candidates
         .iter()
         .map(|c| {
-            let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+            let (depth, inside) = center_depth(input.surface, c.sphere.center);
             let distances: Vec<f64> = input
                 .points
                 .iter()
@@ -133,7 +133,7 @@ pub fn expand_select(
                 .collect();
             let farthest = distances.iter().copied().fold(0.0, f64::max);
             Expandable {
-                centre: c.sphere.center,
+                center: c.sphere.center,
                 depth,
                 inside,
                 distances,
@@ -191,7 +191,7 @@ pub fn expand_select(
         .filter_map(|&i| {
             let x = expandable.get(i)?;
             let radius = x.radius(best_e)?;
-            let sphere = Sphere::new(x.centre, radius);
+            let sphere = Sphere::new(x.center, radius);
             Some(FittedSphere {
                 sphere,
                 error: best_e,

@@ -8,7 +8,7 @@ use sphaera_mesh::Sphere;
 use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use super::seeded_ball::{SeededBall, seeded_enclosing_ball};
-use super::{FittedSphere, ReductionInput, centre_depth, eq2_error};
+use super::{FittedSphere, ReductionInput, center_depth, eq2_error};
 use crate::SphereTreeError;
 
 /// Once the set is this many times the target, every pair may merge, not only
@@ -118,7 +118,7 @@ pub fn merge(
         .candidates
         .iter()
         .map(|c| {
-            let (depth, inside) = centre_depth(input.surface, c.sphere.center);
+            let (depth, inside) = center_depth(input.surface, c.sphere.center);
             let support = seeded_enclosing_ball(|| points_of(input, &c.covers), &[])
                 .map(|b| b.support)
                 .unwrap_or_default();
@@ -340,7 +340,7 @@ fn best_merge(input: &ReductionInput<'_>, x: &Live, y: &Live) -> Live {
     if let Some(ball) = ball {
         // Skip the surface queries when the lower bound cannot beat the grown spheres.
         if ball.sphere.radius - ball.nearest < best.error {
-            let (depth, inside) = centre_depth(input.surface, ball.sphere.center);
+            let (depth, inside) = center_depth(input.surface, ball.sphere.center);
             let error = eq2_error(ball.sphere.radius, depth, inside);
             if error < best.error {
                 best = Live {

@@ -91,12 +91,12 @@ impl ReductionInput<'_> {
     }
 }
 
-/// Distance from `centre` to the surface and whether it is inside (certified).
-pub(crate) fn centre_depth(surface: &Surface, centre: DVec3) -> (f64, bool) {
+/// Distance from `center` to the surface and whether it is inside (certified).
+pub(crate) fn center_depth(surface: &Surface, center: DVec3) -> (f64, bool) {
     // The certified side: eq. 2 is an upper bound of a sphere's error only for a centre
     // truly inside.
     surface
-        .signed_closest(centre)
+        .signed_closest(center)
         .map_or((f64::INFINITY, false), |s| (s.closest.distance, s.inside))
 }
 

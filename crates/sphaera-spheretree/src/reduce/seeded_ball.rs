@@ -51,11 +51,11 @@ where
             core = points().collect();
         }
         let ball = minimum_enclosing_ball_with_support(&core).ok()?;
-        let centre = ball.sphere.center;
+        let center = ball.sphere.center;
         let (far, far_point, near) = points().fold(
-            (0.0, centre, f64::INFINITY),
+            (0.0, center, f64::INFINITY),
             |(far, far_point, near): (f64, DVec3, f64), p| {
-                let d = p.distance(centre);
+                let d = p.distance(center);
                 if d > far {
                     (d, p, near.min(d))
                 } else {
@@ -65,7 +65,7 @@ where
         );
         if whole || far <= ball.sphere.radius * (1.0 + OUTSIDE_TOLERANCE) {
             return Some(SeededBall {
-                sphere: Sphere::new(centre, ball.sphere.radius.max(far)),
+                sphere: Sphere::new(center, ball.sphere.radius.max(far)),
                 support: ball.support.iter().map(|&i| core[i]).collect(),
                 nearest: near,
             });

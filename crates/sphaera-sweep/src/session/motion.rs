@@ -115,7 +115,7 @@ impl Session<'_> {
     /// reordering, by `Δ + ρ`: `Δ` the largest vertex displacement, `ρ` the largest
     /// increase of a present vertex's radius. A stored lower bound `d − ε` bounds the
     /// distance to the triangle's tolerance volume (the union of the balls `B(λ·P,
-    /// λ·R)`); each ball's centre moves by at most `Δ` and its radius grows by at most
+    /// λ·R)`); each ball's center moves by at most `Δ` and its radius grows by at most
     /// `ρ`, so the new volume is no nearer than `d − ε − Δ − ρ` — whichever triangle now
     /// covers which part of the input surface, every live triangle's bound holds, which is
     /// all the sweep needs. Stale intervals are re-evaluated when they reach the front, as

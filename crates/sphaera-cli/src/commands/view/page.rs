@@ -71,16 +71,16 @@ fn f32_base64(values: impl Iterator<Item = f64>) -> String {
     base64_of(&bytes)
 }
 
-/// Mesh coordinates to page units: `(p − centre) / scale`.
+/// Mesh coordinates to page units: `(p − center) / scale`.
 #[derive(Clone, Copy)]
 struct Units {
-    centre: DVec3,
+    center: DVec3,
     scale: f64,
 }
 
 impl Units {
     fn point(self, p: DVec3) -> [f64; 3] {
-        ((p - self.centre) / self.scale).to_array()
+        ((p - self.center) / self.scale).to_array()
     }
 }
 
@@ -112,11 +112,11 @@ fn legend_stops() -> Vec<String> {
 /// The whole page.
 pub fn page(contents: &Contents<'_>) -> String {
     let mesh = contents.mesh;
-    let centre = mesh.bounding_box().center();
+    let center = mesh.bounding_box().center();
     let radius = mesh
         .positions()
         .iter()
-        .map(|p| p.distance(centre))
+        .map(|p| p.distance(center))
         .fold(0.0, f64::max);
     // A mesh of one point (no extent) keeps its scale.
     let scale = if radius > 0.0 && radius.is_finite() {
@@ -124,7 +124,7 @@ pub fn page(contents: &Contents<'_>) -> String {
     } else {
         1.0
     };
-    let units = Units { centre, scale };
+    let units = Units { center, scale };
     let levels: Vec<PageLevel> = contents
         .levels
         .iter()
@@ -181,7 +181,7 @@ pub fn page(contents: &Contents<'_>) -> String {
         "name": contents.name,
         "diagonal": mesh.bounding_box_diagonal(),
         "radius": 1.0,
-        "offset": centre.to_array(),
+        "offset": center.to_array(),
         "scale": scale,
         "mesh": page_mesh(mesh, units),
         "levels": levels,

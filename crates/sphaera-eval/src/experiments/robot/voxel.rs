@@ -120,8 +120,8 @@ impl Voxels {
         for k in 0..dims[2] {
             for j in 0..dims[1] {
                 for i in 0..dims[0] {
-                    let centre = origin + (DVec3::new(i as f64, j as f64, k as f64) + 0.5) * cell;
-                    if surface.is_inside(centre) {
+                    let center = origin + (DVec3::new(i as f64, j as f64, k as f64) + 0.5) * cell;
+                    if surface.is_inside(center) {
                         occupied[index(i, j, k)] = true;
                     }
                 }
@@ -190,7 +190,7 @@ impl Voxels {
     }
 
     /// The centre of the occupied voxel `cell`.
-    fn centre(&self, cell: [u32; 3]) -> DVec3 {
+    fn center(&self, cell: [u32; 3]) -> DVec3 {
         self.origin
             + (DVec3::new(f64::from(cell[0]), f64::from(cell[1]), f64::from(cell[2])) + 0.5)
                 * self.cell
@@ -207,15 +207,15 @@ impl Voxels {
         if count == 0 {
             bail!("the baseline needs at least one sphere");
         }
-        let points: Vec<DVec3> = self.cells.iter().map(|&c| self.centre(c)).collect();
+        let points: Vec<DVec3> = self.cells.iter().map(|&c| self.center(c)).collect();
         let k = count.min(points.len());
         // Farthest-point seeding from the first occupied voxel.
-        let mut centres = vec![points[0]];
+        let mut centers = vec![points[0]];
         let mut nearest: Vec<f64> = points
             .iter()
             .map(|p| p.distance_squared(points[0]))
             .collect();
-        while centres.len() < k {
+        while centers.len() < k {
             let (far, _) =
                 nearest
                     .iter()
@@ -224,7 +224,7 @@ impl Voxels {
                         if d > best.1 { (i, d) } else { best }
                     });
             let seed = points[far];
-            centres.push(seed);
+            centers.push(seed);
             for (d, p) in nearest.iter_mut().zip(&points) {
                 *d = d.min(p.distance_squared(seed));
             }
@@ -235,7 +235,7 @@ impl Voxels {
             let mut changed = false;
             for (l, p) in label.iter_mut().zip(&points) {
                 let (best, _) =
-                    centres
+                    centers
                         .iter()
                         .enumerate()
                         .fold((0, f64::INFINITY), |best, (i, c)| {
@@ -253,7 +253,7 @@ impl Voxels {
                 sums[l].0 += *p;
                 sums[l].1 += 1;
             }
-            for (c, (sum, n)) in centres.iter_mut().zip(sums) {
+            for (c, (sum, n)) in centers.iter_mut().zip(sums) {
                 if n > 0 {
                     *c = sum / n as f64;
                 }
