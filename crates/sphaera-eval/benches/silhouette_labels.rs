@@ -22,7 +22,7 @@ use imageproc::distance_transform::{
 use imageproc::image::{GrayImage, Luma};
 use sphaera::mesh::DVec3;
 use sphaera::silhouette::{
-    ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, Projection,
+    ContourTolerance, Contours, DistanceTransform, Interpolation, LabelOptions, Labels, Projection,
     ViewDependent, ViewSet, label_view,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
@@ -76,9 +76,7 @@ fn bench(c: &mut Criterion) {
     let labels = Labels::compute(
         &bunny,
         &views,
-        RESOLUTION,
-        DistanceTransform::Euclidean,
-        Contours::All,
+        &LabelOptions::default().with_resolution(RESOLUTION),
     )
     .expect("labels");
     let hierarchy = Hierarchy::build(&bunny, &SimplifyOptions::default()).expect("a hierarchy");
@@ -137,9 +135,7 @@ fn bench(c: &mut Criterion) {
                 Labels::compute(
                     &bunny,
                     &views,
-                    RESOLUTION,
-                    DistanceTransform::Euclidean,
-                    Contours::All,
+                    &LabelOptions::default().with_resolution(RESOLUTION),
                 )
                 .expect("labels"),
             )

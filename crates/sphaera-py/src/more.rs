@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use sphaera::hal::HalTree3;
 use sphaera::robot::{GeometrySource, MeshResolver, SphereBudget, SpherizeOptions, Urdf};
-use sphaera::silhouette::{Contours, DistanceTransform, Labels, ViewSet};
+use sphaera::silhouette::{Contours, LabelOptions, Labels, ViewSet};
 
 use crate::arrays;
 use crate::errors::{IntoPy, value_error};
@@ -74,9 +74,9 @@ pub fn silhouette_labels<'py>(
             let labels = Labels::compute(
                 &mesh.inner,
                 &views,
-                resolution,
-                DistanceTransform::Euclidean,
-                contours,
+                &LabelOptions::default()
+                    .with_resolution(resolution)
+                    .with_contours(contours),
             )?;
             let flat: Vec<f32> = (0..views.len()).flat_map(|k| labels.view(k)).collect();
             let directions: Vec<_> = (0..views.len())

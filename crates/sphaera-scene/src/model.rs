@@ -607,7 +607,7 @@ fn silhouette_labels(
     mesh: &TriMesh,
     options: &SilhouetteOptions,
 ) -> Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError> {
-    use sphaera_silhouette::{Contours, DistanceTransform, Labels, ViewSet};
+    use sphaera_silhouette::{Contours, LabelOptions, Labels, ViewSet};
     let views = ViewSet::regular(options.step_degrees)?;
     let contours = if options.outline_only {
         Contours::External
@@ -617,9 +617,9 @@ fn silhouette_labels(
     Labels::compute(
         mesh,
         &views,
-        options.resolution,
-        DistanceTransform::Euclidean,
-        contours,
+        &LabelOptions::default()
+            .with_resolution(options.resolution)
+            .with_contours(contours),
     )
 }
 

@@ -3,8 +3,6 @@
 //! distances carried back to the vertices, edges and faces; for a new view, the labels of
 //! the nearest precomputed view or the average of the `n` nearest.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-
 use glam::{DVec2, DVec3};
 use sphaera_mesh::{Sphere, TriMesh};
 
@@ -289,8 +287,67 @@ fn quantize(d: f32) -> u16 {
     (d * LABEL_SCALE).round().clamp(0.0, f32::from(u16::MAX)) as u16
 }
 
+/// How [`Labels::compute`] labels the views: the image resolution, the distance transform
+/// and which silhouettes count.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_silhouette::{Contours, DistanceTransform, LabelOptions};
+///
+/// let options = LabelOptions::default();
+/// assert_eq!(options.resolution, 512);
+/// assert_eq!(options.transform, DistanceTransform::Euclidean);
+/// assert_eq!(options.contours, Contours::All);
+/// let coarse = options.with_resolution(64).with_contours(Contours::External);
+/// assert_eq!((coarse.resolution, coarse.contours), (64, Contours::External));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct LabelOptions {
+    /// The cells across each view's image (default 512, the paper's).
+    pub resolution: usize,
+    /// The distance transform (default the exact Euclidean one).
+    pub transform: DistanceTransform,
+    /// Which silhouettes the labels measure the distance to (default all of them).
+    pub contours: Contours,
+}
+
+impl Default for LabelOptions {
+    fn default() -> Self {
+        Self {
+            resolution: 512,
+            transform: DistanceTransform::Euclidean,
+            contours: Contours::All,
+        }
+    }
+}
+
+impl LabelOptions {
+    /// With `resolution²` cells per view.
+    #[must_use]
+    pub fn with_resolution(mut self, resolution: usize) -> Self {
+        self.resolution = resolution;
+        self
+    }
+
+    /// With the given distance transform.
+    #[must_use]
+    pub fn with_transform(mut self, transform: DistanceTransform) -> Self {
+        self.transform = transform;
+        self
+    }
+
+    /// With the given silhouettes.
+    #[must_use]
+    pub fn with_contours(mut self, contours: Contours) -> Self {
+        self.contours = contours;
+        self
+    }
+}
+
 impl Labels {
-    /// Labels every view of `views` at `resolution²` cells (in parallel with the
+    /// Labels every view of `views` at `options.resolution²` cells (in parallel with the
     /// `parallel` feature; identical results either way).
     ///
     /// # Errors
@@ -299,32 +356,34 @@ impl Labels {
     pub fn compute(
         mesh: &TriMesh,
         views: &ViewSet,
-        resolution: usize,
-        transform: DistanceTransform,
-        contours: Contours,
+        options: &LabelOptions,
     ) -> Result<Self, SilhouetteError> {
-        Self::compute_with_progress(mesh, views, resolution, transform, contours, &|_| {})
+        Self::compute_with_progress(mesh, views, options, &|_| {})
     }
 
-    /// [`Labels::compute`], calling `progress` with the number of views labelled so far
-    /// after each view: from whichever thread labelled it, each count from 1 to the number
-    /// of views once, and in parallel not necessarily in order.
+    /// [`Labels::compute`], calling `progress` on the calling thread with the number of
+    /// views labelled so far, increasing, after each batch of views (a few per core) and
+    /// once at the end with the number of views.
     ///
     /// # Examples
     ///
     /// ```
-    /// use std::sync::atomic::{AtomicUsize, Ordering};
+    /// use std::sync::Mutex;
     /// use sphaera_mesh::shapes;
-    /// use sphaera_silhouette::{Contours, DistanceTransform, Labels, ViewSet};
+    /// use sphaera_silhouette::{LabelOptions, Labels, ViewSet};
     ///
     /// let mesh = shapes::sphere(1.0, 8)?;
     /// let views = ViewSet::regular(45.0)?;
-    /// let last = AtomicUsize::new(0);
+    /// let counts = Mutex::new(Vec::new());
     /// let labels = Labels::compute_with_progress(
-    ///     &mesh, &views, 16, DistanceTransform::Euclidean, Contours::All,
-    ///     &|done| { last.fetch_max(done, Ordering::Relaxed); },
+    ///     &mesh,
+    ///     &views,
+    ///     &LabelOptions::default().with_resolution(16),
+    ///     &|done| counts.lock().expect("not poisoned").push(done),
     /// )?;
-    /// assert_eq!(last.into_inner(), views.len());
+    /// let counts = counts.into_inner()?;
+    /// assert_eq!(counts.last(), Some(&views.len()));
+    /// assert!(counts.windows(2).all(|w| w[0] < w[1]));
     /// assert_eq!(labels.views().len(), views.len());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
@@ -335,42 +394,57 @@ impl Labels {
     pub fn compute_with_progress(
         mesh: &TriMesh,
         views: &ViewSet,
-        resolution: usize,
-        transform: DistanceTransform,
-        contours: Contours,
+        options: &LabelOptions,
         progress: &(dyn Fn(usize) + Sync),
     ) -> Result<Self, SilhouetteError> {
+        let LabelOptions {
+            resolution,
+            transform,
+            contours,
+        } = *options;
         check(DVec3::Z, views.projection(), resolution)?;
-        let done = AtomicUsize::new(0);
         let sphere = bounding_sphere(mesh)?;
         let normals = face_normals(mesh);
         let vertex_count = mesh.positions().len();
         // View k's vertex labels into `out`, with `frame`'s buffers.
-        let one = |frame: &mut Frame, (k, out): (usize, &mut [u16])| {
+        let one = |frame: &mut Frame, k: usize, out: &mut [u16]| {
             let camera = Camera::new(sphere, views.direction(k).normalize(), views.projection());
             frame.map(mesh, &normals, &camera, resolution, transform, contours);
             for (q, &p) in out.iter_mut().zip(&frame.image) {
                 *q = quantize(frame.distance_at(p, resolution));
             }
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1);
         };
         let mut values = vec![0_u16; views.len() * vertex_count];
         // A mesh with triangles has vertices; `max(1)` only keeps the chunk size valid.
         let chunk = vertex_count.max(1);
+        // Views are labelled a batch at a time, a few per core, and progress is reported
+        // between batches, on this thread.
         #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            values
-                .par_chunks_mut(chunk)
-                .enumerate()
-                .for_each_init(Frame::default, one);
-        }
+        let batch = 4 * rayon::current_num_threads().max(1);
         #[cfg(not(feature = "parallel"))]
-        {
-            let mut frame = Frame::default();
-            for view in values.chunks_mut(chunk).enumerate() {
-                one(&mut frame, view);
+        let batch = 4;
+        #[cfg(not(feature = "parallel"))]
+        let mut frame = Frame::default();
+        let mut done = 0;
+        for views_out in values.chunks_mut(chunk * batch) {
+            let first = done;
+            #[cfg(feature = "parallel")]
+            {
+                use rayon::prelude::*;
+                views_out
+                    .par_chunks_mut(chunk)
+                    .enumerate()
+                    .for_each_init(Frame::default, |frame, (k, out)| one(frame, first + k, out));
             }
+            #[cfg(not(feature = "parallel"))]
+            for (k, out) in views_out.chunks_mut(chunk).enumerate() {
+                one(&mut frame, first + k, out);
+            }
+            done += views_out.len() / chunk;
+            progress(done);
+        }
+        if views.is_empty() {
+            progress(0);
         }
         Ok(Self {
             views: views.clone(),

@@ -22,11 +22,11 @@
 //!
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};
-//! use sphaera_silhouette::{Contours, DistanceTransform, Interpolation, Labels, ViewSet};
+//! use sphaera_silhouette::{Interpolation, LabelOptions, Labels, ViewSet};
 //!
 //! let mesh = shapes::sphere(1.0, 16)?;
 //! let views = ViewSet::regular(45.0)?; // 26 views
-//! let labels = Labels::compute(&mesh, &views, 64, DistanceTransform::Euclidean, Contours::All)?;
+//! let labels = Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(64))?;
 //! // One u16 per vertex per view.
 //! assert_eq!(labels.storage_bytes(), 2 * mesh.positions().len() * views.len());
 //! // Seen from above, the equator is the silhouette (label 0) and the pole is deep
@@ -66,14 +66,13 @@
 //! ```
 //! use sphaera_mesh::{DVec3, shapes};
 //! use sphaera_silhouette::{
-//!     ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, ViewDependent,
-//!     ViewSet,
+//!     ContourTolerance, Interpolation, LabelOptions, Labels, ViewDependent, ViewSet,
 //! };
 //! use sphaera_simplify::{Hierarchy, SimplifyOptions};
 //!
 //! let mesh = shapes::torus(1.0, 0.3, 32)?;
 //! let views = ViewSet::regular(30.0)?;
-//! let labels = Labels::compute(&mesh, &views, 64, DistanceTransform::Euclidean, Contours::All)?;
+//! let labels = Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(64))?;
 //! let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default())?;
 //! let mut lod = ViewDependent::new(&hierarchy, &labels)?;
 //! let error = 0.02 * mesh.bounding_box_diagonal();
@@ -130,7 +129,9 @@ pub use camera::Camera;
 pub use coverage::{bounding_sphere, contour_displacement, coverage, silhouette_difference};
 pub use distance::DistanceTransform;
 pub use error::SilhouetteError;
-pub use labels::{Contours, Interpolation, LABEL_SCALE, Labels, ViewLabels, label_view};
+pub use labels::{
+    Contours, Interpolation, LABEL_SCALE, LabelOptions, Labels, ViewLabels, label_view,
+};
 pub use lod::{ContourTolerance, Extraction, ViewDependent, contour_weights};
 pub use picture::{Picture, overlay_picture, shaded_picture};
 pub use raster::FaceGrid;

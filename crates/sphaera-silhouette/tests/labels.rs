@@ -8,8 +8,8 @@ use proptest::prelude::*;
 use sphaera_mesh::glam::DVec2;
 use sphaera_mesh::{DVec3, TriMesh, shapes};
 use sphaera_silhouette::{
-    Contours, DistanceTransform, FaceGrid, Interpolation, Labels, Projection, SilhouetteError,
-    ViewSet, label_view,
+    Contours, DistanceTransform, FaceGrid, Interpolation, LabelOptions, Labels, Projection,
+    SilhouetteError, ViewSet, label_view,
 };
 
 fn directions() -> Vec<DVec3> {
@@ -92,14 +92,8 @@ fn silhouette_vertices_have_label_zero_and_labels_grow_inward() {
 fn precomputed_views_come_back_exactly_and_new_views_interpolate() {
     let mesh = shapes::torus(1.0, 0.35, 20).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels = Labels::compute(
-        &mesh,
-        &views,
-        64,
-        DistanceTransform::Euclidean,
-        Contours::All,
-    )
-    .unwrap();
+    let labels =
+        Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(64)).unwrap();
     assert_eq!(
         labels.storage_bytes(),
         2 * mesh.positions().len() * views.len()
@@ -163,18 +157,14 @@ fn scaling_by_a_power_of_two_changes_no_label() {
     let reference = Labels::compute(
         &moved(1.0),
         &views,
-        48,
-        DistanceTransform::Euclidean,
-        Contours::All,
+        &LabelOptions::default().with_resolution(48),
     )
     .unwrap();
     for s in [0.25, 1024.0, 2f64.powi(-30)] {
         let labels = Labels::compute(
             &moved(s),
             &views,
-            48,
-            DistanceTransform::Euclidean,
-            Contours::All,
+            &LabelOptions::default().with_resolution(48),
         )
         .unwrap();
         for k in 0..views.len() {
@@ -266,8 +256,14 @@ fn awkward_inputs() {
     let finned = TriMesh::new(positions, fin).unwrap();
     for mesh in [&open, &finned] {
         let views = ViewSet::regular(45.0).unwrap();
-        let labels =
-            Labels::compute(mesh, &views, 32, DistanceTransform::Chamfer, Contours::All).unwrap();
+        let labels = Labels::compute(
+            mesh,
+            &views,
+            &LabelOptions::default()
+                .with_resolution(32)
+                .with_transform(DistanceTransform::Chamfer),
+        )
+        .unwrap();
         assert_eq!(labels.views().len(), 26);
     }
     // Errors, named.

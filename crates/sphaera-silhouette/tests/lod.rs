@@ -7,8 +7,8 @@
 
 use sphaera_mesh::{DVec3, shapes};
 use sphaera_silhouette::{
-    ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, SilhouetteError,
-    ViewDependent, ViewSet, contour_weights,
+    ContourTolerance, Contours, DistanceTransform, Interpolation, LabelOptions, Labels,
+    SilhouetteError, ViewDependent, ViewSet, contour_weights,
 };
 use sphaera_simplify::{Hierarchy, Placement, SimplifyOptions, simplify};
 
@@ -17,14 +17,8 @@ fn setup() -> (sphaera_mesh::TriMesh, Hierarchy, Labels) {
     let hierarchy =
         Hierarchy::build(&mesh, &SimplifyOptions::default().with_target_triangles(60)).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels = Labels::compute(
-        &mesh,
-        &views,
-        96,
-        DistanceTransform::Euclidean,
-        Contours::All,
-    )
-    .unwrap();
+    let labels =
+        Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(96)).unwrap();
     (mesh, hierarchy, labels)
 }
 
@@ -182,9 +176,9 @@ fn mismatched_inputs_are_refused() {
     let other_labels = Labels::compute(
         &other,
         &ViewSet::regular(90.0).unwrap(),
-        16,
-        DistanceTransform::Chamfer,
-        Contours::All,
+        &LabelOptions::default()
+            .with_resolution(16)
+            .with_transform(DistanceTransform::Chamfer),
     )
     .unwrap();
     assert!(matches!(
@@ -239,9 +233,9 @@ fn scaling_by_a_power_of_two_scales_the_extraction_exactly() {
         let labels = Labels::compute(
             &scaled,
             &views,
-            64,
-            DistanceTransform::Euclidean,
-            Contours::External,
+            &LabelOptions::default()
+                .with_resolution(64)
+                .with_contours(Contours::External),
         )
         .unwrap();
         let hierarchy = Hierarchy::build(&scaled, &SimplifyOptions::default()).unwrap();
@@ -295,9 +289,7 @@ fn awkward_settings_still_meet_every_allowance() {
         let labels = Labels::compute(
             &mesh,
             &views,
-            resolution,
-            DistanceTransform::Euclidean,
-            Contours::All,
+            &LabelOptions::default().with_resolution(resolution),
         )
         .unwrap();
         let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default()).unwrap();

@@ -10,9 +10,9 @@ use serde::Serialize;
 use sphaera::{
     mesh::{DVec3, TriMesh, io},
     silhouette::{
-        ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, Picture, Projection,
-        ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage, overlay_picture,
-        shaded_picture, silhouette_difference,
+        ContourTolerance, Contours, DistanceTransform, Interpolation, LabelOptions, Labels,
+        Picture, Projection, ViewDependent, ViewSet, bounding_sphere, contour_displacement,
+        coverage, overlay_picture, shaded_picture, silhouette_difference,
     },
 };
 
@@ -136,9 +136,10 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     let labels = Labels::compute_with_progress(
         mesh,
         &views,
-        args.resolution,
-        transform(args.transform),
-        contours(args.contours),
+        &LabelOptions::default()
+            .with_resolution(args.resolution)
+            .with_transform(transform(args.transform))
+            .with_contours(contours(args.contours)),
         &|done| bar.set_position(done as u64),
     );
     bar.finish_and_clear();

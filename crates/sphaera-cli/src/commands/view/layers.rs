@@ -9,7 +9,7 @@ use serde::Serialize;
 use sphaera::hal::HalTree3;
 use sphaera::mesh::io::colormap;
 use sphaera::mesh::{Length, TriMesh};
-use sphaera::silhouette::{Contours, DistanceTransform, Labels, ViewSet};
+use sphaera::silhouette::{Contours, LabelOptions, Labels, ViewSet};
 use sphaera::sweep::{Direction, HausdorffDistance, HausdorffOptions, hausdorff_with_progress};
 
 use crate::commands::hal::kept_width;
@@ -220,9 +220,9 @@ pub fn label_field(mesh: &TriMesh, quiet: bool) -> Result<LabelField> {
     let labels = Labels::compute_with_progress(
         mesh,
         &views,
-        LABEL_RESOLUTION,
-        DistanceTransform::Euclidean,
-        Contours::External,
+        &LabelOptions::default()
+            .with_resolution(LABEL_RESOLUTION)
+            .with_contours(Contours::External),
         &|done| bar.set_position(done as u64),
     );
     bar.finish_and_clear();

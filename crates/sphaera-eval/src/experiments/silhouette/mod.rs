@@ -36,7 +36,7 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::mesh::{DVec3, Length, TriMesh};
 use sphaera::silhouette::{
-    ContourTolerance, Contours, DistanceTransform, Extraction, Interpolation, Labels, Projection,
+    ContourTolerance, Contours, Extraction, Interpolation, LabelOptions, Labels, Projection,
     ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage, silhouette_difference,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
@@ -125,9 +125,9 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
                 Labels::compute(
                     &mesh,
                     &views,
-                    RESOLUTION,
-                    DistanceTransform::Euclidean,
-                    contours,
+                    &LabelOptions::default()
+                        .with_resolution(RESOLUTION)
+                        .with_contours(contours),
                 )
                 .with_context(|| format!("labels of {file}"))?,
             );

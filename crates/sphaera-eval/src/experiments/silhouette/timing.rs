@@ -14,7 +14,7 @@ use std::time::Instant;
 use anyhow::Result;
 use sphaera::mesh::DVec3;
 use sphaera::silhouette::{
-    ContourTolerance, Contours, DistanceTransform, Interpolation, Labels, ViewDependent, ViewSet,
+    ContourTolerance, Contours, Interpolation, LabelOptions, Labels, ViewDependent, ViewSet,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
 
@@ -60,9 +60,9 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
         let labels = Labels::compute(
             &mesh,
             &views,
-            512,
-            DistanceTransform::Euclidean,
-            Contours::External,
+            &LabelOptions::default()
+                .with_resolution(512)
+                .with_contours(Contours::External),
         )?;
         let labels_seconds = started.elapsed().as_secs_f64();
         let started = Instant::now();
