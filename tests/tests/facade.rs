@@ -172,7 +172,7 @@ fn one_error_type_across_crates() {
         )?;
         let mut scene = Scene::new();
         scene.add("one", Arc::new(model), mesh::geometry::Similarity::IDENTITY);
-        let report = scene.detail(None, sphaera::scene::Tolerance::Relative(0.05))?;
+        let report = scene.detail(None, sphaera::scene::Tolerance::RelativeToDiagonal(0.05))?;
         Ok(report.triangles)
     }
 

@@ -393,8 +393,8 @@ pub(crate) fn measure(
     world: f64,
 ) -> Option<f64> {
     match tolerance {
-        Tolerance::World(_) => Some(world),
-        Tolerance::Relative(_) => Some(world / instance.diagonal()),
+        Tolerance::Absolute(_) => Some(world),
+        Tolerance::RelativeToDiagonal(_) => Some(world / instance.diagonal()),
         Tolerance::Pixels(_) => {
             camera.and_then(|c| c.projected_error(&instance.bounding_sphere(), world))
         }
@@ -418,8 +418,8 @@ pub(crate) fn allowed_error(
         measure(instance, camera, tolerance, e * scale).unwrap_or(0.0) <= tolerance.value()
     };
     match tolerance {
-        Tolerance::World(t) => t / scale,
-        Tolerance::Relative(t) => t * model.diagonal(),
+        Tolerance::Absolute(t) => t / scale,
+        Tolerance::RelativeToDiagonal(t) => t * model.diagonal(),
         Tolerance::Pixels(_) if meets(largest) => largest,
         Tolerance::Pixels(t) => {
             // `e·k(e)` grows with `e` (`k`: pixels per unit of the sphere grown by `e`),

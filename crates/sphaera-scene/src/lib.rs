@@ -67,12 +67,12 @@
 //! assert_eq!(scene.detail(Some(&camera), Tolerance::Pixels(8.0))?.trees_built, 0);
 //!
 //! // For physics, a tolerance in world units: the tori's roots are enough at 2 units.
-//! let coarse = scene.detail(None, Tolerance::World(2.0))?;
+//! let coarse = scene.detail(None, Tolerance::Absolute(2.0))?;
 //! assert!(coarse.instances.iter().all(|d| d.spheres.count == 1 && d.spheres.error <= 2.0));
 //!
 //! // A tolerance no tree is built for (below the finest, 0.1 % of a model's size by
 //! // default) is an error naming the model, not a looser answer.
-//! let refused = scene.detail(None, Tolerance::Relative(1e-4)).unwrap_err();
+//! let refused = scene.detail(None, Tolerance::RelativeToDiagonal(1e-4)).unwrap_err();
 //! assert!(matches!(&refused, SceneError::ToleranceBelowFinest { model, .. } if model == "torus"));
 //!
 //! // Nothing touches: the broad phase finds no close pair.

@@ -513,7 +513,7 @@ impl ObjectModel {
     /// let model = Arc::new(ObjectModel::build("ball", sphaera_mesh::shapes::sphere(1.0, 12)?, &ModelOptions::default())?);
     /// let mut scene = Scene::new();
     /// scene.add("ball", Arc::clone(&model), Similarity::IDENTITY);
-    /// let report = scene.detail(None, Tolerance::Relative(0.05))?;
+    /// let report = scene.detail(None, Tolerance::RelativeToDiagonal(0.05))?;
     /// let spheres = model.detail_spheres(&report.instances[0]).expect("its model");
     /// assert_eq!(spheres.len(), report.instances[0].spheres.count);
     /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -61,7 +61,7 @@ impl Instance {
 /// scene.add("far", model, Similarity::from_translation(DVec3::new(100.0, 0.0, 0.0))?);
 ///
 /// // Half a percent of each object's size: both take the same levels.
-/// let report = scene.detail(None, Tolerance::Relative(0.005))?;
+/// let report = scene.detail(None, Tolerance::RelativeToDiagonal(0.005))?;
 /// assert_eq!(report.instances[0].spheres.level, report.instances[1].spheres.level);
 /// assert!(report.triangles <= report.full_triangles);
 /// # Ok::<(), Box<dyn std::error::Error>>(())

@@ -4,26 +4,30 @@
 use std::fmt;
 use std::str::FromStr;
 
+use sphaera_mesh::Length;
+
 use crate::SceneError;
 
-/// The error a scene accepts for each instance.
+/// The error a scene accepts for each instance: a [`Length`] (absolute, or relative to
+/// each instance's diagonal), or pixels on a camera.
 ///
-/// - [`Tolerance::World`]: a distance in the scene's units (what a physics engine wants:
+/// - [`Tolerance::Absolute`]: a distance in the scene's units (what a physics engine wants:
 ///   "no contact off by more than 1 mm").
-/// - [`Tolerance::Relative`]: a fraction of each instance's own size (the bounding-box
-///   diagonal of its mesh, scaled by its pose): "0.5 % of each object".
+/// - [`Tolerance::RelativeToDiagonal`]: a fraction of each instance's own size (the
+///   bounding-box diagonal of its mesh, scaled by its pose): "0.5 % of each object".
 /// - [`Tolerance::Pixels`]: pixels on a [`Camera`](crate::Camera)'s image, certified
 ///   under perspective (see [`Camera::pixels_per_unit`](crate::Camera::pixels_per_unit)).
 ///
-/// Parsed from text as the CLI takes it: `0.01` (world), `0.5%` (relative), `2px`.
+/// Parsed from text as the CLI takes it: `0.01` (absolute), `0.5%` (relative, as
+/// [`Length`] parses it), `2px`.
 ///
 /// # Examples
 ///
 /// ```
 /// use sphaera_scene::Tolerance;
 ///
-/// assert_eq!("0.01".parse::<Tolerance>()?, Tolerance::World(0.01));
-/// assert_eq!("0.5%".parse::<Tolerance>()?, Tolerance::Relative(0.005));
+/// assert_eq!("0.01".parse::<Tolerance>()?, Tolerance::Absolute(0.01));
+/// assert_eq!("0.5%".parse::<Tolerance>()?, Tolerance::RelativeToDiagonal(0.005));
 /// assert_eq!("2px".parse::<Tolerance>()?, Tolerance::Pixels(2.0));
 /// assert_eq!(Tolerance::Pixels(2.0).to_string(), "2px");
 /// assert!("nan".parse::<Tolerance>().is_err());
@@ -31,10 +35,10 @@ use crate::SceneError;
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tolerance {
-    /// A distance in world units.
-    World(f64),
+    /// A distance in the scene's units.
+    Absolute(f64),
     /// A fraction of each instance's bounding-box diagonal (0.005 for 0.5 %).
-    Relative(f64),
+    RelativeToDiagonal(f64),
     /// Pixels on the camera's image.
     Pixels(f64),
 }
@@ -44,7 +48,7 @@ impl Tolerance {
     #[must_use]
     pub fn value(&self) -> f64 {
         match *self {
-            Self::World(v) | Self::Relative(v) | Self::Pixels(v) => v,
+            Self::Absolute(v) | Self::RelativeToDiagonal(v) | Self::Pixels(v) => v,
         }
     }
 
@@ -52,8 +56,8 @@ impl Tolerance {
     #[must_use]
     pub fn scaled(self, k: f64) -> Self {
         match self {
-            Self::World(v) => Self::World(v * k),
-            Self::Relative(v) => Self::Relative(v * k),
+            Self::Absolute(v) => Self::Absolute(v * k),
+            Self::RelativeToDiagonal(v) => Self::RelativeToDiagonal(v * k),
             Self::Pixels(v) => Self::Pixels(v * k),
         }
     }
@@ -62,8 +66,8 @@ impl Tolerance {
     #[must_use]
     pub fn unit(&self) -> &'static str {
         match self {
-            Self::World(_) => "world",
-            Self::Relative(_) => "relative",
+            Self::Absolute(_) => "world",
+            Self::RelativeToDiagonal(_) => "relative",
             Self::Pixels(_) => "px",
         }
     }
@@ -85,11 +89,20 @@ impl Tolerance {
     }
 }
 
+impl From<Length> for Tolerance {
+    fn from(length: Length) -> Self {
+        match length {
+            Length::Absolute(v) => Self::Absolute(v),
+            Length::RelativeToDiagonal(v) => Self::RelativeToDiagonal(v),
+        }
+    }
+}
+
 impl fmt::Display for Tolerance {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Self::World(v) => write!(f, "{v}"),
-            Self::Relative(v) => write!(f, "{}%", v * 100.0),
+            Self::Absolute(v) => write!(f, "{v}"),
+            Self::RelativeToDiagonal(v) => write!(f, "{}%", v * 100.0),
             Self::Pixels(v) => write!(f, "{v}px"),
         }
     }
@@ -103,13 +116,10 @@ impl FromStr for Tolerance {
             text: text.to_owned(),
         };
         let trimmed = text.trim();
-        let number = |s: &str| s.trim().parse::<f64>().map_err(|_| invalid());
         let tolerance = if let Some(px) = trimmed.strip_suffix("px") {
-            Self::Pixels(number(px)?)
-        } else if let Some(percent) = trimmed.strip_suffix('%') {
-            Self::Relative(number(percent)? / 100.0)
+            Self::Pixels(px.trim().parse::<f64>().map_err(|_| invalid())?)
         } else {
-            Self::World(number(trimmed)?)
+            trimmed.parse::<Length>().map_err(|_| invalid())?.into()
         };
         tolerance.validated().map_err(|_| invalid())
     }
@@ -127,9 +137,12 @@ mod tests {
         );
         assert_eq!(
             "10%".parse::<Tolerance>().ok(),
-            Some(Tolerance::Relative(0.1))
+            Some(Tolerance::RelativeToDiagonal(0.1))
         );
-        assert_eq!("0".parse::<Tolerance>().ok(), Some(Tolerance::World(0.0)));
+        assert_eq!(
+            "0".parse::<Tolerance>().ok(),
+            Some(Tolerance::Absolute(0.0))
+        );
         for bad in ["", "px", "%", "-1", "inf", "NaN%", "2 pixels", "1e400"] {
             assert!(bad.parse::<Tolerance>().is_err(), "{bad}");
         }

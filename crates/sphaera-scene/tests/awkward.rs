@@ -41,7 +41,7 @@ fn awkward_meshes_make_models_that_answer() {
         let pairs: Vec<_> = contacts.pairs.iter().map(|p| (p.a, p.b)).collect();
         assert_eq!(pairs, [(0, 1)], "{name}");
         let report = scene
-            .detail(None, Tolerance::Relative(0.05))
+            .detail(None, Tolerance::RelativeToDiagonal(0.05))
             .expect("detail");
         assert!(report.instances.iter().all(|d| d.mesh.meets), "{name}");
         assert!(
@@ -62,7 +62,7 @@ fn awkward_meshes_make_models_that_answer() {
         big.add("a", scaled, Similarity::IDENTITY);
         let small = &report.instances[0];
         let large = &big
-            .detail(None, Tolerance::Relative(0.05))
+            .detail(None, Tolerance::RelativeToDiagonal(0.05))
             .expect("detail")
             .instances[0];
         assert_eq!(

@@ -83,8 +83,8 @@ proptest! {
             .collect();
         let scene = common::scene(&placements);
         let tolerance = match kind {
-            0 => Tolerance::World(amount * 0.5),
-            1 => Tolerance::Relative(amount * 0.2),
+            0 => Tolerance::Absolute(amount * 0.5),
+            1 => Tolerance::RelativeToDiagonal(amount * 0.2),
             _ => Tolerance::Pixels(amount * 20.0),
         };
         let camera = Camera::perspective(DVec3::from_array(eye), DVec3::ZERO, 60.0, 1280, 720)
@@ -107,8 +107,8 @@ proptest! {
             // Brute force: every level's error measured in the tolerance's unit.
             let measure = |e: f64| -> Option<f64> {
                 match tolerance {
-                    Tolerance::World(_) => Some(e * s),
-                    Tolerance::Relative(_) => Some(e / model.mesh().bounding_box_diagonal()),
+                    Tolerance::Absolute(_) => Some(e * s),
+                    Tolerance::RelativeToDiagonal(_) => Some(e / model.mesh().bounding_box_diagonal()),
                     Tolerance::Pixels(_) => camera.projected_error(
                         &instance.pose.sphere(&model.bounding_sphere()), e * s),
                 }
@@ -130,8 +130,8 @@ proptest! {
             let meets = |e: f64| measure(e).is_none_or(|m| m <= tolerance.value() * (1.0 + 1e-15));
             prop_assert!(meets(need), "{detail:?}");
             match tolerance {
-                Tolerance::World(t) => prop_assert_eq!(need, t / s),
-                Tolerance::Relative(t) => prop_assert_eq!(need, t * model.diagonal()),
+                Tolerance::Absolute(t) => prop_assert_eq!(need, t / s),
+                Tolerance::RelativeToDiagonal(t) => prop_assert_eq!(need, t * model.diagonal()),
                 Tolerance::Pixels(_) => {}
             }
             // The spheres: the coarsest cut of the tree they come from whose certified
@@ -239,9 +239,9 @@ fn a_tolerance_in_pixels_needs_a_camera_and_bad_tolerances_are_refused() {
         Err(SceneError::NoCamera)
     ));
     for bad in [
-        Tolerance::World(f64::NAN),
-        Tolerance::Relative(-0.1),
-        Tolerance::World(f64::INFINITY),
+        Tolerance::Absolute(f64::NAN),
+        Tolerance::RelativeToDiagonal(-0.1),
+        Tolerance::Absolute(f64::INFINITY),
     ] {
         assert!(matches!(
             scene.detail(None, bad),
@@ -250,7 +250,7 @@ fn a_tolerance_in_pixels_needs_a_camera_and_bad_tolerances_are_refused() {
     }
     // An empty scene has an empty report.
     let empty = sphaera_scene::Scene::new()
-        .detail(None, Tolerance::World(1.0))
+        .detail(None, Tolerance::Absolute(1.0))
         .expect("a report");
     assert!(empty.instances.is_empty() && empty.full_triangles == 0);
     assert_eq!(
@@ -300,14 +300,14 @@ fn scaling_by_powers_of_two_gives_identical_choices() {
             .expect("near");
         for (tolerance, scaled_tolerance, cam, scaled_cam) in [
             (
-                Tolerance::World(0.05),
-                Tolerance::World(0.05 * f),
+                Tolerance::Absolute(0.05),
+                Tolerance::Absolute(0.05 * f),
                 None,
                 None,
             ),
             (
-                Tolerance::Relative(0.01),
-                Tolerance::Relative(0.01),
+                Tolerance::RelativeToDiagonal(0.01),
+                Tolerance::RelativeToDiagonal(0.01),
                 None,
                 None,
             ),

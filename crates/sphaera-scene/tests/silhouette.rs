@@ -134,7 +134,7 @@ fn a_mirror_pose_sees_the_mirrored_view() {
     plain.add("torus", torus(), Similarity::IDENTITY);
     let mut mirrored = Scene::new();
     mirrored.add("torus", torus(), mirror);
-    let tolerance = Tolerance::Relative(0.002);
+    let tolerance = Tolerance::RelativeToDiagonal(0.002);
     let a = plain
         .silhouette_detail(&camera(eye), tolerance, &options(4.0))
         .expect("plain");
@@ -175,8 +175,11 @@ fn powers_of_two_give_identical_choices() {
         let eye = DVec3::new(0.5, -4.0, 3.0);
         for (tolerance, scaled_tolerance) in [
             (Tolerance::Pixels(1.5), Tolerance::Pixels(1.5)),
-            (Tolerance::World(0.01), Tolerance::World(0.01 * k)),
-            (Tolerance::Relative(0.003), Tolerance::Relative(0.003)),
+            (Tolerance::Absolute(0.01), Tolerance::Absolute(0.01 * k)),
+            (
+                Tolerance::RelativeToDiagonal(0.003),
+                Tolerance::RelativeToDiagonal(0.003),
+            ),
         ] {
             let a = base
                 .silhouette_detail(&camera(eye), tolerance, &options(3.0))

@@ -178,12 +178,12 @@ proptest! {
             scene.add(format!("{name}-{k}"), Arc::clone(&model), pose);
         }
         let tolerance = if world {
-            Tolerance::World(relative * model.diagonal())
+            Tolerance::Absolute(relative * model.diagonal())
         } else {
-            Tolerance::Relative(relative)
+            Tolerance::RelativeToDiagonal(relative)
         };
         let need = |scale: f64| match tolerance {
-            Tolerance::World(t) => t / scale,
+            Tolerance::Absolute(t) => t / scale,
             _ => relative * model.diagonal(),
         };
         let smallest = scene.instances().iter().map(|i| need(i.pose.scale())).fold(f64::INFINITY, f64::min);
@@ -221,7 +221,7 @@ fn each_tolerance_is_built_once_and_finer_ones_only_when_needed() {
     scene.add("a", Arc::clone(&model), Similarity::IDENTITY);
     scene.add("b", Arc::clone(&model), Similarity::IDENTITY);
     let first = scene
-        .detail(None, Tolerance::Relative(0.08))
+        .detail(None, Tolerance::RelativeToDiagonal(0.08))
         .expect("detail");
     assert_eq!(first.trees_built, 1, "two instances, one build");
     assert!(
@@ -232,7 +232,7 @@ fn each_tolerance_is_built_once_and_finer_ones_only_when_needed() {
     );
     assert!(first.tree_seconds > 0.0 && first.instances[0].tree.build_seconds > 0.0);
     let again = scene
-        .detail(None, Tolerance::Relative(0.08))
+        .detail(None, Tolerance::RelativeToDiagonal(0.08))
         .expect("detail");
     assert_eq!(again.trees_built, 0);
     assert!(
@@ -246,19 +246,22 @@ fn each_tolerance_is_built_once_and_finer_ones_only_when_needed() {
         unbuilt(first.clone().without_times())
     );
     let coarser = scene
-        .detail(None, Tolerance::Relative(0.2))
+        .detail(None, Tolerance::RelativeToDiagonal(0.2))
         .expect("detail");
     assert_eq!(coarser.trees_built, 0);
     // Finer than asked before, but what the tree built reaches: nothing to build.
     let reached = model.trees()[1].worst_error() / model.diagonal();
     assert!(reached <= 0.08);
     let met = scene
-        .detail(None, Tolerance::Relative(reached))
+        .detail(None, Tolerance::RelativeToDiagonal(reached))
         .expect("detail");
     assert_eq!((met.trees_built, model.trees().len()), (0, 2));
     // Finer than every tree: built, to the finer of the tolerance and half of 8 %.
     let finer = scene
-        .detail(None, Tolerance::Relative(0.06_f64.min(0.99 * reached)))
+        .detail(
+            None,
+            Tolerance::RelativeToDiagonal(0.06_f64.min(0.99 * reached)),
+        )
         .expect("detail");
     assert_eq!(finer.trees_built, 1);
     let built = &model.trees()[2];
@@ -268,7 +271,7 @@ fn each_tolerance_is_built_once_and_finer_ones_only_when_needed() {
     // Each request takes the fewest spheres its trees offer: 20 % still takes the same
     // cut (against a finer full detail now).
     let coarse_again = scene
-        .detail(None, Tolerance::Relative(0.2))
+        .detail(None, Tolerance::RelativeToDiagonal(0.2))
         .expect("detail");
     for (a, b) in coarse_again.instances.iter().zip(&coarser.instances) {
         assert_eq!(
@@ -324,7 +327,7 @@ fn a_tolerance_below_the_finest_is_an_error_naming_the_model() {
     scene.add("small", Arc::clone(&model), small);
     // 0.5 % of the diagonal for the first (below the 1 % finest), 4 % for the second.
     let error = scene
-        .detail(None, Tolerance::World(0.005 * model.diagonal()))
+        .detail(None, Tolerance::Absolute(0.005 * model.diagonal()))
         .expect_err("below the finest");
     let SceneError::ToleranceBelowFinest {
         model: named,
@@ -346,7 +349,7 @@ fn a_tolerance_below_the_finest_is_an_error_naming_the_model() {
     let mut alone = Scene::new();
     alone.add("small", Arc::clone(&model), small);
     let report = alone
-        .detail(None, Tolerance::World(0.005 * model.diagonal()))
+        .detail(None, Tolerance::Absolute(0.005 * model.diagonal()))
         .expect("4 % of the model");
     assert!(report.instances[0].tree.built);
     let refused = model.tree_for(0.001 * model.diagonal()).expect_err("below");
@@ -383,7 +386,7 @@ fn an_unreachable_tolerance_is_an_error_not_a_panic() {
     scene.add("square", Arc::clone(&model), Similarity::IDENTITY);
     let started = std::time::Instant::now();
     let error = scene
-        .detail(None, Tolerance::Relative(1e-6))
+        .detail(None, Tolerance::RelativeToDiagonal(1e-6))
         .expect_err("out of reach");
     let SceneError::ToleranceTree {
         model: named,
@@ -407,7 +410,7 @@ fn an_unreachable_tolerance_is_an_error_not_a_panic() {
         "{message}"
     );
     let again = scene
-        .detail(None, Tolerance::Relative(1e-7))
+        .detail(None, Tolerance::RelativeToDiagonal(1e-7))
         .expect_err("out of reach");
     assert!(
         matches!(again, SceneError::ToleranceTree { .. }),
@@ -417,7 +420,11 @@ fn an_unreachable_tolerance_is_an_error_not_a_panic() {
     // Not a long build either (the library refuses what would not fit before building).
     assert!(started.elapsed().as_secs() < 60);
     // A tolerance within reach still works.
-    assert!(scene.detail(None, Tolerance::Relative(0.05)).is_ok());
+    assert!(
+        scene
+            .detail(None, Tolerance::RelativeToDiagonal(0.05))
+            .is_ok()
+    );
 }
 
 /// Tolerance trees need the minimax method: other options are an error naming the model.
@@ -431,7 +438,7 @@ fn tolerance_trees_with_a_method_that_cannot_build_them_say_why() {
     let mut scene = Scene::new();
     scene.add("torus", model, Similarity::IDENTITY);
     let why = scene
-        .detail(None, Tolerance::Relative(0.05))
+        .detail(None, Tolerance::RelativeToDiagonal(0.05))
         .expect_err("not minimax")
         .to_string();
     assert!(
@@ -457,7 +464,7 @@ fn tolerances_that_need_deep_trees_are_met() {
     let mut scene = Scene::new();
     scene.add("torus", Arc::clone(&model), Similarity::IDENTITY);
     let report = scene
-        .detail(None, Tolerance::Relative(0.003))
+        .detail(None, Tolerance::RelativeToDiagonal(0.003))
         .expect("a deep tree");
     let detail = &report.instances[0];
     assert!(
@@ -472,7 +479,7 @@ fn tolerances_that_need_deep_trees_are_met() {
     let mut previous = detail.spheres.count;
     for relative in [0.006, 0.012, 0.05, 0.2] {
         let coarser = scene
-            .detail(None, Tolerance::Relative(relative))
+            .detail(None, Tolerance::RelativeToDiagonal(relative))
             .expect("detail");
         let d = &coarser.instances[0];
         assert_eq!(coarser.trees_built, 0, "{relative}");
@@ -519,7 +526,7 @@ fn a_flat_sheet_in_a_scene_meets_the_tolerance() {
         .collect();
     let scene = common::scene_of(&models, &placements);
     let report = scene
-        .detail(None, Tolerance::Relative(0.02))
+        .detail(None, Tolerance::RelativeToDiagonal(0.02))
         .expect("detail");
     for (instance, detail) in scene.instances().iter().zip(&report.instances) {
         let samples = sphaera_tests::hausdorff::surface_points(instance.model.mesh(), 3_000, 5);
@@ -559,7 +566,7 @@ fn a_mesh_scaled_by_a_power_of_two_gives_the_identical_answer_scaled() {
                     common::pose(DVec3::X * 4.0 * f, DVec3::Z, 0.0, 2.0),
                 );
                 scene
-                    .detail(None, Tolerance::World(tolerance))
+                    .detail(None, Tolerance::Absolute(tolerance))
                     .expect("detail")
             };
             let t = 0.03 * mesh.bounding_box_diagonal();
@@ -622,7 +629,7 @@ fn the_four_shared_meshes_meet_two_percent() {
         models.push(model);
     }
     let report = scene
-        .detail(None, Tolerance::Relative(0.02))
+        .detail(None, Tolerance::RelativeToDiagonal(0.02))
         .expect("2 % met");
     assert_eq!(report.trees_built, files.len());
     for (model, detail) in models.iter().zip(&report.instances) {
@@ -645,7 +652,7 @@ fn the_four_shared_meshes_meet_two_percent() {
     }
     assert_eq!(
         scene
-            .detail(None, Tolerance::Relative(0.02))
+            .detail(None, Tolerance::RelativeToDiagonal(0.02))
             .expect("again")
             .trees_built,
         0
@@ -672,7 +679,7 @@ fn collisions_descend_the_tolerance_trees() {
         .collect();
     let scene = common::scene_of(&models, &placements);
     let report = scene
-        .detail(None, Tolerance::Relative(0.03))
+        .detail(None, Tolerance::RelativeToDiagonal(0.03))
         .expect("detail");
     // The ball's root is within 3 % already; the others need trees.
     assert!(report.trees_built >= models.len() - 1, "{report:?}");

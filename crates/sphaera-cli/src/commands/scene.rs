@@ -177,7 +177,7 @@ pub fn run(args: &SceneArgs, quiet: bool) -> Result<()> {
     let tolerance = args.tolerance.unwrap_or(if camera.is_some() {
         Tolerance::Pixels(2.0)
     } else {
-        Tolerance::Relative(0.01)
+        Tolerance::RelativeToDiagonal(0.01)
     });
 
     let started = Instant::now();

@@ -114,7 +114,7 @@ pub(super) fn run(data: &Path, out: &Path) -> Result<()> {
         .map(|&t| {
             (
                 format!("sphaera {}%", t * 100.0),
-                Tolerance::Relative(t),
+                Tolerance::RelativeToDiagonal(t),
                 None,
             )
         })
