@@ -103,6 +103,7 @@ mod polyline;
 mod query2;
 mod query3;
 mod surface3;
+mod svg;
 mod tree2;
 mod tree3;
 
@@ -113,7 +114,8 @@ pub use polyline::{Polyline2, parse_points, parse_points3};
 pub use query2::{Location, contains_brute, intersects_brute, ray_crossing, segments_intersect};
 pub use query3::contains3_brute;
 pub use surface3::{GenusZeroSurface, RootBall};
-pub use tree2::{Approximation, Chain, HalTree2, Node2};
+pub use svg::approximation_svg;
+pub use tree2::{Approximation, Chain, HalTree2, LevelSummary, Node2};
 pub use tree3::{Bound3, HalTree3, Node3, SMALLEST_SPLIT_ANGLE};
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so

@@ -277,16 +277,91 @@ impl HalTree2 {
     /// for it (a width measures from the chord's line, Definition 4).
     #[must_use]
     pub fn approximate(&self, tolerance: f64) -> Approximation {
-        let vertices = self.collect(|node| node.width > tolerance);
-        let width = self.unrefined_width(|node| node.width > tolerance);
-        Approximation { vertices, width }
+        self.approximation_by(|node| node.width > tolerance)
+    }
+
+    /// The approximation that refines exactly the nodes `refine` accepts (reached through
+    /// refined parents): [`HalTree2::approximate`] refines by width, a level by
+    /// `node.level <= level`, the whole outline by `|_| true`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::{HalTree2, Polyline2, parse_points};
+    ///
+    /// let square = Polyline2::polygon(parse_points("0 0\n2 0\n2 1\n2 2\n0 2\n")?)?;
+    /// let tree = HalTree2::build(&square)?;
+    /// let whole = tree.approximation_by(|_| true);
+    /// assert_eq!(whole.vertices.len(), 5);
+    /// assert!(whole.frontier.is_empty() && whole.width == 0.0);
+    /// let coarsest = tree.approximation_by(|_| false);
+    /// assert_eq!(coarsest.vertices.len(), 2);
+    /// assert!(!coarsest.frontier.is_empty() && coarsest.width > 0.0);
+    /// # Ok::<(), sphaera_hal::HalError>(())
+    /// ```
+    #[must_use]
+    pub fn approximation_by(&self, refine: impl Fn(&Node2) -> bool) -> Approximation {
+        let vertices = self.collect(&refine);
+        let mut frontier = Vec::new();
+        let width = self.unrefined_width(&refine, &mut frontier);
+        frontier.sort_unstable();
+        Approximation {
+            vertices,
+            frontier,
+            width,
+        }
+    }
+
+    /// Per level from 0 to [`HalTree2::depth`], its approximation's vertex count and
+    /// covering error (eq. 1), in one pass over the nodes (the level-`k` approximation
+    /// holds the nodes of level at most `k`; its edges that are not original are bounded
+    /// by the nodes of level `k + 1`).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::{HalTree2, Polyline2, parse_points};
+    ///
+    /// let square = Polyline2::polygon(parse_points("0 0\n2 0\n2 1\n2 2\n0 2\n")?)?;
+    /// let tree = HalTree2::build(&square)?;
+    /// let levels = tree.level_summaries();
+    /// assert_eq!(levels.len(), tree.depth() + 1);
+    /// for summary in &levels {
+    ///     assert_eq!(summary.vertices, tree.level(summary.level).len());
+    ///     assert_eq!(summary.width, tree.level_width(summary.level));
+    /// }
+    /// # Ok::<(), sphaera_hal::HalError>(())
+    /// ```
+    #[must_use]
+    pub fn level_summaries(&self) -> Vec<LevelSummary> {
+        let depth = self.depth();
+        let mut count = vec![0_usize; depth + 2];
+        let mut width = vec![0.0_f64; depth + 2];
+        for node in &self.nodes {
+            let level = node.level as usize;
+            count[level] += 1;
+            width[level] = width[level].max(node.width);
+        }
+        // The level-0 chords' ends (the first vertex of every chain, and a polyline's
+        // last vertex).
+        let mut vertices = self.chains.len() + usize::from(!self.polyline.is_closed());
+        (0..=depth)
+            .map(|level| {
+                vertices += count[level];
+                LevelSummary {
+                    level,
+                    vertices,
+                    width: width[level + 1],
+                }
+            })
+            .collect()
     }
 
     /// The covering error (eq. 1) of the level-`level` approximation: the largest width of
     /// the bounding areas of its edges that are not original edges.
     #[must_use]
     pub fn level_width(&self, level: usize) -> f64 {
-        self.unrefined_width(|node| node.level as usize <= level)
+        self.unrefined_width(|node| node.level as usize <= level, &mut Vec::new())
     }
 
     /// Vertices in outline order, descending into a node when `refine` says so.
@@ -330,8 +405,9 @@ impl HalTree2 {
         }
     }
 
-    /// The largest width among nodes reached (through refined parents) but not refined.
-    fn unrefined_width(&self, refine: impl Fn(&Node2) -> bool) -> f64 {
+    /// The largest width among nodes reached (through refined parents) but not refined;
+    /// those nodes are pushed on `frontier`.
+    fn unrefined_width(&self, refine: impl Fn(&Node2) -> bool, frontier: &mut Vec<usize>) -> f64 {
         let mut largest: f64 = 0.0;
         let mut stack: Vec<usize> = self.chains.iter().filter_map(|c| c.node).collect();
         while let Some(id) = stack.pop() {
@@ -340,6 +416,7 @@ impl HalTree2 {
                 stack.extend(node.children().into_iter().flatten());
             } else {
                 largest = largest.max(node.width);
+                frontier.push(id);
             }
         }
         largest
@@ -352,13 +429,31 @@ impl HalTree2 {
     }
 }
 
-/// An adaptive approximation ([`HalTree2::approximate`]).
+/// An approximation of the outline ([`HalTree2::approximate`],
+/// [`HalTree2::approximation_by`]).
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Approximation {
     /// Vertex indices in outline order (a polygon's closing edge implied).
     pub vertices: Vec<usize>,
+    /// The nodes whose bounding areas bound the approximation's edges that are not
+    /// original edges, in increasing node order.
+    pub frontier: Vec<usize>,
     /// Its covering error: the largest width of an edge's bounding area (0 when every
     /// edge is original).
+    pub width: f64,
+}
+
+/// One level of a [`HalTree2`] ([`HalTree2::level_summaries`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct LevelSummary {
+    /// The level.
+    pub level: usize,
+    /// The vertices of its approximation.
+    pub vertices: usize,
+    /// Its covering error (eq. 1): the largest width of a bounding area of its edges that
+    /// are not original.
     pub width: f64,
 }
 

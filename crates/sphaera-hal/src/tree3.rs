@@ -187,6 +187,38 @@ impl HalTree3 {
         self.extract(|node| node.width > tolerance)
     }
 
+    /// The covering error of the approximation that refines the nodes `refine` accepts
+    /// (through refined parents): the largest width of the triangles it keeps (0 for
+    /// original faces). `|n| n.level < level` gives [`HalTree3::level`]'s, `|n| n.width >
+    /// tolerance` [`HalTree3::approximate`]'s.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::HalTree3;
+    ///
+    /// let tree = HalTree3::build(&sphaera_mesh::shapes::sphere(1.0, 12)?)?;
+    /// assert_eq!(tree.kept_width(|_| true), 0.0);
+    /// assert!(tree.kept_width(|_| false) > 0.0);
+    /// // The adaptive approximation keeps only triangles within its tolerance.
+    /// assert!(tree.kept_width(|n| n.width > 0.05) <= 0.05);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[must_use]
+    pub fn kept_width(&self, refine: impl Fn(&Node3) -> bool) -> f64 {
+        let mut stack: Vec<u32> = self.roots.clone();
+        let mut largest: f64 = 0.0;
+        while let Some(n) = stack.pop() {
+            let node = &self.nodes[n as usize];
+            if node.children.is_empty() || !refine(node) {
+                largest = largest.max(node.width);
+            } else {
+                stack.extend(node.children.iter().copied());
+            }
+        }
+        largest
+    }
+
     /// The triangles reached from the roots, descending where `refine` says so, with the
     /// gaps closed.
     fn extract(&self, refine: impl Fn(&Node3) -> bool) -> Result<TriMesh, HalError> {

@@ -8,8 +8,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
-use sphaera::hal::{HalTree2, HalTree3, Location, Node2, Polyline2, parse_points, parse_points3};
-use sphaera::mesh::glam::DVec2;
+use sphaera::hal::{
+    HalTree2, HalTree3, Location, Node2, Polyline2, approximation_svg, parse_points, parse_points3,
+};
 use sphaera::mesh::io::write_atomic;
 
 use crate::{
@@ -128,7 +129,7 @@ pub fn run(args: &HalArgs) -> Result<()> {
         (None, Some(level)) => Refine::Level(level),
         (None, None) => Refine::All,
     };
-    let (kept, frontier) = approximation(&tree, refine);
+    let approximated = tree.approximation_by(|node| refine.refines(node));
     let approximation = match refine {
         Refine::Width(value) => Some(("tolerance", value)),
         Refine::Level(level) => Some(("level", level as f64)),
@@ -137,11 +138,8 @@ pub fn run(args: &HalArgs) -> Result<()> {
     .map(|(kind, value)| Approximation {
         kind,
         value,
-        vertices: kept.len(),
-        width: frontier
-            .iter()
-            .map(|&id| tree.nodes()[id].width)
-            .fold(0.0, f64::max),
+        vertices: approximated.vertices.len(),
+        width: approximated.width,
     });
     let contains = match &args.contains {
         Some(path) => Some(locate(&tree, path)?),
@@ -150,9 +148,11 @@ pub fn run(args: &HalArgs) -> Result<()> {
     if let Some(path) = &args.output {
         let points = tree.polyline().points();
         let bytes = if extension(path) == "svg" {
-            svg(&tree, &kept, &frontier)
+            approximation_svg(&tree, &approximated).into_bytes()
         } else {
-            kept.iter()
+            approximated
+                .vertices
+                .iter()
                 .fold(String::new(), |mut out, &v| {
                     let _ = writeln!(out, "{} {}", points[v].x, points[v].y);
                     out
@@ -169,7 +169,15 @@ pub fn run(args: &HalArgs) -> Result<()> {
         nodes: tree.nodes().len(),
         depth: tree.depth(),
         diagonal,
-        levels: levels(&tree),
+        levels: tree
+            .level_summaries()
+            .into_iter()
+            .map(|l| Level {
+                level: l.level,
+                vertices: l.vertices,
+                width: l.width,
+            })
+            .collect(),
         approximation,
         contains,
         output: args.output.as_ref().map(|p| p.display().to_string()),
@@ -188,65 +196,6 @@ fn extension(path: &Path) -> String {
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase()
-}
-
-/// Vertices and width per level, from one pass over the nodes: the level-`k`
-/// approximation holds the nodes of level at most `k`, and its edges that are not original
-/// are bounded by the nodes of level `k + 1`.
-fn levels(tree: &HalTree2) -> Vec<Level> {
-    let depth = tree.depth();
-    let mut count = vec![0_usize; depth + 2];
-    let mut width = vec![0.0_f64; depth + 2];
-    for node in tree.nodes() {
-        let level = node.level as usize;
-        count[level] += 1;
-        width[level] = width[level].max(node.width);
-    }
-    // The level-0 chord's two ends.
-    let mut vertices = 2;
-    (0..=depth)
-        .map(|level| {
-            vertices += count[level];
-            Level {
-                level,
-                vertices,
-                width: width[level + 1],
-            }
-        })
-        .collect()
-}
-
-/// The vertices an approximation keeps (outline order) and the nodes bounding its
-/// non-original edges.
-fn approximation(tree: &HalTree2, refine: Refine) -> (Vec<usize>, Vec<usize>) {
-    let mut kept = Vec::new();
-    let mut frontier = Vec::new();
-    for chain in tree.chains() {
-        kept.push(tree.vertex_at(chain.first));
-        // In order: (node, whether its left part is done).
-        let mut stack: Vec<(usize, bool)> = chain.node.map(|n| (n, false)).into_iter().collect();
-        while let Some((id, left_done)) = stack.pop() {
-            let node = &tree.nodes()[id];
-            if !refine.refines(node) {
-                frontier.push(id);
-                continue;
-            }
-            let [left, right] = node.children();
-            if left_done {
-                kept.push(tree.vertex_at(node.split));
-                stack.extend(right.map(|r| (r, false)));
-            } else {
-                stack.push((id, true));
-                stack.extend(left.map(|l| (l, false)));
-            }
-        }
-    }
-    if !tree.polyline().is_closed()
-        && let Some(last) = tree.chains().last()
-    {
-        kept.push(tree.vertex_at(last.last));
-    }
-    (kept, frontier)
 }
 
 /// Point inclusion for every point of `path`.
@@ -367,115 +316,6 @@ fn print_text(report: &Report) {
     }
 }
 
-/// The drawing: the outline in grey, the approximation in blue, and the bounding area of
-/// each of its edges that is not original, shaded (the paper's Figs. 4 and 6). y points
-/// up.
-fn svg(tree: &HalTree2, kept: &[usize], frontier: &[usize]) -> Vec<u8> {
-    let points = tree.polyline().points();
-    let (lo, hi) = tree.polyline().bounds();
-    let size = (hi - lo).max_element().max(f64::MIN_POSITIVE);
-    let margin = 0.05 * size;
-    let scale = 1000.0 / (size + 2.0 * margin);
-    let map = |p: DVec2| ((p.x - lo.x + margin) * scale, (hi.y - p.y + margin) * scale);
-    let path = |vertices: &mut dyn Iterator<Item = DVec2>, close: bool| {
-        let mut d = String::new();
-        for (k, p) in vertices.enumerate() {
-            let (x, y) = map(p);
-            let _ = write!(d, "{}{x:.2},{y:.2} ", if k == 0 { "M" } else { "L" });
-        }
-        if close {
-            d.push('Z');
-        }
-        d
-    };
-    let width = (hi.x - lo.x + 2.0 * margin) * scale;
-    let height = (hi.y - lo.y + 2.0 * margin) * scale;
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {width:.1} {height:.1}" width="{width:.0}" height="{height:.0}">"#
-    );
-    let _ = writeln!(
-        out,
-        r##"<rect width="100%" height="100%" fill="#ffffff"/>"##
-    );
-    for &id in frontier {
-        let node = &tree.nodes()[id];
-        let outline = lens_outline(tree, node);
-        if !outline.is_empty() {
-            let _ = writeln!(
-                out,
-                r##"<path d="{}" fill="#f4a261" fill-opacity="0.25" stroke="#e76f51" stroke-width="0.6"/>"##,
-                path(&mut outline.into_iter(), true)
-            );
-        }
-    }
-    let closed = tree.polyline().is_closed();
-    let _ = writeln!(
-        out,
-        r##"<path d="{}" fill="none" stroke="#8d99ae" stroke-width="0.8"/>"##,
-        path(&mut points.iter().copied(), closed)
-    );
-    let _ = writeln!(
-        out,
-        r##"<path d="{}" fill="none" stroke="#1d3557" stroke-width="1.4"/>"##,
-        path(&mut kept.iter().map(|&v| points[v]), closed)
-    );
-    let _ = writeln!(out, "</svg>");
-    out.into_bytes()
-}
-
-/// The boundary of a node's bounding area as a polygon: the left disc's arc from the
-/// chord's start to its end, then the right disc's arc back (a side without vertices is
-/// the chord itself). Empty for an unbounded area (a half-plane on a vertex's side).
-fn lens_outline(tree: &HalTree2, node: &Node2) -> Vec<DVec2> {
-    let (a, b) = (tree.point_at(node.first), tree.point_at(node.last));
-    let (w1, w2) = node.lens.widths(a, b);
-    if !(w1.is_finite() && w2.is_finite()) || a == b {
-        return Vec::new();
-    }
-    let normal = (b - a).perp().normalize();
-    let middle = a.midpoint(b);
-    let mut outline = arc(a, b, middle + normal * w1);
-    outline.extend(arc(b, a, middle - normal * w2).into_iter().skip(1));
-    outline
-}
-
-/// Points along the circle through `from`, `apex` and `to`, from `from` to `to` through
-/// `apex` (the straight segment when the three are collinear).
-fn arc(from: DVec2, to: DVec2, apex: DVec2) -> Vec<DVec2> {
-    let Some(center) = circumcentre(from, to, apex) else {
-        return vec![from, to];
-    };
-    let radius = center.distance(from);
-    let angle = |p: DVec2| (p - center).to_angle();
-    let tau = std::f64::consts::TAU;
-    let turn = |x: f64| (x - angle(from)).rem_euclid(tau);
-    let (to_end, to_apex) = (turn(angle(to)), turn(angle(apex)));
-    let sweep = if to_apex <= to_end {
-        to_end
-    } else {
-        to_end - tau
-    };
-    (0..=32)
-        .map(|k| {
-            let t = angle(from) + sweep * f64::from(k) / 32.0;
-            center + DVec2::from_angle(t) * radius
-        })
-        .collect()
-}
-
-/// The centre of the circle through three points, if they are not collinear.
-fn circumcentre(a: DVec2, b: DVec2, c: DVec2) -> Option<DVec2> {
-    let (ab, ac) = (b - a, c - a);
-    let d = 2.0 * ab.perp_dot(ac);
-    if d.abs() <= 1e-14 * ab.length_squared().max(ac.length_squared()) {
-        return None;
-    }
-    let (lb, lc) = (ab.length_squared(), ac.length_squared());
-    Some(a + DVec2::new(ac.y * lb - ab.y * lc, ab.x * lc - ac.x * lb) / d)
-}
-
 /// What `sphaera hal MESH` reports; also its JSON schema.
 #[derive(Debug, Serialize)]
 struct MeshReport {
@@ -505,23 +345,6 @@ struct MeshApproximation {
     triangles: usize,
     /// The largest width of its triangles' bounding volumes (0 for original faces).
     width: f64,
-}
-
-/// The largest width among the triangles an approximation keeps: the nodes reached from
-/// the roots through refined parents and not refined themselves.
-pub(crate) fn kept_width(tree: &HalTree3, refine: impl Fn(&sphaera::hal::Node3) -> bool) -> f64 {
-    let nodes = tree.nodes();
-    let mut stack: Vec<u32> = tree.roots().to_vec();
-    let mut largest: f64 = 0.0;
-    while let Some(n) = stack.pop() {
-        let node = &nodes[n as usize];
-        if node.children.is_empty() || !refine(node) {
-            largest = largest.max(node.width);
-        } else {
-            stack.extend(node.children.iter().copied());
-        }
-    }
-    largest
 }
 
 #[derive(Debug, Serialize)]
@@ -556,7 +379,7 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
     let diagonal = mesh.bounding_box_diagonal();
     let mut levels = Vec::new();
     for level in 0..=tree.depth() {
-        let width = kept_width(&tree, |n| n.level < level);
+        let width = tree.kept_width(|n| n.level < level);
         levels.push(MeshLevel {
             level,
             triangles: tree.level(level)?.triangle_count(),
@@ -587,9 +410,9 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
         value,
         triangles: approximation.triangle_count(),
         width: if kind == "tolerance" {
-            kept_width(&tree, |n| n.width > value)
+            tree.kept_width(|n| n.width > value)
         } else {
-            kept_width(&tree, |n| f64::from(n.level) < value)
+            tree.kept_width(|n| f64::from(n.level) < value)
         },
     });
     let contains = match &args.contains {

@@ -12,7 +12,6 @@ use sphaera::mesh::{Length, TriMesh};
 use sphaera::silhouette::{Contours, LabelOptions, Labels, ViewSet};
 use sphaera::sweep::{Direction, HausdorffDistance, HausdorffOptions, hausdorff_with_progress};
 
-use crate::commands::hal::kept_width;
 use crate::input::read_mesh;
 use crate::progress;
 
@@ -99,7 +98,7 @@ pub fn hal_layers(mesh: &TriMesh, tolerance: Length, source: &str) -> Result<Vec
             kind: LayerKind::HalLevel,
             label: format!("HAL level {level}"),
             mesh: approximation,
-            bound: kept_width(&tree, |n| n.level < level),
+            bound: tree.kept_width(|n| n.level < level),
         });
         if triangles >= half {
             break;
@@ -110,7 +109,7 @@ pub fn hal_layers(mesh: &TriMesh, tolerance: Length, source: &str) -> Result<Vec
         kind: LayerKind::HalTolerance,
         label: format!("HAL within {width:.4}"),
         mesh: tree.approximate(width)?,
-        bound: kept_width(&tree, |n| n.width > width),
+        bound: tree.kept_width(|n| n.width > width),
     });
     Ok(layers)
 }

@@ -128,22 +128,6 @@ fn style(i: usize, marker: Marker, line: bool) -> Style {
     }
 }
 
-/// The largest width among the triangles a 3D approximation keeps (reached through refined
-/// parents, not refined themselves).
-fn kept_width3(tree: &HalTree3, refine: impl Fn(&sphaera::hal::Node3) -> bool) -> f64 {
-    let mut stack: Vec<u32> = tree.roots().to_vec();
-    let mut largest: f64 = 0.0;
-    while let Some(n) = stack.pop() {
-        let node = &tree.nodes()[n as usize];
-        if node.children.is_empty() || !refine(node) {
-            largest = largest.max(node.width);
-        } else {
-            stack.extend(node.children.iter().copied());
-        }
-    }
-    largest
-}
-
 /// One panel per `(title, series)`, with the same axes.
 fn panels<'a>(
     data: &'a [(String, Vec<StyledSeries>)],
@@ -233,7 +217,7 @@ fn width_vs_size(data: &Path, outlines: &[(String, Polyline2)], out: &Path) -> R
         let mut uniform = Series::new("uniform levels");
         for level in 0..=tree.depth() {
             let triangles = tree.level(level)?.triangle_count();
-            let width = 100.0 * kept_width3(&tree, |n| n.level < level) / diagonal;
+            let width = 100.0 * tree.kept_width(|n| n.level < level) / diagonal;
             uniform.points.push((triangles as f64, width));
             rows.push(vec![
                 (*file).to_owned(),
@@ -247,7 +231,7 @@ fn width_vs_size(data: &Path, outlines: &[(String, Polyline2)], out: &Path) -> R
         for k in 1..=20 {
             let tolerance = diagonal * (-f64::from(k)).exp2();
             let triangles = tree.approximate(tolerance)?.triangle_count();
-            let width = 100.0 * kept_width3(&tree, |n| n.width > tolerance) / diagonal;
+            let width = 100.0 * tree.kept_width(|n| n.width > tolerance) / diagonal;
             adaptive.points.push((triangles as f64, width));
             rows.push(vec![
                 (*file).to_owned(),

@@ -14,7 +14,7 @@ use sphaera::mesh::{Length, TriMesh};
 use sphaera::simplify::{SimplifyOptions, simplify};
 use sphaera::sweep::{HausdorffOptions, hausdorff};
 
-use super::{kept_width3, panels, style};
+use super::{panels, style};
 use crate::chart::{
     LegendEntry, Marker, Series, Style, StyledSeries, XAxis, titled_panels, write_csv,
 };
@@ -59,7 +59,7 @@ pub fn versus_simplify(data: &Path, out: &Path) -> Result<()> {
             let tolerance = diagonal * f64::from(-k).exp2();
             let approximation = tree.approximate(tolerance)?;
             let triangles = approximation.triangle_count();
-            let kept = kept_width3(&tree, |n| n.width > tolerance);
+            let kept = tree.kept_width(|n| n.width > tolerance);
             let distance = certified_hausdorff(&mesh, &approximation)
                 .with_context(|| format!("{file}: Hausdorff of the HAL approximation"))?;
             let other = simplify(
