@@ -4,7 +4,6 @@
 use numpy::{PyArray1, PyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
-use rayon::prelude::*;
 use sphaera::mesh::{DVec3, Length};
 use sphaera::sweep::{Direction, HausdorffOptions, hausdorff as hausdorff_meshes};
 
@@ -127,13 +126,12 @@ pub fn distance(
                     .map(|c| (c.distance, c.distance, c.point, c.triangle))
                     .collect()
             }),
-            Some(t) => queries
-                .par_iter()
-                .map(|&p| {
-                    tree.closest_approx(p, &|_| t)
-                        .map(|a| (a.lower, a.upper, a.nearest.point, a.nearest.triangle))
-                })
-                .collect(),
+            Some(t) => tree.closest_approx_many(&queries, t).map(|answers| {
+                answers
+                    .into_iter()
+                    .map(|a| (a.lower, a.upper, a.nearest.point, a.nearest.triangle))
+                    .collect()
+            }),
         })
         .map_err(|e| to_py(&e))?;
     let closest: Vec<DVec3> = answers.iter().map(|a| a.2).collect();

@@ -346,6 +346,56 @@ impl TriangleTree {
         })
     }
 
+    /// [`TriangleTree::closest_approx`] for every point of `points`, each interval at most
+    /// `gap` wide, in order: on every core with the `parallel` feature (the answers are the
+    /// same either way). What `sphaera distance --tolerance` and Python's
+    /// `sphaera.distance(..., tolerance=)` answer: the interval and, always, the point of
+    /// the mesh at distance `upper` (the closest point itself when `lower == upper`).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, shapes};
+    /// use sphaera_query::closest::TriangleTree;
+    ///
+    /// let tree = TriangleTree::new(&shapes::sphere(1.0, 32)?)?;
+    /// let points: Vec<DVec3> = (0..50).map(|i| DVec3::new(2.0, f64::from(i) * 0.1, 0.0)).collect();
+    /// let answers = tree.closest_approx_many(&points, 0.01)?;
+    /// for (p, a) in points.iter().zip(&answers) {
+    ///     let exact = tree.closest(*p)?.distance;
+    ///     assert!(a.lower <= exact && exact <= a.upper && a.upper - a.lower <= 0.01);
+    /// }
+    /// # Ok::<(), sphaera_query::QueryError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`QueryError::NonFiniteQuery`] for a non-finite point (no answer is returned);
+    /// [`QueryError::InvalidParameter`] for a negative or NaN `gap`.
+    pub fn closest_approx_many(
+        &self,
+        points: &[DVec3],
+        gap: f64,
+    ) -> Result<Vec<ApproxClosest>, QueryError> {
+        if gap.is_nan() || gap < 0.0 {
+            return Err(QueryError::InvalidParameter {
+                name: "gap",
+                value: gap,
+                requirement: "non-negative",
+            });
+        }
+        let one = |&p: &DVec3| self.closest_approx(p, &|_| gap);
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            points.par_iter().map(one).collect()
+        }
+        #[cfg(not(feature = "parallel"))]
+        {
+            points.iter().map(one).collect()
+        }
+    }
+
     /// An upper bound of the distance from **every point** of the triangle with corners
     /// `corners` to the mesh: the smallest, over the mesh's triangles `T`, of the largest
     /// distance from a corner to `T`. The distance to a triangle is convex, so over the
