@@ -78,6 +78,22 @@ pub fn data_root() -> PathBuf {
     }
 }
 
+/// The number of cases a property test runs: `ci`, the count sized for the 2-core CI
+/// machine, unless `PROPTEST_CASES` is set (a deep run: `PROPTEST_CASES=5000 cargo xtask
+/// test`), which then applies to every property of the workspace, as it does to those
+/// on proptest's default configuration.
+///
+/// ```
+/// assert!(sphaera_tests::cases(48) > 0);
+/// ```
+pub fn cases(ci: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.trim().parse::<u32>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or(ci)
+}
+
 /// Whether a missing data folder must fail the run (`SPHAERA_REQUIRE_DATA=1`).
 pub fn data_required() -> bool {
     std::env::var("SPHAERA_REQUIRE_DATA").is_ok_and(|v| v == "1")

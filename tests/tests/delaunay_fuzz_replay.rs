@@ -11,7 +11,7 @@ use sphaera_medial::DVec3;
 use sphaera_tests::delaunay_fuzz::{check, decode};
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(1024))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(1024)))]
 
     /// Arbitrary bytes: any mode, any grid side, any number of late insertions.
     #[test]

@@ -10,8 +10,8 @@ use crate::{browser, cargo, cargo_with_env, charts, doc, package, print_steps, p
 /// `tests/`, and the doctests (all run by `cargo test`); then the query, simplification,
 /// medial, sphere-tree and scene crates again without their default `parallel` feature, whose
 /// results must be identical (their tests compare digests of their results with the same
-/// recorded values both ways),
-/// and the sphere-tree's export and awkward-mesh tests with its optional `parry` feature.
+/// recorded values both ways). The sphere-tree's optional `parry` export is tested in the
+/// first run: `sphaera-tests` asks for it, so the workspace's one build has it.
 pub fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
     // One invocation for all of them: one build, its crates compiled in parallel. No
@@ -39,24 +39,6 @@ pub fn test() -> Result<()> {
         "every_shared_mesh_builds_and_writes_every_format",
     ]);
     cargo(&args)?;
-    // The sphere-tree's parry3d export, behind its optional feature (the awkward meshes
-    // write it too).
-    cargo(&[
-        "test",
-        "--locked",
-        "-p",
-        "sphaera-spheretree",
-        "--features",
-        "parry",
-        "--test",
-        "export",
-        "--test",
-        "awkward",
-        // The tests that write the compound.
-        "--",
-        "parry",
-        "every_method_and_format_on_every_awkward_mesh",
-    ])?;
     // The Python bindings, built with maturin into a virtual environment and tested with
     // pytest against the CLI's numbers.
     python::python_test()?;
@@ -70,18 +52,6 @@ pub fn ci() -> Result<()> {
     cargo(&[
         "clippy",
         "--workspace",
-        "--all-targets",
-        "--locked",
-        "--",
-        "-D",
-        "warnings",
-    ])?;
-    cargo(&[
-        "clippy",
-        "-p",
-        "sphaera-spheretree",
-        "--features",
-        "parry",
         "--all-targets",
         "--locked",
         "--",

@@ -91,7 +91,7 @@ fn nested_identical_touching_and_apart() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(96)))]
 
     #[test]
     fn intersection_equals_brute_force(
@@ -129,7 +129,7 @@ fn belgium_meets_the_netherlands_and_not_norway() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     /// A placed outline answers as brute force on its mapped vertices.
     #[test]

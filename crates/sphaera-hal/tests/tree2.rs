@@ -257,7 +257,7 @@ fn adaptive_approximation_stays_within_its_width() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     /// Random polygons on a coarse integer grid (so collinear runs, repeated vertices and
     /// queries exactly on edges and vertices are common): the tree answers as brute force.

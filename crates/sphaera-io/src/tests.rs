@@ -489,7 +489,7 @@ fn samples_are_valid() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(256)))]
 
     /// Random bytes never panic any reader (nor sniffing).
     #[test]
@@ -573,7 +573,7 @@ fn finite_f64() -> impl Strategy<Value = f64> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     /// Writing then reading gives the same mesh, bit for bit, in OBJ and both PLY
     /// encodings, for arbitrary finite coordinates (subnormals, -0.0, 1e308...).

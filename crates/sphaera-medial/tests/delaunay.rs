@@ -337,7 +337,7 @@ fn duplicate_points_are_recorded_not_inserted() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     #[test]
     fn random_points_give_a_delaunay_tetrahedralization(

@@ -37,7 +37,7 @@ fn soup() -> impl Strategy<Value = TriMesh> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     #[test]
     fn triangle_tree_matches_brute_force(
@@ -87,7 +87,7 @@ fn walk() -> impl Strategy<Value = Vec<DVec3>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     /// The cursor answers every step of a walk exactly (its shortcut and its seeded
     /// descent both), and a batch answers exactly what independent queries do.
@@ -132,7 +132,7 @@ fn the_cursor_takes_its_shortcut_on_small_steps_and_refuses_bad_points() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     /// The approximate query's interval holds the true distance and is no wider than
     /// asked, absolute or relative; its point lies on the mesh at the upper end; a gap of
@@ -199,7 +199,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     /// A tree refit to moved vertices answers exactly on the moved mesh, as a new tree
     /// does, however far the vertices moved.
@@ -319,7 +319,7 @@ fn powers_of_two_scale_the_answers_exactly_and_rotations_by_rounding() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(48), ..ProptestConfig::default() })]
 
     /// The triangle bound is brute force's smallest largest-corner distance, and with
     /// `enough` it stops at a triangle within it (or finds the smallest).

@@ -113,7 +113,7 @@ fn check_agreement(surface: &Surface, points: &[DVec3]) -> usize {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     /// Random points around a shape placed by a random similarity (scales 2^±20): the
     /// same closest point as `closest`, the same side as the certified winding number.

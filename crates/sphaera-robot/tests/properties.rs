@@ -31,7 +31,7 @@ fn shape(kind: usize, a: f64, b: f64, c: f64) -> Shape {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(96)))]
 
     /// Dense surface points are covered, and no point on any sphere lies farther from the
     /// primitive than the reported protrusion (the brute-force maximum over the spheres'
@@ -284,7 +284,7 @@ fn obj_text(mesh: &sphaera_mesh::TriMesh) -> String {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(24)))]
 
     /// A mesh link at a random origin (`xyz`, `rpy`) with a random per-axis scale (a
     /// mirror included): its spheres cover the mesh placed by this test's own

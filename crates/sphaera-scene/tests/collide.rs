@@ -84,7 +84,7 @@ fn refines(scene: &Scene, coarse: &SceneCollision, fine: &SceneCollision) -> Res
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(24)))]
 
     /// Surfaces that cross are always reported; a reported pair is at most its contacts'
     /// error bound apart; every pair agrees with the single-pair traversal.

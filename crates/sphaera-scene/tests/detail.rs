@@ -25,7 +25,7 @@ fn unit(v: DVec3) -> DVec3 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(512)))]
 
     /// Any two seen points of a sphere `error` apart land at most `projected_error` apart.
     #[test]

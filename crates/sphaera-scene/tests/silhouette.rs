@@ -34,7 +34,7 @@ fn torus() -> Arc<ObjectModel> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     /// Every choice meets its tolerances, its measures are the camera's bound on its world
     /// errors, the contour is never coarser than the interior, and a multiple of 1 is the

@@ -155,7 +155,7 @@ fn check_detail(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(20))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(20)))]
 
     /// Random tolerances (world or relative) on random meshes (a sheet among them) at
     /// random scales: every instance's spheres meet its tolerance, checked by an

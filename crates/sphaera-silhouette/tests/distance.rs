@@ -45,7 +45,7 @@ fn image() -> impl Strategy<Value = (usize, usize, Vec<bool>)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(300)))]
 
     #[test]
     fn euclidean_equals_brute_force((w, h, object) in image()) {

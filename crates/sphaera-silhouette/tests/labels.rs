@@ -174,7 +174,7 @@ fn scaling_by_a_power_of_two_changes_no_label() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(200)))]
 
     /// Every cell holding a point of a triangle lists the triangle.
     #[test]

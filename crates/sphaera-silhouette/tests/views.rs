@@ -51,7 +51,7 @@ fn regular_sets_have_the_expected_views() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(500))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(500)))]
 
     #[test]
     fn nearest_views_equal_a_full_search(

@@ -52,7 +52,7 @@ fn refined(h: &Hierarchy, picks: &[u32]) -> Simplified {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(24), ..ProptestConfig::default() })]
 
     #[test]
     fn replayed_radii_hold_for_the_deformed_mesh(

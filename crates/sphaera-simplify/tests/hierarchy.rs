@@ -77,7 +77,7 @@ fn check_split_report(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(48), ..ProptestConfig::default() })]
 
     #[test]
     fn base_and_levels_match_the_simplifier(

@@ -33,7 +33,7 @@ fn check_both(original: &TriMesh, out: &Simplified, samples: usize, seed: u64) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(96), ..ProptestConfig::default() })]
 
     #[test]
     fn both_invariants_hold_on_small_shapes(

@@ -68,7 +68,7 @@ fn point() -> impl Strategy<Value = DVec3> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     #[test]
     fn burst_keeps_every_point_covered(

@@ -170,7 +170,7 @@ fn coord() -> impl Strategy<Value = [f64; 3]> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     #[test]
     fn unlimited_equals_brute_force_on_built_trees(

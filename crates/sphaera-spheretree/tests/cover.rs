@@ -69,7 +69,7 @@ fn without_certification_there_is_no_certificate() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(64), ..ProptestConfig::default() })]
 
     /// After certification, every point of the triangle (on a dense barycentric grid)
     /// is inside a sphere, no sphere shrank or moved, growth is reported exactly, and nothing

@@ -72,7 +72,7 @@ fn directions() -> &'static [DVec3] {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(24)))]
 
     /// `lower` is a true value of `f`, the dense estimate is `≤` the true maximum, and
     /// the true maximum is `≤ upper`; so `estimate ≤ upper` and, the estimate being within

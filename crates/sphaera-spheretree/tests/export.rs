@@ -301,7 +301,7 @@ fn yaml_refuses_duplicate_names_and_invalid_spheres() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     #[test]
     fn yaml_numbers_read_back_exactly(

@@ -313,7 +313,7 @@ fn check_fit(surface: &Surface, sphere: &Sphere, what: &str) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(24)))]
 
     /// Every sphere's certified error bounds its sampled protrusion on meshes with holes
     /// of several sizes, rotated, scaled and moved.

@@ -86,7 +86,7 @@ fn shape() -> impl Strategy<Value = (Vec<usize>, Vec<f64>)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(128)))]
 
     #[test]
     fn the_level_is_the_shallowest_meeting_the_tolerance(

@@ -46,7 +46,7 @@ fn placed(shape: usize, axis: DVec3, angle: f64, scale: f64, offset: DVec3) -> T
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(6), ..ProptestConfig::default() })]
 
     /// Random shapes, placements and tolerances: every leaf within the tolerance, by the
     /// tree's certificate and by the independent check.

@@ -52,7 +52,7 @@ fn check_closest(mesh: &TriMesh, session: &mut Session<'_>, p: DVec3) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     #[test]
     fn closest_matches_brute_force_fresh_and_in_sessions(

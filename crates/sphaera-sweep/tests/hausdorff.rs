@@ -123,7 +123,7 @@ fn check_direction(source: &TriMesh, target: &TriMesh, side: &DirectedHausdorff)
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(24), ..ProptestConfig::default() })]
 
     #[test]
     fn certified_bounds_contain_the_brute_force_distance(

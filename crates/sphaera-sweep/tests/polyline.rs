@@ -164,7 +164,7 @@ fn queries3() -> impl Strategy<Value = Vec<DVec3>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     #[test]
     fn polylines_3d_match_brute_force(

@@ -416,7 +416,7 @@ fn errors_from_files_name_the_file() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(256)))]
 
     /// Random values in the places a file controls (counts, offsets, strides, indices,
     /// modes, URIs) give a mesh or an error, never a panic.

@@ -440,7 +440,7 @@ fn transformed_shape() -> impl Strategy<Value = (TriMesh, Option<Similarity>)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     #[test]
     fn a_shape_written_as_glb_loads_transformed(

@@ -116,7 +116,7 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(2_000))]
+        #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(2_000)))]
 
         #[test]
         fn integer_predicates_agree_with_robust(

@@ -234,7 +234,7 @@ mod tests {
     }
 
     proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3_000))]
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(sphaera_tests::cases(3_000)))]
 
         #[test]
         fn filters_agree_with_robust_when_they_answer(

@@ -280,7 +280,7 @@ fn bad_parameters_are_errors() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 
     /// Random proportions and resolutions: still closed, oriented, manifold, right genus.
     #[test]

@@ -296,7 +296,7 @@ fn base_mesh(kind: u8, n: u32) -> TriMesh {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(64)))]
 
     /// Random legal collapses keep the structure valid, manifold, of the same Euler
     /// characteristic, genus and holes; undoing them restores the mesh exactly.

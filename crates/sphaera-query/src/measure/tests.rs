@@ -335,7 +335,7 @@ fn expected_counts(mesh: &TriMesh, options: &SampleOptions) -> (usize, usize, us
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(96)))]
 
     #[test]
     fn sampled_hausdorff_matches_brute_force(

@@ -251,7 +251,7 @@ fn min_distance_matches_brute_force_at_any_guess() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(24))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(24)))]
 
     /// Random triangle soups: samples on their triangles, exact counts, brute-force
     /// minimum distance.

@@ -95,7 +95,7 @@ fn shapes_with_evaluators() -> &'static [(&'static str, TriMesh, WindingNumber)]
 const DEFAULT_TOLERANCE: f64 = 2e-2;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(256)))]
 
     /// The accelerated winding number is within the documented tolerance of brute force,
     /// and within its own certified error bound.

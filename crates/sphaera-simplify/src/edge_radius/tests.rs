@@ -412,7 +412,7 @@ fn helpers_locate_and_cross() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(64), ..ProptestConfig::default() })]
 
     #[test]
     fn invariants_hold_for_random_collapses(

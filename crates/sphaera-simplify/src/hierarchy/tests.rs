@@ -51,7 +51,7 @@ fn assert_state_is_a_replay(mesh: &sphaera_mesh::TriMesh, h: &Hierarchy, state: 
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: sphaera_tests::cases(32), ..ProptestConfig::default() })]
 
     #[test]
     fn every_refined_state_is_a_replay_of_the_build(
