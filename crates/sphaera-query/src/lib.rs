@@ -39,6 +39,7 @@
 //! |---|---|
 //! | [`bvh`] | the workspace's one bounding-volume hierarchy: a box tree over items, built by median splits, with a nearest-first search |
 //! | [`closest`] | exact closest points on a mesh: [`closest::TriangleTree`] and its [`closest::ClosestPoint`] with the mesh [`closest::Feature`] hit |
+//! | [`grid`] | the workspace's one uniform grid: items (points, spheres, boxes) listed in the cells their boxes meet, for "what can be near here" queries |
 //! | [`winding`] | generalized winding number, brute force and hierarchically accelerated (Barill et al. 2018), ray-parity reference, a solidity check |
 //! | [`surface`] | [`Surface`]: a mesh as the boundary of a solid, its inside test, closest points and signed closest points ([`Surface::signed_closest`]: exact pseudo-normal test on a certified embedded solid, certified winding number otherwise), the embedded-solid certificate and its [`surface::EmbeddingDefect`] |
 //! | [`sampling`] | seeded area-weighted random and Poisson-disk (sample elimination, Yuksel 2015) surface samples |
@@ -62,6 +63,7 @@
 pub mod bvh;
 pub mod closest;
 mod error;
+pub mod grid;
 pub mod measure;
 pub mod sampling;
 pub mod surface;

@@ -17,6 +17,7 @@
 
 use glam::DVec3;
 use sphaera_mesh::{Sphere, TriMesh};
+use sphaera_query::grid::UniformGrid;
 
 /// What [`certify_coverage`] did to one set of spheres.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
@@ -247,16 +248,10 @@ fn uncovered_pieces(
 /// Cells along the longest side of the grid.
 const GRID_CELLS: f64 = 16.0;
 
-/// Which spheres can meet a box: per cell of a uniform grid over the mesh's bounding box,
-/// the spheres meeting the cell (points outside the box fall in the nearest cell).
-struct SphereGrid {
-    origin: DVec3,
-    cell: f64,
-    dims: [usize; 3],
-    /// Cell `i`'s spheres are `members[starts[i]..starts[i + 1]]`, ascending.
-    starts: Vec<usize>,
-    members: Vec<u32>,
-}
+/// Which spheres can meet a box: per cell of a uniform grid over the mesh's bounding box
+/// (`sphaera-query`'s), the spheres meeting the cell (points outside the box fall in the
+/// nearest cell).
+struct SphereGrid(UniformGrid);
 
 impl SphereGrid {
     fn new(bounds: sphaera_mesh::Aabb, spheres: &[Sphere]) -> Self {
@@ -265,82 +260,33 @@ impl SphereGrid {
         let most = GRID_CELLS as usize;
         let dims =
             [extent.x, extent.y, extent.z].map(|e| ((e / cell).ceil() as usize).clamp(1, most));
-        let mut grid = Self {
-            origin: bounds.min,
-            cell,
-            dims,
-            starts: Vec::new(),
-            members: Vec::new(),
+        let boxes = || {
+            spheres.iter().map(|s| {
+                let reach = DVec3::splat(s.radius);
+                Some((s.center - reach, s.center + reach))
+            })
         };
-        let mut cells: Vec<Vec<u32>> = vec![Vec::new(); dims[0] * dims[1] * dims[2]];
-        for (index, sphere) in spheres.iter().enumerate() {
-            let reach = DVec3::splat(sphere.radius);
-            let (lo, hi) = (
-                grid.coordinates(sphere.center - reach),
-                grid.coordinates(sphere.center + reach),
-            );
-            for z in lo[2]..=hi[2] {
-                for y in lo[1]..=hi[1] {
-                    for x in lo[0]..=hi[0] {
-                        // The border cells reach out to infinity: keep every sphere there.
-                        cells[grid.index([x, y, z])].push(index as u32);
-                    }
-                }
-            }
-        }
-        grid.starts.push(0);
-        for list in cells {
-            grid.members.extend(list);
-            grid.starts.push(grid.members.len());
-        }
-        grid
-    }
-
-    /// The cell coordinates of `p`, clamped to the grid (NaN to the first cell).
-    fn coordinates(&self, p: DVec3) -> [usize; 3] {
-        let q = (p - self.origin) / self.cell;
-        let clamp = |v: f64, n: usize| {
-            if v.is_nan() {
-                0
-            } else {
-                (v.max(0.0) as usize).min(n - 1)
-            }
-        };
-        [
-            clamp(q.x, self.dims[0]),
-            clamp(q.y, self.dims[1]),
-            clamp(q.z, self.dims[2]),
-        ]
-    }
-
-    /// The flat index of a cell; coordinates come from [`Self::coordinates`], which
-    /// clamps them into the grid, so the index is always a cell's (and `starts` has one
-    /// more entry than there are cells).
-    fn index(&self, [x, y, z]: [usize; 3]) -> usize {
-        (z * self.dims[1] + y) * self.dims[0] + x
+        // A mesh without a finite box (no triangles), or more listings than 32-bit indices
+        // address (a million spheres each in thousands of cells), fall back to one cell,
+        // which lists each sphere once.
+        UniformGrid::new(bounds.min, cell, dims, boxes())
+            .or_else(|_| UniformGrid::new(DVec3::ZERO, 1.0, [1, 1, 1], boxes()))
+            .map(Self)
+            // Invariant: one cell of edge 1 lists each sphere once, and sphere indices are
+            // u32 throughout the tree.
+            .expect("a one-cell grid of the spheres")
     }
 
     /// The spheres listed in the cell of `p`: every sphere containing `p` is among them.
     fn at(&self, p: DVec3) -> &[u32] {
-        let i = self.index(self.coordinates(p));
-        &self.members[self.starts[i]..self.starts[i + 1]]
+        self.0.items_at(p)
     }
 
     /// The spheres listed in the cells the box `[lo, hi]` meets, ascending and once each:
     /// every sphere meeting the box is among them.
     fn meeting(&self, lo: DVec3, hi: DVec3) -> Vec<u32> {
-        let (a, b) = (self.coordinates(lo), self.coordinates(hi));
         let mut out = Vec::new();
-        for z in a[2]..=b[2] {
-            for y in a[1]..=b[1] {
-                for x in a[0]..=b[0] {
-                    let i = self.index([x, y, z]);
-                    out.extend_from_slice(&self.members[self.starts[i]..self.starts[i + 1]]);
-                }
-            }
-        }
-        out.sort_unstable();
-        out.dedup();
+        self.0.items_meeting(lo, hi, &mut out);
         out
     }
 }

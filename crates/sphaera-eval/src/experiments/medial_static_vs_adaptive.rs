@@ -36,6 +36,8 @@ use sphaera::{
     mesh::{DVec3, TriMesh, sampling},
 };
 
+use sphaera::query::grid::UniformGrid;
+
 use super::{load_or_skip, min_time};
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
 
@@ -259,14 +261,8 @@ impl Coverage {
 const GRID_MAX_CELLS: usize = 96;
 
 /// Sphere indices bucketed by the uniform cells of the points' bounding box that the
-/// spheres' bounding boxes overlap (compressed rows: `start[c]..start[c + 1]` of `items`).
-struct SphereGrid {
-    origin: DVec3,
-    cell: f64,
-    dims: [usize; 3],
-    start: Vec<u32>,
-    items: Vec<u32>,
-}
+/// spheres' bounding boxes overlap (`sphaera-query`'s grid, its cell chosen here).
+struct SphereGrid(UniformGrid);
 
 impl SphereGrid {
     fn new(spheres: &[MedialSphere], points: &[DVec3]) -> Self {
@@ -286,91 +282,26 @@ impl SphereGrid {
         radii.sort_unstable_by(f64::total_cmp);
         let median = radii.get(radii.len() / 2).copied().unwrap_or(0.0);
         let cell = median.max(extent / GRID_MAX_CELLS as f64);
-        if !(cell > 0.0 && cell.is_finite()) {
-            // No extent: one cell holding every sphere.
-            return Self {
-                origin: DVec3::ZERO,
-                cell: 1.0,
-                dims: [1, 1, 1],
-                start: vec![0, spheres.len() as u32],
-                items: (0..spheres.len() as u32).collect(),
-            };
-        }
+        let boxes = || {
+            spheres.iter().map(|s| {
+                let reach = DVec3::splat(s.radius);
+                (s.center.is_finite() && s.radius.is_finite())
+                    .then(|| (s.center - reach, s.center + reach))
+            })
+        };
         let dims = ((hi - lo) / cell)
             .to_array()
             .map(|d| (d.floor() as usize + 1).min(GRID_MAX_CELLS + 1));
-        let mut grid = Self {
-            origin: lo,
-            cell,
-            dims,
-            start: Vec::new(),
-            items: Vec::new(),
-        };
-        // Two passes over each sphere's cell range: count, then fill.
-        let cells = dims[0] * dims[1] * dims[2];
-        let mut count = vec![0_u32; cells + 1];
-        grid.each_cell(spheres, |c, _| count[c + 1] += 1);
-        for c in 0..cells {
-            count[c + 1] += count[c];
-        }
-        let mut next = count.clone();
-        let mut items = vec![0_u32; count[cells] as usize];
-        grid.each_cell(spheres, |c, i| {
-            items[next[c] as usize] = i;
-            next[c] += 1;
-        });
-        grid.start = count;
-        grid.items = items;
-        grid
-    }
-
-    /// Calls `f(cell, sphere)` for every cell each finite sphere's bounding box overlaps.
-    fn each_cell(&self, spheres: &[MedialSphere], mut f: impl FnMut(usize, u32)) {
-        for (i, s) in spheres.iter().enumerate() {
-            if !(s.center.is_finite() && s.radius.is_finite()) {
-                continue;
-            }
-            let (Some(a), Some(b)) = (
-                self.clamped_cell(s.center - DVec3::splat(s.radius)),
-                self.clamped_cell(s.center + DVec3::splat(s.radius)),
-            ) else {
-                continue;
-            };
-            for z in a[2]..=b[2] {
-                for y in a[1]..=b[1] {
-                    for x in a[0]..=b[0] {
-                        f(self.index([x, y, z]), i as u32);
-                    }
-                }
-            }
-        }
-    }
-
-    /// The cell of `p` clamped into the grid (`None` for a non-finite point).
-    fn clamped_cell(&self, p: DVec3) -> Option<[usize; 3]> {
-        if !p.is_finite() {
-            return None;
-        }
-        let q = ((p - self.origin) / self.cell).to_array();
-        let mut cell = [0; 3];
-        for axis in 0..3 {
-            // Saturating float-to-integer conversion: negative values give 0.
-            cell[axis] = (q[axis].floor().max(0.0) as usize).min(self.dims[axis] - 1);
-        }
-        Some(cell)
-    }
-
-    fn index(&self, [x, y, z]: [usize; 3]) -> usize {
-        (z * self.dims[1] + y) * self.dims[0] + x
+        // No extent (or a refused grid): one cell holding every sphere.
+        let grid = UniformGrid::new(lo, cell, dims, boxes())
+            .or_else(|_| UniformGrid::new(DVec3::ZERO, 1.0, [1, 1, 1], boxes()))
+            .expect("a one-cell grid of fewer than 2³² spheres");
+        Self(grid)
     }
 
     /// The spheres listed in the cell of `p` (clamped into the grid).
     fn candidates(&self, p: DVec3) -> &[u32] {
-        let Some(cell) = self.clamped_cell(p) else {
-            return &[];
-        };
-        let c = self.index(cell);
-        &self.items[self.start[c] as usize..self.start[c + 1] as usize]
+        self.0.items_at(p)
     }
 }
 

@@ -1,16 +1,13 @@
 //! A uniform grid over the surface samples for "samples inside this ball" queries.
 
 use glam::DVec3;
+use sphaera_query::grid::UniformGrid;
 
-/// Samples bucketed in a uniform grid (compressed rows: `starts[c]..starts[c+1]` of
-/// `ids` are in cell `c`).
+/// Samples bucketed in a uniform grid (`sphaera-query`'s, one cell size chosen here).
 #[derive(Debug, Clone)]
 pub(crate) struct SampleGrid {
-    origin: DVec3,
-    cell: f64,
-    dims: [usize; 3],
-    starts: Vec<u32>,
-    ids: Vec<u32>,
+    grid: UniformGrid,
+    count: usize,
 }
 
 impl SampleGrid {
@@ -41,32 +38,14 @@ impl SampleGrid {
             }
             cell *= 1.26;
         };
-        let cells = dims.iter().product::<usize>();
-        let index = |p: DVec3| {
-            let k = ((p - lo) / cell).floor();
-            let clamp = |v: f64, d: usize| (v.max(0.0) as usize).min(d - 1);
-            clamp(k.x, dims[0]) + dims[0] * (clamp(k.y, dims[1]) + dims[1] * clamp(k.z, dims[2]))
-        };
-        let mut starts = vec![0_u32; cells + 1];
-        for &p in points {
-            starts[index(p) + 1] += 1;
-        }
-        for c in 0..cells {
-            starts[c + 1] += starts[c];
-        }
-        let mut fill = starts.clone();
-        let mut ids = vec![0_u32; points.len()];
-        for (i, &p) in points.iter().enumerate() {
-            let c = index(p);
-            ids[fill[c] as usize] = i as u32;
-            fill[c] += 1;
-        }
+        // Invariant: the cell is positive and finite (at least 1e-300 / 1024 · 2), there are
+        // at most 4 · max(n, 64) cells and every sample (fewer than 2³², as their u32 ids)
+        // is listed once, so the grid cannot be refused.
+        let grid = UniformGrid::new(lo, cell, dims, points.iter().map(|&p| Some((p, p))))
+            .expect("a valid sample grid (invariant above)");
         Self {
-            origin: lo,
-            cell,
-            dims,
-            starts,
-            ids,
+            grid,
+            count: points.len(),
         }
     }
 
@@ -75,23 +54,8 @@ impl SampleGrid {
     pub(crate) fn within(&self, points: &[DVec3], center: DVec3, radius: f64, out: &mut Vec<u32>) {
         let start = out.len();
         let r2 = radius * radius;
-        let lo = ((center - DVec3::splat(radius) - self.origin) / self.cell).floor();
-        let hi = ((center + DVec3::splat(radius) - self.origin) / self.cell).floor();
-        let range = |l: f64, h: f64, d: usize| -> Option<(usize, usize)> {
-            if h < 0.0 || l > (d - 1) as f64 {
-                return None;
-            }
-            Some(((l.max(0.0)) as usize, (h.min((d - 1) as f64)) as usize))
-        };
-        let (Some(x), Some(y), Some(z)) = (
-            range(lo.x, hi.x, self.dims[0]),
-            range(lo.y, hi.y, self.dims[1]),
-            range(lo.z, hi.z, self.dims[2]),
-        ) else {
-            return;
-        };
-        let cells = (x.1 - x.0 + 1) * (y.1 - y.0 + 1) * (z.1 - z.0 + 1);
-        if cells > self.ids.len() {
+        let (lo, hi) = (center - DVec3::splat(radius), center + DVec3::splat(radius));
+        if self.grid.cells_meeting(lo, hi) > self.count {
             for (i, &p) in points.iter().enumerate() {
                 if (p - center).length_squared() <= r2 {
                     out.push(i as u32);
@@ -99,20 +63,11 @@ impl SampleGrid {
             }
             return;
         }
-        for k in z.0..=z.1 {
-            for j in y.0..=y.1 {
-                let row = self.dims[0] * (j + self.dims[1] * k);
-                let (a, b) = (
-                    self.starts[row + x.0] as usize,
-                    self.starts[row + x.1 + 1] as usize,
-                );
-                for &i in &self.ids[a..b] {
-                    if (points[i as usize] - center).length_squared() <= r2 {
-                        out.push(i);
-                    }
-                }
+        self.grid.visit_meeting(lo, hi, |i| {
+            if (points[i as usize] - center).length_squared() <= r2 {
+                out.push(i);
             }
-        }
+        });
         out[start..].sort_unstable();
     }
 }
