@@ -6,7 +6,7 @@ mod styled;
 #[cfg(test)]
 mod tests;
 
-use std::{fmt::Write as _, path::Path};
+use std::path::Path;
 
 use anyhow::{Context, Result};
 /// Where a panel's legend goes.
@@ -125,14 +125,40 @@ fn log_range(points: &[(f64, f64)]) -> (std::ops::Range<f64>, std::ops::Range<f6
     (bounds(|p| p.0), bounds(|p| p.1))
 }
 
-/// Writes a CSV table (header + rows; fields must not contain commas) atomically.
+/// Writes a CSV table (header + rows) atomically, one line per row, fields quoted as
+/// RFC 4180 says ([`csv_text`]).
 pub fn write_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<()> {
-    let mut text = header.join(",");
-    text.push('\n');
+    write_atomically(path, csv_text(header, rows).as_bytes())
+}
+
+/// The text [`write_csv`] writes: the header line, then one line per row, each ending in
+/// `\n`; a field containing `,`, `"`, CR or LF is wrapped in double quotes with its
+/// inner quotes doubled (RFC 4180), any other field is written as it is.
+#[must_use]
+pub fn csv_text(header: &[&str], rows: &[Vec<String>]) -> String {
+    let mut text = String::new();
+    push_csv_line(&mut text, header.iter().copied());
     for row in rows {
-        let _ = writeln!(text, "{}", row.join(","));
+        push_csv_line(&mut text, row.iter().map(String::as_str));
     }
-    write_atomically(path, text.as_bytes())
+    text
+}
+
+/// Appends `fields` to `text` as one CSV line ending in `\n`, quoted as [`csv_text`] says.
+fn push_csv_line<'a>(text: &mut String, fields: impl Iterator<Item = &'a str>) {
+    for (i, field) in fields.enumerate() {
+        if i > 0 {
+            text.push(',');
+        }
+        if field.contains([',', '"', '\r', '\n']) {
+            text.push('"');
+            text.push_str(&field.replace('"', "\"\""));
+            text.push('"');
+        } else {
+            text.push_str(field);
+        }
+    }
+    text.push('\n');
 }
 
 /// Writes `bytes` to `path` atomically (temporary file, then rename), creating the folder.

@@ -89,3 +89,27 @@ fn styled_panels_draw_both_axes_and_the_legend() -> Result<()> {
     assert!(titled.contains("figure title"));
     Ok(())
 }
+
+#[test]
+fn csv_fields_are_quoted_as_rfc_4180_says() {
+    let rows = vec![
+        vec![
+            "bunny.obj".to_owned(),
+            "outline, nearest camera, 2 cells".to_owned(),
+            "0.5".to_owned(),
+        ],
+        vec![
+            "say \"hi\"".to_owned(),
+            "two\nlines".to_owned(),
+            "cr\r".to_owned(),
+        ],
+        vec![String::new(), "plain".to_owned(), "a,\"b\"".to_owned()],
+    ];
+    assert_eq!(
+        csv_text(&["mesh", "method", "value"], &rows),
+        "mesh,method,value\n\
+         bunny.obj,\"outline, nearest camera, 2 cells\",0.5\n\
+         \"say \"\"hi\"\"\",\"two\nlines\",\"cr\r\"\n\
+         ,plain,\"a,\"\"b\"\"\"\n"
+    );
+}
