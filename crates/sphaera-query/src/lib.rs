@@ -43,6 +43,7 @@
 //! | [`winding`] | generalized winding number, brute force and hierarchically accelerated (Barill et al. 2018), ray-parity reference, a solidity check |
 //! | [`surface`] | [`Surface`]: a mesh as the boundary of a solid, its inside test, closest points and signed closest points ([`Surface::signed_closest`]: exact pseudo-normal test on a certified embedded solid, certified winding number otherwise), the embedded-solid certificate and its [`surface::EmbeddingDefect`] |
 //! | [`sampling`] | seeded area-weighted random and Poisson-disk (sample elimination, Yuksel 2015) surface samples |
+//! | [`hausdorff`] | certified Hausdorff distances between two meshes from a triangle tree of each, on every core; the types and upper bounds `sphaera-sweep`'s paper engine shares |
 //! | [`measure`] | sampled Hausdorff distance between two surfaces, a lower bound of the true one: the sample set of a surface (referenced vertices, edge midpoints, seeded random points), directed and symmetric maxima over any distance oracle, exact by default through [`closest::TriangleTree`] |
 //!
 //! # Algorithm notes
@@ -64,6 +65,7 @@ pub mod bvh;
 pub mod closest;
 mod error;
 pub mod grid;
+pub mod hausdorff;
 pub mod measure;
 pub mod sampling;
 pub mod surface;

@@ -7,7 +7,7 @@ use glam::DVec3;
 use sphaera_mesh::geometry::Triangle;
 use sphaera_simplify::Hierarchy;
 
-use super::bound::{CornerAnswer, level_upper_bound, triangle_upper_bound};
+use sphaera_query::hausdorff::bound::{CornerAnswer, level_upper_bound, triangle_upper_bound};
 use super::target::{Found, Rows, Target};
 use super::{DirectedHausdorff, Tracker, peel};
 use crate::{ClosestPoint, Feature, Session, SweepError, Sweeper};

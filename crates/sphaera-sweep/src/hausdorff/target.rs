@@ -10,45 +10,11 @@ use glam::DVec3;
 use sphaera_mesh::geometry::{self, Triangle, closest_point_on_triangle};
 use sphaera_simplify::{Hierarchy, Simplified};
 
-use super::bound::TrianglePair;
+use sphaera_query::hausdorff::bound::TrianglePair;
+pub(crate) use sphaera_query::hausdorff::Rows;
 
 /// The most triangles a walk moves through before it settles for what it found.
 const MAX_STEPS: usize = 64;
-
-/// Rows of `u32` items in compressed form (row `i` is `items[offsets[i]..offsets[i + 1]]`).
-pub(crate) struct Rows {
-    offsets: Vec<usize>,
-    items: Vec<u32>,
-}
-
-impl Rows {
-    /// The rows of the `(row, item)` pairs (sorted and deduplicated here).
-    pub(crate) fn from_pairs(rows: usize, mut pairs: Vec<(u32, u32)>) -> Self {
-        pairs.retain(|&(r, _)| (r as usize) < rows);
-        pairs.sort_unstable();
-        pairs.dedup();
-        let mut offsets = vec![0; rows + 1];
-        for &(r, _) in &pairs {
-            offsets[r as usize + 1] += 1;
-        }
-        for i in 0..rows {
-            offsets[i + 1] += offsets[i];
-        }
-        Self {
-            offsets,
-            items: pairs.into_iter().map(|(_, item)| item).collect(),
-        }
-    }
-
-    /// Row `r` (empty for an unknown row).
-    pub(crate) fn row(&self, r: u32) -> &[u32] {
-        let r = r as usize;
-        match (self.offsets.get(r), self.offsets.get(r + 1)) {
-            (Some(&a), Some(&b)) => self.items.get(a..b).unwrap_or(&[]),
-            _ => &[],
-        }
-    }
-}
 
 /// A point found on the target mesh.
 #[derive(Clone, Copy, Debug)]

@@ -36,13 +36,15 @@ use glam::DVec3;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
 
 /// Relative slack added to a bound, against rounding (times the largest coordinate).
-pub(crate) const ROUNDING: f64 = 1e-12;
+pub const ROUNDING: f64 = 1e-12;
 
 /// What is known at a corner: its position and its exact closest point on the target
 /// mesh.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct CornerAnswer {
+pub struct CornerAnswer {
+    /// The corner.
     pub position: DVec3,
+    /// Its exact closest point on the target mesh.
     pub closest: DVec3,
 }
 
@@ -53,7 +55,8 @@ pub(crate) struct CornerAnswer {
 ///
 /// A bound computed as exactly zero (every corner found exactly on one target triangle,
 /// as for identical meshes) stays zero; any other gets the rounding slack.
-pub(crate) fn triangle_upper_bound(
+#[must_use]
+pub fn triangle_upper_bound(
     corners: &[CornerAnswer; 3],
     targets: &[Triangle],
     pairs: &[TrianglePair],
@@ -90,10 +93,14 @@ pub(crate) fn triangle_upper_bound(
 
 /// Two target triangles sharing the edge `(p, q)`.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct TrianglePair {
+pub struct TrianglePair {
+    /// One triangle.
     pub first: Triangle,
+    /// The other.
     pub second: Triangle,
+    /// One end of the shared edge.
     pub p: DVec3,
+    /// The other end.
     pub q: DVec3,
 }
 
@@ -145,7 +152,8 @@ fn split_bound_squared(x: [DVec3; 3], pair: &TrianglePair) -> f64 {
 /// triangle `x` is at a corner. Pairs of level triangles sharing an edge are split as in
 /// the split bound, with the larger radius. The smallest of all candidates is returned
 /// (infinite without candidates), with the rounding slack.
-pub(crate) fn level_upper_bound(
+#[must_use]
+pub fn level_upper_bound(
     x: [DVec3; 3],
     candidates: &[(Triangle, f64)],
     pairs: &[(TrianglePair, f64)],

@@ -23,13 +23,12 @@ use glam::DVec3;
 use smallvec::SmallVec;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
-use sphaera_query::QueryError;
-use sphaera_query::closest::{ClosestPoint, Feature, TriangleTree};
+use crate::QueryError;
+use crate::closest::{ClosestPoint, Feature, TriangleTree};
 
 use super::bound::{CornerAnswer, ROUNDING, TrianglePair, triangle_upper_bound};
-use super::target::Rows;
+use super::Rows;
 use super::{DirectedHausdorff, HausdorffProgress};
-use crate::SweepError;
 
 /// The tree's search for the best single target triangle is made only for triangles
 /// whose local bound is within this factor of what would settle them. Measured on the
@@ -47,11 +46,8 @@ pub(super) struct TreeTarget<'m> {
 
 impl<'m> TreeTarget<'m> {
     /// Builds the tree of `mesh`.
-    pub(super) fn new(mesh: &'m TriMesh) -> Result<Self, SweepError> {
-        let tree = TriangleTree::new(mesh).map_err(|e| match e {
-            QueryError::EmptyMesh => SweepError::EmptyMesh,
-            other => SweepError::Tree(other),
-        })?;
+    pub(super) fn new(mesh: &'m TriMesh) -> Result<Self, QueryError> {
+        let tree = TriangleTree::new(mesh)?;
         let pairs = mesh
             .triangles()
             .iter()
@@ -128,7 +124,7 @@ impl<'m> TreeSide<'m> {
     }
 
     /// Queries every vertex some triangle uses.
-    fn query_vertices(&mut self) -> Result<(), SweepError> {
+    fn query_vertices(&mut self) -> Result<(), QueryError> {
         let mut used = vec![false; self.source.vertex_count()];
         for &v in self.source.triangles().iter().flatten() {
             if let Some(u) = used.get_mut(v as usize) {
@@ -147,7 +143,7 @@ impl<'m> TreeSide<'m> {
             .target
             .tree
             .closest_many(&positions)
-            .map_err(query_error)?;
+            ?;
         let mut next = 0u32;
         self.vertex_sample = used
             .iter()
@@ -262,11 +258,11 @@ impl<'m> TreeSide<'m> {
 
     /// Adds the midpoints of `edges` (sorted, without those that exist), queried in
     /// parallel.
-    fn add_midpoints(&mut self, edges: &[(u32, u32)]) -> Result<(), SweepError> {
+    fn add_midpoints(&mut self, edges: &[(u32, u32)]) -> Result<(), QueryError> {
         let sample = |s: u32| self.samples.get(s as usize);
-        let query = |&(a, b): &(u32, u32)| -> Result<(DVec3, ClosestPoint), SweepError> {
+        let query = |&(a, b): &(u32, u32)| -> Result<(DVec3, ClosestPoint), QueryError> {
             let (Some(sa), Some(sb)) = (sample(a), sample(b)) else {
-                return Err(SweepError::EmptyMesh);
+                return Err(QueryError::EmptyMesh);
             };
             // Halves first: no overflow for coordinates near the largest float.
             let p = 0.5 * sa.position + 0.5 * sb.position;
@@ -280,10 +276,10 @@ impl<'m> TreeSide<'m> {
             let tree = &self.target.tree;
             let seeded = tree
                 .closest_within(p, near * (1.0 + 1e-9))
-                .map_err(query_error)?;
+                ?;
             let answer = match seeded {
                 Some(answer) => answer,
-                None => tree.closest(p).map_err(query_error)?,
+                None => tree.closest(p)?,
             };
             Ok((p, answer))
         };
@@ -327,15 +323,6 @@ impl<'m> TreeSide<'m> {
     }
 }
 
-/// A tree query failed: only a non-finite point can make it (a midpoint of finite
-/// samples is finite).
-fn query_error(e: QueryError) -> SweepError {
-    match e {
-        QueryError::NonFiniteQuery { x, y, z } => SweepError::NonFiniteQuery { x, y, z },
-        QueryError::EmptyMesh => SweepError::EmptyMesh,
-        other => SweepError::Tree(other),
-    }
-}
 
 /// The sides' results after refining until every bound is within `allowed` of the lower
 /// bound (`true`) or the sample budget runs out (`false`).
@@ -344,7 +331,7 @@ pub(super) fn refine(
     allowed: f64,
     max_samples: usize,
     progress: &(dyn Fn(&HausdorffProgress) + Sync),
-) -> Result<(Vec<f64>, bool), SweepError> {
+) -> Result<(Vec<f64>, bool), QueryError> {
     let vertices: usize = sides.iter().map(|s| s.source.vertex_count()).sum();
     for side in sides.iter_mut() {
         side.query_vertices()?;
@@ -404,7 +391,7 @@ pub(super) fn refine(
 }
 
 /// Splits every node of `pending` in four at its edge midpoints (queried first).
-fn split(sides: &mut [TreeSide<'_>], pending: &[Node]) -> Result<Vec<Node>, SweepError> {
+fn split(sides: &mut [TreeSide<'_>], pending: &[Node]) -> Result<Vec<Node>, QueryError> {
     for (index, side) in sides.iter_mut().enumerate() {
         let mut edges: Vec<(u32, u32)> = pending
             .iter()
