@@ -9,9 +9,8 @@ mod target;
 
 use std::cmp::Reverse;
 
-use glam::DVec3;
-use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 use sphaera_mesh::TriMesh;
+use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 
 use sphaera_query::QueryError;
 pub use sphaera_query::hausdorff::{
@@ -63,8 +62,7 @@ pub fn hausdorff_with_progress(
     options: &HausdorffOptions,
     progress: &(dyn Fn(&HausdorffProgress) + Sync),
 ) -> Result<HausdorffDistance, SweepError> {
-    sphaera_query::hausdorff::hausdorff_with_progress(a, b, options, progress)
-        .map_err(sweep_error)
+    sphaera_query::hausdorff::hausdorff_with_progress(a, b, options, progress).map_err(sweep_error)
 }
 
 /// A query error as this crate names it.
@@ -159,7 +157,10 @@ impl Run<'_, '_> {
         let symmetric = self.options.symmetric;
         let allowed = self
             .options
-            .allowed_gap(self.a.hierarchy().positions(), self.b.hierarchy().positions())
+            .allowed_gap(
+                self.a.hierarchy().positions(),
+                self.b.hierarchy().positions(),
+            )
             .map_err(sweep_error)?;
         let mut sides = vec![Side::new(self.a, self.b)];
         if symmetric {
@@ -334,12 +335,12 @@ impl Tracker<'_> {
             return;
         }
         self.next_report = samples + 4096;
-        (self.report)(&HausdorffProgress {
-            vertices_done: self.vertices_done,
-            vertices: self.vertices,
+        (self.report)(&HausdorffProgress::new(
+            self.vertices_done,
+            self.vertices,
             samples,
             lower,
             upper,
-        });
+        ));
     }
 }

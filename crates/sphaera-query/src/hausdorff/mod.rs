@@ -216,6 +216,27 @@ impl HausdorffOptions {
     }
 }
 
+impl HausdorffProgress {
+    /// A report: `vertices_done` of `vertices` queried, `samples` in all, the current
+    /// bounds (for engines outside this crate).
+    #[must_use]
+    pub fn new(
+        vertices_done: usize,
+        vertices: usize,
+        samples: usize,
+        lower: f64,
+        upper: f64,
+    ) -> Self {
+        Self {
+            vertices_done,
+            vertices,
+            samples,
+            lower,
+            upper,
+        }
+    }
+}
+
 impl HausdorffDistance {
     /// The distance from its directions `A → B` and (when symmetric) `B → A`, in that
     /// order: the bounds of the one-sided distance, or the larger of both; `converged`
@@ -231,7 +252,9 @@ impl HausdorffDistance {
         let a_to_b = directed.next().ok_or(QueryError::EmptyMesh)?;
         let b_to_a = directed.next();
         let (lower, upper, dominating) = match &b_to_a {
-            Some(b) if b.lower > a_to_b.lower => (b.lower, a_to_b.upper.max(b.upper), Direction::BToA),
+            Some(b) if b.lower > a_to_b.lower => {
+                (b.lower, a_to_b.upper.max(b.upper), Direction::BToA)
+            }
             Some(b) => (a_to_b.lower, a_to_b.upper.max(b.upper), Direction::AToB),
             None => (a_to_b.lower, a_to_b.upper, Direction::AToB),
         };
@@ -382,4 +405,3 @@ fn joint_diagonal(a: &[DVec3], b: &[DVec3]) -> f64 {
     let d = (hi - lo).length();
     if d.is_finite() { d } else { 0.0 }
 }
-

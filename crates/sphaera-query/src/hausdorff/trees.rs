@@ -19,15 +19,15 @@
 
 use std::collections::HashMap;
 
+use crate::QueryError;
+use crate::closest::{ClosestPoint, Feature, TriangleTree};
 use glam::DVec3;
 use smallvec::SmallVec;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::{Triangle, point_triangle_distance_squared};
-use crate::QueryError;
-use crate::closest::{ClosestPoint, Feature, TriangleTree};
 
-use super::bound::{CornerAnswer, ROUNDING, TrianglePair, triangle_upper_bound};
 use super::Rows;
+use super::bound::{CornerAnswer, ROUNDING, TrianglePair, triangle_upper_bound};
 use super::{DirectedHausdorff, HausdorffProgress};
 
 /// The tree's search for the best single target triangle is made only for triangles
@@ -139,11 +139,7 @@ impl<'m> TreeSide<'m> {
             .filter(|(_, u)| **u)
             .map(|(&p, _)| p)
             .collect();
-        let answers = self
-            .target
-            .tree
-            .closest_many(&positions)
-            ?;
+        let answers = self.target.tree.closest_many(&positions)?;
         let mut next = 0u32;
         self.vertex_sample = used
             .iter()
@@ -274,9 +270,7 @@ impl<'m> TreeSide<'m> {
                 .fold(f64::INFINITY, f64::min)
                 .sqrt();
             let tree = &self.target.tree;
-            let seeded = tree
-                .closest_within(p, near * (1.0 + 1e-9))
-                ?;
+            let seeded = tree.closest_within(p, near * (1.0 + 1e-9))?;
             let answer = match seeded {
                 Some(answer) => answer,
                 None => tree.closest(p)?,
@@ -322,7 +316,6 @@ impl<'m> TreeSide<'m> {
         }
     }
 }
-
 
 /// The sides' results after refining until every bound is within `allowed` of the lower
 /// bound (`true`) or the sample budget runs out (`false`).

@@ -7,10 +7,10 @@ use glam::DVec3;
 use sphaera_mesh::geometry::Triangle;
 use sphaera_simplify::Hierarchy;
 
-use sphaera_query::hausdorff::bound::{CornerAnswer, level_upper_bound, triangle_upper_bound};
 use super::target::{Found, Rows, Target};
 use super::{DirectedHausdorff, Tracker, peel};
 use crate::{ClosestPoint, Feature, Session, SweepError, Sweeper};
+use sphaera_query::hausdorff::bound::{CornerAnswer, level_upper_bound, triangle_upper_bound};
 
 /// A point of the source mesh with a point found on the target.
 #[derive(Clone, Copy, Debug)]

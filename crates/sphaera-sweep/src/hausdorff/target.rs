@@ -10,8 +10,8 @@ use glam::DVec3;
 use sphaera_mesh::geometry::{self, Triangle, closest_point_on_triangle};
 use sphaera_simplify::{Hierarchy, Simplified};
 
-use sphaera_query::hausdorff::bound::TrianglePair;
 pub(crate) use sphaera_query::hausdorff::Rows;
+use sphaera_query::hausdorff::bound::TrianglePair;
 
 /// The most triangles a walk moves through before it settles for what it found.
 const MAX_STEPS: usize = 64;
