@@ -130,7 +130,7 @@ pub struct RegionOutcome {
 /// assert!(medial.uncovered_samples().is_empty());
 /// for sphere in medial.spheres() {
 ///     for &s in &sphere.covers {
-///         assert!((samples[s as usize] - sphere.centre).length() <= sphere.radius + 1e-9);
+///         assert!((samples[s as usize] - sphere.center).length() <= sphere.radius + 1e-9);
 ///     }
 /// }
 /// # Ok::<(), Box<dyn std::error::Error>>(())
