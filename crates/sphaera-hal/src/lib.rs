@@ -71,22 +71,24 @@
 //!
 //! # Performance, and where the scheme is weak
 //!
-//! Measured on the Natural Earth outlines (one thread; `docs/benchmarks.md`, "HAL trees
-//! in 2D"): point inclusion takes 0.5 µs on the 66k-vertex Americas, 850 times faster
-//! than the brute-force crossing test and 100 times faster than `geo`'s `contains`. The
-//! 1M-vertex outline builds in 0.57 s. Ballard's strip tree, measured in the same run, is
-//! faster still (0.2 µs), and its strips are far tighter per depth. A lens must pass
-//! through both ends of its chord, so a part that folds back beyond them (a fjord) forces
-//! a large disc. The split rule does not balance the tree either: depth 157 on Norway.
-//! Use a HAL tree for its approximations (the adaptive one is excellent) and for its
-//! cheap disc tests; for pure point location on real coastlines a strip tree localizes
-//! better.
+//! Measured on the Natural Earth outlines (one thread; `cargo run --release -p
+//! sphaera-eval -- --out docs/charts --only hal`): point inclusion is orders of magnitude
+//! faster than the brute-force crossing test and than `geo`'s `contains` on large
+//! outlines, and the build grows about as `N log N`. Ballard's strip tree, measured in
+//! the same run, is faster still, and its strips are far tighter per depth. A lens must
+//! pass through both ends of its chord, so a part that folds back beyond them (a fjord)
+//! forces a large disc. The split rule does not balance the tree either: it grows far
+//! deeper than `log₂ N` on real coastlines. Use a HAL tree for its approximations (the
+//! adaptive one is excellent) and for its cheap disc tests; for pure point location on
+//! real coastlines a strip tree localizes better.
 //!
-//! In 3D (`cargo bench -p sphaera-eval --bench hal3_vs_parry`): a 100k-triangle mesh
-//! builds in 2.4 s; point inclusion is exact but 10–44× slower than parry3d-f64's
-//! (15 µs against 0.9 µs on `spot.obj`), because balls through a thin triangle's corners
-//! are huge and cull little. As a simplification a HAL approximation is 10–800× farther
-//! from the surface than `sphaera-simplify`'s at the same triangle count.
+//! In 3D (`cargo bench -p sphaera-eval --bench hal3_vs_parry`): point inclusion is exact
+//! but an order of magnitude slower than parry3d-f64's, because balls through a thin
+//! triangle's corners are huge and cull little. As a simplification a HAL approximation
+//! is far farther from the surface than `sphaera-simplify`'s at the same triangle count.
+//! Every figure (the 2D queries and builds, the tree depths, the 3D builds and queries,
+//! the comparison with `sphaera-simplify`) is in the section *HAL trees (`sphaera-hal`,
+//! issue 17)* of `docs/benchmarks.md` in the repository.
 //!
 //! # See also
 //!

@@ -3,16 +3,17 @@
 //! segment may meet, with exact predicates; and its brute-force reference.
 //!
 //! The paper's section 5.1 goes further: it replaces a patch by its approximating
-//! triangle when the point is outside the patch's bounding volume. That is exact only when
-//! the triangles kept form a closed polyhedron whose sides follow the same edge paths as
-//! the patches' boundaries, and the paper's own construction breaks that: it discards the
-//! triangles whose paths coalesce, which opens holes in the levels. Keeping them instead
-//! (as "folds", split along with their neighbours) closes every level, but they swamp the
-//! tree: 106,873 of 119,386 nodes on `spot.obj`, a level at 30 % of the diagonal with
-//! twice the mesh's triangles, and some folds never resolve. The closed meshes of
-//! [`HalTree3::level`] fill the holes with fans, which is right for a picture and gives no
-//! inclusion guarantee. So here the bounding volumes only cull, and the answer is always
-//! the exact one.
+//! triangle when the point is outside the patch's bounding volume. That is exact only
+//! when the triangles kept form a closed polyhedron whose sides follow the same edge
+//! paths as the patches' boundaries, and the paper's own construction breaks that: it
+//! discards the triangles whose paths coalesce, which opens holes in the levels. Keeping
+//! them instead (as "folds", split along with their neighbours) closes every level, but
+//! they swamp the tree on `spot.obj` (most nodes are folds, a coarse level has more
+//! triangles than the mesh, and some folds never resolve; the counts are in the section
+//! *HAL trees (`sphaera-hal`, issue 17)*, paragraph *Watertight levels*, of
+//! `docs/benchmarks.md` in the repository). The closed meshes of [`HalTree3::level`] fill
+//! the holes with fans, which is right for a picture and gives no inclusion guarantee. So
+//! here the bounding volumes only cull, and the answer is always the exact one.
 
 use glam::DVec3;
 use sphaera_mesh::{Aabb, TriMesh};
@@ -175,9 +176,10 @@ impl HalTree3 {
     /// outside the patch's bounding volume. That needs levels that are closed polyhedra
     /// whose sides follow the patches' boundary paths, and discarding coalesced triangles
     /// (as the paper does) opens holes. Keeping them as folds split with their neighbours
-    /// closes the levels, but was measured to swamp the tree (106,873 of 119,386 nodes on
-    /// `spot.obj`, a level at 30 % of the diagonal with twice the mesh's triangles, some
-    /// folds never resolving), so the bounds only cull here.
+    /// closes the levels, but was measured to swamp the tree (on `spot.obj` most nodes are
+    /// folds, a coarse level has more triangles than the mesh, and some folds never
+    /// resolve; see the section *HAL trees (`sphaera-hal`, issue 17)* of
+    /// `docs/benchmarks.md` in the repository), so the bounds only cull here.
     #[must_use]
     pub fn contains(&self, x: DVec3) -> Location {
         let root = self.root_ball();

@@ -142,9 +142,9 @@
 //! # Performance
 //!
 //! Files are read whole into memory and parsed as bytes (no per-line allocation, no hash
-//! map except STL welding). The 871,414-triangle ASCII `dragon_vrip.ply` (33 MB) loads in
-//! about 0.14 s in release mode on the reference 2-core machine (`cargo bench -p sphaera-mesh
-//! --bench load_topology`; see `docs/benchmarks.md`).
+//! map except STL welding). The time to read the 871,414-triangle ASCII `dragon_vrip.ply`
+//! is in the section *Loading and topology (`sphaera-mesh`)* of `docs/benchmarks.md` in
+//! the repository (`cargo bench -p sphaera-io --bench load_topology`).
 
 mod builder;
 pub mod colormap;
@@ -180,10 +180,11 @@ pub use write::{
 use sphaera_mesh::TriMesh;
 
 /// The most vertices a glTF scene may place: 2²⁶ (67 million, about 3 GB with their
-/// triangles), 77 times the 871k-vertex dragon scan. Instancing (many nodes drawing one
-/// mesh) multiplies a file's vertices, so without a limit a file of a few kilobytes
-/// could ask for more memory than the machine has; beyond it the reader refuses the
-/// file with [`ParseReason::TooManyPlacedVertices`] before reading any data.
+/// triangles), about 150 times the 437,645 vertices of the 871k-triangle dragon scan.
+/// Instancing (many nodes drawing one mesh) multiplies a file's vertices, so without a
+/// limit a file of a few kilobytes could ask for more memory than the machine has;
+/// beyond it the reader refuses the file with [`ParseReason::TooManyPlacedVertices`]
+/// before reading any data.
 pub const MAX_PLACED_VERTICES: u64 = 1 << 26;
 
 /// A mesh file format.
@@ -374,8 +375,9 @@ pub struct LoadedMesh {
 ///
 /// # Performance
 ///
-/// Reads the whole file into memory, then parses it in one pass; about 0.14 s for the
-/// 33 MB ASCII `dragon_vrip.ply` in release mode.
+/// Reads the whole file into memory, then parses it in one pass; the time for the ASCII
+/// `dragon_vrip.ply` is in the section *Loading and topology (`sphaera-mesh`)* of
+/// `docs/benchmarks.md` in the repository.
 pub fn read(path: impl AsRef<Path>) -> Result<LoadedMesh, IoError> {
     let path = path.as_ref();
     let bytes = std::fs::read(path).map_err(|source| IoError::Io {

@@ -90,7 +90,8 @@ impl fmt::Display for GltfObject {
     }
 }
 
-/// Why a file is malformed: the structured reason inside [`sphaera_io::IoError::Parse`].
+/// Why a file is malformed: the structured reason inside
+/// [`IoError::Parse`](crate::IoError::Parse).
 ///
 /// Messages are lowercase without a final period, like every `sphaera-mesh` error.
 ///

@@ -114,8 +114,8 @@
 //! - Every sample given to [`MedialApproximation::build`] is covered by a sphere of the
 //!   set, and every sphere's error is an upper bound of how far it reaches beyond the
 //!   surface. Covering the samples is not covering the surface: between samples a sliver
-//!   of surface can lie outside every sphere (measured below). `sphaera-spheretree`
-//!   certifies coverage of the surface itself.
+//!   of surface can lie outside every sphere (measured: see Performance below).
+//!   `sphaera-spheretree` certifies coverage of the surface itself.
 //! - The same points, samples and options give the same result, with or without the
 //!   `parallel` feature.
 //!
@@ -137,26 +137,26 @@
 //!
 //! # Performance
 //!
-//! Measured on the 2-core reference machine (2026-11-21; figures, commands and charts in
-//! the repository's `docs/benchmarks.md`, sections "Delaunay tetrahedralization" and
-//! "Adaptive medial approximation"):
+//! The figures are in the repository's `docs/benchmarks.md`; each bullet names its
+//! section and the command that measures it.
 //!
 //! - **Delaunay** (`cargo bench -p sphaera-medial --bench delaunay`, one thread):
-//!   191,000 insertions per second for 100,000 random points and 167,000 per second on
-//!   100,000 points of a cube's surface grid, where every square is cocircular; one point
-//!   at a time into an existing tetrahedralization, 20,000–23,000 per second (the walk
-//!   dominates). In the same run the `delaunay` crate 0.7.8 is about 690 times slower on
-//!   1,000 random points (`cargo bench -p sphaera-eval --bench delaunay_vs_peer`).
-//! - **Medial approximation** (`cargo bench -p sphaera-medial --bench medial`): 500
-//!   spheres of the 69k-triangle Stanford bunny from 10,000 samples in 109 ms, 1,000 in
-//!   222 ms (preparing the [`Surface`] takes 97 ms and the samples 90 ms); 200 spheres of
-//!   a Franka Panda collision link in 4.5–10.1 ms. About 60 % of the time is exact
-//!   closest points.
+//!   insertions per second for 100,000 random points and for 100,000 points of a cube's
+//!   surface grid, where every square is cocircular; one point at a time into an
+//!   existing tetrahedralization is several times slower (the walk dominates). The
+//!   `delaunay` crate, timed in the same run as Sphaera (`cargo bench -p sphaera-eval
+//!   --bench delaunay_vs_peer`), is orders of magnitude slower. Section *Delaunay
+//!   tetrahedralization (`sphaera-medial`)*.
+//! - **Medial approximation** (`cargo bench -p sphaera-medial --bench medial`): 500 and
+//!   1,000 spheres of the 69k-triangle Stanford bunny from 10,000 samples, the
+//!   preparation of the [`Surface`] and of the samples, and 200 spheres of each Franka
+//!   Panda collision link; most of the time is exact closest points. Section *Adaptive
+//!   medial approximation (`sphaera-medial`)*.
 //! - **Fit**: against Hubbard's static approximation on the same samples, the adaptive
-//!   set leaves 0.1–0.9 % of the surface uncovered between samples instead of 6–20 %, and
-//!   is tighter from about 800 spheres on (on the bunny, a worst error of 1.42 % of the
-//!   diagonal with 3,200 spheres against 2.28 % with 3,942; `cargo xtask charts`, the
-//!   `medial_static_vs_adaptive` chart).
+//!   set leaves far less of the surface uncovered between samples, and is tighter from
+//!   several hundred spheres on (`cargo run --release -p sphaera-eval -- --only
+//!   medial_static_vs_adaptive`, part of `cargo xtask charts`). Section *Static against
+//!   adaptive (the paper's Figs. 10–13)*.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

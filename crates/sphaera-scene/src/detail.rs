@@ -261,10 +261,8 @@ impl Scene {
     ///
     /// Without a build, `O(trees · nodes)` per model and distinct tolerance, and `O(1)`
     /// per instance, plus the first time a tolerance is asked of a tree the evaluation of
-    /// the nodes over it that probing does not rule out (1–35 ms per shared mesh at 2 %).
-    /// A build costs what the tree costs (0.2–0.6 s of processor time per shared mesh at
-    /// 2 % of its size), once per model and tolerance. See the crate's Performance
-    /// section.
+    /// the nodes over it that probing does not rule out. A build costs what the tree
+    /// costs, once per model and tolerance. See the crate's Performance section.
     pub fn detail(
         &self,
         camera: Option<&Camera>,

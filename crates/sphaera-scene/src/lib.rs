@@ -115,31 +115,23 @@
 //! # Performance
 //!
 //! Building sphere-trees is the cost; choosing detail and colliding are cheap next to
-//! it. A model builds its base tree and its hierarchy up front ([`ObjectModel::build`]:
-//! 0.3–0.5 s of processor time per shared mesh of 3,674 to 12,946 triangles at the
-//! defaults, a depth-2 base tree; 0.05–0.3 s with a base tree of the root alone),
+//! it. A model builds its base tree and its hierarchy up front ([`ObjectModel::build`]),
 //! its HAL tree and silhouette labels on first use, and a tree per tolerance finer than
 //! its trees reach, once, when a request needs it: **only what the scene asks for**.
 //! [`Scene::detail`] builds the trees of different models on every core at once with
-//! the `parallel` feature.
+//! the `parallel` feature. Choosing detail once the trees are built walks their cuts,
+//! evaluating a node's sphere only where its node error is over a tolerance and probing
+//! its boundary does not already show it cannot meet it: the first time a tolerance is
+//! asked this costs evaluations, later requests only the walk.
 //!
-//! Measured on the 2-core reference machine (2026-11-28, shared with other builds: a
-//! load average of 6 to 8, so wall times are about twice what an idle machine gives),
-//! with `cargo run --release -p sphaera-cli -- scene bunny_lowres.obj fandisk.obj
-//! spot.obj duck.obj --tolerance 2%` on the shared meshes (pybullet's duck; base trees of
-//! the root alone, the command's default): the tolerance trees have 109, 266, 65 and 81
-//! leaves, each within 2 % of its mesh's diagonal, certified, and the whole run takes
-//! 1.3 s of processor time, 1.3–2.0 s of wall time (0.5 s building the models, the rest
-//! the four trees, [`Effort::Quick`](sphaera_spheretree::Effort::Quick)). With
-//! `--effort default` the trees have 459 leaves in all (12 % fewer) for 4.5 s of
-//! processor time; at 1 % (quick) 1,563 leaves and 3.3 s. Choosing detail once the trees
-//! are built walks their cuts, evaluating a node's sphere only where its node error is
-//! over a tolerance and probing its boundary does not already show it cannot meet it:
-//! 1–35 ms per model the first time a tolerance is asked, microseconds after. Before
-//! this change, [`Scene::collide`] to the leaves of 200 low-res bunnies took 1.42 ms and
-//! [`Scene::detail`] at 2 pixels 1.34 ms (`cargo bench -p sphaera-eval --bench
-//! scene_vs_rapier`); the figures, the experiment and what was tried are in the
-//! repository's `docs/benchmarks.md` ("Scenes: detail and collision").
+//! The times of [`Scene::collide`] and [`Scene::detail`] on 200 low-res bunnies, beside
+//! rapier's collision pipeline (`cargo bench -p sphaera-eval --bench scene_vs_rapier`),
+//! and of falling objects in rapier with Sphaera's colliders, are in the section *Scenes:
+//! detail and collision (`sphaera-scene`, issue 21)* of `docs/benchmarks.md` in the
+//! repository. The demo run `cargo run --release -p sphaera-cli -- scene bunny_lowres.obj
+//! fandisk.obj spot.obj duck.obj --tolerance 2%` on the shared meshes (pybullet's duck;
+//! base trees of the root alone, the command's default) was timed by hand, also with
+//! `--effort default` and at 1 %; its tree sizes and times are not kept there.
 //!
 //! # Errors
 //!

@@ -41,9 +41,9 @@ pub struct ModelOptions {
     /// The options of the trees built to a tolerance when a detail request needs a finer
     /// one than every tree the model has ([`ObjectModel::tree_for`]; default
     /// [`SphereTreeOptions::default`] with branch 16 and [`Effort::Quick`]: they are
-    /// built while a request waits. On the four shared meshes at 2 % of their size,
-    /// quick trees take a quarter of the default effort's time for 2–18 % more leaves,
-    /// 13 % in all, and branch 16 a fifth less time than branch 8). They are built with
+    /// built while a request waits: on the four shared meshes at 2 % of their size,
+    /// measured by hand, quick trees took a fraction of the default effort's time for a
+    /// few more leaves, and branch 16 less time than branch 8). They are built with
     /// [`SphereTreeOptions::with_tolerance`] and coverage certification on, so the
     /// method must be the minimax (`auto`, the default); `depth` is not used.
     pub tolerance_tree: SphereTreeOptions,
@@ -289,10 +289,9 @@ impl ObjectModel {
     /// # Performance
     ///
     /// The base tree and the hierarchy, one after the other (every core works inside
-    /// each with the `parallel` feature): at the defaults (a minimax tree to depth 2)
-    /// 0.3–0.5 s of processor time for the shared meshes of 3,674 to 12,946 triangles,
-    /// the hierarchy and the ladder 0.03–0.2 s. Tolerance trees are built later, when a
-    /// request needs one (see the crate's Performance section).
+    /// each with the `parallel` feature); at the defaults (a minimax tree to depth 2) the
+    /// tree costs more than the hierarchy and the ladder. Tolerance trees are built later,
+    /// when a request needs one (see the crate's Performance section).
     pub fn build(
         name: impl Into<String>,
         mesh: TriMesh,
@@ -475,13 +474,11 @@ impl ObjectModel {
     ///
     /// # Performance
     ///
-    /// Choosing among the trees walks their cuts (microseconds), probing a node's sphere
-    /// the first time a tolerance below its node error is asked (32 closest-point
-    /// queries) and evaluating it when the probes do not rule it out (about a
-    /// millisecond). A build costs about what the tree's spheres cost: 0.2–0.6 s of
-    /// processor time at 2 % of the diagonal for the shared meshes (65–266 leaves,
-    /// [`Effort::Quick`](sphaera_spheretree::Effort::Quick), the default; see the crate's
-    /// Performance section).
+    /// Choosing among the trees walks their cuts, probing a node's sphere the first time a
+    /// tolerance below its node error is asked (32 closest-point queries) and evaluating it
+    /// when the probes do not rule it out. A build costs about what the tree's spheres cost
+    /// (with [`Effort::Quick`](sphaera_spheretree::Effort::Quick), the default; see the
+    /// crate's Performance section).
     pub fn tree_for(&self, tolerance: f64) -> Result<(Arc<ModelTree>, bool), SceneError> {
         self.ensure_tree(tolerance)
             .map(|(selection, built)| (selection.tree, built))

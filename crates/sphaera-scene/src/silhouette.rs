@@ -154,8 +154,10 @@ impl Scene {
     /// # Performance
     ///
     /// One extraction per instance (a scan of its hierarchy, then the contour region), in
-    /// parallel with the `parallel` feature: milliseconds per instance for meshes of tens
-    /// of thousands of triangles.
+    /// parallel with the `parallel` feature. The time for 200 instances is in the section
+    /// *Collision over a whole scene, and the level choice (criterion, same run)* of
+    /// `docs/benchmarks.md` in the repository (`cargo bench -p sphaera-eval --bench
+    /// scene_vs_rapier -- scene_detail_200`).
     pub fn silhouette_detail(
         &self,
         camera: &Camera,

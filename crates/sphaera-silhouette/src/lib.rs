@@ -93,18 +93,21 @@
 //!
 //! # Performance
 //!
-//! Measured on the 2-core machine (`cargo bench -p sphaera-eval --bench
-//! silhouette_labels`, figures in the repository's `docs/benchmarks.md`): labels for the 69k bunny from 266 views at 512² in 0.88 s; the exact distance
-//! transform of a 512² image in 1.4 ms (2.4× faster than `imageproc`'s); an extraction
-//! for a new view in 6.2 ms from scratch and 2.2 ms from the previous frame, of which the
-//! label lookup is 0.2 % (nearest) or 1.2 % (4 nearest). Up to the 871k dragon, a frame
-//! takes 12.7 ms and the lookup stays under 1 % (nearest). With labels of the outline
-//! ([`Contours::External`]), an extraction at 0.5 % of the diagonal (factor 0.1) has
-//! 2.5–2.7× fewer wrong silhouette pixels than an unweighted level of as many triangles,
-//! on the bunny and a dragon, at the cameras and between them; its contour region's
-//! certified bound is within 7 % of the measured Hausdorff distance. With the internal
-//! silhouettes of a scanned surface, the contour region covers nearly everything and the
-//! gain is 1.0–1.3×.
+//! Measured on the 2-core reference machine: the labels of the 69k bunny from 266 views
+//! at 512², the exact distance transform against `imageproc`'s (ours is faster), and an
+//! extraction for a new view, from scratch and from the previous frame, with the share of
+//! the label lookup (`cargo bench -p sphaera-eval --bench silhouette_labels`); the same
+//! on meshes up to the 871k dragon (`cargo run --release -p sphaera-eval -- --out
+//! docs/charts --only silhouette_time_vs_faces`), where the lookup stays a small part of
+//! a frame. With labels of the outline ([`Contours::External`]), a fine extraction has
+//! markedly fewer wrong silhouette pixels than an unweighted level of as many triangles,
+//! on the bunny and a dragon, at the cameras and between them, and its contour region's
+//! certified bound is close to the measured Hausdorff distance (`cargo run --release -p
+//! sphaera-eval -- --out docs/charts --only silhouette_error_vs_triangles`). With the
+//! internal silhouettes of a scanned surface, the contour region covers nearly
+//! everything and the gain is small. Every figure is in the section *Silhouette labels
+//! and level of detail (`sphaera-silhouette`, issue 18)* of `docs/benchmarks.md` in the
+//! repository.
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

@@ -2,9 +2,10 @@
 //! corner at most `threshold` cells from the silhouette, the paper's rule) gets the
 //! allowed error `e · f`, the rest `e`. (Counting a coarse corner with the smallest label
 //! of the input vertices collapsed into it was tried: it puts most coarse triangles in
-//! the region and spends 15–35 % more triangles for the same outline.) Extracted view by view from `sphaera-simplify`'s progressive hierarchy,
-//! with the error-sphere bound of each region; or, for one mesh that keeps the
-//! silhouettes of many views, as per-vertex tolerance weights for the static simplifier.
+//! the region and spends more triangles for the same outline.) Extracted view by view
+//! from `sphaera-simplify`'s progressive hierarchy, with the error-sphere bound of each
+//! region; or, for one mesh that keeps the silhouettes of many views, as per-vertex
+//! tolerance weights for the static simplifier.
 
 use glam::DVec3;
 use sphaera_simplify::{Hierarchy, Placement, Refinement, Simplified};

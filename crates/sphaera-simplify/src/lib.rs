@@ -132,15 +132,16 @@
 //!
 //! The work per collapse is bounded by the valences around the kept vertex (each
 //! re-evaluation is `O(d²)` for valence `d`, with the fan projected once per vertex and
-//! targets pruned by a lower bound), so the whole run is `O(T log T)` for `T` triangles on
-//! meshes of bounded valence. With the default `parallel` feature the initial evaluation
-//! and every batch run on all cores (identical results without it). Measured on the
-//! 2-core reference machine against meshoptimizer in the same run (2026-11-27,
-//! `cargo bench -p sphaera-eval --bench simplify_vs_meshopt`): 0.22 s for the 69k-triangle bunny at 10 %,
-//! 8.5× meshopt's time (meshopt has no certified bound, and its measured error is 1.4×
-//! larger), 4.2 s for the 871k-triangle dragon at 2 % (4.9×), 0.45 s for the bunny's full
-//! hierarchy. Peak working memory: about 60–70 bytes per input triangle. Figures, the
-//! profile and what was tried are in the repository's `docs/benchmarks.md`.
+//! targets pruned by a lower bound), so the whole run is `O(T log T)` for `T` triangles
+//! on meshes of bounded valence. With the default `parallel` feature the initial
+//! evaluation and every batch run on all cores (identical results without it). Sphaera is
+//! slower than meshoptimizer, which certifies nothing, and its output is closer to the
+//! input. The times against meshoptimizer in the same run (the 69k-triangle bunny, the
+//! 871k-triangle dragon, the bunny's full hierarchy), the measured errors of both, the
+//! peak working memory per input triangle, the profile and what was tried are in the
+//! section *Issue 20: batched re-evaluation on every core (2026-11-27)* of
+//! `docs/benchmarks.md` in the repository (`cargo bench -p sphaera-eval --bench
+//! simplify_vs_meshopt`).
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

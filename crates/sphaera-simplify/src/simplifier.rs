@@ -66,15 +66,17 @@ pub enum Order {
     #[default]
     Auto,
     /// The greedy order: after every collapse, every vertex it changed is re-evaluated, so
-    /// the next collapse is always the one with the smallest radius. About 8
-    /// re-evaluations per collapse, one after the other.
+    /// the next collapse is always the one with the smallest radius. More
+    /// re-evaluations per collapse than [`Order::Batched`], one after the other.
     Strict,
     /// Batched re-evaluation: collapses are applied while the cheapest candidate is up to
     /// date; a stale one at the front is re-evaluated alone, and the changed vertices near
     /// the front are re-evaluated in batches of a few hundred, on every core with the
     /// `parallel` feature (those whose queued radius is far behind the front wait until
-    /// they reach it). About 3 re-evaluations per collapse; the order drifts a little from
-    /// the greedy one (a changed vertex can become cheaper).
+    /// they reach it). Fewer re-evaluations per collapse than [`Order::Strict`]; the order
+    /// drifts a little from the greedy one (a changed vertex can become cheaper). The times
+    /// and bounds of both orders are in the section *Issue 20: batched re-evaluation on
+    /// every core (2026-11-27)* of `docs/benchmarks.md` in the repository.
     Batched,
 }
 
@@ -82,9 +84,11 @@ impl Order {
     /// [`Order::Auto`] is [`Order::Strict`] below this many vertices.
     ///
     /// On meshes with many locked (boundary or non-manifold) vertices, the last forced
-    /// collapses set the bound, and there the greedy order is worth its cost: on the seven
-    /// meshes of `shared/data` whose bound is more than twice the measured distance (all
-    /// under 23,000 vertices), the batched order is looser on five.
+    /// collapses set the bound, and there the greedy order is worth its cost: the meshes of
+    /// `shared/data` whose bound is more than twice the measured distance all have fewer
+    /// vertices than this, and the batched order is looser on most of them (the ratios are
+    /// in the section *Issue 20: batched re-evaluation on every core (2026-11-27)*, the
+    /// paragraph on `KNOWN_LOOSE`, of `docs/benchmarks.md` in the repository).
     pub const STRICT_BELOW: usize = 32_768;
 }
 

@@ -1,14 +1,16 @@
 //! Certified coverage of the surface itself, not only of the samples.
 //!
-//! Covering every surface sample leaves gaps between samples (measured: 1–2 % of the
-//! low-res bunny's surface outside every level-3 sphere, for the original toolkit and for
-//! a plain reduction alike). [`certify_coverage`] closes them: every triangle is split
-//! (into four, at its edge midpoints) until each piece lies inside a single sphere. A
-//! ball is convex, so a sphere containing a piece's three corners contains the whole
-//! piece. A piece that is still not contained once its longest edge is below the
-//! resolution is handed to the sphere that needs the least growth to contain its
-//! corners, which grows by exactly that. Afterwards every point of every triangle is
-//! inside some sphere, up to floating-point rounding of the containment predicate.
+//! Covering every surface sample leaves gaps between samples (measured on the low-res
+//! bunny's level 3, for the original toolkit and for a plain reduction alike; the
+//! toolkit's share of bare surface is in the section *Sphere-trees
+//! (`sphaera-spheretree`)* of `docs/benchmarks.md` in the repository).
+//! [`certify_coverage`] closes them: every triangle is split (into four, at its edge
+//! midpoints) until each piece lies inside a single sphere. A ball is convex, so a sphere
+//! containing a piece's three corners contains the whole piece. A piece that is still not
+//! contained once its longest edge is below the resolution is handed to the sphere that
+//! needs the least growth to contain its corners, which grows by exactly that. Afterwards
+//! every point of every triangle is inside some sphere, up to floating-point rounding of
+//! the containment predicate.
 //!
 //! The work is done in two passes: the pieces needing growth are found for every
 //! triangle against the spheres as they were (in parallel with the `parallel` feature),

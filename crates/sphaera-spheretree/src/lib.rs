@@ -12,15 +12,16 @@
 //! Sphere-Tree Construction* (ACM Transactions on Graphics 23(1), 2004): the adaptive
 //! medial-axis approximation of [`sphaera_medial`], refined in each node's part of the
 //! surface and reduced to a few children by the paper's **merge**, **burst**,
-//! **expand-select** or **combined** reducers, beside the classic octree, grid and Hubbard
-//! constructions the paper compares against. The default is this crate's own
+//! **expand-select** or **combined** reducers, beside the classic octree, grid and
+//! Hubbard constructions the paper compares against. The default is this crate's own
 //! construction, [`minimax`]: each node's part of the surface, tiled exactly by triangle
 //! pieces, is divided between the children whose worst error is least (medial balls as
 //! candidate centres, a set-cover search, then every centre moved on the exact surface),
-//! so that every cut covers the surface by construction and every level is tighter than
-//! the paper's best (see the charts in the repository's `docs/benchmarks.md`). Every
-//! node's error is a certified bound, every tree is built in the mesh's canonical pose, so
-//! it turns, scales and moves with the mesh.
+//! so that every cut covers the surface by construction, and on the meshes charted nearly
+//! every level is tighter than the paper's best reducer's (the figures are in the section
+//! *Charts* of *Sphere-trees (`sphaera-spheretree`)* in the repository's
+//! `docs/benchmarks.md`). Every node's error is a certified bound, every tree is built in
+//! the mesh's canonical pose, so it turns, scales and moves with the mesh.
 //!
 //! Around the construction: certified fit evaluation ([`evaluate`]), the shallowest level
 //! or smallest cut that meets a tolerance ([`select`]), interruptible tree-against-tree

@@ -5,7 +5,7 @@
 //!
 //! - **Exact answers, and intervals to a tolerance,** come from the triangle tree
 //!   ([`TriangleTree`], from `sphaera-mesh`, re-exported here): a box tree over the input
-//!   triangles with surface-area splits, built in milliseconds. It offers
+//!   triangles with surface-area splits, quick to build (see Performance). It offers
 //!   [`TriangleTree::closest`], [`TriangleTree::closest_many`] (every core, the same
 //!   answers), [`TriangleTree::cursor`] (a stream of points that move a little: the
 //!   previous answer seeds the next), [`TriangleTree::closest_approx`] (a certified
@@ -56,17 +56,17 @@
 //!
 //! # Performance
 //!
-//! Measured on the 2-core machine against parry3d-f64 in the same criterion run
-//! (`cargo bench -p sphaera-eval --bench sweep_vs_parry`, figures in the repository's
-//! `docs/benchmarks.md`): the triangle tree builds 2× faster than parry's BVH and answers
-//! uniform and near-surface queries on the 69k bunny faster than parry per query, and
-//! [`TriangleTree::closest_many`] answers 100,000 near points in about 0.1 s all told
-//! (parry 0.2 s). The paper's exact queries are 5–30× slower than the tree's; the
-//! hierarchy's place is the rest of the list above. [`hausdorff`] certifies the
-//! symmetric distance between the 69k bunny and a 10k simplification of it to 1e-5 of
-//! the diagonal in about 0.45 s all told on two cores, 1.6× faster than
-//! cascading-upper-bounds in the same run (`cargo bench -p sphaera-eval --bench
-//! hausdorff`), and the 871k dragon against its 2 % simplification in 2.3 s.
+//! Measured against parry3d-f64 in the same criterion run (`cargo bench -p sphaera-eval
+//! --bench sweep_vs_parry`): the triangle tree builds faster than parry's BVH and answers
+//! uniform and near-surface queries on the 69k bunny about as fast as parry per query or
+//! faster, and [`TriangleTree::closest_many`] uses every core. The paper's exact queries
+//! are much slower than the tree's; the hierarchy's place is the rest of the list above.
+//! The figures are in the section *Closest-point queries (`sphaera-sweep`)* of
+//! `docs/benchmarks.md` in the repository. [`hausdorff`] certifies the symmetric distance
+//! between the 69k bunny and a 10k simplification of it to 1e-5 of the diagonal faster
+//! than cascading-upper-bounds in the same run (`cargo bench -p sphaera-eval --bench
+//! hausdorff`); its times, and the 871k dragon's against its 2 % simplification, are in
+//! the section *Hausdorff distance (`sphaera-sweep`)* of `docs/benchmarks.md`.
 //!
 //! # How it works
 //!

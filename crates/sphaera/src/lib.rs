@@ -160,10 +160,10 @@
 //!
 //! # Performance
 //!
-//! The facade adds nothing at run time. Each crate's documentation gives its measured
-//! figures, and the repository's `docs/benchmarks.md` has them all, with the machine, the
-//! date and the command that made each number, beside the peer libraries measured in the
-//! same run.
+//! The facade adds nothing at run time. Each crate's documentation says what was
+//! measured and names its section of the repository's `docs/benchmarks.md`, which has
+//! every measured figure, with the machine, the date and the command that made each
+//! number, beside the peer libraries measured in the same run.
 //!
 //! # See also
 //!

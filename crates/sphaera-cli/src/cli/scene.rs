@@ -71,8 +71,8 @@ pub struct SceneArgs {
     pub finest: Length,
 
     /// How hard the trees built to the tolerance work for few spheres: `quick` (the
-    /// default: they are built while you wait), `default` (about four times the time
-    /// for 3–15 % fewer spheres) or `thorough`.
+    /// default: they are built while you wait), `default` (several times the time for
+    /// somewhat fewer spheres) or `thorough`.
     #[arg(long, default_value = "quick", value_parser = parse_effort)]
     pub effort: Effort,
 

@@ -199,8 +199,8 @@ pub fn closest_point_on_segment(p: DVec3, start: DVec3, end: DVec3) -> SegmentCl
 ///
 /// # Performance
 ///
-/// Constant time, no allocation; about twice the cost of
-/// [`point_triangle_distance_squared`], which skips the edges for points over the face.
+/// Constant time, no allocation; costlier than [`point_triangle_distance_squared`],
+/// which skips the edges for points over the face.
 pub fn closest_point_on_triangle(p: DVec3, triangle: &Triangle) -> TriangleClosestPoint {
     let corners = triangle.corners();
     let mut best = edge_candidate(p, &corners, 0);

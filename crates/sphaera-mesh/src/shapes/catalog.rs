@@ -192,9 +192,7 @@ impl Shape {
     /// inscribed polygonal approximations with a smaller volume; the relative error
     /// shrinks as `O(1/m²)` for `m` segments around the coarsest circle (`m = resolution`,
     /// except `resolution · minor_radius / major_radius` for the torus's minor circle). The
-    /// tests check it is below `20/m²` for the [`DEFAULT_SHAPES`] at resolutions 8 to 128
-    /// (measured: 16.4/m² for the sphere and ellipsoid, 6.6/m² for the cylinder, cone and
-    /// thick tube, 7.2/m² for the S tube, 9.0/m² for the capsule, 7.3/m² for the torus).
+    /// tests check it is below `20/m²` for the [`DEFAULT_SHAPES`] at resolutions 8 to 128.
     ///
     /// # Examples
     ///

@@ -22,14 +22,14 @@
 //!
 //! Two open builders stand apart: [`square_sheet`] and [`ring_sheet`] (a disc, or a
 //! sheet with a hole) are flat sheets of zero thickness, with no inside, for
-//! [`Surface::shell`](sphaera_query::Surface::shell) and the methods that cover sheets.
+//! `sphaera_query::Surface::shell` and the methods that cover sheets.
 //!
 //! In every direction other than the one `resolution` counts, the builders pick the number
 //! of pieces so that edges are about as long as around the main circle, so triangles stay
 //! well shaped (the cone's apex and the caps' centres are single vertices with fans of
 //! triangles — never degenerate slivers). Round shapes are inscribed polygonal
 //! approximations: their volume is below the analytic one and converges as
-//! `O(1/resolution²)` (see [`Shape::volume`] for the measured constants).
+//! `O(1/resolution²)` (see [`Shape::volume`] for the bound the tests check).
 //!
 //! [`Shape`] names each shape with its parameters, and [`DEFAULT_SHAPES`] lists one of each
 //! with sensible proportions, for tests that want to run over all of them.
@@ -69,8 +69,8 @@
 //! # Performance
 //!
 //! Linear in the output: a round shape at resolution `r` has about `r²/2` to `r²`
-//! vertices times its proportions (a 69,360-triangle torus, `torus(1.0, 0.3, 340)`, builds
-//! in a few milliseconds). The builders are single-threaded and deterministic.
+//! vertices times its proportions (`torus(1.0, 0.3, 340)` has 69,360 triangles). The
+//! builders are single-threaded and deterministic.
 
 mod block;
 mod catalog;

@@ -127,7 +127,9 @@ impl HalfEdgeMesh {
     /// # Performance
     ///
     /// Linear time and memory (24 bytes per half-edge pair of a face corner, 40 per
-    /// vertex); about 0.11 s of CPU for the 871k-triangle dragon (release, 2-core machine).
+    /// vertex). The time on the 871k-triangle dragon is in the section *Loading and
+    /// topology (`sphaera-mesh`)* of `docs/benchmarks.md` in the repository (`cargo bench
+    /// -p sphaera-io --bench load_topology`).
     pub fn from_trimesh(mesh: &TriMesh) -> Self {
         let mut triangles = Vec::with_capacity(mesh.triangle_count());
         let mut faces = Vec::with_capacity(mesh.triangle_count());

@@ -169,8 +169,10 @@ pub struct TopologyReport {
 /// # Performance
 ///
 /// `O(n log n)` for `n` vertices (a sort of the positions, for merging), then linear:
-/// a counting sort of the half-edges and a few union-find passes. About 0.2 s for the 871k-triangle Stanford dragon on one
-/// core (release).
+/// a counting sort of the half-edges and a few union-find passes. The time on the
+/// 871k-triangle Stanford dragon is in the section *Loading and topology
+/// (`sphaera-mesh`)* of `docs/benchmarks.md` in the repository (`cargo bench -p
+/// sphaera-io --bench load_topology`).
 pub fn analyze(mesh: &TriMesh) -> TopologyReport {
     analyze_with(mesh, &TopologyOptions::default())
 }

@@ -478,8 +478,7 @@ impl TriangleTree {
     /// The distance from `p` to the mesh, for callers that need only the number: the
     /// same descent as [`TriangleTree::closest`] with the cheaper
     /// [`point_triangle_distance_squared`](sphaera_mesh::geometry::point_triangle_distance_squared)
-    /// per triangle (about three times faster; it may differ from `closest(p)?.distance` in
-    /// the last bit).
+    /// per triangle (faster; it may differ from `closest(p)?.distance` in the last bit).
     ///
     /// # Examples
     ///

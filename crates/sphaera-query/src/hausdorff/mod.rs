@@ -322,10 +322,10 @@ impl HausdorffOptions {
 ///
 /// # Performance
 ///
-/// A triangle tree per mesh (about 20 ms for 69k triangles), an exact query per used
-/// vertex and per midpoint, a bound per triangle of samples. The 69k-triangle bunny
-/// against its 10k-triangle simplification to 1e-5 of the diagonal: see
-/// `docs/benchmarks.md` ("Hausdorff distance"). Memory about 100 bytes per sample.
+/// A triangle tree per mesh, an exact query per used vertex and per midpoint, a bound per
+/// triangle of samples. The 69k-triangle bunny against its 10k-triangle simplification to
+/// 1e-5 of the diagonal: see the section *Hausdorff distance (`sphaera-sweep`)* of
+/// `docs/benchmarks.md` in the repository.
 pub fn hausdorff(
     a: &TriMesh,
     b: &TriMesh,

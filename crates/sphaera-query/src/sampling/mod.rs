@@ -48,11 +48,10 @@
 //!
 //! [`random`] is `O(T + n log T)` for `T` triangles; [`poisson_disk`] is about
 //! `O(T + k n log n)`, dominated by the neighbour search (parallel with the `parallel`
-//! feature) and the elimination heap (an indexed max-heap with decrease-key). Measured on
-//! the shared 2-core development machine, release build, a 69,360-triangle torus
-//! (`shapes::torus(1.0, 0.3, 340)`): 100,000 random samples in 30 to 65 ms, 100,000
-//! Poisson-disk samples in about 1.4 s of CPU time (1.9 to 2.2 s wall), reaching a
-//! relative minimum distance of 0.69.
+//! feature) and the elimination heap (an indexed max-heap with decrease-key). The times
+//! for 100,000 samples of each kind on a 69k-triangle torus, and the minimum distance the
+//! Poisson-disk samples reach, are in the section *Other primitives (scratch
+//! measurements, no bench yet)* of `docs/benchmarks.md` in the repository.
 
 mod grid;
 mod poisson;

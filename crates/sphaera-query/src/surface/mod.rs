@@ -253,10 +253,11 @@ impl Surface {
     ///
     /// One `O(n log n)` box-tree build over the `n` triangles, shared by the closest-point
     /// tree and the winding number's (refined to its smaller leaves), the winding
-    /// number's expansions and 512 winding-number probes: about 0.15 s for the
-    /// 69k-triangle bunny. Then the embedded-solid certificate (see the
-    /// [module documentation](self)): a linear pass that refuses meshes that are not
-    /// closed oriented manifolds (about 0.05 s for the 871k-triangle dragon), and for the
+    /// number's expansions and 512 winding-number probes (the preparation of the
+    /// 69k-triangle bunny is timed in the section *Adaptive medial approximation
+    /// (`sphaera-medial`)* of `docs/benchmarks.md` in the repository). Then the
+    /// embedded-solid certificate (see the [module documentation](self)): a linear pass
+    /// that refuses meshes that are not closed oriented manifolds, and for the
     /// others an `O(n log n)` contact search over the closest-point tree (parallel with
     /// the `parallel` feature) and two certified winding numbers per component.
     pub fn from_mesh(mesh: TriMesh) -> Result<Self, QueryError> {
@@ -476,8 +477,9 @@ impl Surface {
     ///
     /// # Performance
     ///
-    /// 4 to 15 times the cost of [`Surface::is_inside`] on random points, more very near
-    /// the surface.
+    /// Several times the cost of [`Surface::is_inside`] on random points, more very near
+    /// the surface; the rates of both are in the section *Inside/outside (generalized
+    /// winding number)* of `docs/benchmarks.md` in the repository.
     #[must_use]
     pub fn is_inside_certified(&self, p: DVec3) -> bool {
         self.solid && self.winding.is_inside_certified(p)

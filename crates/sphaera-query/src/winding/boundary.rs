@@ -167,7 +167,7 @@ impl WindingBoundary {
     /// # Performance
     ///
     /// Linear in the triangles (a hash of the vertex positions, then the edge matching
-    /// of [`topology`](sphaera_mesh::topology)); about 0.1 s for the 871k-triangle dragon.
+    /// of [`topology`](sphaera_mesh::topology)).
     #[must_use]
     pub fn new(mesh: &TriMesh) -> Self {
         // Weld by position: the canonical vertex of each position is its first index.
@@ -300,7 +300,7 @@ impl WindingBoundary {
     ///
     /// # Performance
     ///
-    /// One solid angle per boundary edge (about 20 ns each).
+    /// One solid angle per boundary edge.
     #[must_use]
     pub fn cap_solid_angle(&self, p: DVec3) -> Option<(f64, f64)> {
         if !p.is_finite() {

@@ -126,10 +126,10 @@ impl WindingNumber {
     /// Every point pays for a traversal with bounds (finer than the plain one), and the
     /// points it cannot decide (near the surface or a hole) for the refinement of the
     /// expansions that keep it undecided, the largest bounds first (`O(n)` at worst, on
-    /// the surface): on random points, 4 to 15 times slower than
-    /// [`WindingNumber::is_inside`] (see the [module documentation](super)); on points
-    /// near the 871k-triangle dragon about a third of the cost of the earlier two fixed
-    /// finer traversals.
+    /// the surface): on random points, several times slower than
+    /// [`WindingNumber::is_inside`] (the rates of both are in the section
+    /// *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
+    /// repository).
     pub fn is_inside_certified(&self, p: DVec3) -> bool {
         let half = 2.0 * PI;
         if !p.is_finite() {

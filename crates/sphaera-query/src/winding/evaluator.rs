@@ -140,9 +140,10 @@ impl WindingNumber {
     ///
     /// # Performance
     ///
-    /// `O(n log n)`, single-threaded: about 0.04 s for 70k triangles and 0.7 to 1.3 s for
-    /// 870k; 190 to 230 bytes per triangle (about 170 MB for 870k). See the
-    /// [module documentation](super).
+    /// `O(n log n)`, single-threaded; memory linear in the triangles (see the
+    /// [module documentation](super)). The build times on 70k and 870k triangles are in
+    /// the section *Inside/outside (generalized winding number)* of `docs/benchmarks.md`
+    /// in the repository.
     pub fn new(mesh: &TriMesh) -> Result<Self, QueryError> {
         Self::with_options(mesh, &WindingOptions::default())
     }
@@ -288,8 +289,9 @@ impl WindingNumber {
     ///
     /// # Performance
     ///
-    /// `O(log n)` for points away from the surface; see the [module documentation](super)
-    /// for measured query rates.
+    /// `O(log n)` for points away from the surface; the measured query rates are in the
+    /// section *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
+    /// repository.
     pub fn winding_number(&self, p: DVec3) -> f64 {
         self.evaluate::<false>(p, self.options.beta, f64::INFINITY)
             .0
@@ -298,7 +300,7 @@ impl WindingNumber {
 
     /// The winding number at `p` together with a rigorous bound on its approximation
     /// error (a Taylor remainder bound per expanded node). The bound is pessimistic
-    /// (typically 100 to 1000 times the actual error at `beta = 2`) but certain.
+    /// (typically orders of magnitude above the actual error at `beta = 2`) but certain.
     ///
     /// # Examples
     ///

@@ -80,7 +80,7 @@
 //! Largest and mean `|w_fast − w_brute|` over random points of the test shapes (tetrahedron,
 //! cube, octahedron, sphere, torus, sphere with a hole, flat sheet, nested spheres), for
 //! points at least `10⁻³ · diagonal` from the surface
-//! (`cargo test -p sphaera-mesh --lib winding::tests::error_table -- --ignored --nocapture`):
+//! (`cargo test -p sphaera-query --lib winding::tests::error_table -- --ignored --nocapture`):
 //!
 //! | expansion | beta | mean error | max error |
 //! |---|---:|---:|---:|
@@ -97,7 +97,7 @@
 //! the truncation errors of all nodes add up with the same sign), and that the
 //! classification agrees **exactly** with ray parity ([`inside_by_ray_parity`]) on closed
 //! meshes for points away from the surface. On the real meshes (bunny, dragon) the errors
-//! measured against brute force were 2e-3 to 5e-3.
+//! against brute force, measured by a scratch program, stay within that tolerance.
 //!
 //! Near the surface `w` crosses ½, and an approximation error could flip a point lying
 //! within about `10⁻³` of the local triangle size. When that matters, use
@@ -106,8 +106,8 @@
 //! [`WindingNumber::winding_number_with_bound`]), and where the bounds cannot decide, the
 //! expansions with the largest bounds are refined first, down to the triangles' exact
 //! solid angles if needed. Its answer is the exact
-//! winding number's. In all measurements below, it never differed from the plain
-//! classification.
+//! winding number's. In the performance measurements (see below), it never differed
+//! from the plain classification.
 //!
 //! # Meshes that do not enclose a volume
 //!
@@ -123,27 +123,19 @@
 //!
 //! # Performance
 //!
-//! Release build on a shared 2-core machine, uniformly random query points in the bounding
-//! box, default options; queries per second on one core (`is_inside`,
-//! `is_inside_certified`) and on both cores (`classify`). Scratch benchmark, not committed;
-//! the numbers vary by about 30% with the machine's load:
-//!
-//! | mesh | triangles | build | `is_inside` | `classify` (2 cores) | `is_inside_certified` |
-//! |---|---:|---:|---:|---:|---:|
-//! | torus | 69,696 | 0.04 s | 260,000 /s | 490,000 /s | 58,000 /s |
-//! | Stanford bunny (open) | 69,451 | 0.04 s | 310,000 /s | 580,000 /s | 69,000 /s |
-//! | dragon `_res2` (non-manifold) | 202,520 | 0.17 s | 200,000 /s | 310,000 /s | 13,000 /s |
-//! | torus | 871,200 | 0.7 s | 186,000 /s | 320,000 /s | 27,000 /s |
-//! | dragon (full) | 871,414 | 1.1–1.3 s | 102,000 /s | 143,000 /s | 8,200 /s |
-//!
-//! For comparison, [`winding_number_brute`] takes about 20 ns per triangle, that is about
-//! 700 queries per second at 70k triangles. Query cost grows with `beta` (third order,
-//! 70k-triangle torus: 430,000 /s at `beta = 1.5`, 280,000 at 2, 112,000 at 3, 70,000 at 4).
-//! Memory is 190 to 230 bytes per triangle (the reordered corners plus one 384-byte node
-//! per three to four triangles). The batch methods ([`WindingNumber::winding_numbers`],
-//! [`WindingNumber::classify`], [`WindingNumber::classify_certified`]) use all cores with
-//! the `parallel` feature, and return the same bits with or without it (each point is
-//! evaluated independently, in a fixed traversal order).
+//! Building is `O(n log n)`, and a query away from the surface `O(log n)`. The build
+//! times and the query rates of [`WindingNumber::is_inside`], [`WindingNumber::classify`]
+//! (both cores) and [`WindingNumber::is_inside_certified`] on a torus, the Stanford bunny
+//! and the dragon, beside brute force ([`winding_number_brute`]), are in the section
+//! *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
+//! repository (a scratch release program, not a committed bench). Query cost grows with
+//! `beta` (measured on a 70k-triangle torus by the same program; those rates are not in
+//! `docs/benchmarks.md`). Memory is linear in the triangles: the reordered corners plus
+//! one 384-byte node for every few triangles. The batch methods
+//! ([`WindingNumber::winding_numbers`], [`WindingNumber::classify`],
+//! [`WindingNumber::classify_certified`]) use all cores with the `parallel` feature, and
+//! return the same bits with or without it (each point is evaluated independently, in a
+//! fixed traversal order).
 
 mod boundary;
 mod certified;

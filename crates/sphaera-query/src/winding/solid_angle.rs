@@ -43,7 +43,9 @@ use sphaera_mesh::{TriMesh, geometry::Triangle};
 ///
 /// # Performance
 ///
-/// Three square roots and one `atan2`: about 20 ns.
+/// Three square roots and one `atan2`. The rate of brute force, one solid angle per
+/// triangle, is in the section *Inside/outside (generalized winding number)* of
+/// `docs/benchmarks.md` in the repository.
 #[inline]
 pub fn triangle_solid_angle(triangle: &Triangle, p: DVec3) -> f64 {
     solid_angle_of_corners(triangle.a - p, triangle.b - p, triangle.c - p)
@@ -92,8 +94,9 @@ pub(crate) fn solid_angle_of_corners(a: DVec3, b: DVec3, c: DVec3) -> f64 {
 ///
 /// # Performance
 ///
-/// `O(triangles)` per point, about 20 ns per triangle: use
-/// [`WindingNumber`](super::WindingNumber) for more than a few points.
+/// `O(triangles)` per point (one [`triangle_solid_angle`] each; the measured rate is in
+/// the section *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
+/// repository): use [`WindingNumber`](super::WindingNumber) for more than a few points.
 pub fn winding_number_brute(mesh: &TriMesh, p: DVec3) -> f64 {
     let total: f64 = mesh
         .triangle_iter()

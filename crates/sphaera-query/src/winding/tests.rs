@@ -314,7 +314,7 @@ fn single_triangle_mesh_works() {
 }
 
 /// Prints the measured error table of the module documentation:
-/// `cargo test -p sphaera-mesh --lib winding::tests::error_table -- --ignored --nocapture`.
+/// `cargo test -p sphaera-query --lib winding::tests::error_table -- --ignored --nocapture`.
 #[test]
 #[ignore = "prints the accuracy table of the documentation"]
 #[allow(clippy::print_stderr)]

@@ -4,8 +4,8 @@
 //! It pops candidates in exactly the order of a lazy-deletion heap keyed by
 //! `(cost, vertex, half-edge)` that skips superseded entries: each vertex has one current
 //! candidate, and candidates of different vertices never compare equal. Keeping one entry
-//! per vertex keeps the heap small (a few hundred kilobytes for a 70k-triangle mesh)
-//! instead of growing with every re-evaluation.
+//! per vertex keeps the heap small (one entry per vertex) instead of growing with every
+//! re-evaluation.
 
 use std::cmp::Reverse;
 

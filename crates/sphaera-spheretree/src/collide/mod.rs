@@ -205,9 +205,10 @@ fn touch(a: &Sphere, b: &Sphere) -> bool {
 ///
 /// Allocates one placed sphere per node of each tree; each node is placed at most once.
 /// Each level costs one test per child pair of the previous level's overlapping pairs.
-/// Two depth-3, branch-8 trees of the low-res bunny (571 nodes each) take about 20 µs in
-/// light contact (4,000 pair tests, 478 contacts) and about 110 µs in deep contact
-/// (13,000 tests, 3,089 contacts), single thread (the `collide_probe` example).
+/// Two depth-3, branch-8 trees of the low-res bunny in light and in deep contact are
+/// timed on one thread by the `collide_probe` example (not kept in `docs/benchmarks.md`;
+/// a whole scene's traversal is in its section *Scenes: detail and collision
+/// (`sphaera-scene`, issue 21)*).
 pub fn collide(
     a: &SphereTree,
     world_from_a: &Similarity,

@@ -1,11 +1,11 @@
 //! Fit evaluation of sphere sets (the paper's section 6), with **certified** errors.
 //!
-//! The error of a sphere `S` bounding an object is
-//! `E(S) = max f(x)` over the points `x` of its surface, where `f(x)` is the distance from
-//! `x` to the object's surface when `x` lies outside the object and 0 inside: how far the
-//! sphere pokes out. The sphere-tree literature estimates it from a few dozen fixed points
-//! per sphere, which under-estimates it (by 20–60 % on the low-res bunny); here every
-//! sphere gets an interval `[lower, upper]` that contains `E(S)`, at most a tolerance wide.
+//! The error of a sphere `S` bounding an object is `E(S) = max f(x)` over the points `x`
+//! of its surface, where `f(x)` is the distance from `x` to the object's surface when `x`
+//! lies outside the object and 0 inside: how far the sphere pokes out. The sphere-tree
+//! literature estimates it from a few dozen fixed points per sphere, which
+//! under-estimates it (by a wide margin on the low-res bunny); here every sphere gets an
+//! interval `[lower, upper]` that contains `E(S)`, at most a tolerance wide.
 //!
 //! # Quick start
 //!
@@ -99,13 +99,12 @@
 //! # Performance
 //!
 //! Each patch costs one closest-point query and, away from the surface, one winding-number
-//! inside test (on a mesh with holes, also a descent of the tree over the holes' rims). 512 spheres poking out of `bunny_lowres.obj` (3,674 triangles) by 0.1–0.8 %
-//! of the diagonal, release build, 2 shared cores: 1.1 s at the default tolerance (10⁻⁴
-//! of the diagonal, 920 patches per sphere on average, 5,300 at most, all converged),
-//! 0.54 s at 10⁻³ (430 per sphere); the coverage of 100,000 samples, 35 ms
-//! (`cargo test --release -p sphaera-spheretree --test evaluate bunny_512 -- --ignored
-//! --nocapture`). Flat maxima cost the most: a sphere concentric with a 16-segment
-//! sphere mesh needs 7,000–15,000 patches.
+//! inside test (on a mesh with holes, also a descent of the tree over the holes' rims).
+//! The time and the patches per sphere for 512 spheres poking out of `bunny_lowres.obj`,
+//! at the default tolerance and at 10⁻³ of the diagonal, and the time of the coverage of
+//! 100,000 samples, are printed by `cargo test --release -p sphaera-spheretree --test
+//! evaluate bunny_512 -- --ignored --nocapture` (not kept in `docs/benchmarks.md`). Flat
+//! maxima cost the most: a sphere concentric with a sphere mesh needs many patches.
 //!
 //! # Determinism
 //!

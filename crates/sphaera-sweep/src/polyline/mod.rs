@@ -81,9 +81,10 @@
 //! # Performance
 //!
 //! On the noisy 100k-point helix of the `polyline_vs_parry` bench of `sphaera-eval`
-//! (same run as parry3d-f64's BVH; figures in `docs/benchmarks.md`): the build takes
-//! 37 ms (parry 47 ms), exact uniform queries run at 1.05–1.1× parry's rate and a smooth
-//! path at 0.7×, anytime queries at 1 % of the diagonal at 4× parry's exact rate (uniform).
+//! (`cargo bench -p sphaera-eval --bench polyline_vs_parry`, same run as parry3d-f64's
+//! BVH), the build, exact uniform and smooth-path queries and anytime queries at 1 % of
+//! the diagonal are timed against parry; the figures are in the section *Polylines* of
+//! `docs/benchmarks.md` in the repository.
 //!
 //! Building: `O(n log n)` for most curves, `O(n²)` worst case, 24 bytes per capsule and
 //! `2n` capsules, and about 90 bytes per segment for the tree. A session holds 4 bytes per capsule plus 16 per queued one. A query

@@ -215,11 +215,12 @@ impl<'s> Session<'s> {
     ///
     /// # Performance
     ///
-    /// From the tree: logarithmic, about as fast as parry3d-f64's BVH (see
-    /// `docs/benchmarks.md`). The paper's way: constant when `p` is inside the safe ball
-    /// of the previous answer; otherwise the intervals still below the answer are
-    /// re-evaluated and split. Worst case linear in the mesh size either way (a query at
-    /// the centre of a sphere mesh touches every triangle).
+    /// From the tree: logarithmic, about as fast as parry3d-f64's BVH (see the section
+    /// *Closest-point queries (`sphaera-sweep`)* of `docs/benchmarks.md` in the
+    /// repository). The paper's way: constant when `p` is inside the safe ball of the
+    /// previous answer; otherwise the intervals still below the answer are re-evaluated and
+    /// split. Worst case linear in the mesh size either way (a query at the centre of a
+    /// sphere mesh touches every triangle).
     pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, SweepError> {
         let p = self.pose.to_local(check_point(p)?);
         self.stats.queries += 1;
