@@ -104,3 +104,18 @@ pub enum QueryError {
     #[error(transparent)]
     Mesh(#[from] MeshError),
 }
+
+impl QueryError {
+    /// `Ok(p)` for a finite query point, else [`QueryError::NonFiniteQuery`] naming it.
+    pub(crate) fn check_query(p: glam::DVec3) -> Result<glam::DVec3, Self> {
+        if p.is_finite() {
+            Ok(p)
+        } else {
+            Err(Self::NonFiniteQuery {
+                x: p.x,
+                y: p.y,
+                z: p.z,
+            })
+        }
+    }
+}

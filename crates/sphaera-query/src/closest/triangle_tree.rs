@@ -216,13 +216,7 @@ impl TriangleTree {
         p: DVec3,
         max_distance: f64,
     ) -> Result<Option<ClosestPoint>, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
+        QueryError::check_query(p)?;
         if max_distance.is_nan() || max_distance < 0.0 {
             return Err(QueryError::InvalidParameter {
                 name: "max_distance",
@@ -324,13 +318,7 @@ impl TriangleTree {
         p: DVec3,
         gap: &dyn Fn(f64) -> f64,
     ) -> Result<ApproxClosest, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
+        QueryError::check_query(p)?;
         let search = self.search(p, f64::INFINITY, None, Some(gap));
         // A finite query on a non-empty tree always finds a triangle (invariant).
         let Some((i, _)) = search.best else {
@@ -429,12 +417,8 @@ impl TriangleTree {
         corners: [DVec3; 3],
         enough: f64,
     ) -> Result<f64, QueryError> {
-        if let Some(p) = corners.iter().find(|p| !p.is_finite()) {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
+        for &p in &corners {
+            QueryError::check_query(p)?;
         }
         let mut search = CornersBound {
             corners: &self.corners,
@@ -496,13 +480,7 @@ impl TriangleTree {
     ///
     /// [`QueryError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
     pub fn distance(&self, p: DVec3) -> Result<f64, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
+        QueryError::check_query(p)?;
         let mut search = Distance {
             corners: &self.corners,
             p,

@@ -131,13 +131,7 @@ pub(crate) fn closest_with_ties(
     p: DVec3,
     scale: f64,
 ) -> Result<(ClosestPoint, SmallVec<[u32; 8]>), QueryError> {
-    if !p.is_finite() {
-        return Err(QueryError::NonFiniteQuery {
-            x: p.x,
-            y: p.y,
-            z: p.z,
-        });
-    }
+    QueryError::check_query(p)?;
     let mut search = Ties {
         corners: tree.corners(),
         p,

@@ -76,13 +76,7 @@ impl TreeCursor<'_> {
     ///
     /// [`QueryError::NonFiniteQuery`] if a coordinate of `p` is NaN or infinite.
     pub fn closest(&mut self, p: DVec3) -> Result<ClosestPoint, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
+        QueryError::check_query(p)?;
         self.queries += 1;
         let tree = self.tree;
         let (search, runner_up) = match self.last {
@@ -159,13 +153,7 @@ impl TreeCursor<'_> {
         p: DVec3,
         gap: &dyn Fn(f64) -> f64,
     ) -> Result<ApproxClosest, QueryError> {
-        if !p.is_finite() {
-            return Err(QueryError::NonFiniteQuery {
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
+        QueryError::check_query(p)?;
         self.queries += 1;
         let tree = self.tree;
         // After a small step, a search asks for half the gap: that leaves room for the
