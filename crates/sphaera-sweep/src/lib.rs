@@ -110,7 +110,9 @@
 //! meshes with certified bounds at a chosen tolerance: samples answered exactly by each
 //! other's [`TriangleTree`], triangles bounded from their corners' answers (the paper's
 //! bounds of section 6 and convexity bounds through single triangles), refined in rounds
-//! on every core. [`meshsweeper_hausdorff`] is the paper's engine on two [`Sweeper`]s.
+//! on every core: `sphaera-query`'s engine ([`sphaera_query::hausdorff`]), re-exported
+//! here with this crate's errors. [`meshsweeper_hausdorff`] is the paper's engine on two
+//! [`Sweeper`]s, on the same types and upper bounds.
 //!
 //! ```
 //! use sphaera_mesh::{Length, shapes};
