@@ -127,7 +127,7 @@ fn debug_cli() -> Result<PathBuf> {
     std::fs::canonicalize(&cli).with_context(|| format!("cannot find {}", cli.display()))
 }
 
-/// Every command run so far with its time in seconds, for [`ci`]'s summary.
+/// Every command run so far with its time in seconds, for [`ci::ci`]'s summary.
 static STEPS: std::sync::Mutex<Vec<(String, f64)>> = std::sync::Mutex::new(Vec::new());
 
 /// Records a step's time for the summary.

@@ -67,7 +67,7 @@ pub struct NaiveHausdorff {
 ///
 /// # Errors
 ///
-/// [`MeshError::EmptyMesh`] if a mesh has no triangle.
+/// [`QueryError::EmptyMesh`] if a mesh has no triangle.
 pub fn naive_hausdorff(
     a: &TriMesh,
     b: &TriMesh,

@@ -25,10 +25,10 @@
 //!   e.g., every method's figure at one mesh and sphere count);
 //! - `keep`: which CSV rows take part (a predicate on a row's fields);
 //! - `columns`: per table column its header, the CSV column it shows, optionally only
-//!   from the merged CSV rows whose columns equal given values ([`Column::from`]; the
-//!   first such row that has the field, or the last with [`Column::last`]), optionally
-//!   multiplied by a factor ([`Column::times`]) or divided by another field
-//!   ([`Column::over`]), and its [`Format`]. A field that is absent or empty shows as an
+//!   from the merged CSV rows whose columns equal given values ([`Column::from`](spec::Column::from); the
+//!   first such row that has the field, or the last with [`Column::last`](spec::Column::last)), optionally
+//!   multiplied by a factor ([`Column::times`](spec::Column::times)) or divided by another field
+//!   ([`Column::over`](spec::Column::over)), and its [`Format`]. A field that is absent or empty shows as an
 //!   empty cell.
 //!
 //! `cargo xtask tables` rewrites every marked table; `--check` (run by `cargo xtask ci`
