@@ -81,6 +81,7 @@ pub mod geometry;
 pub mod heap;
 mod length;
 mod mesh;
+mod name;
 pub mod shapes;
 mod sphere;
 pub mod topology;
@@ -91,6 +92,7 @@ pub use glam;
 pub use glam::DVec3;
 pub use length::{Length, ParseLengthError};
 pub use mesh::TriMesh;
+pub use name::ParseNameError;
 pub use sphere::Sphere;
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so

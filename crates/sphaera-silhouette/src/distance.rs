@@ -17,6 +17,40 @@ pub enum DistanceTransform {
 }
 
 impl DistanceTransform {
+    /// The name users type and reports show (`"euclidean"`, …), as
+    /// [`Display`](std::fmt::Display) writes it and [`FromStr`](std::str::FromStr) reads it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Euclidean => "euclidean",
+            Self::Chamfer => "chamfer",
+        }
+    }
+}
+
+impl std::fmt::Display for DistanceTransform {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for DistanceTransform {
+    type Err = sphaera_mesh::ParseNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "euclidean" => Ok(Self::Euclidean),
+            "chamfer" => Ok(Self::Chamfer),
+            _ => Err(sphaera_mesh::ParseNameError::new(
+                "distance transform",
+                s,
+                "euclidean or chamfer",
+            )),
+        }
+    }
+}
+
+impl DistanceTransform {
     /// The distances of `object` (`true` for an object pixel), `width × height`, row-major.
     ///
     /// # Panics

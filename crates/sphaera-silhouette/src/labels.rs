@@ -100,6 +100,40 @@ pub enum Contours {
     All,
 }
 
+impl Contours {
+    /// The name users type and reports show (`"outline"`, …), as
+    /// [`Display`](std::fmt::Display) writes it and [`FromStr`](std::str::FromStr) reads it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::External => "outline",
+            Self::All => "all",
+        }
+    }
+}
+
+impl std::fmt::Display for Contours {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Contours {
+    type Err = sphaera_mesh::ParseNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "outline" => Ok(Self::External),
+            "all" => Ok(Self::All),
+            _ => Err(sphaera_mesh::ParseNameError::new(
+                "set of contours",
+                s,
+                "outline or all",
+            )),
+        }
+    }
+}
+
 /// One view's projection and binary image, in buffers kept from view to view.
 #[derive(Debug, Default)]
 struct Frame {

@@ -39,6 +39,40 @@ pub enum Placement {
     Optimal,
 }
 
+impl Placement {
+    /// The name users type and reports show (`"subset"`, …), as
+    /// [`Display`](std::fmt::Display) writes it and [`FromStr`](std::str::FromStr) reads it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Subset => "subset",
+            Self::Optimal => "optimal",
+        }
+    }
+}
+
+impl std::fmt::Display for Placement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Placement {
+    type Err = sphaera_mesh::ParseNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "subset" => Ok(Self::Subset),
+            "optimal" => Ok(Self::Optimal),
+            _ => Err(sphaera_mesh::ParseNameError::new(
+                "placement",
+                s,
+                "subset or optimal",
+            )),
+        }
+    }
+}
+
 /// In which order collapses are applied.
 ///
 /// Both orders apply only collapses whose radius is certified on the mesh as it is when
@@ -78,6 +112,42 @@ pub enum Order {
     /// and bounds of both orders are in the section *Issue 20: batched re-evaluation on
     /// every core (2026-11-27)* of `docs/benchmarks.md` in the repository.
     Batched,
+}
+
+impl Order {
+    /// The name users type and reports show (`"auto"`, …), as
+    /// [`Display`](std::fmt::Display) writes it and [`FromStr`](std::str::FromStr) reads it.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Strict => "strict",
+            Self::Batched => "batched",
+        }
+    }
+}
+
+impl std::fmt::Display for Order {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Order {
+    type Err = sphaera_mesh::ParseNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "auto" => Ok(Self::Auto),
+            "strict" => Ok(Self::Strict),
+            "batched" => Ok(Self::Batched),
+            _ => Err(sphaera_mesh::ParseNameError::new(
+                "collapse order",
+                s,
+                "auto, strict or batched",
+            )),
+        }
+    }
 }
 
 impl Order {

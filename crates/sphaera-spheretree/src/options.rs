@@ -2,6 +2,7 @@
 //! [`build`](crate::build).
 
 use sphaera_mesh::Length;
+use sphaera_mesh::ParseNameError;
 
 use crate::SphereTreeError;
 use crate::reduce::Reducer;
@@ -126,7 +127,8 @@ impl Method {
     ];
 
     /// The method's name, as the CLI and the reports spell it (`"merge"`, `"minimax"`,
-    /// `"octree"`, …).
+    /// `"octree"`, …); also its [`Display`](std::fmt::Display), and what
+    /// [`FromStr`](std::str::FromStr) parses.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
@@ -232,18 +234,41 @@ impl Effort {
 }
 
 impl std::str::FromStr for Effort {
-    type Err = SphereTreeError;
+    type Err = ParseNameError;
 
     /// Parses [`Effort::name`].
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         Self::ALL
             .into_iter()
             .find(|e| e.name() == s)
-            .ok_or(SphereTreeError::InvalidParameter {
-                name: "effort",
-                value: f64::NAN,
-                requirement: "quick, default or thorough",
-            })
+            .ok_or_else(|| ParseNameError::new("effort", s, "quick, default or thorough"))
+    }
+}
+
+impl std::fmt::Display for Effort {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Method {
+    type Err = ParseNameError;
+
+    /// Parses [`Method::name`].
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::from_name(s).ok_or_else(|| {
+            ParseNameError::new(
+                "sphere-tree method",
+                s,
+                "auto, minimax, merge, burst, expand, combined, octree, grid or hubbard",
+            )
+        })
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
     }
 }
 
