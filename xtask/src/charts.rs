@@ -247,6 +247,9 @@ pub fn only(args: &[String]) -> Result<Vec<String>> {
     Ok(names)
 }
 
+/// `cargo xtask charts`: re-runs the experiments (or those named) into `docs/charts`, then
+/// rewrites the markdown tables generated from their CSVs; with `check`, only checks that
+/// every chart and CSV is there.
 pub fn charts(check: bool, only: &[String]) -> Result<()> {
     let dir = Path::new("docs/charts");
     if check {
@@ -278,12 +281,14 @@ pub fn charts(check: bool, only: &[String]) -> Result<()> {
         "docs/charts",
     ];
     if only.is_empty() {
-        return cargo(&run);
+        cargo(&run)?;
+    } else {
+        for name in only {
+            let mut args = run.to_vec();
+            args.extend(["--only", name.as_str()]);
+            cargo(&args)?;
+        }
     }
-    for name in only {
-        let mut args = run.to_vec();
-        args.extend(["--only", name.as_str()]);
-        cargo(&args)?;
-    }
-    Ok(())
+    // The markdown tables of the CSVs just written.
+    crate::tables::tables(false)
 }

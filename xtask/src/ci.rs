@@ -6,6 +6,9 @@ use anyhow::{Context, Result, bail};
 
 use crate::{browser, cargo, cargo_with_env, charts, doc, package, print_steps, python, tables};
 
+/// The property-test cases of the sequential (no `parallel`) run of [`test`].
+const SEQUENTIAL_CASES: &str = "8";
+
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
 /// `tests/`, and the doctests (all run by `cargo test`); then the query, simplification,
 /// medial, sphere-tree and scene crates again without their default `parallel` feature, whose
@@ -38,7 +41,13 @@ pub fn test() -> Result<()> {
         "--skip",
         "every_shared_mesh_builds_and_writes_every_format",
     ]);
-    cargo(&args)?;
+    // The properties were checked at their full counts in the first run; here they only
+    // need to show that the sequential build behaves alike, so each runs a few cases
+    // (unless `PROPTEST_CASES` asks for a deep run), which halves this run.
+    match std::env::var("PROPTEST_CASES") {
+        Ok(_) => cargo(&args)?,
+        Err(_) => cargo_with_env(&args, &[("PROPTEST_CASES", SEQUENTIAL_CASES)])?,
+    }
     // The Python bindings, built with maturin into a virtual environment and tested with
     // pytest against the CLI's numbers.
     python::python_test()?;

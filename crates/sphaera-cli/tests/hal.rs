@@ -3,7 +3,7 @@
 mod common;
 
 use common::{json, sphaera};
-use sphaera::hal::{HalTree2, Location, Polyline2, contains_brute};
+use sphaera::hal::{Containment, HalTree2, Polyline2, contains_brute};
 use sphaera::mesh::glam::DVec2;
 
 /// An L-shaped polygon with a notch, as a file.
@@ -62,9 +62,9 @@ fn levels_tolerance_contains_and_outputs() {
     {
         let x = DVec2::new(p.0, p.1);
         let expected = match contains_brute(&outline, x).unwrap() {
-            Location::Inside => "inside",
-            Location::Outside => "outside",
-            Location::Boundary => "boundary",
+            Containment::Inside => "inside",
+            Containment::Outside => "outside",
+            Containment::Boundary => "boundary",
         };
         assert_eq!(*answer, expected);
         assert_eq!(

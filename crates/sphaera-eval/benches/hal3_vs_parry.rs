@@ -14,7 +14,7 @@ use std::{hint::black_box, time::Duration};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use parry3d_f64::query::PointQuery;
 use parry3d_f64::shape::{TriMesh as ParryTriMesh, TriMeshFlags};
-use sphaera::hal::{HalTree3, Location, contains3_brute};
+use sphaera::hal::{Containment, HalTree3, contains3_brute};
 use sphaera::mesh::{DVec3, Surface, TriMesh, shapes};
 use sphaera_tests::random::SplitMix64;
 
@@ -67,7 +67,7 @@ fn bench(c: &mut Criterion) {
             b.iter(|| {
                 points
                     .iter()
-                    .filter(|&&p| tree.contains(p) == Location::Inside)
+                    .filter(|&&p| tree.contains(p) == Containment::Inside)
                     .count()
             });
         });
@@ -95,7 +95,7 @@ fn bench(c: &mut Criterion) {
                     b.iter(|| {
                         points
                             .iter()
-                            .filter(|&&p| contains3_brute(mesh, p) == Location::Inside)
+                            .filter(|&&p| contains3_brute(mesh, p) == Containment::Inside)
                             .count()
                     });
                 },

@@ -7,7 +7,7 @@ use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::Similarity;
 
 use crate::tree3::{Bound3, circle};
-use crate::{HalTree3, Location, Node3};
+use crate::{Containment, HalTree3, Node3};
 
 fn coord(p: DVec3) -> robust::Coord3D<f64> {
     robust::Coord3D {
@@ -131,7 +131,7 @@ pub fn intersects3_brute(first: &TriMesh, second: &TriMesh) -> bool {
             }
         }
     }
-    let within = |m: &TriMesh, p: DVec3| crate::contains3_brute(m, p) != Location::Outside;
+    let within = |m: &TriMesh, p: DVec3| crate::contains3_brute(m, p) != Containment::Outside;
     within(second, first.positions()[f as usize]) || within(first, second.positions()[g as usize])
 }
 
@@ -368,12 +368,12 @@ impl HalTree3 {
         // so it has a triangle.)
         let first = mine.positions()[mine.triangles()[0][0] as usize];
         let second = placement.point(theirs.positions()[theirs.triangles()[0][0] as usize]);
-        if self.contains(second) != Location::Outside {
+        if self.contains(second) != Containment::Outside {
             return true;
         }
         let back = Similarity::new(placement.affine().inverse())
             .map_or(first, |inverse| inverse.point(first));
-        other.contains(back) != Location::Outside
+        other.contains(back) != Containment::Outside
     }
 }
 

@@ -26,7 +26,7 @@
 //!
 //! ```
 //! use glam::DVec2;
-//! use sphaera_hal::{HalTree2, Location, Polyline2};
+//! use sphaera_hal::{HalTree2, Containment, Polyline2};
 //!
 //! // A star: ten vertices alternating between radius 1 and 0.4.
 //! let points: Vec<DVec2> = (0..10)
@@ -42,7 +42,7 @@
 //! // Refine only where a part's bounding area is wider than 0.5.
 //! let coarse = star.approximate(0.5);
 //! assert!(coarse.width <= 0.5 && coarse.vertices.len() < 10);
-//! assert_eq!(star.contains(DVec2::ZERO)?, Location::Inside);
+//! assert_eq!(star.contains(DVec2::ZERO)?, Containment::Inside);
 //! # Ok::<(), sphaera_hal::HalError>(())
 //! ```
 //!
@@ -113,7 +113,11 @@ pub use error::HalError;
 pub use intersect3::{intersects3_brute, triangles_meet};
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
 pub use polyline::{Polyline2, parse_points, parse_points3};
-pub use query2::{Location, contains_brute, intersects_brute, ray_crossing, segments_intersect};
+pub use query2::{Containment, contains_brute, intersects_brute, ray_crossing, segments_intersect};
+/// The old name of [`Containment`] (renamed so that `sphaera-io`'s `Location`, where in a
+/// file, is the workspace's only `Location`).
+#[deprecated(since = "0.2.0", note = "renamed `Containment`")]
+pub type Location = Containment;
 pub use query3::contains3_brute;
 pub use surface3::{GenusZeroSurface, RootBall};
 pub use svg::approximation_svg;

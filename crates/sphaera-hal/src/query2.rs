@@ -9,7 +9,7 @@ use crate::{HalError, HalTree2, Polyline2};
 
 /// Where a point lies with respect to a polygon.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Location {
+pub enum Containment {
     /// Inside (an odd number of crossings).
     Inside,
     /// Outside.
@@ -52,7 +52,7 @@ pub fn ray_crossing(a: DVec2, b: DVec2, x: DVec2) -> Option<bool> {
 /// # Errors
 ///
 /// [`HalError::OpenPolyline`] for an open polyline.
-pub fn contains_brute(polygon: &Polyline2, x: DVec2) -> Result<Location, HalError> {
+pub fn contains_brute(polygon: &Polyline2, x: DVec2) -> Result<Containment, HalError> {
     if !polygon.is_closed() {
         return Err(HalError::OpenPolyline);
     }
@@ -60,14 +60,14 @@ pub fn contains_brute(polygon: &Polyline2, x: DVec2) -> Result<Location, HalErro
     for i in 0..polygon.edge_count() {
         let (a, b) = polygon.edge(i);
         match ray_crossing(a, b, x) {
-            None => return Ok(Location::Boundary),
+            None => return Ok(Containment::Boundary),
             Some(crossed) => inside ^= crossed,
         }
     }
     Ok(if inside {
-        Location::Inside
+        Containment::Inside
     } else {
-        Location::Outside
+        Containment::Outside
     })
 }
 
@@ -80,19 +80,19 @@ impl HalTree2 {
     /// bounding area `x` is clearly outside of (so `x` lies on neither), and a union
     /// bounding area (never made by a polygon whose vertices avoid their chords' lines,
     /// Theorem 1) is always descended. Points exactly on an edge or at a vertex are
-    /// [`Location::Boundary`].
+    /// [`Containment::Boundary`].
     ///
     /// # Errors
     ///
     /// [`HalError::OpenPolyline`] for an open polyline.
-    pub fn contains(&self, x: DVec2) -> Result<Location, HalError> {
+    pub fn contains(&self, x: DVec2) -> Result<Containment, HalError> {
         if !self.polyline().is_closed() {
             return Err(HalError::OpenPolyline);
         }
         if let Some((center, radius)) = self.root_disc() {
             let slack = CONTAINMENT_SLACK * (radius + center.abs().max_element());
             if x.distance(center) > radius + slack {
-                return Ok(Location::Outside);
+                return Ok(Containment::Outside);
             }
         }
         let mut inside = false;
@@ -104,7 +104,7 @@ impl HalTree2 {
                 let Some(id) = node else {
                     // One original edge.
                     match ray_crossing(a, b, x) {
-                        None => return Ok(Location::Boundary),
+                        None => return Ok(Containment::Boundary),
                         Some(crossed) => inside ^= crossed,
                     }
                     continue;
@@ -120,9 +120,9 @@ impl HalTree2 {
             }
         }
         Ok(if inside {
-            Location::Inside
+            Containment::Inside
         } else {
-            Location::Outside
+            Containment::Outside
         })
     }
 }
@@ -171,7 +171,7 @@ pub fn intersects_brute(first: &Polyline2, second: &Polyline2) -> bool {
 fn one_inside_the_other(
     first: &Polyline2,
     second: &Polyline2,
-    locate: impl Fn(&Polyline2, DVec2) -> Result<Location, HalError>,
+    locate: impl Fn(&Polyline2, DVec2) -> Result<Containment, HalError>,
 ) -> bool {
     if !(first.is_closed() && second.is_closed()) {
         return false;
@@ -179,7 +179,7 @@ fn one_inside_the_other(
     let within = |polygon: &Polyline2, x: DVec2| {
         matches!(
             locate(polygon, x),
-            Ok(Location::Inside | Location::Boundary)
+            Ok(Containment::Inside | Containment::Boundary)
         )
     };
     within(second, first.points()[0]) || within(first, second.points()[0])
@@ -394,8 +394,9 @@ impl HalTree2 {
             return Ok(false);
         }
         // Boundaries apart: one inside the other, decided by one vertex each way.
-        let inside =
-            |l: Result<Location, HalError>| matches!(l, Ok(Location::Inside | Location::Boundary));
+        let inside = |l: Result<Containment, HalError>| {
+            matches!(l, Ok(Containment::Inside | Containment::Boundary))
+        };
         let theirs_first = placement.transform_point2(other.polyline().points()[0]);
         let mine_first = placement
             .inverse()

@@ -18,7 +18,7 @@
 use glam::DVec3;
 use sphaera_mesh::{Aabb, TriMesh};
 
-use crate::{HalTree3, Location};
+use crate::{Containment, HalTree3};
 
 /// Directions (and their opposites) tried from the shortest way out of the bounding box:
 /// a segment through an edge or a vertex (a zero orientation) is shot again along the
@@ -140,10 +140,10 @@ fn outside_box(bounds: &Aabb, x: DVec3) -> bool {
 /// The crossing-number answer over every face: the reference for [`HalTree3::contains`]
 /// (the same segments and exact predicates). `mesh` must be closed.
 #[must_use]
-pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Location {
+pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Containment {
     let bounds = mesh.bounding_box();
     if outside_box(&bounds, x) {
-        return Location::Outside;
+        return Containment::Outside;
     }
     'directions: for y in far_ends(&bounds, x) {
         let mut inside = false;
@@ -151,17 +151,17 @@ pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Location {
             let corners = t.map(|v| mesh.positions()[v as usize]);
             match crossing(corners, x, y) {
                 Ok(crossed) => inside ^= crossed,
-                Err(true) => return Location::Boundary,
+                Err(true) => return Containment::Boundary,
                 Err(false) => continue 'directions,
             }
         }
         return if inside {
-            Location::Inside
+            Containment::Inside
         } else {
-            Location::Outside
+            Containment::Outside
         };
     }
-    Location::Boundary
+    Containment::Boundary
 }
 
 impl HalTree3 {
@@ -170,7 +170,7 @@ impl HalTree3 {
     /// with the part of the segment inside its ancestors' volumes, clipped by its own), with exact
     /// orientation tests; a segment through an edge or a vertex is shot again along
     /// another direction. Equal to [`contains3_brute`] on every input. Points exactly on a
-    /// face are [`Location::Boundary`].
+    /// face are [`Containment::Boundary`].
     ///
     /// The paper's section 5.1 would also replace a patch by its triangle when `x` is
     /// outside the patch's bounding volume. That needs levels that are closed polyhedra
@@ -181,17 +181,17 @@ impl HalTree3 {
     /// resolve; see the section *HAL trees (`sphaera-hal`, issue 17)* of
     /// `docs/benchmarks.md` in the repository), so the bounds only cull here.
     #[must_use]
-    pub fn contains(&self, x: DVec3) -> Location {
+    pub fn contains(&self, x: DVec3) -> Containment {
         let root = self.root_ball();
         let slack = 1e-12 * (root.radius + root.center.abs().max_element());
         if x.distance(root.center) > root.radius + slack {
-            return Location::Outside;
+            return Containment::Outside;
         }
         let mesh = self.mesh();
         let positions = mesh.positions();
         let bounds = mesh.bounding_box();
         if outside_box(&bounds, x) {
-            return Location::Outside;
+            return Containment::Outside;
         }
         let slack = 1e-9 * (bounds.diagonal() + x.abs().max_element());
         'directions: for y in far_ends(&bounds, x) {
@@ -213,7 +213,7 @@ impl HalTree3 {
                         let t = mesh.triangles()[f as usize].map(|v| positions[v as usize]);
                         match crossing(t, x, y) {
                             Ok(crossed) => inside ^= crossed,
-                            Err(true) => return Location::Boundary,
+                            Err(true) => return Containment::Boundary,
                             Err(false) => continue 'directions,
                         }
                     }
@@ -222,11 +222,11 @@ impl HalTree3 {
                 }
             }
             return if inside {
-                Location::Inside
+                Containment::Inside
             } else {
-                Location::Outside
+                Containment::Outside
             };
         }
-        Location::Boundary
+        Containment::Boundary
     }
 }

@@ -69,7 +69,7 @@ pub struct Chain {
 ///
 /// ```
 /// use glam::DVec2;
-/// use sphaera_hal::{HalTree2, Location, Polyline2};
+/// use sphaera_hal::{HalTree2, Containment, Polyline2};
 ///
 /// // An L-shaped hexagon.
 /// let polygon = Polyline2::polygon(vec![
@@ -80,9 +80,9 @@ pub struct Chain {
 /// assert_eq!(tree.nodes().len(), 6 - 2);
 /// assert_eq!(tree.level(0).len(), 2);
 /// assert_eq!(tree.level(tree.depth()).len(), 6);
-/// assert_eq!(tree.contains(DVec2::new(0.5, 0.5))?, Location::Inside);
-/// assert_eq!(tree.contains(DVec2::new(1.5, 1.5))?, Location::Outside);
-/// assert_eq!(tree.contains(DVec2::new(1.0, 1.5))?, Location::Boundary);
+/// assert_eq!(tree.contains(DVec2::new(0.5, 0.5))?, Containment::Inside);
+/// assert_eq!(tree.contains(DVec2::new(1.5, 1.5))?, Containment::Outside);
+/// assert_eq!(tree.contains(DVec2::new(1.0, 1.5))?, Containment::Boundary);
 /// # Ok::<(), sphaera_hal::HalError>(())
 /// ```
 #[derive(Clone, Debug)]

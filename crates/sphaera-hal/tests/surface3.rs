@@ -263,10 +263,10 @@ fn triangles_meet_exactly() {
 
 #[test]
 fn brute_references_take_empty_meshes() {
-    use sphaera_hal::{Location, contains3_brute, intersects3_brute};
+    use sphaera_hal::{Containment, contains3_brute, intersects3_brute};
     let empty = TriMesh::default();
     assert!(!intersects3_brute(&empty, &tetrahedron()));
-    assert_eq!(contains3_brute(&empty, DVec3::ZERO), Location::Outside);
+    assert_eq!(contains3_brute(&empty, DVec3::ZERO), Containment::Outside);
     assert!(matches!(
         sphaera_hal::HalTree3::build(&empty),
         Err(HalError::NotClosed { .. })

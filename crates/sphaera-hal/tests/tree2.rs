@@ -5,7 +5,7 @@
 
 use glam::DVec2;
 use proptest::prelude::*;
-use sphaera_hal::{HalError, HalTree2, LensKind, Location, Node2, Polyline2, contains_brute};
+use sphaera_hal::{Containment, HalError, HalTree2, LensKind, Node2, Polyline2, contains_brute};
 use sphaera_tests::random::SplitMix64;
 
 fn polygon(points: &[(f64, f64)]) -> Polyline2 {
@@ -135,13 +135,13 @@ fn the_boundary_is_reported_exactly() {
     let square = polygon(&[(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)]);
     let tree = HalTree2::build(&square).unwrap();
     for (x, expected) in [
-        ((1.0, 0.0), Location::Boundary),
-        ((2.0, 2.0), Location::Boundary),
-        ((0.0, 1.5), Location::Boundary),
-        ((1.0, 1.0), Location::Inside),
-        ((1.0, 1e-300), Location::Inside),
-        ((1.0, -1e-300), Location::Outside),
-        ((3.0, 1.0), Location::Outside),
+        ((1.0, 0.0), Containment::Boundary),
+        ((2.0, 2.0), Containment::Boundary),
+        ((0.0, 1.5), Containment::Boundary),
+        ((1.0, 1.0), Containment::Inside),
+        ((1.0, 1e-300), Containment::Inside),
+        ((1.0, -1e-300), Containment::Outside),
+        ((3.0, 1.0), Containment::Outside),
     ] {
         assert_eq!(
             tree.contains(DVec2::new(x.0, x.1)).unwrap(),

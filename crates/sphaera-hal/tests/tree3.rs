@@ -232,7 +232,7 @@ fn adaptive_approximations_shrink_with_the_tolerance_and_torus_is_refused() {
 /// from the surface, the winding number; vertices and face centres are on the boundary.
 #[test]
 fn point_inclusion_equals_brute_force_and_the_winding_number() {
-    use sphaera_hal::{Location, contains3_brute};
+    use sphaera_hal::{Containment, contains3_brute};
     use sphaera_tests::random::SplitMix64;
     let mut rng = SplitMix64::new(31);
     for (name, mesh) in meshes() {
@@ -263,7 +263,7 @@ fn point_inclusion_equals_brute_force_and_the_winding_number() {
                 if !near {
                     let inside = surface.is_inside_certified(x);
                     assert_eq!(
-                        answer == Location::Inside,
+                        answer == Containment::Inside,
                         inside,
                         "{name}: {x} against the winding number"
                     );
@@ -272,7 +272,11 @@ fn point_inclusion_equals_brute_force_and_the_winding_number() {
         }
         // Vertices lie on the surface.
         for &v in mesh.positions().iter().take(20) {
-            assert_eq!(tree.contains(v), Location::Boundary, "{name}: vertex {v}");
+            assert_eq!(
+                tree.contains(v),
+                Containment::Boundary,
+                "{name}: vertex {v}"
+            );
         }
     }
 }

@@ -8,7 +8,7 @@ use crate::views::Projection;
 
 /// One view of one mesh: where its camera is and how it maps points to the image plane.
 #[derive(Clone, Copy, Debug)]
-pub struct Camera {
+pub struct ViewCamera {
     /// The bounding sphere's centre.
     center: DVec3,
     /// The bounding radius (1 for a mesh that is a single point).
@@ -22,7 +22,7 @@ pub struct Camera {
     eye: Option<(DVec3, f64)>,
 }
 
-impl Camera {
+impl ViewCamera {
     /// The camera of `projection` looking from unit `direction` at the sphere `bounds`.
     #[must_use]
     pub fn new(bounds: Sphere, direction: DVec3, projection: Projection) -> Self {
@@ -77,7 +77,7 @@ impl Camera {
     }
 
     /// Whether a face with (unnormalized) normal `normal` and first corner `corner` faces
-    /// the camera, as [`Camera::faces_camera`].
+    /// the camera, as [`ViewCamera::faces_camera`].
     pub(crate) fn normal_faces_camera(&self, normal: DVec3, corner: DVec3) -> bool {
         let toward = match self.eye {
             None => self.w,

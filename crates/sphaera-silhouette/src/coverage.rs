@@ -6,7 +6,7 @@ use glam::{DVec2, DVec3};
 use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, TriMesh};
 
-use crate::camera::Camera;
+use crate::camera::ViewCamera;
 use crate::views::Projection;
 use crate::{DistanceTransform, SilhouetteError};
 
@@ -54,13 +54,13 @@ pub(crate) fn checked_camera(
     direction: DVec3,
     projection: Projection,
     resolution: usize,
-) -> Result<Camera, SilhouetteError> {
+) -> Result<ViewCamera, SilhouetteError> {
     crate::labels::check(direction, projection, resolution)?;
-    Ok(Camera::new(frame, direction.normalize(), projection))
+    Ok(ViewCamera::new(frame, direction.normalize(), projection))
 }
 
 /// Every vertex of `mesh` in image coordinates.
-pub(crate) fn project_all(mesh: &TriMesh, camera: &Camera) -> Vec<DVec2> {
+pub(crate) fn project_all(mesh: &TriMesh, camera: &ViewCamera) -> Vec<DVec2> {
     mesh.positions()
         .iter()
         .map(|&p| camera.project(p))

@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::SilhouetteError;
-use crate::camera::{Camera, face_normal};
+use crate::camera::{ViewCamera, face_normal};
 use crate::coverage::bounding_sphere;
 use crate::distance::{DistanceTransform, Workspace};
 use crate::raster::{cell_index, mark_triangle, rows_of_triangle};
@@ -164,7 +164,7 @@ impl Frame {
         &mut self,
         mesh: &TriMesh,
         normals: &[DVec3],
-        camera: &Camera,
+        camera: &ViewCamera,
         resolution: usize,
         transform: DistanceTransform,
         contours: Contours,
@@ -238,7 +238,7 @@ fn label_in_frame(
     transform: DistanceTransform,
     contours: Contours,
 ) -> ViewLabels {
-    let camera = Camera::new(sphere, direction.normalize(), projection);
+    let camera = ViewCamera::new(sphere, direction.normalize(), projection);
     let mut frame = Frame::default();
     frame.map(
         mesh,
@@ -442,7 +442,8 @@ impl Labels {
         let vertex_count = mesh.positions().len();
         // View k's vertex labels into `out`, with `frame`'s buffers.
         let one = |frame: &mut Frame, k: usize, out: &mut [u16]| {
-            let camera = Camera::new(sphere, views.direction(k).normalize(), views.projection());
+            let camera =
+                ViewCamera::new(sphere, views.direction(k).normalize(), views.projection());
             frame.map(mesh, &normals, &camera, resolution, transform, contours);
             for (q, &p) in out.iter_mut().zip(&frame.image) {
                 *q = quantize(frame.distance_at(p, resolution));

@@ -128,7 +128,11 @@ mod picture;
 mod raster;
 mod views;
 
-pub use camera::Camera;
+pub use camera::ViewCamera;
+/// The old name of [`ViewCamera`] (renamed so that `sphaera-scene`'s `Camera`, the user's
+/// perspective camera, is the workspace's only `Camera`).
+#[deprecated(since = "0.2.0", note = "renamed `ViewCamera`")]
+pub type Camera = ViewCamera;
 pub use coverage::{bounding_sphere, contour_displacement, coverage, silhouette_difference};
 pub use distance::DistanceTransform;
 pub use error::SilhouetteError;

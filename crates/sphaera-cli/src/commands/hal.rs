@@ -9,7 +9,8 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use serde::Serialize;
 use sphaera::hal::{
-    HalTree2, HalTree3, Location, Node2, Polyline2, approximation_svg, parse_points, parse_points3,
+    Containment, HalTree2, HalTree3, Node2, Polyline2, approximation_svg, parse_points,
+    parse_points3,
 };
 use sphaera::mesh::io::write_atomic;
 
@@ -203,7 +204,7 @@ fn locate(tree: &HalTree2, path: &Path) -> Result<Contains> {
     let points = parse_points(&read_points(path)?)
         .with_context(|| format!("{} is not a file of 2D points", path.display()))?;
     let started = Instant::now();
-    let answers: Vec<Location> = points
+    let answers: Vec<Containment> = points
         .iter()
         .map(|&p| tree.contains(p))
         .collect::<Result<_, _>>()?;
@@ -219,7 +220,7 @@ fn locate3(tree: &HalTree3, path: &Path) -> Result<Contains> {
     let points = parse_points3(&read_points(path)?)
         .with_context(|| format!("{} is not a file of 3D points", path.display()))?;
     let started = Instant::now();
-    let answers: Vec<Location> = points.iter().map(|&p| tree.contains(p)).collect();
+    let answers: Vec<Containment> = points.iter().map(|&p| tree.contains(p)).collect();
     Ok(contains_report(
         path,
         &answers,
@@ -231,20 +232,20 @@ fn read_points(path: &Path) -> Result<String> {
     std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
 }
 
-fn contains_report(path: &Path, answers: &[Location], seconds: f64) -> Contains {
-    let count = |l: Location| answers.iter().filter(|&&a| a == l).count();
+fn contains_report(path: &Path, answers: &[Containment], seconds: f64) -> Contains {
+    let count = |l: Containment| answers.iter().filter(|&&a| a == l).count();
     Contains {
         file: path.display().to_string(),
         points: answers.len(),
-        inside: count(Location::Inside),
-        outside: count(Location::Outside),
-        boundary: count(Location::Boundary),
+        inside: count(Containment::Inside),
+        outside: count(Containment::Outside),
+        boundary: count(Containment::Boundary),
         answers: answers
             .iter()
             .map(|a| match a {
-                Location::Inside => "inside",
-                Location::Outside => "outside",
-                Location::Boundary => "boundary",
+                Containment::Inside => "inside",
+                Containment::Outside => "outside",
+                Containment::Boundary => "boundary",
             })
             .collect(),
         seconds,

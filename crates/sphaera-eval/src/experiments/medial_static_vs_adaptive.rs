@@ -292,7 +292,8 @@ impl SphereGrid {
         let dims = ((hi - lo) / cell)
             .to_array()
             .map(|d| (d.floor() as usize + 1).min(GRID_MAX_CELLS + 1));
-        // No extent (or a refused grid): one cell holding every sphere.
+        // No extent (or a refused grid): one cell holding every sphere. Invariant: one
+        // cell of edge 1 lists each of fewer than 2³² spheres once.
         let grid = UniformGrid::new(lo, cell, dims, boxes())
             .or_else(|_| UniformGrid::new(DVec3::ZERO, 1.0, [1, 1, 1], boxes()))
             .expect("a one-cell grid of fewer than 2³² spheres");

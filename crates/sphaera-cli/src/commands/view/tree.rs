@@ -10,7 +10,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use sphaera::mesh::{DVec3, Length, Sphere, Surface, TriMesh};
-use sphaera::spheretree::export::{SphFile, read_sph, tree_from_json};
+use sphaera::spheretree::export::{SphFile, TreeFormat, read_sph, tree_from_json};
 use sphaera::spheretree::{
     EvaluationOptions, SphereTree, SphereTreeOptions, build_with_progress, evaluate_set,
 };
@@ -75,10 +75,7 @@ impl Levels {
 pub fn read_tree(path: &Path) -> Result<Levels> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("cannot read the tree {}", path.display()))?;
-    let is_sph = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("sph"));
-    let levels = if is_sph {
+    let levels = if TreeFormat::from_path(path) == Some(TreeFormat::Sph) {
         let file = read_sph(&text, DVec3::ZERO)
             .with_context(|| format!("{}: not a valid .sph file", path.display()))?;
         Levels::of_sph(&file)

@@ -39,7 +39,7 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use geo::{Contains, LineString, Point, Polygon};
-use sphaera::hal::{HalTree2, HalTree3, Location, Polyline2, contains_brute};
+use sphaera::hal::{Containment, HalTree2, HalTree3, Polyline2, contains_brute};
 use sphaera::mesh::glam::DVec2;
 use sphaera_tests::random::SplitMix64;
 
@@ -340,11 +340,11 @@ fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
         );
 
         let (hal_us, hal_answers) = time_queries(&points, |p| hal.contains(p));
-        let hal_answers: Vec<Location> = hal_answers.into_iter().collect::<Result<_, _>>()?;
-        let as_option = |l: &Location| match l {
-            Location::Inside => Some(true),
-            Location::Outside => Some(false),
-            Location::Boundary => None,
+        let hal_answers: Vec<Containment> = hal_answers.into_iter().collect::<Result<_, _>>()?;
+        let as_option = |l: &Containment| match l {
+            Containment::Inside => Some(true),
+            Containment::Outside => Some(false),
+            Containment::Boundary => None,
         };
         let (strip_us, strip_answers) = time_queries(&points, |p| strip.contains(p));
         let (box_us, box_answers) = time_queries(&points, |p| boxes.contains(p));
@@ -361,7 +361,8 @@ fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
                     points[k]
                 );
             }
-            if *brute != Location::Boundary && geo_answers[k] != (*brute == Location::Inside) {
+            if *brute != Containment::Boundary && geo_answers[k] != (*brute == Containment::Inside)
+            {
                 bail!("{name}: geo disagrees with brute force at {}", points[k]);
             }
         }
