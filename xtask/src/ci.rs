@@ -6,7 +6,7 @@ use anyhow::{Context, Result, bail};
 
 use crate::{browser, cargo, cargo_with_env, charts, doc, package, print_steps, python, tables};
 
-/// The property-test cases of the sequential (no `parallel`) run of [`test`].
+/// The property-test cases of the sequential (no `parallel`) run of [`test()`].
 const SEQUENTIAL_CASES: &str = "8";
 
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
