@@ -22,8 +22,10 @@
 //! cargo xtask charts --check  fail if a chart or its CSV is missing, or the CSV misses
 //!                           a mesh of ../shared/data the chart must cover
 //! cargo xtask tables        regenerate the markdown tables marked `<!-- table: NAME -->`
-//!                           in the docs from docs/charts/NAME.csv (format: `tables.rs`)
-//! cargo xtask tables --check  fail if a generated table differs from its CSV
+//!                           in the docs from docs/charts/NAME.csv (format: `tables/mod.rs`)
+//! cargo xtask tables --check  fail if a generated table differs from its CSV, or a typed
+//!                           table of docs/benchmarks.md is not a dated snapshot naming
+//!                           its command (`<!-- snapshot: YYYY-MM-DD; COMMAND -->`)
 //! ```
 
 // A command-line tool reports on the terminal.

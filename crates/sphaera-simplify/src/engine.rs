@@ -32,9 +32,9 @@
 //! Each evaluation builds the projected fan once ([`Fan`]) and prunes targets by lower
 //! bounds, so it costs `O(d²)` arithmetic for valence `d` plus a ring walk, most of it
 //! loading the neighbours (cache misses on large meshes). The batched order makes fewer
-//! evaluations per applied collapse than the strict one. The time per evaluation and the
-//! profile are in the section *Issue 20: batched re-evaluation on every core
-//! (2026-11-27)* of `docs/benchmarks.md` in the repository.
+//! evaluations per applied collapse than the strict one. The time per evaluation is in
+//! the section *Issue 20: batched re-evaluation on every core (2026-11-27)* of
+//! `docs/benchmarks.md` in the repository.
 
 mod queue;
 

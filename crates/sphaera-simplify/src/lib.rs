@@ -137,11 +137,10 @@
 //! evaluation and every batch run on all cores (identical results without it). Sphaera is
 //! slower than meshoptimizer, which certifies nothing, and its output is closer to the
 //! input. The times against meshoptimizer in the same run (the 69k-triangle bunny, the
-//! 871k-triangle dragon, the bunny's full hierarchy), the measured errors of both, the
-//! peak working memory per input triangle, the profile and what was tried are in the
-//! section *Issue 20: batched re-evaluation on every core (2026-11-27)* of
-//! `docs/benchmarks.md` in the repository (`cargo bench -p sphaera-eval --bench
-//! simplify_vs_meshopt`).
+//! 871k-triangle dragon, the bunny's full hierarchy), the measured errors of both and
+//! what was tried are in the section *Issue 20: batched re-evaluation on every core
+//! (2026-11-27)* of `docs/benchmarks.md` in the repository (`cargo bench -p sphaera-eval
+//! --bench simplify_vs_meshopt`).
 //!
 //! # Feature flags
 #![doc = document_features::document_features!()]

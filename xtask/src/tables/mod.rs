@@ -29,21 +29,28 @@
 //!   first such row that has the field, or the last with [`Column::last`](spec::Column::last)), optionally
 //!   multiplied by a factor ([`Column::times`](spec::Column::times)) or divided by another field
 //!   ([`Column::over`](spec::Column::over)), and its [`Format`]. A field that is absent or empty shows as an
-//!   empty cell.
+//!   empty cell. Instead of one row's field a column may show an [`Aggregate`] over
+//!   every merged row that passes its filter ([`Column::over_rows`](spec::Column::over_rows)):
+//!   the largest over the smallest (a spread) or both (a range).
 //!
 //! `cargo xtask tables` rewrites every marked table; `--check` (run by `cargo xtask ci`
 //! beside `charts --check`) rewrites nothing and fails, naming the file and the table,
 //! when one differs: "run `cargo xtask tables` and commit". An unknown name, a marker
 //! without its end or a CSV without a column the spec names fails both.
+//!
+//! Both also check the tables typed by hand in `docs/benchmarks.md` ([`snapshots`]): each
+//! must follow a marker `<!-- snapshot: YYYY-MM-DD; COMMAND -->` saying when it was
+//! measured and which command produced its figures.
 
 mod catalog;
+mod snapshots;
 mod spec;
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, bail};
 
-pub use spec::{Filter, Format, Record, Table};
+pub use spec::{Aggregate, Filter, Format, Record, Table};
 
 /// Rewrites (or, with `check`, checks) every marked table of every markdown file under
 /// the current directory (the project root).
@@ -75,6 +82,11 @@ pub fn tables(check: bool) -> Result<()> {
         );
     }
     eprintln!("  ({count} generated tables: ok)");
+    let typed = snapshots::check(Path::new("."))?;
+    eprintln!(
+        "  ({typed} typed tables in {}: dated snapshots with their command, ok)",
+        snapshots::FILES.join(", ")
+    );
     Ok(())
 }
 
@@ -102,7 +114,7 @@ fn rewrite(text: &str) -> Result<(String, Vec<String>)> {
             out.push('\n');
         }
         let Some(table) = catalog::all().find(|t| t.name == name) else {
-            bail!("no generated table named `{name}` (xtask/src/tables.rs lists them)");
+            bail!("no generated table named `{name}` (xtask/src/tables/catalog/ lists them)");
         };
         out.push_str(&render(table, Path::new("docs/charts"))?);
         let mut closed = false;
@@ -144,6 +156,17 @@ fn render(table: &Table, dir: &Path) -> Result<String> {
         if !header.iter().any(|h| h == name) {
             bail!("{} has no column `{name}`", path.display());
         }
+    }
+    if let Some(c) = table
+        .columns
+        .iter()
+        .find(|c| c.aggregate.is_some() && c.divisor.is_some())
+    {
+        bail!(
+            "the column `{}` of the table `{}` has both an aggregate and a divisor",
+            c.header,
+            table.name
+        );
     }
     let rows: Vec<Vec<String>> = records.collect();
     let record = |i: usize| Record {
@@ -193,14 +216,24 @@ fn render(table: &Table, dir: &Path) -> Result<String> {
                 found.next()
             }
         };
-        let row: Vec<String> = table
+        let row = table
             .columns
             .iter()
             .map(|c| {
+                if let Some(aggregate) = c.aggregate {
+                    let fields = members
+                        .iter()
+                        .map(|&i| record(i))
+                        .filter(|r| r.passes(c.from))
+                        .filter_map(|r| r.get(c.field).filter(|f| !f.is_empty()));
+                    return aggregate_fields(fields, aggregate, c.scale, c.format).with_context(
+                        || format!("in the column `{}` of the table `{}`", c.header, table.name),
+                    );
+                }
                 let Some(field) = pick(c.field, c.from, c.from_last) else {
-                    return String::new();
+                    return Ok(String::new());
                 };
-                match c.divisor {
+                Ok(match c.divisor {
                     None => format_field(field, c.scale, c.format),
                     Some((divisor, from)) => {
                         let number = |f: &str| f.parse::<f64>().ok();
@@ -214,12 +247,46 @@ fn render(table: &Table, dir: &Path) -> Result<String> {
                             _ => String::new(),
                         }
                     }
-                }
+                })
             })
-            .collect();
+            .collect::<Result<Vec<String>>>()?;
         out.push_str(&cells(row));
     }
     Ok(out)
+}
+
+/// `aggregate` of the numbers `fields` (at least one: none gives an empty cell), each
+/// multiplied by `scale` first, written as `format` says. Fails on a field that is not a
+/// number.
+fn aggregate_fields<'a>(
+    fields: impl Iterator<Item = &'a str>,
+    aggregate: Aggregate,
+    scale: f64,
+    format: Format,
+) -> Result<String> {
+    let mut bounds: Option<(f64, f64)> = None;
+    for field in fields {
+        let v = field
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .with_context(|| format!("`{field}` is not a number"))?
+            * scale;
+        bounds = Some(bounds.map_or((v, v), |(lo, hi)| (lo.min(v), hi.max(v))));
+    }
+    let Some((lo, hi)) = bounds else {
+        return Ok(String::new());
+    };
+    Ok(match aggregate {
+        Aggregate::Spread if lo == 0.0 => String::new(),
+        Aggregate::Spread => format_number(hi / lo, format),
+        Aggregate::Range => format!(
+            "{}–{}",
+            format_number(lo, format),
+            format_number(hi, format)
+        ),
+    })
 }
 
 /// The records of a CSV `text` as RFC 4180 says: fields separated by commas, records by
@@ -513,6 +580,49 @@ mod tests {
             "| mesh | first | last | b at x | b/u % |\n| --- | ---: | ---: | ---: | ---: |\n\
              | m | 4 | 8 | 1 | 75 |\n| k | 0 | 0 |  |  |\n"
         );
+        Ok(())
+    }
+
+    /// A spread and a range over the merged rows that pass the filter, skipping empty
+    /// fields; no field gives an empty cell, a field that is not a number fails.
+    #[test]
+    fn columns_aggregate_over_the_merged_rows() -> Result<()> {
+        const TABLE: Table = Table {
+            name: "spread",
+            csv: "spread",
+            key: &["mesh"],
+            keep: |_| true,
+            columns: &[
+                col("mesh", "mesh", ANY, Format::Text),
+                col("L1 spread", "worst", &[("level", "1")], Format::Decimals(3))
+                    .over_rows(Aggregate::Spread),
+                col("L1 range", "worst", &[("level", "1")], Format::Decimals(2))
+                    .over_rows(Aggregate::Range),
+                col("L2 range", "worst", &[("level", "2")], Format::Decimals(1))
+                    .over_rows(Aggregate::Range)
+                    .times(10.0),
+            ],
+        };
+        let dir = std::env::temp_dir().join(format!("xtask-spread-{}", std::process::id()));
+        std::fs::create_dir_all(&dir)?;
+        std::fs::write(
+            dir.join("spread.csv"),
+            "mesh,transform,level,worst\ncube,0,1,11.7882\ncube,0,2,5.4858\n\
+             cube,1,1,11.8034\ncube,1,2,\ncube,2,1,11.75\ncube,2,2,5.5\n\
+             bunny,0,1,0\nbunny,1,1,2\n",
+        )?;
+        let markdown = render(&TABLE, &dir);
+        std::fs::write(dir.join("spread.csv"), "mesh,level,worst\ncube,1,n/a\n")?;
+        let not_a_number = render(&TABLE, &dir);
+        std::fs::remove_dir_all(&dir)?;
+        assert_eq!(
+            markdown?,
+            "| mesh | L1 spread | L1 range | L2 range |\n| --- | ---: | ---: | ---: |\n\
+             | cube | 1.005 | 11.75–11.80 | 54.9–55.0 |\n| bunny |  | 0.00–2.00 |  |\n"
+        );
+        let error = format!("{:#}", not_a_number.err().context("`n/a` must fail")?);
+        assert!(error.contains("`n/a` is not a number"), "{error}");
+        assert!(error.contains("L1 spread"), "{error}");
         Ok(())
     }
 

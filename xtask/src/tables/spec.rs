@@ -36,6 +36,17 @@ pub enum Format {
     Right,
 }
 
+/// A figure computed over every merged CSV row that passes a column's filter and has its
+/// field (a number; an empty field is skipped), instead of the field of one row.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Aggregate {
+    /// The largest over the smallest (no factor applies; empty when the smallest is 0).
+    Spread,
+    /// The smallest and the largest, each written as the format says, joined by `–`
+    /// (`11.78–11.83`).
+    Range,
+}
+
 /// Conditions on a CSV row: every column `.0` equals `.1` (empty: every row).
 pub type Filter = &'static [(&'static str, &'static str)];
 
@@ -57,6 +68,9 @@ pub struct Column {
     /// Divide the number by this field, taken from the merged rows that pass this filter
     /// (first or last as [`Column::from_last`] says).
     pub divisor: Option<(&'static str, Filter)>,
+    /// Show this over the merged rows that pass [`Column::from`] rather than one row's
+    /// field (`None`: one row's, as [`Column::from_last`] says). Not with a divisor.
+    pub aggregate: Option<Aggregate>,
     /// How it is written.
     pub format: Format,
 }
@@ -80,6 +94,15 @@ impl Column {
     pub(crate) const fn last(self) -> Self {
         Self {
             from_last: true,
+            ..self
+        }
+    }
+
+    /// The column showing `aggregate` of the field over the merged rows that pass its
+    /// filter.
+    pub(crate) const fn over_rows(self, aggregate: Aggregate) -> Self {
+        Self {
+            aggregate: Some(aggregate),
             ..self
         }
     }
@@ -137,6 +160,7 @@ pub(crate) const fn col(
         from_last: false,
         scale: 1.0,
         divisor: None,
+        aggregate: None,
         format,
     }
 }

@@ -73,12 +73,11 @@ pub struct EnclosingBall {
 ///
 /// # Performance
 ///
-/// `O(n)` per pivot step, and few pivot steps in practice (the time and the step count
-/// for 100,000 random points are in the section *Other primitives (scratch measurements,
-/// no bench yet)* of `docs/benchmarks.md` in the repository). No allocation, except a
-/// copy of the input when its bounding box is larger than 1e100 or smaller than 1e-100:
-/// such inputs are solved translated and scaled to unit size (exactly, by a power of two)
-/// so that squared distances neither overflow nor underflow.
+/// `O(n)` per pivot step, and few pivot steps in practice (no bench times it yet: see the
+/// section *Other primitives (no bench yet)* of `docs/benchmarks.md` in the repository).
+/// No allocation, except a copy of the input when its bounding box is larger than 1e100
+/// or smaller than 1e-100: such inputs are solved translated and scaled to unit size
+/// (exactly, by a power of two) so that squared distances neither overflow nor underflow.
 pub fn minimum_enclosing_ball(points: &[DVec3]) -> Result<Sphere, MeshError> {
     minimum_enclosing_ball_with_support(points).map(|ball| ball.sphere)
 }

@@ -60,12 +60,11 @@ const OPERATION: &str = "minimum enclosing ball of balls";
 ///
 /// # Performance
 ///
-/// `O(n)` per pivot step, and few pivot steps in practice (the time for 100,000 random
-/// balls is in the section *Other primitives (scratch measurements, no bench yet)* of
-/// `docs/benchmarks.md` in the repository). No allocation, except a copy of the input
-/// when its bounding box is larger than 1e100 or smaller than 1e-100: such inputs are
-/// solved translated and scaled to unit size (exactly, by a power of two) so that squared
-/// distances neither overflow nor underflow.
+/// `O(n)` per pivot step, and few pivot steps in practice (no bench times it yet: see the
+/// section *Other primitives (no bench yet)* of `docs/benchmarks.md` in the repository).
+/// No allocation, except a copy of the input when its bounding box is larger than 1e100
+/// or smaller than 1e-100: such inputs are solved translated and scaled to unit size
+/// (exactly, by a power of two) so that squared distances neither overflow nor underflow.
 pub fn minimum_enclosing_ball_of_balls(balls: &[Sphere]) -> Result<Sphere, MeshError> {
     minimum_enclosing_ball_of_balls_with_support(balls).map(|ball| ball.sphere)
 }

@@ -48,10 +48,9 @@
 //!
 //! [`random`] is `O(T + n log T)` for `T` triangles; [`poisson_disk`] is about
 //! `O(T + k n log n)`, dominated by the neighbour search (parallel with the `parallel`
-//! feature) and the elimination heap (an indexed max-heap with decrease-key). The times
-//! for 100,000 samples of each kind on a 69k-triangle torus, and the minimum distance the
-//! Poisson-disk samples reach, are in the section *Other primitives (scratch
-//! measurements, no bench yet)* of `docs/benchmarks.md` in the repository.
+//! feature) and the elimination heap (an indexed max-heap with decrease-key). Only
+//! [`poisson_disk`] is benched, as the medial approximation's first step (section
+//! *Adaptive medial approximation* of `docs/benchmarks.md` in the repository).
 
 mod grid;
 mod poisson;

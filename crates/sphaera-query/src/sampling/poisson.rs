@@ -133,8 +133,8 @@ impl PoissonDiskSamples {
 /// # Performance
 ///
 /// About `O(T + k n log n)` (memory: about 150 bytes per candidate). The time for
-/// 100,000 points on a 69k-triangle torus is in the section *Other primitives (scratch
-/// measurements, no bench yet)* of `docs/benchmarks.md` in the repository.
+/// 10,000 points on the 69k-triangle bunny is in the section *Adaptive medial
+/// approximation* of `docs/benchmarks.md` in the repository.
 pub fn poisson_disk(mesh: &TriMesh, n: usize, seed: u64) -> Result<PoissonDiskSamples, QueryError> {
     poisson_disk_with(mesh, n, seed, &PoissonDiskOptions::default())
 }

@@ -46,9 +46,8 @@ use sphaera_mesh::TriMesh;
 /// # Performance
 ///
 /// `O(T + n log T)` for `T` triangles, single-threaded (a single random stream keeps it
-/// reproducible). The time for 100,000 points on a 69k-triangle torus is in the section
-/// *Other primitives (scratch measurements, no bench yet)* of `docs/benchmarks.md` in the
-/// repository.
+/// reproducible). No bench times it yet (see the section *Other primitives (no bench
+/// yet)* of `docs/benchmarks.md` in the repository).
 pub fn random(mesh: &TriMesh, n: usize, seed: u64) -> Result<Vec<SurfaceSample>, QueryError> {
     check_count("n", n)?;
     let table = AreaTable::new(mesh)?;

@@ -127,9 +127,9 @@ impl WindingNumber {
     /// points it cannot decide (near the surface or a hole) for the refinement of the
     /// expansions that keep it undecided, the largest bounds first (`O(n)` at worst, on
     /// the surface): on random points, several times slower than
-    /// [`WindingNumber::is_inside`] (the rates of both are in the section
-    /// *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
-    /// repository).
+    /// [`WindingNumber::is_inside`] (its time per query is measured by `cargo bench -p
+    /// sphaera-eval --bench hal3_vs_parry`, in the section *HAL trees* of
+    /// `docs/benchmarks.md` in the repository).
     pub fn is_inside_certified(&self, p: DVec3) -> bool {
         let half = 2.0 * PI;
         if !p.is_finite() {

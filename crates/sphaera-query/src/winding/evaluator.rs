@@ -141,9 +141,9 @@ impl WindingNumber {
     /// # Performance
     ///
     /// `O(n log n)`, single-threaded; memory linear in the triangles (see the
-    /// [module documentation](super)). The build times on 70k and 870k triangles are in
-    /// the section *Inside/outside (generalized winding number)* of `docs/benchmarks.md`
-    /// in the repository.
+    /// [module documentation](super)). No bench times the build yet (see the section
+    /// *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
+    /// repository).
     pub fn new(mesh: &TriMesh) -> Result<Self, QueryError> {
         Self::with_options(mesh, &WindingOptions::default())
     }
@@ -289,9 +289,9 @@ impl WindingNumber {
     ///
     /// # Performance
     ///
-    /// `O(log n)` for points away from the surface; the measured query rates are in the
-    /// section *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
-    /// repository.
+    /// `O(log n)` for points away from the surface. No bench times it on its own yet (see
+    /// the section *Inside/outside (generalized winding number)* of `docs/benchmarks.md`
+    /// in the repository).
     pub fn winding_number(&self, p: DVec3) -> f64 {
         self.evaluate::<false>(p, self.options.beta, f64::INFINITY)
             .0

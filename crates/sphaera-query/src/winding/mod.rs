@@ -123,15 +123,14 @@
 //!
 //! # Performance
 //!
-//! Building is `O(n log n)`, and a query away from the surface `O(log n)`. The build
-//! times and the query rates of [`WindingNumber::is_inside`], [`WindingNumber::classify`]
-//! (both cores) and [`WindingNumber::is_inside_certified`] on a torus, the Stanford bunny
-//! and the dragon, beside brute force ([`winding_number_brute`]), are in the section
+//! Building is `O(n log n)`, and a query away from the surface `O(log n)`. No bench
+//! times the build or [`WindingNumber::is_inside`] and [`WindingNumber::classify`] on
+//! their own yet (the figures of a scratch program were dropped from the section
 //! *Inside/outside (generalized winding number)* of `docs/benchmarks.md` in the
-//! repository (a scratch release program, not a committed bench). Query cost grows with
-//! `beta` (measured on a 70k-triangle torus by the same program; those rates are not in
-//! `docs/benchmarks.md`). Memory is linear in the triangles: the reordered corners plus
-//! one 384-byte node for every few triangles. The batch methods
+//! repository); [`WindingNumber::is_inside_certified`] is timed by `cargo bench -p
+//! sphaera-eval --bench hal3_vs_parry`. Query cost grows with `beta`. Memory is linear in
+//! the triangles: the reordered corners plus one 384-byte node for every few triangles.
+//! The batch methods
 //! ([`WindingNumber::winding_numbers`], [`WindingNumber::classify`],
 //! [`WindingNumber::classify_certified`]) use all cores with the `parallel` feature, and
 //! return the same bits with or without it (each point is evaluated independently, in a

@@ -62,6 +62,14 @@ pub(super) const ROBOT_SPHAERA: Filter = &[("method", "sphaera")];
 /// The voxel baseline's.
 pub(super) const VOXELS: Filter = &[("method", "voxel_kmeans")];
 
+/// The meshes of `spheretree_similarity.csv`, as the table names them.
+pub(super) const SIMILARITY_MESHES: &[(&str, &str)] = &[
+    ("cube", "unit cube (`shapes::cube(1.0, 4)`)"),
+    ("fandisk.obj", "`fandisk.obj`"),
+    ("cylinder", "cylinder (`shapes::cylinder(0.5, 2.0, 32)`)"),
+    ("bunny_lowres.obj", "`bunny_lowres.obj`"),
+];
+
 /// The CSV row of tree level 1 (2, 3) of the sphere-tree tables.
 pub(super) const LEVEL_1: Filter = &[("level", "1")];
 /// Level 2.

@@ -1,6 +1,6 @@
 //! The generated tables of the sphere-trees, the main job, the robots and the peer morphit-rs.
 
-use super::super::spec::{ANY, Filter, Format, Table, col};
+use super::super::spec::{ANY, Aggregate, Column, Filter, Format, Table, col};
 #[allow(clippy::wildcard_imports)]
 use super::filters::*;
 
@@ -10,6 +10,16 @@ const SPHAERA: Filter = &[("method", "sphaera")];
 const RAW: Filter = &[("method", "morphit_raw")];
 /// morphit-rs grown to cover.
 const GROWN: Filter = &[("method", "morphit_grown")];
+
+/// The upper end of the worst error at one level of `spheretree_similarity.csv`, over
+/// the trees of one mesh: their spread (largest / smallest) or their range.
+const fn similarity(header: &'static str, level: Filter, aggregate: Aggregate) -> Column {
+    let format = match aggregate {
+        Aggregate::Spread => Format::Decimals(3),
+        Aggregate::Range => Format::Decimals(2),
+    };
+    col(header, "worst_error_upper_pct_diag", level, format).over_rows(aggregate)
+}
 
 /// The tables of this group.
 pub(super) const TABLES: &[Table] = &[
@@ -257,6 +267,24 @@ pub(super) const TABLES: &[Table] = &[
                 ROBOT_SPHAERA,
                 Format::Decimals(2),
             ),
+        ],
+    },
+    // docs/benchmarks.md, "Stability under similarity transforms": per mesh and level, the
+    // spread of the certified worst error (upper end) over the tree of the mesh as given
+    // and its 20 transformed copies, and its smallest and largest value.
+    Table {
+        name: "spheretree_similarity",
+        csv: "spheretree_similarity",
+        key: &["mesh"],
+        keep: |_| true,
+        columns: &[
+            col("mesh", "mesh", ANY, Format::Label(SIMILARITY_MESHES)),
+            similarity("L1 spread", LEVEL_1, Aggregate::Spread),
+            similarity("L1 worst %, min–max", LEVEL_1, Aggregate::Range),
+            similarity("L2 spread", LEVEL_2, Aggregate::Spread),
+            similarity("L2 worst %, min–max", LEVEL_2, Aggregate::Range),
+            similarity("L3 spread", LEVEL_3, Aggregate::Spread),
+            similarity("L3 worst %, min–max", LEVEL_3, Aggregate::Range),
         ],
     },
 ];
