@@ -11,6 +11,11 @@ use glam::DVec3;
 
 use crate::QueryError;
 
+/// The most cells a [`UniformGrid`] may have: 2²⁶ (67 million), about 800 MB of counts
+/// and row starts while it is built. More `dims` are refused
+/// ([`QueryError::InvalidParameter`] named `"dims"`) before anything is allocated.
+pub const MAX_GRID_CELLS: usize = 1 << 26;
+
 /// Items bucketed by the cells of a uniform grid that their boxes meet.
 ///
 /// # Examples
@@ -50,8 +55,9 @@ impl UniformGrid {
     /// # Errors
     ///
     /// [`QueryError::InvalidParameter`] for a cell edge that is not finite and positive,
-    /// a zero dimension, more cells than fit in memory indices, or more item listings than
-    /// 32-bit indices address.
+    /// a zero dimension or more than [`MAX_GRID_CELLS`] cells (checked before anything is
+    /// allocated); [`QueryError::TooManyItems`] for more item listings than 32-bit indices
+    /// address.
     pub fn new(
         origin: DVec3,
         cell: f64,
@@ -68,11 +74,12 @@ impl UniformGrid {
         let cells = dims
             .iter()
             .try_fold(1_usize, |n, &d| n.checked_mul(d))
-            .filter(|&n| n > 0 && n < u32::MAX as usize)
+            .filter(|&n| n > 0 && n <= MAX_GRID_CELLS)
             .ok_or(QueryError::InvalidParameter {
                 name: "dims",
                 value: dims.iter().map(|&d| d as f64).product(),
-                requirement: "at least one cell per axis, fewer than 2³² cells in all",
+                requirement: "at least one cell per axis, at most `grid::MAX_GRID_CELLS` \
+                              (2^26) cells in all",
             })?;
         let mut grid = Self {
             origin,

@@ -58,6 +58,11 @@
 //! Every fallible function returns [`QueryError`]; invalid meshes surface as
 //! [`QueryError::Mesh`]. Library code does not panic on user input.
 //!
+//! Parameters that size memory are checked against documented caps before anything is
+//! allocated, and refused with [`QueryError::InvalidParameter`] naming the parameter and
+//! the cap: sample counts ([`MAX_SAMPLES`]), a Hausdorff sample budget
+//! ([`MAX_HAUSDORFF_SAMPLES`]), a uniform grid's cells ([`MAX_GRID_CELLS`]).
+//!
 //! # Feature flags
 #![doc = document_features::document_features!()]
 
@@ -72,6 +77,9 @@ pub mod surface;
 pub mod winding;
 
 pub use error::QueryError;
+pub use grid::MAX_GRID_CELLS;
+pub use hausdorff::MAX_HAUSDORFF_SAMPLES;
+pub use sampling::MAX_SAMPLES;
 pub use surface::Surface;
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so

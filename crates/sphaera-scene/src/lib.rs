@@ -173,7 +173,7 @@ pub use detail::{CutChoice, DetailReport, InstanceDetail, LevelChoice, SphereCho
 pub use error::SceneError;
 pub use file::{CameraEntry, InstanceEntry, LoadedScene, SceneDescription, SceneFile};
 pub use glam::DVec3;
-pub use model::{MeshLevel, ModelOptions, ObjectModel, SilhouetteOptions};
+pub use model::{MAX_MESH_LADDER_LEVELS, MeshLevel, ModelOptions, ObjectModel, SilhouetteOptions};
 pub use scene::{Instance, Scene};
 #[cfg(feature = "silhouette")]
 pub use silhouette::{SilhouetteChoice, SilhouetteDetailOptions, SilhouetteReport};

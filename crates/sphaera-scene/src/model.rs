@@ -57,8 +57,8 @@ pub struct ModelOptions {
     /// The ratio between the error bounds of successive mesh levels (default `√2`: each
     /// level's bound is at most `1/√2` of the coarser one's). Must be above 1.
     pub mesh_ladder_step: f64,
-    /// The most mesh levels between the base mesh and the input (default 40; the input
-    /// itself is always the finest level).
+    /// The most mesh levels between the base mesh and the input (default 40, at most
+    /// [`MAX_MESH_LADDER_LEVELS`]; the input itself is always the finest level).
     pub mesh_ladder_levels: usize,
     /// How the silhouette labels are computed (used with the `silhouette` feature,
     /// ignored without it).
@@ -85,9 +85,13 @@ pub struct ModelOptions {
 #[non_exhaustive]
 pub struct SilhouetteOptions {
     /// The views: a latitude–longitude grid every this many degrees (must divide 180
-    /// and lie in `(0, 90]`; default 30, 62 views).
+    /// and lie in `(0, 90]`, and be at least 1.40625° so that there are at most
+    /// `sphaera_silhouette::MAX_VIEWS` views; default 30, 62 views).
     pub step_degrees: f64,
-    /// The cells across each view's image (default 128).
+    /// The cells across each view's image (default 128; at most
+    /// `sphaera_silhouette::MAX_RESOLUTION`, 4,096). The labels take 2 bytes per vertex per
+    /// view, at most `sphaera_silhouette::MAX_LABELS`. Values beyond a cap leave the model
+    /// without labels, and `ObjectModel::silhouette_labels` says which cap.
     pub resolution: usize,
     /// Label the distance to the outline alone (default `true`), not to the internal
     /// silhouettes too: the contour region stays narrow, where it matters most.
@@ -156,7 +160,8 @@ impl ModelOptions {
         self
     }
 
-    /// With at most this many mesh levels between the base mesh and the input.
+    /// With at most this many mesh levels between the base mesh and the input (at most
+    /// [`MAX_MESH_LADDER_LEVELS`], checked when a model is built).
     #[must_use]
     pub fn with_mesh_ladder_levels(mut self, levels: usize) -> Self {
         self.mesh_ladder_levels = levels;
@@ -283,8 +288,9 @@ impl ObjectModel {
     ///
     /// [`SceneError::Mesh`] for an empty or invalid mesh, [`SceneError::SphereTree`] when
     /// the base tree cannot be built (bad options, a medial method on a sheet),
-    /// [`SceneError::Simplify`] for bad simplification options. A ladder step at or below
-    /// 1 (or NaN) is taken as `√2`.
+    /// [`SceneError::Simplify`] for bad simplification options;
+    /// [`SceneError::InvalidOption`] for more ladder levels than
+    /// [`MAX_MESH_LADDER_LEVELS`]. A ladder step at or below 1 (or NaN) is taken as `√2`.
     ///
     /// # Performance
     ///
@@ -297,6 +303,7 @@ impl ObjectModel {
         mesh: TriMesh,
         options: &ModelOptions,
     ) -> Result<Self, SceneError> {
+        check_options(options)?;
         let surface = Surface::solid_or_shell(&mesh)?;
         drop(mesh);
         let started = Instant::now();
@@ -312,7 +319,9 @@ impl ObjectModel {
     ///
     /// # Errors
     ///
-    /// [`SceneError::Mesh`] for an empty mesh or a tree without spheres.
+    /// [`SceneError::Mesh`] for an empty mesh or a tree without spheres;
+    /// [`SceneError::InvalidOption`] for more ladder levels than
+    /// [`MAX_MESH_LADDER_LEVELS`].
     pub fn from_parts(
         name: impl Into<String>,
         mesh: TriMesh,
@@ -320,6 +329,7 @@ impl ObjectModel {
         hierarchy: Hierarchy,
         options: &ModelOptions,
     ) -> Result<Self, SceneError> {
+        check_options(options)?;
         let surface = Surface::solid_or_shell(&mesh)?;
         drop(mesh);
         Self::assemble(name.into(), surface, tree, 0.0, hierarchy, options)
@@ -618,6 +628,24 @@ fn silhouette_labels(
             .with_resolution(options.resolution)
             .with_contours(contours),
     )
+}
+
+/// The most mesh levels a model's ladder may have ([`ModelOptions::mesh_ladder_levels`]):
+/// 1,000. Each level costs a refinement of the hierarchy and a scan of its vertices, so
+/// a larger count only spends time; it is refused ([`SceneError::InvalidOption`] named
+/// `"mesh_ladder_levels"`) before the model is built.
+pub const MAX_MESH_LADDER_LEVELS: usize = 1_000;
+
+/// Checks the options that size a model's work before it is built.
+fn check_options(options: &ModelOptions) -> Result<(), SceneError> {
+    if options.mesh_ladder_levels > MAX_MESH_LADDER_LEVELS {
+        return Err(SceneError::InvalidOption {
+            name: "mesh_ladder_levels",
+            value: options.mesh_ladder_levels as f64,
+            requirement: "at most 1,000 (`MAX_MESH_LADDER_LEVELS`)",
+        });
+    }
+    Ok(())
 }
 
 /// The first index whose error meets `ok`, or the last and `false`.

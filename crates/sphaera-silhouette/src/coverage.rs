@@ -29,7 +29,8 @@ pub fn bounding_sphere(mesh: &TriMesh) -> Result<Sphere, SilhouetteError> {
 /// # Errors
 ///
 /// [`SilhouetteError::InvalidResolution`], [`SilhouetteError::InvalidDirection`],
-/// [`SilhouetteError::CameraInside`].
+/// [`SilhouetteError::CameraInside`]; [`SilhouetteError::InvalidParameter`] for a
+/// resolution above [`MAX_RESOLUTION`](crate::MAX_RESOLUTION).
 pub fn coverage(
     mesh: &TriMesh,
     frame: Sphere,
@@ -120,9 +121,9 @@ pub fn silhouette_difference(a: &[bool], b: &[bool]) -> usize {
 /// If the images are not both `resolution²` cells.
 #[must_use]
 pub fn contour_displacement(a: &[bool], b: &[bool], resolution: usize) -> Option<f64> {
-    let n = resolution * resolution;
+    let n = resolution.checked_mul(resolution);
     assert!(
-        a.len() == n && b.len() == n,
+        n == Some(a.len()) && n == Some(b.len()),
         "two images of resolution² cells"
     );
     match (a.contains(&true), b.contains(&true)) {

@@ -79,7 +79,11 @@ impl DistanceTransform {
         workspace: &mut Workspace,
         distances: &mut Vec<f32>,
     ) {
-        assert_eq!(object.len(), width * height, "the image is width × height");
+        assert_eq!(
+            Some(object.len()),
+            width.checked_mul(height),
+            "the image is width × height"
+        );
         match self {
             Self::Euclidean => euclidean(object, width, height, workspace, distances),
             Self::Chamfer => *distances = chamfer(object, width, height),

@@ -49,7 +49,11 @@ pub enum SilhouetteError {
     #[error("the hierarchy must use Placement::Subset, so that its vertices keep their labels")]
     NotSubset,
     /// An allowed error that is negative or not finite, a factor outside `[0, 1]`, a NaN
-    /// threshold or a non-positive scale.
+    /// threshold or a non-positive scale; a parameter that sizes memory beyond its cap (a
+    /// view step below 1.40625°, a resolution above [`MAX_RESOLUTION`](crate::MAX_RESOLUTION),
+    /// more labels than [`MAX_LABELS`](crate::MAX_LABELS), more face–cell pairs than
+    /// [`MAX_FACE_GRID_ENTRIES`](crate::MAX_FACE_GRID_ENTRIES)), with `requirement` naming
+    /// the cap.
     #[error("{name} must be {requirement}, got {value}")]
     InvalidParameter {
         /// Which parameter.

@@ -8,6 +8,7 @@ use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::SilhouetteError;
 use crate::camera::{ViewCamera, face_normal};
+use crate::caps::{check_label_count, check_resolution};
 use crate::coverage::bounding_sphere;
 use crate::distance::{DistanceTransform, Workspace};
 use crate::raster::{cell_index, mark_triangle, rows_of_triangle};
@@ -48,7 +49,9 @@ pub struct ViewLabels {
 /// # Errors
 ///
 /// [`SilhouetteError::EmptyMesh`], [`SilhouetteError::InvalidResolution`],
-/// [`SilhouetteError::InvalidDirection`], [`SilhouetteError::CameraInside`].
+/// [`SilhouetteError::InvalidDirection`], [`SilhouetteError::CameraInside`];
+/// [`SilhouetteError::InvalidParameter`] for a resolution above
+/// [`MAX_RESOLUTION`](crate::MAX_RESOLUTION).
 pub fn label_view(
     mesh: &TriMesh,
     direction: DVec3,
@@ -70,9 +73,7 @@ pub(crate) fn check(
     projection: Projection,
     resolution: usize,
 ) -> Result<(), SilhouetteError> {
-    if resolution == 0 {
-        return Err(SilhouetteError::InvalidResolution { resolution });
-    }
+    check_resolution(resolution)?;
     let length = direction.length();
     if !(length.is_finite() && length > 0.0) {
         return Err(SilhouetteError::InvalidDirection {
@@ -339,7 +340,8 @@ fn quantize(d: f32) -> u16 {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct LabelOptions {
-    /// The cells across each view's image (default 512, the paper's).
+    /// The cells across each view's image (default 512, the paper's; at most
+    /// [`MAX_RESOLUTION`](crate::MAX_RESOLUTION), 4,096).
     pub resolution: usize,
     /// The distance transform (default the exact Euclidean one).
     pub transform: DistanceTransform,
@@ -358,7 +360,8 @@ impl Default for LabelOptions {
 }
 
 impl LabelOptions {
-    /// With `resolution²` cells per view.
+    /// With `resolution²` cells per view (at most
+    /// [`MAX_RESOLUTION`](crate::MAX_RESOLUTION) a side, checked by [`Labels::compute`]).
     #[must_use]
     pub fn with_resolution(mut self, resolution: usize) -> Self {
         self.resolution = resolution;
@@ -384,9 +387,15 @@ impl Labels {
     /// Labels every view of `views` at `options.resolution²` cells (in parallel with the
     /// `parallel` feature; identical results either way).
     ///
+    /// The labels take 2 bytes per vertex per view, at most
+    /// [`MAX_LABELS`](crate::MAX_LABELS) of them (1 GiB); each worker thread keeps about
+    /// 10 bytes per cell of one view's grid.
+    ///
     /// # Errors
     ///
-    /// As [`label_view`].
+    /// As [`label_view`]; [`SilhouetteError::InvalidParameter`] named
+    /// `"vertices × views"` for more than [`MAX_LABELS`](crate::MAX_LABELS) labels,
+    /// checked before they are allocated.
     pub fn compute(
         mesh: &TriMesh,
         views: &ViewSet,
@@ -424,7 +433,7 @@ impl Labels {
     ///
     /// # Errors
     ///
-    /// As [`label_view`].
+    /// As [`Labels::compute`].
     pub fn compute_with_progress(
         mesh: &TriMesh,
         views: &ViewSet,
@@ -438,8 +447,9 @@ impl Labels {
         } = *options;
         check(DVec3::Z, views.projection(), resolution)?;
         let sphere = bounding_sphere(mesh)?;
-        let normals = face_normals(mesh);
         let vertex_count = mesh.positions().len();
+        check_label_count(vertex_count, views.len())?;
+        let normals = face_normals(mesh);
         // View k's vertex labels into `out`, with `frame`'s buffers.
         let one = |frame: &mut Frame, k: usize, out: &mut [u16]| {
             let camera =

@@ -88,7 +88,9 @@
 //! # Errors
 //!
 //! [`SilhouetteError`]: a step that does not divide 180°, a zero resolution, a zero or
-//! non-finite direction, a perspective camera inside the bounding sphere, an empty mesh;
+//! non-finite direction, a parameter beyond its cap (a step below 1.40625°, more than
+//! [`MAX_VIEWS`] views; a resolution above [`MAX_RESOLUTION`]; more than [`MAX_LABELS`]
+//! labels, vertices × views; more than [`MAX_FACE_GRID_ENTRIES`] face–cell pairs), a perspective camera inside the bounding sphere, an empty mesh;
 //! labels of another mesh, a hierarchy that moves vertices, a negative error or factor.
 //!
 //! # Performance
@@ -119,6 +121,7 @@
 //! `sphaera silhouette` in the CLI.
 
 mod camera;
+mod caps;
 mod coverage;
 mod distance;
 mod error;
@@ -129,6 +132,7 @@ mod raster;
 mod views;
 
 pub use camera::ViewCamera;
+pub use caps::{MAX_FACE_GRID_ENTRIES, MAX_LABELS, MAX_RESOLUTION, MAX_VIEWS};
 /// The old name of [`ViewCamera`] (renamed so that `sphaera-scene`'s `Camera`, the user's
 /// perspective camera, is the workspace's only `Camera`).
 #[deprecated(since = "0.2.0", note = "renamed `ViewCamera`")]

@@ -47,7 +47,8 @@ impl Picture {
 ///
 /// [`SilhouetteError::ValueCountMismatch`] unless there is one value per vertex;
 /// [`SilhouetteError::InvalidParameter`] for a `scale` that is not positive and finite;
-/// as [`crate::coverage`].
+/// as [`crate::coverage`] (a resolution of at most
+/// [`MAX_RESOLUTION`](crate::MAX_RESOLUTION)).
 pub fn shaded_picture(
     mesh: &TriMesh,
     frame: Sphere,
@@ -120,9 +121,9 @@ pub fn shaded_picture(
 /// If the images are not both `resolution²` cells.
 #[must_use]
 pub fn overlay_picture(original: &[bool], result: &[bool], resolution: usize) -> Picture {
-    let n = resolution * resolution;
+    let n = resolution.checked_mul(resolution);
     assert!(
-        original.len() == n && result.len() == n,
+        n == Some(original.len()) && n == Some(result.len()),
         "two images of resolution² cells"
     );
     Picture::from_cells_bottom_up(resolution, |cell| match (original[cell], result[cell]) {

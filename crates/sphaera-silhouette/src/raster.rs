@@ -3,6 +3,9 @@
 
 use glam::DVec2;
 
+use crate::SilhouetteError;
+use crate::caps::{MAX_FACE_GRID_ENTRIES, check_resolution};
+
 /// A square grid of `resolution²` cells over `[−1, 1]²`, cell `(i, j)` (column, row from
 /// the bottom) at index `j · resolution + i`, with the faces touching each cell.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -102,21 +105,6 @@ pub(crate) fn cell_index(p: DVec2, resolution: usize) -> usize {
     // Clamped first, so truncation is the floor.
     let index = |x: f64| ((x + 1.0) * scale).clamp(0.0, resolution as f64 - 1.0) as usize;
     index(p.y) * resolution + index(p.x)
-}
-
-/// The cells a projected triangle touches (conservatively), ascending.
-pub(crate) fn cells_of_triangle(t: [DVec2; 3], resolution: usize) -> Vec<usize> {
-    let mut cells = Vec::new();
-    cells_of_triangle_into(t, resolution, &mut cells);
-    cells
-}
-
-/// [`cells_of_triangle`] into `cells` (cleared first).
-pub(crate) fn cells_of_triangle_into(t: [DVec2; 3], resolution: usize, cells: &mut Vec<usize>) {
-    cells.clear();
-    rows_of_triangle(t, resolution, |j, a, b| {
-        cells.extend((a..=b).map(|i| j * resolution + i));
-    });
 }
 
 /// The cells a projected triangle touches (conservatively), row by row from the bottom:
@@ -297,35 +285,70 @@ impl Rows {
 
 impl FaceGrid {
     /// The grid of the projected triangles `triangles` (image coordinates).
-    #[must_use]
-    pub fn new(triangles: &[[DVec2; 3]], resolution: usize) -> Self {
+    ///
+    /// # Errors
+    ///
+    /// [`SilhouetteError::InvalidResolution`] for a zero resolution;
+    /// [`SilhouetteError::InvalidParameter`] for a resolution above
+    /// [`MAX_RESOLUTION`](crate::MAX_RESOLUTION) (named `"resolution"`) or more (face,
+    /// cell) pairs than [`MAX_FACE_GRID_ENTRIES`] (named `"faces × cells"`), both before
+    /// the grid is allocated.
+    pub fn new(triangles: &[[DVec2; 3]], resolution: usize) -> Result<Self, SilhouetteError> {
+        Self::with_cap(triangles, resolution, MAX_FACE_GRID_ENTRIES)
+    }
+
+    /// [`FaceGrid::new`] with at most `cap` (face, cell) pairs.
+    fn with_cap(
+        triangles: &[[DVec2; 3]],
+        resolution: usize,
+        cap: usize,
+    ) -> Result<Self, SilhouetteError> {
+        check_resolution(resolution)?;
+        // At most 4,096² cells: checked above.
         let cells = resolution * resolution;
-        let per_face: Vec<Vec<usize>> = triangles
-            .iter()
-            .map(|&t| cells_of_triangle(t, resolution))
-            .collect();
+        // Two passes over the faces: count each cell's faces, then fill them in face order
+        // (so each cell's faces ascend). The count stops as soon as it passes the cap, so
+        // that the list is never allocated beyond it.
         let mut count = vec![0_u32; cells + 1];
-        for list in &per_face {
-            for &c in list {
-                count[c + 1] += 1;
+        let mut total = 0_usize;
+        for &t in triangles {
+            rows_of_triangle(t, resolution, |j, a, b| {
+                total += b - a + 1;
+                let row = j * resolution;
+                for n in &mut count[row + a + 1..=row + b + 1] {
+                    *n += 1;
+                }
+            });
+            // A face adds at most `cells` pairs, so `total` (and every count) stays far
+            // below 2³² until this check refuses it.
+            if total > cap {
+                return Err(SilhouetteError::InvalidParameter {
+                    name: "faces × cells",
+                    value: total as f64,
+                    requirement: "at most `MAX_FACE_GRID_ENTRIES` (2^28 face–cell pairs): \
+                                  use a coarser resolution or fewer faces",
+                });
             }
         }
         for c in 0..cells {
             count[c + 1] += count[c];
         }
         let mut fill = count.clone();
-        let mut faces = vec![0_u32; count[cells] as usize];
-        for (f, list) in per_face.iter().enumerate() {
-            for &c in list {
-                faces[fill[c] as usize] = f as u32;
-                fill[c] += 1;
-            }
+        let mut faces = vec![0_u32; total];
+        for (f, &t) in triangles.iter().enumerate() {
+            rows_of_triangle(t, resolution, |j, a, b| {
+                let row = j * resolution;
+                for next in &mut fill[row + a..=row + b] {
+                    faces[*next as usize] = f as u32;
+                    *next += 1;
+                }
+            });
         }
-        Self {
+        Ok(Self {
             resolution,
             start: count,
             faces,
-        }
+        })
     }
 
     /// Cells a side.
@@ -344,5 +367,37 @@ impl FaceGrid {
     #[must_use]
     pub fn cell_of(&self, p: DVec2) -> usize {
         cell_index(p, self.resolution)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_face_cell_pairs_are_capped_before_the_list_is_allocated() {
+        // A triangle over the whole grid touches all of its 16 cells.
+        let whole = [
+            DVec2::splat(-3.0),
+            DVec2::new(3.0, -3.0),
+            DVec2::new(0.0, 6.0),
+        ];
+        let grid = FaceGrid::with_cap(&[whole, whole], 4, 32).expect("at the cap");
+        assert_eq!(grid.faces(5), &[0, 1]);
+        let error = FaceGrid::with_cap(&[whole, whole, whole], 4, 32).expect_err("past the cap");
+        assert!(
+            matches!(
+                error,
+                SilhouetteError::InvalidParameter {
+                    name: "faces × cells",
+                    ..
+                }
+            ),
+            "{error}"
+        );
+        assert!(
+            error.to_string().contains("MAX_FACE_GRID_ENTRIES"),
+            "{error}"
+        );
     }
 }

@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::SilhouetteError;
+use crate::caps::MAX_INTERVALS;
 
 /// How a view projects the mesh.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,9 +44,15 @@ impl ViewSet {
     /// The regular set every `step_degrees` (which must divide 180 and lie in `(0, 90]`),
     /// orthographic.
     ///
+    /// The step is at least 180° / 128 = 1.40625° (32,514 views), so that the set has at
+    /// most [`MAX_VIEWS`](crate::MAX_VIEWS) views: the labels store a value per vertex
+    /// per view.
+    ///
     /// # Errors
     ///
-    /// [`SilhouetteError::InvalidStep`].
+    /// [`SilhouetteError::InvalidStep`]; [`SilhouetteError::InvalidParameter`] named
+    /// `"step"` for a step below 1.40625° (more than [`MAX_VIEWS`](crate::MAX_VIEWS)
+    /// views), checked before anything is allocated.
     pub fn regular(step_degrees: f64) -> Result<Self, SilhouetteError> {
         let bad = SilhouetteError::InvalidStep {
             degrees: step_degrees,
@@ -54,6 +61,14 @@ impl ViewSet {
             return Err(bad);
         }
         let halves = 180.0 / step_degrees;
+        if halves.round() > MAX_INTERVALS as f64 {
+            return Err(SilhouetteError::InvalidParameter {
+                name: "step",
+                value: step_degrees,
+                requirement: "at least 1.40625° (180°/128), so that the set has at most \
+                              `MAX_VIEWS` (32,768) views",
+            });
+        }
         if (halves - halves.round()).abs() > 1e-9 {
             return Err(bad);
         }

@@ -184,7 +184,7 @@ proptest! {
         samples in proptest::collection::vec((0.0_f64..1.0, 0.0_f64..1.0), 50),
     ) {
         let t = [0, 1, 2].map(|i| DVec2::new(corners[i].0, corners[i].1));
-        let grid = FaceGrid::new(&[t], resolution);
+        let grid = FaceGrid::new(&[t], resolution).expect("a resolution within the cap");
         for (a, b) in samples {
             let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
             let p = t[0] + (t[1] - t[0]) * a + (t[2] - t[0]) * b;

@@ -188,7 +188,12 @@
 //! - [`SphereTreeError::InvalidParameter`]: an option out of its domain (a zero branch
 //!   factor, a branch above [`MAX_BRANCH`], a tolerance that is not finite and positive or
 //!   given to a method other than minimax, fewer than 4 samples, an error fraction
-//!   outside `(0, 1]`), with the parameter's name, value and requirement;
+//!   outside `(0, 1]`), with the parameter's name, value and requirement. Parameters that
+//!   size memory are checked against their caps before anything is allocated: a depth
+//!   above [`MAX_MEDIAL_DEPTH`] or [`MAX_BASELINE_DEPTH`], a branch above [`MAX_BRANCH`],
+//!   a node budget above [`MAX_TREE_NODES`], more samples than [`MAX_SURFACE_SAMPLES`],
+//!   an evaluation's patch budget above [`MAX_PATCHES`] or more coverage samples than
+//!   [`MAX_COVERAGE_SAMPLES`];
 //! - [`SphereTreeError::ToleranceUnreachable`]: a tolerance that would need more than
 //!   [`MAX_TREE_NODES`] nodes, [`MAX_MEDIAL_DEPTH`] levels or more surface pieces per level
 //!   than memory allows, with the worst leaf reached;
@@ -253,14 +258,14 @@ pub use collide::{
 pub use cover::CoverageCertificate;
 pub use error::SphereTreeError;
 pub use evaluate::{
-    EvaluationOptions, LevelEvaluation, SetEvaluation, SphereFit, evaluate_level, evaluate_set,
-    evaluate_set_bounded,
+    EvaluationOptions, LevelEvaluation, MAX_COVERAGE_SAMPLES, MAX_PATCHES, SetEvaluation,
+    SphereFit, evaluate_level, evaluate_set, evaluate_set_bounded,
 };
 pub use glam::DVec3;
 pub use minimax::MAX_TREE_NODES;
 pub use options::{
-    Effort, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH, Method,
-    SphereTreeOptions, SphereTreeProgress,
+    Effort, MAX_BASELINE_DEPTH, MAX_BASELINE_SAMPLES, MAX_BRANCH, MAX_MEDIAL_DEPTH,
+    MAX_SURFACE_SAMPLES, Method, SphereTreeOptions, SphereTreeProgress,
 };
 pub use select::{Cut, cut_for_tolerance, level_for_tolerance};
 pub use sphaera_mesh::Sphere;

@@ -23,9 +23,17 @@ pub const MAX_MEDIAL_DEPTH: usize = 24;
 /// pieces per child before it is divided.
 pub const MAX_BRANCH: usize = 10_000;
 
+/// The most surface samples ([`SphereTreeOptions::samples`]) a medial or baseline
+/// method draws: 3,355,443, the most for which the Poisson-disk sampler's five candidates
+/// per sample stay within [`sphaera_query::sampling::MAX_SAMPLES`] (2²⁴). More are
+/// refused ([`SphereTreeError::InvalidParameter`] named `"samples"`) before anything is
+/// sampled. (The minimax method does not sample.)
+pub const MAX_SURFACE_SAMPLES: usize = sphaera_query::sampling::MAX_SAMPLES / 5;
+
 /// The most surface samples a baseline method accepts (each costs about 100 bytes per
-/// level).
-pub const MAX_BASELINE_SAMPLES: usize = 10_000_000;
+/// level): [`MAX_SURFACE_SAMPLES`], as for the medial methods. (It was 10,000,000, more
+/// than the sampler ever drew.)
+pub const MAX_BASELINE_SAMPLES: usize = MAX_SURFACE_SAMPLES;
 
 /// How a sphere-tree is built: the minimax construction (the default), the paper's
 /// adaptive medial construction with one of its reducers, or one of the classic methods
@@ -290,14 +298,18 @@ impl std::fmt::Display for Method {
 pub struct SphereTreeOptions {
     /// How the tree is built (default [`Method::Auto`]).
     pub method: Method,
-    /// Children per node at most (default 8). For [`Method::Grid`], the growth of the
-    /// occupied cell count per level; [`Method::Octree`] always splits a cell in 8.
+    /// Children per node at most (default 8; at most [`MAX_BRANCH`] for the minimax
+    /// method, which divides each region into pieces per child). For [`Method::Grid`],
+    /// the growth of the occupied cell count per level; [`Method::Octree`] always splits a
+    /// cell in 8. (The medial methods and the baselines never get more children than
+    /// samples, so their `branch` sizes nothing.)
     pub branch: usize,
     /// Levels below the root (default 3; at most [`MAX_MEDIAL_DEPTH`] for the medial
     /// methods and [`MAX_BASELINE_DEPTH`] for the baselines).
     pub depth: usize,
     /// Surface samples standing for the surface (default 10,000; the paper used
-    /// 5,000–10,000; at most [`MAX_BASELINE_SAMPLES`] for the baselines).
+    /// 5,000–10,000; at most [`MAX_SURFACE_SAMPLES`], 3,355,443, for the medial methods
+    /// and the baselines; the minimax method does not sample).
     pub samples: usize,
     /// Seed of the surface sampling (default 1).
     pub seed: u64,
@@ -517,7 +529,11 @@ impl SphereTreeOptions {
         }
         if self.method.resolved() == Method::Minimax {
             if self.depth > MAX_MEDIAL_DEPTH {
-                return bad("depth", self.depth as f64, "at most 24");
+                return bad(
+                    "depth",
+                    self.depth as f64,
+                    "at most 24 (`MAX_MEDIAL_DEPTH`)",
+                );
             }
             if self.branch == 0 {
                 return bad("branch", 0.0, "at least 1");
@@ -530,7 +546,11 @@ impl SphereTreeOptions {
                 );
             }
             if self.branch > MAX_BRANCH {
-                return bad("branch", self.branch as f64, "at most 10,000");
+                return bad(
+                    "branch",
+                    self.branch as f64,
+                    "at most 10,000 (`MAX_BRANCH`)",
+                );
             }
             let resolution = self.coverage_resolution.value();
             if !(resolution > 0.0 && resolution.is_finite()) {
@@ -543,14 +563,18 @@ impl SphereTreeOptions {
                 return bad(
                     "depth",
                     self.depth as f64,
-                    "at most 24 for the medial methods",
+                    "at most 24 (`MAX_MEDIAL_DEPTH`) for the medial methods",
                 );
             }
             if self.branch == 0 {
                 return bad("branch", 0.0, "at least 1");
             }
-            if self.samples < 4 {
-                return bad("samples", self.samples as f64, "at least 4");
+            if !(4..=MAX_SURFACE_SAMPLES).contains(&self.samples) {
+                return bad(
+                    "samples",
+                    self.samples as f64,
+                    "between 4 and 3,355,443 (`MAX_SURFACE_SAMPLES`)",
+                );
             }
             let resolution = self.coverage_resolution.value();
             if !(resolution > 0.0 && resolution.is_finite()) {
@@ -565,7 +589,7 @@ impl SphereTreeOptions {
             return bad(
                 "depth",
                 self.depth as f64,
-                "at most 20 for the baseline methods",
+                "at most 20 (`MAX_BASELINE_DEPTH`) for the baseline methods",
             );
         }
         if self.branch == 0 {
@@ -575,7 +599,7 @@ impl SphereTreeOptions {
             return bad(
                 "samples",
                 self.samples as f64,
-                "between 4 and 10,000,000 for the baseline methods",
+                "between 4 and 3,355,443 (`MAX_BASELINE_SAMPLES`) for the baseline methods",
             );
         }
         if self.forming_points < 4 {
@@ -620,6 +644,31 @@ mod tests {
             6,
             "the reducers, minimax and the default"
         );
+    }
+
+    #[test]
+    fn each_cap_itself_is_accepted() {
+        let minimax = SphereTreeOptions::default()
+            .with_depth(MAX_MEDIAL_DEPTH)
+            .with_branch(MAX_BRANCH)
+            .with_max_nodes(crate::MAX_TREE_NODES);
+        assert!(minimax.validate().is_ok());
+        let medial = SphereTreeOptions::default()
+            .with_method(Method::Expand)
+            .with_depth(MAX_MEDIAL_DEPTH)
+            .with_samples(MAX_SURFACE_SAMPLES);
+        assert!(medial.validate().is_ok());
+        assert!(
+            medial
+                .with_samples(MAX_SURFACE_SAMPLES + 1)
+                .validate()
+                .is_err()
+        );
+        let baseline = SphereTreeOptions::default()
+            .with_method(Method::Octree)
+            .with_depth(MAX_BASELINE_DEPTH)
+            .with_samples(MAX_BASELINE_SAMPLES);
+        assert!(baseline.validate().is_ok());
     }
 
     #[test]

@@ -377,9 +377,14 @@ fn invalid_input_is_reported() {
             Err(SphereTreeError::InvalidParameter { .. })
         ));
     }
+    // Refused by the evaluation's own cap (`MAX_COVERAGE_SAMPLES`, the sampler's) before
+    // the sampler is asked, naming the option.
     assert!(matches!(
         coverage(&s.mesh, &[good], &options.with_coverage_samples(usize::MAX)),
-        Err(SphereTreeError::Query(_))
+        Err(SphereTreeError::InvalidParameter {
+            name: "coverage_samples",
+            ..
+        })
     ));
 }
 

@@ -15,6 +15,7 @@ use sphaera_mesh::heap::{MaxHeap, Priority, TotalF64};
 use sphaera_query::QueryError;
 pub use sphaera_query::hausdorff::{
     DirectedHausdorff, Direction, HausdorffDistance, HausdorffOptions, HausdorffProgress,
+    MAX_HAUSDORFF_SAMPLES,
 };
 
 use crate::{SweepError, Sweeper};
@@ -40,8 +41,9 @@ use side::Side;
 ///
 /// # Errors
 ///
-/// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance;
-/// [`SweepError::EmptyMesh`] if a mesh has no triangle.
+/// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance or a sample
+/// budget above [`MAX_HAUSDORFF_SAMPLES`]; [`SweepError::EmptyMesh`] if a mesh has no
+/// triangle.
 ///
 /// # Performance
 ///
@@ -114,7 +116,8 @@ const LEVEL_FRACTION: f64 = 0.5;
 ///
 /// # Errors
 ///
-/// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance.
+/// [`SweepError::InvalidParameter`] for a negative or non-finite tolerance or a sample
+/// budget above [`MAX_HAUSDORFF_SAMPLES`].
 ///
 /// # Performance
 ///

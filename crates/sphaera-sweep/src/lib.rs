@@ -176,7 +176,8 @@ pub use deformed_shape::DeformedShape;
 pub use error::SweepError;
 pub use hausdorff::{
     DirectedHausdorff, Direction, HausdorffDistance, HausdorffOptions, HausdorffProgress,
-    hausdorff, hausdorff_with_progress, meshsweeper_hausdorff, meshsweeper_hausdorff_with_progress,
+    MAX_HAUSDORFF_SAMPLES, hausdorff, hausdorff_with_progress, meshsweeper_hausdorff,
+    meshsweeper_hausdorff_with_progress,
 };
 pub use polyline::{Polyline, PolylineSession};
 pub use session::{Session, SessionOptions};

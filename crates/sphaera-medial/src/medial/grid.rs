@@ -1,7 +1,7 @@
 //! A uniform grid over the surface samples for "samples inside this ball" queries.
 
 use glam::DVec3;
-use sphaera_query::grid::UniformGrid;
+use sphaera_query::grid::{MAX_GRID_CELLS, UniformGrid};
 
 /// Samples bucketed in a uniform grid (`sphaera-query`'s, one cell size chosen here).
 #[derive(Debug, Clone)]
@@ -33,13 +33,15 @@ impl SampleGrid {
                 .as_uvec3()
                 .to_array()
                 .map(|d| d as usize + 1);
-            if dims.iter().product::<usize>() <= 4 * points.len().max(64) {
+            // Within the grid's cap too (only more than 2²⁴ samples reach it; the cell size
+            // changes no answer, only the time).
+            if dims.iter().product::<usize>() <= (4 * points.len().max(64)).min(MAX_GRID_CELLS) {
                 break dims;
             }
             cell *= 1.26;
         };
         // Invariant: the cell is positive and finite (at least 1e-300 / 1024 · 2), there are
-        // at most 4 · max(n, 64) cells and every sample (fewer than 2³², as their u32 ids)
+        // at most min(4 · max(n, 64), MAX_GRID_CELLS) cells and every sample (fewer than 2³², as their u32 ids)
         // is listed once, so the grid cannot be refused.
         let grid = UniformGrid::new(lo, cell, dims, points.iter().map(|&p| Some((p, p))))
             .expect("a valid sample grid (invariant above)");

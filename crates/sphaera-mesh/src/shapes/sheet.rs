@@ -31,7 +31,8 @@ pub fn square_sheet(size: f64, resolution: usize) -> Result<TriMesh, MeshError> 
     check_positive("size", size)?;
     check_resolution(resolution, 1, "at least 1")?;
     let n = resolution;
-    check_vertex_budget("square sheet", ((n + 1) * (n + 1)) as f64)?;
+    // In `f64`: `(n + 1)²` overflows `usize` (to as little as 0) for a huge `n`.
+    check_vertex_budget("square sheet", (n as f64 + 1.0) * (n as f64 + 1.0))?;
     let at = |i: usize| -0.5 * size + size * i as f64 / n as f64;
     let mut positions = Vec::with_capacity((n + 1) * (n + 1));
     for j in 0..=n {
@@ -90,7 +91,8 @@ pub fn ring_sheet(outer: f64, inner: f64, resolution: usize) -> Result<TriMesh, 
     // Rings of cells about as long across as around at the outer edge.
     let cell = std::f64::consts::TAU * outer / segments as f64;
     let rings = (((outer - inner) / cell).ceil() as usize).max(1);
-    check_vertex_budget("ring sheet", ((rings + 1) * segments + 1) as f64)?;
+    // In `f64`, so that a huge resolution cannot overflow the count.
+    check_vertex_budget("ring sheet", (rings as f64 + 1.0) * segments as f64 + 1.0)?;
     let mut positions = Vec::new();
     let center = inner == 0.0;
     if center {

@@ -279,6 +279,41 @@ fn bad_parameters_are_errors() {
     );
 }
 
+#[test]
+fn resolutions_whose_vertex_count_overflows_are_refused() {
+    use crate::MeshError::ShapeTooLarge;
+    // `(n + 1)²` is 2⁶⁴ here, which wraps to 0 in `usize` arithmetic: the estimate is in
+    // `f64`, so the request is refused before anything is allocated.
+    let wraps = u32::MAX as usize;
+    for resolution in [wraps, usize::MAX] {
+        let error = square_sheet(1.0, resolution).expect_err("too large");
+        assert!(
+            matches!(
+                error,
+                ShapeTooLarge {
+                    limit: MAX_VERTICES,
+                    ..
+                }
+            ),
+            "{error}"
+        );
+        assert!(matches!(
+            ring_sheet(1.0, 0.5, resolution),
+            Err(ShapeTooLarge { .. })
+        ));
+        assert!(matches!(
+            ring_sheet(1.0, 0.0, resolution),
+            Err(ShapeTooLarge { .. })
+        ));
+    }
+    let message = square_sheet(1.0, wraps).unwrap_err().to_string();
+    assert!(message.contains(&MAX_VERTICES.to_string()), "{message}");
+    // The cap itself passes the check; one vertex more does not.
+    assert!(check_vertex_budget("test", MAX_VERTICES as f64).is_ok());
+    assert!(check_vertex_budget("test", MAX_VERTICES as f64 + 1.0).is_err());
+    assert!(check_vertex_budget("test", f64::INFINITY).is_err());
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(48)))]
 

@@ -162,7 +162,8 @@ pub struct HausdorffOptions {
     /// `Length::RelativeToDiagonal(1e-4)`.
     pub tolerance: Length,
     /// Stop refining once this many samples (vertices included) were queried; the result
-    /// then says `converged: false`. Default 20 million (about 1.3 GB of samples).
+    /// then says `converged: false`. Default 20 million (about 1.3 GB of samples); at most
+    /// [`MAX_HAUSDORFF_SAMPLES`] (2²⁵), checked by both engines before they start.
     pub max_samples: usize,
     /// Certify the distance of every vertex (default `false`) in `sphaera-sweep`'s
     /// `meshsweeper_hausdorff`: the
@@ -194,7 +195,7 @@ impl HausdorffOptions {
         self
     }
 
-    /// With a sample budget.
+    /// With a sample budget (at most [`MAX_HAUSDORFF_SAMPLES`]).
     #[must_use]
     pub fn with_max_samples(mut self, max_samples: usize) -> Self {
         self.max_samples = max_samples;
@@ -273,10 +274,21 @@ impl HausdorffOptions {
     /// The tolerance in the meshes' units, for meshes of positions `a` and `b` (a relative
     /// tolerance is a fraction of their joint bounding-box diagonal).
     ///
+    /// Both engines call it first: it checks the options.
+    ///
     /// # Errors
     ///
-    /// [`QueryError::InvalidParameter`] for a negative or non-finite tolerance.
+    /// [`QueryError::InvalidParameter`] for a negative or non-finite tolerance, or a
+    /// sample budget above [`MAX_HAUSDORFF_SAMPLES`].
     pub fn allowed_gap(&self, a: &[DVec3], b: &[DVec3]) -> Result<f64, QueryError> {
+        if self.max_samples > MAX_HAUSDORFF_SAMPLES {
+            return Err(QueryError::InvalidParameter {
+                name: "max_samples",
+                value: self.max_samples as f64,
+                requirement: "at most `hausdorff::MAX_HAUSDORFF_SAMPLES` (2^25, about 33.5 \
+                              million samples)",
+            });
+        }
         let value = self.tolerance.value();
         if !(value.is_finite() && value >= 0.0) {
             return Err(QueryError::InvalidParameter {
@@ -291,6 +303,13 @@ impl HausdorffOptions {
         })
     }
 }
+
+/// The largest sample budget ([`HausdorffOptions::max_samples`]) either engine accepts:
+/// 2²⁵ (33.5 million) samples, about 2 to 3.4 GB at 64 to 100 bytes a sample. A larger
+/// budget is refused ([`QueryError::InvalidParameter`] named `"max_samples"`) before
+/// anything is computed, so that a typo cannot exhaust memory; the default, 20 million,
+/// is within it.
+pub const MAX_HAUSDORFF_SAMPLES: usize = 1 << 25;
 
 /// The Hausdorff distance between meshes `a` and `b`, bracketed by certified bounds as
 /// `options` say (see [`HausdorffOptions`] for the method): the fastest engine, on every
@@ -317,8 +336,9 @@ impl HausdorffOptions {
 ///
 /// # Errors
 ///
-/// [`QueryError::InvalidParameter`] for a negative or non-finite tolerance;
-/// [`QueryError::EmptyMesh`] if a mesh has no triangle.
+/// [`QueryError::InvalidParameter`] for a negative or non-finite tolerance or a sample
+/// budget above [`MAX_HAUSDORFF_SAMPLES`]; [`QueryError::EmptyMesh`] if a mesh has no
+/// triangle.
 ///
 /// # Performance
 ///

@@ -22,11 +22,14 @@ pub struct Rows {
 
 impl Rows {
     /// The rows of the `(row, item)` pairs (sorted and deduplicated here; pairs of a row
-    /// beyond `rows` are dropped).
+    /// beyond `rows` are dropped). Memory follows the pairs, not `rows`: the rows after
+    /// the last one with a pair are empty and not stored.
     pub fn from_pairs(rows: usize, mut pairs: Vec<(u32, u32)>) -> Self {
         pairs.retain(|&(r, _)| (r as usize) < rows);
         pairs.sort_unstable();
         pairs.dedup();
+        // Rows past the last pair's are empty, as [`Rows::row`] answers for unknown rows.
+        let rows = pairs.last().map_or(0, |&(r, _)| r as usize + 1);
         let mut offsets = vec![0; rows + 1];
         for &(r, _) in &pairs {
             offsets[r as usize + 1] += 1;

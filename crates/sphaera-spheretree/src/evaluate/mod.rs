@@ -124,7 +124,8 @@ pub use coverage::{Coverage, coverage};
 pub use level::{LevelEvaluation, evaluate_level};
 pub use options::{
     DEFAULT_COVERAGE_SAMPLES, DEFAULT_COVERAGE_SEED, DEFAULT_MAX_PATCHES,
-    DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions, LEVEL_REPORT_TOLERANCE, SCREENING_FACTOR,
+    DEFAULT_RELATIVE_TOLERANCE, EvaluationOptions, LEVEL_REPORT_TOLERANCE, MAX_COVERAGE_SAMPLES,
+    MAX_PATCHES, SCREENING_FACTOR,
 };
 pub use set::{SetEvaluation, evaluate_set, evaluate_set_bounded};
 pub use sphere_fit::{SphereFit, sphere_error, sphere_errors};

@@ -13,6 +13,18 @@ pub const DEFAULT_MAX_PATCHES: usize = 50_000;
 /// Default number of independent surface samples of the coverage measure.
 pub const DEFAULT_COVERAGE_SAMPLES: usize = 100_000;
 
+/// The largest patch budget per sphere ([`EvaluationOptions::max_patches`]): 2²⁰
+/// (1,048,576, twenty times the default), about 200 MB of queued patches for one sphere
+/// on each worker thread. A larger budget is refused by [`EvaluationOptions::validate`]
+/// (named `"max_patches"`) before any sphere is evaluated.
+pub const MAX_PATCHES: usize = 1 << 20;
+
+/// The most coverage samples ([`EvaluationOptions::coverage_samples`]): the sampler's cap,
+/// [`sphaera_query::sampling::MAX_SAMPLES`] (2²⁴, about 1.3 GB of samples). More are
+/// refused by [`EvaluationOptions::validate`] (named `"coverage_samples"`) before any is
+/// drawn.
+pub const MAX_COVERAGE_SAMPLES: usize = sphaera_query::sampling::MAX_SAMPLES;
+
 /// The tolerance of [`EvaluationOptions::level_report`], as a fraction of the diagonal:
 /// what the CLI, the Python bindings and the experiments evaluate each level's cut to.
 pub const LEVEL_REPORT_TOLERANCE: f64 = 1e-3;
@@ -51,11 +63,12 @@ pub struct EvaluationOptions {
     /// of the mesh's bounding-box diagonal). Finite and positive.
     pub tolerance: Length,
     /// The most surface patches evaluated per sphere (default [`DEFAULT_MAX_PATCHES`], at
-    /// least 20: the icosahedron's faces); a sphere that reaches it reports
-    /// `converged: false` (its interval stays valid, only wider).
+    /// least 20: the icosahedron's faces, and at most [`MAX_PATCHES`]); a sphere that
+    /// reaches it reports `converged: false` (its interval stays valid, only wider).
     pub max_patches: usize,
     /// Independent area-weighted surface samples of the uncovered-surface measure
-    /// (default [`DEFAULT_COVERAGE_SAMPLES`], at least 1).
+    /// (default [`DEFAULT_COVERAGE_SAMPLES`], at least 1 and at most
+    /// [`MAX_COVERAGE_SAMPLES`]).
     pub coverage_samples: usize,
     /// Their seed (default [`DEFAULT_COVERAGE_SEED`]).
     pub seed: u64,
@@ -143,7 +156,8 @@ impl EvaluationOptions {
     /// # Errors
     ///
     /// [`SphereTreeError::InvalidParameter`] for a tolerance that is not finite and
-    /// positive, a patch budget below 20 or no coverage samples.
+    /// positive, a patch budget below 20 or above [`MAX_PATCHES`], no coverage samples or
+    /// more than [`MAX_COVERAGE_SAMPLES`].
     pub fn validate(&self) -> Result<(), SphereTreeError> {
         let t = self.tolerance.value();
         if !(t.is_finite() && t > 0.0) {
@@ -160,11 +174,25 @@ impl EvaluationOptions {
                 requirement: "at least 20 (the icosahedron's faces)",
             });
         }
+        if self.max_patches > MAX_PATCHES {
+            return Err(SphereTreeError::InvalidParameter {
+                name: "max_patches",
+                value: self.max_patches as f64,
+                requirement: "at most 1,048,576 (`evaluate::MAX_PATCHES`, 2^20)",
+            });
+        }
         if self.coverage_samples == 0 {
             return Err(SphereTreeError::InvalidParameter {
                 name: "coverage_samples",
                 value: 0.0,
                 requirement: "at least 1",
+            });
+        }
+        if self.coverage_samples > MAX_COVERAGE_SAMPLES {
+            return Err(SphereTreeError::InvalidParameter {
+                name: "coverage_samples",
+                value: self.coverage_samples as f64,
+                requirement: "at most 16,777,216 (`evaluate::MAX_COVERAGE_SAMPLES`, 2^24)",
             });
         }
         Ok(())
