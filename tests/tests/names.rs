@@ -1,7 +1,9 @@
 //! Every method enum of the workspace reads back the name it shows, and a wrong name says
 //! what is accepted.
 
+use sphaera::medial::CoverCriterion;
 use sphaera::mesh::ParseNameError;
+use sphaera::robot::PlannerFormat;
 use sphaera::silhouette::{Contours, DistanceTransform};
 use sphaera::simplify::{Order, Placement};
 use sphaera::spheretree::{Effort, Method};
@@ -25,6 +27,8 @@ fn every_method_enum_reads_back_its_names() {
     round_trip(&[Order::Auto, Order::Strict, Order::Batched]);
     round_trip(&[DistanceTransform::Euclidean, DistanceTransform::Chamfer]);
     round_trip(&[Contours::External, Contours::All]);
+    round_trip(&CoverCriterion::ALL);
+    round_trip(&PlannerFormat::ALL);
     assert_eq!("outline".parse(), Ok(Contours::External));
     assert_eq!(Method::Auto.to_string(), "auto");
 }

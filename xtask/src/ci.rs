@@ -9,11 +9,26 @@ use crate::{browser, cargo, cargo_with_env, charts, doc, package, print_steps, p
 /// The property-test cases of the sequential (no `parallel`) run of [`test()`].
 const SEQUENTIAL_CASES: &str = "8";
 
+/// The integration tests that compare results with recorded digests, run again by the
+/// sequential run of [`test()`]: `parallel_fingerprints` (query), `order` (simplify),
+/// `medial`, `build` (sphere-tree), `collide` and `detail` (scene; the sphere-tree's
+/// `collide` runs too, having the same name), `properties` (robot).
+const SEQUENTIAL_DIGEST_TESTS: [&str; 7] = [
+    "parallel_fingerprints",
+    "order",
+    "medial",
+    "build",
+    "collide",
+    "detail",
+    "properties",
+];
+
 /// Every test: unit and integration tests of every crate, the cross-crate tests in
-/// `tests/`, and the doctests (all run by `cargo test`); then the query, simplification,
-/// medial, sphere-tree and scene crates again without their default `parallel` feature, whose
-/// results must be identical (their tests compare digests of their results with the same
-/// recorded values both ways). The sphere-tree's optional `parry` export is tested in the
+/// `tests/`, and the doctests (all run by `cargo test`); then the unit tests and the
+/// digest tests ([`SEQUENTIAL_DIGEST_TESTS`]) of the query, simplification, medial,
+/// sphere-tree, scene and robot crates again without their default `parallel` feature, whose
+/// results must be identical (the digests are compared with the same recorded values both
+/// ways). The sphere-tree's optional `parry` export is tested in the
 /// first run: `sphaera-tests` asks for it, so the workspace's one build has it.
 pub fn test() -> Result<()> {
     cargo(&["test", "--workspace", "--locked"])?;
@@ -31,16 +46,13 @@ pub fn test() -> Result<()> {
     ] {
         args.extend(["-p", crate_name]);
     }
-    // The every-shared-mesh build (the 871k dragon among them) checks no digest: once,
-    // in parallel, is enough.
-    args.extend([
-        "--no-default-features",
-        "--lib",
-        "--tests",
-        "--",
-        "--skip",
-        "every_shared_mesh_builds_and_writes_every_format",
-    ]);
+    // The unit tests, and the integration tests that compare a recorded digest of the
+    // results (the same values both ways); the others check properties the first run
+    // checked already, and compiling their 30 binaries again cost minutes on 2 cores.
+    args.extend(["--no-default-features", "--lib"]);
+    for digest_test in SEQUENTIAL_DIGEST_TESTS {
+        args.extend(["--test", digest_test]);
+    }
     // The properties were checked at their full counts in the first run; here they only
     // need to show that the sequential build behaves alike, so each runs a few cases
     // (unless `PROPTEST_CASES` asks for a deep run), which halves this run.

@@ -122,8 +122,17 @@ fn target_dir() -> Result<PathBuf> {
         .context("`cargo metadata` names no target directory")
 }
 
-/// The `sphaera` binary of the dev profile, built by the tests (`cargo build -p
-/// sphaera-cli`).
+/// The `sphaera` binary of the dev profile as the workspace's tests build it: `cargo test
+/// --workspace --no-run` (nothing to do after `cargo xtask test`'s first run). A `cargo
+/// build -p sphaera-cli` would resolve the dependencies' features without the test
+/// helpers' and compile the CLI's whole stack again (90 s on 2 cores), replacing the
+/// binary the tests ran.
+fn built_cli() -> Result<PathBuf> {
+    cargo(&["test", "--workspace", "--locked", "--no-run"])?;
+    debug_cli()
+}
+
+/// The `sphaera` binary of the dev profile, as last built.
 fn debug_cli() -> Result<PathBuf> {
     let cli = target_dir()?.join("debug").join("sphaera");
     std::fs::canonicalize(&cli).with_context(|| format!("cannot find {}", cli.display()))

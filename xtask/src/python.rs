@@ -104,8 +104,7 @@ pub fn python_test() -> Result<()> {
         &envs,
     )?;
     // The CLI the suite compares against (built by the Rust tests already).
-    crate::cargo(&["build", "--locked", "-p", "sphaera-cli"])?;
-    let cli = crate::debug_cli()?;
+    let cli = crate::built_cli()?;
     let mut envs = envs;
     envs.push(("SPHAERA_CLI", cli.as_os_str()));
     run(

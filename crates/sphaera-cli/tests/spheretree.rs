@@ -368,7 +368,10 @@ fn spheretree_tolerance_and_sphere_counts_need_minimax_and_sane_values() {
             &["--effort", "thorough", "--method", "merge"][..],
             "--effort",
         ),
-        (&["--effort", "fast"][..], "quick, default or thorough"),
+        (
+            &["--effort", "fast"][..],
+            "[possible values: quick, default, thorough]",
+        ),
     ] {
         let mut all = vec!["spheretree", "-q"];
         all.extend(args);

@@ -115,7 +115,10 @@ fn bad_arguments_and_files_give_clear_errors() {
         (vec!["--tolerance", "0"], "positive and finite"),
         (vec!["--spheres-per-link", "0"], "at least 1"),
         (vec!["--budget", "0"], "at least 1"),
-        (vec!["--effort", "hard"], "quick, default or thorough"),
+        (
+            vec!["--effort", "hard"],
+            "[possible values: quick, default, thorough]",
+        ),
         (vec!["-o", fine], "it is the input URDF"),
         (
             vec!["--budget", "18446744073709551615"],

@@ -2,9 +2,11 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
+use sphaera::medial::CoverCriterion;
 use sphaera::mesh::Length;
 
+use super::choice::Choice;
 use super::{OutputArgs, parse_length};
 /// Arguments of `sphaera medial`.
 #[derive(Debug, Args)]
@@ -47,8 +49,8 @@ pub struct MedialArgs {
     pub samples: usize,
 
     /// How an uncovered sample chooses its cover sphere.
-    #[arg(long, value_enum, default_value_t = CoverArg::SmallestError)]
-    pub cover: CoverArg,
+    #[arg(long, default_value = "smallest-error", value_parser = Choice::of(COVERS))]
+    pub cover: CoverCriterion,
 
     /// Hubbard's static baseline instead: the Voronoi diagram of this many samples, no
     /// improvement, coverage of the samples not completed (the surface certificate still
@@ -80,11 +82,14 @@ pub struct MedialArgs {
     pub print: OutputArgs,
 }
 
-/// `--cover`: the paper's two criteria.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum CoverArg {
-    /// The candidate sphere with the smallest error (tighter).
-    SmallestError,
-    /// The candidate sphere covering the most uncovered samples (fewer cover spheres).
-    LargestCoverage,
-}
+/// `--cover`: the paper's two criteria (every [`CoverCriterion`]).
+pub const COVERS: &[(CoverCriterion, &str)] = &[
+    (
+        CoverCriterion::SmallestError,
+        "The candidate sphere with the smallest error (tighter)",
+    ),
+    (
+        CoverCriterion::LargestCoverage,
+        "The candidate sphere covering the most uncovered samples (fewer cover spheres)",
+    ),
+];

@@ -6,7 +6,9 @@ use clap::Args;
 use sphaera::mesh::Length;
 use sphaera::spheretree::Effort;
 
-use super::{OutputArgs, parse_effort, parse_length};
+use super::choice::Choice;
+use super::spheretree::EFFORTS;
+use super::{OutputArgs, parse_length};
 /// Arguments of `sphaera scene`.
 #[derive(Debug, Args)]
 pub struct SceneArgs {
@@ -73,7 +75,7 @@ pub struct SceneArgs {
     /// How hard the trees built to the tolerance work for few spheres: `quick` (the
     /// default: they are built while you wait), `default` (several times the time for
     /// somewhat fewer spheres) or `thorough`.
-    #[arg(long, default_value = "quick", value_parser = parse_effort)]
+    #[arg(long, default_value = "quick", value_parser = Choice::of(EFFORTS))]
     pub effort: Effort,
 
     #[command(flatten)]

@@ -2,9 +2,11 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use sphaera::mesh::Length;
+use sphaera::silhouette::{Contours, DistanceTransform};
 
+use super::choice::Choice;
 use super::{OutputArgs, parse_length};
 /// Arguments of `sphaera silhouette`.
 #[derive(Debug, Args)]
@@ -45,12 +47,12 @@ pub struct SilhouetteArgs {
     pub nearest: usize,
 
     /// Which silhouettes the labels measure from.
-    #[arg(long, value_enum, default_value_t = ContoursArg::Outline)]
-    pub contours: ContoursArg,
+    #[arg(long, default_value = "outline", value_parser = Choice::of(CONTOURS))]
+    pub contours: Contours,
 
     /// The distance transform of the label images.
-    #[arg(long, value_enum, default_value_t = TransformArg::Euclidean)]
-    pub transform: TransformArg,
+    #[arg(long, default_value = "euclidean", value_parser = Choice::of(TRANSFORMS))]
+    pub transform: DistanceTransform,
 
     /// Perspective cameras this many bounding radii from the centre (more than 1);
     /// orthographic when omitted.
@@ -75,23 +77,27 @@ pub struct SilhouetteArgs {
     pub print: OutputArgs,
 }
 
-/// `--contours`: which silhouettes labels measure from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum ContoursArg {
-    /// The outline only (the better silhouette per triangle on scanned meshes).
-    Outline,
-    /// The outline and the internal silhouettes (the paper's Fig. 2).
-    All,
-}
+/// `--contours`: which silhouettes labels measure from (every [`Contours`]).
+pub const CONTOURS: &[(Contours, &str)] = &[
+    (
+        Contours::External,
+        "The outline only (the better silhouette per triangle on scanned meshes)",
+    ),
+    (
+        Contours::All,
+        "The outline and the internal silhouettes (the paper's Fig. 2)",
+    ),
+];
 
-/// `--transform`: the distance transform of the label images.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum TransformArg {
-    /// Exact Euclidean distances.
-    Euclidean,
-    /// The paper's two-pass 3–4 chamfer (within 8 % of Euclidean).
-    Chamfer,
-}
+/// `--transform`: the distance transform of the label images (every
+/// [`DistanceTransform`]).
+pub const TRANSFORMS: &[(DistanceTransform, &str)] = &[
+    (DistanceTransform::Euclidean, "Exact Euclidean distances"),
+    (
+        DistanceTransform::Chamfer,
+        "The paper's two-pass 3–4 chamfer (within 8 % of Euclidean)",
+    ),
+];
 
 /// A direction on the command line: `x,y,z`, finite and not zero.
 fn parse_direction(text: &str) -> Result<[f64; 3], String> {

@@ -2,11 +2,13 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use sphaera::mesh::Length;
 use sphaera::spheretree::{Effort, Method};
 
-use super::{OutputArgs, parse_effort, parse_length};
+use super::choice::Choice;
+use super::{OutputArgs, parse_length};
+
 /// Arguments of `sphaera spheretree`.
 #[derive(Debug, Args)]
 pub struct SpheretreeArgs {
@@ -17,8 +19,8 @@ pub struct SpheretreeArgs {
     pub mesh: Option<PathBuf>,
 
     /// How the tree is built.
-    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
-    pub method: MethodArg,
+    #[arg(long, default_value = "auto", value_parser = Choice::of(METHODS))]
+    pub method: Method,
 
     /// Levels below the root.
     #[arg(long, default_value_t = 3)]
@@ -72,9 +74,8 @@ pub struct SpheretreeArgs {
     #[arg(long, value_name = "N", requires = "tolerance")]
     pub max_nodes: Option<usize>,
 
-    /// How hard the minimax method works for tighter spheres (minimax and auto only):
-    /// `quick`, `default` or `thorough`.
-    #[arg(long, default_value = "default", value_parser = parse_effort)]
+    /// How hard the minimax method works for tighter spheres (minimax and auto only).
+    #[arg(long, default_value = "default", value_parser = Choice::of(EFFORTS))]
     pub effort: Effort,
 
     /// Skip the certified evaluation of every level (worst error by branch and bound,
@@ -99,46 +100,62 @@ pub struct SpheretreeArgs {
 }
 
 /// `--method`: the minimax construction, the paper's reducers, and the classic baselines
-/// for comparison.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum MethodArg {
-    /// The minimax construction: each region tiled by triangle pieces and divided
-    /// between the children whose worst error is least; builds to a depth, a tolerance
-    /// or a sphere count, and covers sheets (surfaces without inside).
-    Minimax,
-    /// The default: the best method for the surface, today minimax.
-    Auto,
-    /// The paper's reducer: merge neighbouring medial spheres, tightest result first.
-    Merge,
-    /// The paper's reducer: burst medial spheres, handing their points to the spheres
-    /// closest to covering them.
-    Burst,
-    /// The paper's reducer: expand the medial spheres to a common standoff and select a
-    /// covering subset.
-    Expand,
-    /// The paper's best: merge and expand per node, keeping the tighter.
-    Combined,
-    /// Baseline: an octree's occupied cells, each in its circumscribed sphere.
-    Octree,
-    /// Baseline: per level a regular grid of about branch^level occupied cells.
-    Grid,
-    /// Baseline: Hubbard's static medial spheres merged by enclosing spheres.
-    Hubbard,
-}
+/// for comparison (every [`Method`], in the order `--help` lists them).
+pub const METHODS: &[(Method, &str)] = &[
+    (
+        Method::Minimax,
+        "The minimax construction: each region tiled by triangle pieces and divided between \
+         the children whose worst error is least; builds to a depth, a tolerance or a sphere \
+         count, and covers sheets (surfaces without inside)",
+    ),
+    (
+        Method::Auto,
+        "The default: the best method for the surface, today minimax",
+    ),
+    (
+        Method::Merge,
+        "The paper's reducer: merge neighbouring medial spheres, tightest result first",
+    ),
+    (
+        Method::Burst,
+        "The paper's reducer: burst medial spheres, handing their points to the spheres \
+         closest to covering them",
+    ),
+    (
+        Method::Expand,
+        "The paper's reducer: expand the medial spheres to a common standoff and select a \
+         covering subset",
+    ),
+    (
+        Method::Combined,
+        "The paper's best: merge and expand per node, keeping the tighter",
+    ),
+    (
+        Method::Octree,
+        "Baseline: an octree's occupied cells, each in its circumscribed sphere",
+    ),
+    (
+        Method::Grid,
+        "Baseline: per level a regular grid of about branch^level occupied cells",
+    ),
+    (
+        Method::Hubbard,
+        "Baseline: Hubbard's static medial spheres merged by enclosing spheres",
+    ),
+];
 
-impl MethodArg {
-    /// The library's method.
-    pub fn method(self) -> Method {
-        match self {
-            Self::Minimax => Method::Minimax,
-            Self::Auto => Method::Auto,
-            Self::Merge => Method::Merge,
-            Self::Burst => Method::Burst,
-            Self::Expand => Method::Expand,
-            Self::Combined => Method::Combined,
-            Self::Octree => Method::Octree,
-            Self::Grid => Method::Grid,
-            Self::Hubbard => Method::Hubbard,
-        }
-    }
-}
+/// `--effort`: every [`Effort`].
+pub const EFFORTS: &[(Effort, &str)] = &[
+    (
+        Effort::Quick,
+        "One start per division, one round of refinement: for previews",
+    ),
+    (
+        Effort::Default,
+        "Several starts, four rounds of refinement, swaps at the root",
+    ),
+    (
+        Effort::Thorough,
+        "Twice the starts, six rounds; never looser than the default's tree",
+    ),
+];

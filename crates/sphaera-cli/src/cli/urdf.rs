@@ -2,11 +2,14 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 use sphaera::mesh::Length;
+use sphaera::robot::PlannerFormat;
 use sphaera::spheretree::Effort;
 
-use super::{OutputArgs, parse_effort, parse_length};
+use super::choice::Choice;
+use super::spheretree::EFFORTS;
+use super::{OutputArgs, parse_length};
 /// Arguments of `sphaera urdf`.
 #[derive(Debug, Args)]
 pub struct UrdfArgs {
@@ -58,31 +61,35 @@ pub struct UrdfArgs {
     pub output: Option<PathBuf>,
 
     /// The output format.
-    #[arg(long, value_enum)]
-    pub format: Option<UrdfFormat>,
+    #[arg(long, value_parser = Choice::of(FORMATS))]
+    pub format: Option<PlannerFormat>,
 
     /// How hard each link's sphere-tree works for tighter spheres: `quick`, `default` or
     /// `thorough`.
-    #[arg(long, default_value = "default", value_parser = parse_effort)]
+    #[arg(long, default_value = "default", value_parser = Choice::of(EFFORTS))]
     pub effort: Effort,
 
     #[command(flatten)]
     pub print: OutputArgs,
 }
 
-/// The formats `sphaera urdf` writes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum UrdfFormat {
-    /// The same URDF with each link's collision geometry replaced by its spheres.
-    Urdf,
-    /// MoveIt's SRDF `<link_sphere_approximation>` sidecar.
-    Srdf,
-    /// cuRobo's `collision_spheres` YAML.
-    Curobo,
-    /// JSON: per link a tree (the bounding sphere, groups of nearby spheres, the
-    /// spheres; each encloses its children) and the report.
-    Json,
-}
+/// `--format`: the formats `sphaera urdf` writes (every [`PlannerFormat`]).
+pub const FORMATS: &[(PlannerFormat, &str)] = &[
+    (
+        PlannerFormat::Urdf,
+        "The same URDF with each link's collision geometry replaced by its spheres",
+    ),
+    (
+        PlannerFormat::Srdf,
+        "MoveIt's SRDF `<link_sphere_approximation>` sidecar",
+    ),
+    (PlannerFormat::Curobo, "cuRobo's `collision_spheres` YAML"),
+    (
+        PlannerFormat::Json,
+        "JSON: per link a tree (the bounding sphere, groups of nearby spheres, the \
+         spheres; each encloses its children) and the report",
+    ),
+];
 
 fn parse_link_count(text: &str) -> Result<(String, usize), String> {
     let (name, count) = text

@@ -22,8 +22,7 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 use sphaera::{
     medial::{
-        CoverCriterion, MedialApproximation, MedialOptions, MedialProgress, SphereKind, Surface,
-        surface_eq2_error,
+        MedialApproximation, MedialOptions, MedialProgress, SphereKind, Surface, surface_eq2_error,
     },
     mesh::{DVec3, Sphere, io::write_atomic, sampling},
     spheretree::{CoverageCertificate, Method, SphereTreeOptions, build, cover::certify_coverage},
@@ -31,7 +30,7 @@ use sphaera::{
 
 use super::spheretree::{SurfaceKind, check_sphere_count};
 use crate::{
-    cli::{CoverArg, MedialArgs},
+    cli::MedialArgs,
     input::{Input, read_mesh},
     output::{check_target, print_report, thousands},
     progress,
@@ -234,11 +233,7 @@ pub fn run(args: &MedialArgs, quiet: bool) -> Result<()> {
     let prepare_seconds = started.elapsed().as_secs_f64();
 
     let diagonal = surface.diagonal();
-    let cover = match args.cover {
-        CoverArg::SmallestError => CoverCriterion::SmallestError,
-        CoverArg::LargestCoverage => CoverCriterion::LargestCoverage,
-    };
-    let mut options = MedialOptions::default().with_cover(cover);
+    let mut options = MedialOptions::default().with_cover(args.cover);
     let target = match (args.medial_target, args.max_error) {
         _ if args.static_points.is_some() => format!(
             "{} forming points, no improvement",

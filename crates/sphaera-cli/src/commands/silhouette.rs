@@ -10,14 +10,14 @@ use serde::Serialize;
 use sphaera::{
     mesh::{DVec3, TriMesh, io},
     silhouette::{
-        ContourTolerance, Contours, DistanceTransform, Interpolation, LabelOptions, Labels,
-        Picture, Projection, ViewDependent, ViewSet, bounding_sphere, contour_displacement,
-        coverage, overlay_picture, shaded_picture, silhouette_difference,
+        ContourTolerance, Interpolation, LabelOptions, Labels, Picture, Projection, ViewDependent,
+        ViewSet, bounding_sphere, contour_displacement, coverage, overlay_picture, shaded_picture,
+        silhouette_difference,
     },
 };
 
 use crate::{
-    cli::{ContoursArg, SilhouetteArgs, TransformArg},
+    cli::SilhouetteArgs,
     input::read_mesh,
     output::{check_mesh_format, check_target, print_report, thousands},
     progress,
@@ -138,8 +138,8 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         &views,
         &LabelOptions::default()
             .with_resolution(args.resolution)
-            .with_transform(transform(args.transform))
-            .with_contours(contours(args.contours)),
+            .with_transform(args.transform)
+            .with_contours(args.contours),
         &|done| bar.set_position(done as u64),
     );
     bar.finish_and_clear();
@@ -199,14 +199,8 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
             _ => "orthographic".to_owned(),
         },
         resolution: args.resolution,
-        contours: match args.contours {
-            ContoursArg::Outline => "outline",
-            ContoursArg::All => "all",
-        },
-        transform: match args.transform {
-            TransformArg::Euclidean => "euclidean",
-            TransformArg::Chamfer => "chamfer",
-        },
+        contours: args.contours.name(),
+        transform: args.transform.name(),
         nearest: args.nearest,
         threshold: args.threshold,
         factor: args.factor,
@@ -240,20 +234,6 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         },
     };
     print_report(&report, args.print.json)
-}
-
-fn transform(arg: TransformArg) -> DistanceTransform {
-    match arg {
-        TransformArg::Euclidean => DistanceTransform::Euclidean,
-        TransformArg::Chamfer => DistanceTransform::Chamfer,
-    }
-}
-
-fn contours(arg: ContoursArg) -> Contours {
-    match arg {
-        ContoursArg::Outline => Contours::External,
-        ContoursArg::All => Contours::All,
-    }
 }
 
 /// Fails before any work unless `path` ends in `.png`.

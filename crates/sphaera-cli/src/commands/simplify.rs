@@ -64,8 +64,8 @@ pub fn run(args: &SimplifyArgs, quiet: bool) -> Result<()> {
     let mesh = &input.loaded.mesh;
     let mut options = SimplifyOptions::default()
         .with_lock_boundary(!args.free_boundary)
-        .with_placement(args.placement.placement())
-        .with_order(args.order.order());
+        .with_placement(args.placement)
+        .with_order(args.order);
     options.target_triangles = args.triangles;
     options.target_ratio = args.ratio;
     options.max_error = args.max_error;

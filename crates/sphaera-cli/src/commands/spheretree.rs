@@ -221,7 +221,7 @@ fn check_minimax_options(args: &SpheretreeArgs, method: Method) -> Result<()> {
 }
 
 pub fn run(args: &SpheretreeArgs, quiet: bool) -> Result<()> {
-    let method = args.method.method();
+    let method = args.method;
     let goal = Goal::of(args);
     check_goal(goal, method)?;
     check_minimax_options(args, method)?;

@@ -10,7 +10,7 @@ use sphaera::robot::{
 };
 
 use crate::{
-    cli::{UrdfArgs, UrdfFormat},
+    cli::UrdfArgs,
     output::{check_target, print_report, thousands},
     progress,
 };
@@ -43,7 +43,7 @@ struct Report {
 
 pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
     let format = match (args.format, &args.output) {
-        (Some(f), _) => Some(planner_format(f)),
+        (Some(f), _) => Some(f),
         (None, Some(path)) => match PlannerFormat::from_path(path) {
             Some(f) => Some(f),
             None => bail!(
@@ -139,15 +139,6 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
         seconds: started.elapsed().as_secs_f64(),
     };
     print_report(&report, args.print.json)
-}
-
-fn planner_format(format: UrdfFormat) -> PlannerFormat {
-    match format {
-        UrdfFormat::Urdf => PlannerFormat::Urdf,
-        UrdfFormat::Srdf => PlannerFormat::Srdf,
-        UrdfFormat::Curobo => PlannerFormat::Curobo,
-        UrdfFormat::Json => PlannerFormat::Json,
-    }
 }
 
 impl crate::output::Report for Report {

@@ -13,6 +13,54 @@ pub enum CoverCriterion {
     LargestCoverage,
 }
 
+impl CoverCriterion {
+    /// Every criterion, the default first.
+    pub const ALL: [Self; 2] = [Self::SmallestError, Self::LargestCoverage];
+
+    /// The name users type and reports show (`"smallest-error"`, `"largest-coverage"`), as
+    /// [`Display`](std::fmt::Display) writes it and [`FromStr`](std::str::FromStr) reads
+    /// it.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_medial::CoverCriterion;
+    ///
+    /// assert_eq!("largest-coverage".parse(), Ok(CoverCriterion::LargestCoverage));
+    /// assert_eq!(CoverCriterion::SmallestError.to_string(), "smallest-error");
+    /// ```
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::SmallestError => "smallest-error",
+            Self::LargestCoverage => "largest-coverage",
+        }
+    }
+}
+
+impl std::fmt::Display for CoverCriterion {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for CoverCriterion {
+    type Err = sphaera_mesh::ParseNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|c| c.name() == s)
+            .ok_or_else(|| {
+                sphaera_mesh::ParseNameError::new(
+                    "cover criterion",
+                    s,
+                    "smallest-error or largest-coverage",
+                )
+            })
+    }
+}
+
 /// Options of [`MedialApproximation::build`](crate::MedialApproximation::build).
 ///
 /// # Examples
