@@ -42,9 +42,11 @@ def spherize(path: str, root: str, depth: int, branch: int) -> dict:
         "error_upper": None,
     }
     try:
-        mesh = sphaera.load(path)
+        # Only regular files inside the folder are read (a link or a glTF buffer leading
+        # out of it, a device or a pipe is refused): the folder is nobody's inspected input.
+        mesh = sphaera.load(path, root=root)
         tree = sphaera.spheretree(mesh, depth=depth, branch=branch)
-    except (OSError, ValueError) as error:
+    except (OSError, ValueError) as error:  # PermissionError is an OSError
         row.update(status="failed", error=f"{type(error).__name__}: {error}")
     else:
         row.update(

@@ -63,6 +63,7 @@ pub mod awkward;
 pub mod brute;
 pub mod delaunay_fuzz;
 pub mod hausdorff;
+pub mod input_fuzz;
 pub mod pattern_search;
 pub mod point_sets;
 pub mod random;

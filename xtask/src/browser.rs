@@ -157,16 +157,20 @@ fn drawn(p: [u8; 3]) -> bool {
 }
 
 /// Runs the dev profile's `sphaera` with `args`; its JSON report.
-fn sphaera_json(args: &[&str]) -> Result<serde_json::Value> {
+fn sphaera_json<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Result<serde_json::Value> {
     let cli = crate::debug_cli()?;
     let report = Command::new(&cli)
         .args(args)
         .output()
         .with_context(|| format!("cannot run {}", cli.display()))?;
     if !report.status.success() {
+        let shown: Vec<String> = args
+            .iter()
+            .map(|a| a.as_ref().to_string_lossy().into_owned())
+            .collect();
         bail!(
             "sphaera {} failed: {}",
-            args.join(" "),
+            shown.join(" "),
             String::from_utf8_lossy(&report.stderr)
         );
     }
@@ -189,12 +193,13 @@ fn percent(value: f64, diagonal: f64) -> String {
 
 pub fn browser_test(update_images: bool) -> Result<()> {
     let chromium = chromium()?;
-    crate::cargo(&["build", "--locked", "-p", "sphaera-cli"])?;
+    crate::built_cli()?;
     let out = &crate::target_dir()?.join("browser-test");
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut problems = Vec::new();
     let levels = tree_levels(&chromium, out, &mut problems)?;
     every_layer(&chromium, out, &mut problems)?;
+    hostile_names(&chromium, out, &mut problems)?;
     if !problems.is_empty() {
         bail!("the browser test failed:\n  {}", problems.join("\n  "));
     }
@@ -224,6 +229,72 @@ pub fn browser_test(update_images: bool) -> Result<()> {
         "browser test passed: {levels} levels, every layer; pages and screenshots in {}",
         out.display()
     );
+    Ok(())
+}
+
+/// Pages of meshes whose paths hold what HTML reacts to (a `</script>` across folders, a
+/// `<!--<script>`, quotes and an ampersand, a line break, bytes that are not UTF-8): each
+/// page loads without a console error, draws its spheres, and shows the name as text.
+fn hostile_names(chromium: &Path, out: &Path, problems: &mut Vec<String>) -> Result<()> {
+    let base = out.join("hostile");
+    if base.exists() {
+        std::fs::remove_dir_all(&base)
+            .with_context(|| format!("cannot clear {}", base.display()))?;
+    }
+    let mut meshes = vec![
+        base.join("x<").join("script>y").join("m.obj"),
+        base.join("x<!--<script>y.obj"),
+        base.join("\"q' & <b>.obj"),
+        base.join("line\nbreak.obj"),
+    ];
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        meshes.push(base.join(std::ffi::OsStr::from_bytes(b"caf\xe9.obj")));
+    }
+    for (i, mesh) in meshes.iter().enumerate() {
+        let what = format!(
+            "hostile name {:?}",
+            mesh.strip_prefix(&base).unwrap_or(mesh)
+        );
+        if let Some(folder) = mesh.parent() {
+            std::fs::create_dir_all(folder)
+                .with_context(|| format!("cannot create {}", folder.display()))?;
+        }
+        let mesh_arg = mesh.as_os_str();
+        sphaera_json(&[
+            "simplify".as_ref(),
+            "-q".as_ref(),
+            "--json".as_ref(),
+            "--ratio".as_ref(),
+            "0.2".as_ref(),
+            "-o".as_ref(),
+            mesh_arg,
+        ])?;
+        let page = base.join(format!("page-{i}.html"));
+        let report = sphaera_json(&[
+            "view".as_ref(),
+            mesh_arg,
+            "-q".as_ref(),
+            "--json".as_ref(),
+            "-o".as_ref(),
+            page.as_os_str(),
+        ])?;
+        let text = open(chromium, &file_url(&page)?, &what, problems)?;
+        let drawn = body_attribute(&text, "data-drawn-spheres");
+        if drawn.as_deref().is_none_or(|n| n == "0") {
+            problems.push(format!("{what}: no sphere drawn ({drawn:?})"));
+        }
+        let name = report["mesh"].as_str().unwrap_or_default();
+        let shown = name
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        if name.is_empty() || !text.contains(&shown) {
+            problems.push(format!("{what}: the page does not show the name {name:?}"));
+        }
+    }
+    eprintln!("  hostile names: {} pages load and draw", meshes.len());
     Ok(())
 }
 

@@ -1,5 +1,6 @@
 //! The command line, declared with clap.
 
+mod choice;
 mod distance;
 mod hal;
 mod hausdorff;
@@ -15,17 +16,16 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 use sphaera::mesh::Length;
-use sphaera::spheretree::Effort;
 
 pub use distance::DistanceArgs;
 pub use hal::HalArgs;
 pub use hausdorff::{HausdorffArgs, HausdorffEngineArg};
-pub use medial::{CoverArg, MedialArgs};
+pub use medial::MedialArgs;
 pub use scene::SceneArgs;
-pub use silhouette::{ContoursArg, SilhouetteArgs, TransformArg};
+pub use silhouette::SilhouetteArgs;
 pub use simplify::SimplifyArgs;
 pub use spheretree::SpheretreeArgs;
-pub use urdf::{UrdfArgs, UrdfFormat};
+pub use urdf::UrdfArgs;
 pub use view::ViewArgs;
 
 /// Hierarchical sphere-based approximation of triangle meshes.
@@ -80,10 +80,11 @@ pub enum Command {
     /// children, to `--depth` levels, or only where needed until every leaf is within
     /// `--tolerance` (as deep as that takes), or into exactly `--spheres` N spheres in one
     /// level. The default method (auto, today minimax) also covers flat sheets and open
-    /// patches; the paper's methods (Bradshaw and O'Sullivan 2004) need a solid. Every
-    /// level is certified to cover the whole surface (not by the baselines, whose
-    /// coverage is measured), and its certified worst error is reported. The main job:
-    /// with no arguments it builds the embedded bunny's tree.
+    /// patches; the paper's methods (Bradshaw and O'Sullivan 2004) need a solid. The
+    /// minimax and the paper's methods certify that every level covers the whole surface;
+    /// the baselines (octree, grid, hubbard) do not: their coverage is measured on samples
+    /// and reported. Every level's worst error is bounded by branch and bound and
+    /// reported. The main job: with no arguments it builds the embedded bunny's tree.
     Spheretree(SpheretreeArgs),
     /// HAL tree (Veltkamp): a polygon kept as a binary tree of approximations by its own
     /// vertices, each part bounded by the intersection of two discs through its ends.
@@ -137,12 +138,6 @@ pub enum Command {
     /// distance to another mesh as colours (`--hausdorff`) and silhouette labels in grey
     /// levels (`--silhouette`). With no arguments: the embedded bunny.
     View(ViewArgs),
-}
-
-fn parse_effort(text: &str) -> Result<Effort, String> {
-    text.trim()
-        .parse()
-        .map_err(|_| format!("`{text}`: the effort must be quick, default or thorough"))
 }
 
 /// A length on the command line: an absolute distance (`0.002`) or a percentage of the

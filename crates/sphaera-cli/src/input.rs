@@ -54,3 +54,17 @@ pub fn read_mesh(path: Option<&Path>, quiet: bool) -> Result<Input> {
         seconds: started.elapsed().as_secs_f64(),
     })
 }
+
+/// The text of a file a user names (points, a polygon, a tree), by the default file policy:
+/// a regular file (a device or a named pipe is refused at once, not read until memory runs
+/// out or a writer comes) of at most 2 GiB, UTF-8.
+///
+/// # Errors
+///
+/// When the file cannot be read, the policy refuses it, or it is not UTF-8; `what` names
+/// it in the message.
+pub fn read_text(path: &Path, what: &str) -> Result<String> {
+    io::FilePolicy::default()
+        .read_to_string(path)
+        .with_context(|| format!("cannot read {what} {}", path.display()))
+}

@@ -551,6 +551,7 @@ fn awkward_meshes_give_a_page_with_finite_page_units_or_a_clear_error() {
     let ball = dir.path().join("ball.obj");
     sphaera_mesh_obj(&ball, &shapes::sphere(1.0, 8).expect("sphere"));
     let ball = ball.to_str().expect("utf-8");
+    let mut hal_pages = 0;
     for (k, awkward) in sphaera_tests::awkward::all().into_iter().enumerate() {
         let path = dir.path().join(format!("awkward{k}.obj"));
         sphaera_mesh_obj(&path, &awkward.mesh);
@@ -590,17 +591,28 @@ fn awkward_meshes_give_a_page_with_finite_page_units_or_a_clear_error() {
             "{}",
             awkward.name
         );
-        // HAL trees take closed genus-0 meshes only: a page, or an error naming the file.
+        // HAL trees take closed genus-0 meshes only: a page where the library builds a
+        // tree, else an error naming the file.
         let output = sphaera(&[
             "view", path, "--tree", &tree, "--hal", "5%", "-q", "-o", page_arg,
         ]);
         let message = String::from_utf8_lossy(&output.stderr);
-        assert!(
-            output.status.success() || message.contains(path),
+        let buildable = sphaera::hal::HalTree3::build(&awkward.mesh).is_ok();
+        assert_eq!(
+            output.status.success(),
+            buildable,
             "{}: {message}",
             awkward.name
         );
+        if buildable {
+            hal_pages += 1;
+        } else {
+            assert!(message.contains(path), "{}: {message}", awkward.name);
+        }
     }
+    // Some awkward meshes are one closed genus-0 manifold (two today): the HAL layer is
+    // tested on them, not only refused.
+    assert!(hal_pages >= 2, "{hal_pages} HAL pages");
 }
 
 #[test]
@@ -640,7 +652,11 @@ fn a_real_scan_shows_every_layer() {
     assert!(hal["bound"].as_f64().expect("bound") <= 0.02 * diagonal);
     assert!(surfaces.iter().any(|s| s["kind"] == "simplified"));
     let h = &report["hausdorff"];
-    assert!(h["lower"].as_f64() <= h["upper"].as_f64());
+    let (lower, upper) = (
+        h["lower"].as_f64().expect("a lower bound"),
+        h["upper"].as_f64().expect("an upper bound"),
+    );
+    assert!(lower <= upper, "{h}");
     assert_eq!(report["silhouette"]["views"].as_u64(), Some(62));
     let data = page_data(&std::fs::read_to_string(&page).expect("the page"));
     let vertices = page_mesh(&data, &data["mesh"]).positions().len();

@@ -23,6 +23,16 @@ pub enum IoError {
         source: std::io::Error,
     },
 
+    /// A file exists but the [`FilePolicy`](crate::FilePolicy) does not read it: not a
+    /// regular file, outside the allowed folder, or larger than the cap.
+    #[error("refused to read {}: {refusal}", path.display())]
+    Refused {
+        /// The file, as named.
+        path: PathBuf,
+        /// Why.
+        refusal: crate::FileRefusal,
+    },
+
     /// A mesh file (or byte buffer) is malformed: the data do not follow the format, or they
     /// describe invalid geometry (a NaN coordinate, an index out of range, a face with fewer
     /// than three vertices).

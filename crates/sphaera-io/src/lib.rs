@@ -155,6 +155,7 @@ mod obj;
 mod off;
 mod parse_error;
 mod ply;
+mod policy;
 mod polygon;
 mod stl;
 mod text;
@@ -172,6 +173,7 @@ use std::path::Path;
 pub use error::IoError;
 pub(crate) use parse_error::describe_path;
 pub use parse_error::{GltfObject, Location, ParseReason};
+pub use policy::{DEFAULT_MAX_FILE_BYTES, FilePolicy, FileRefusal};
 pub use uri::percent_decode;
 pub use write::{
     PlyEncoding, save, write_atomic, write_obj, write_obj_to, write_ply, write_ply_to,
@@ -355,6 +357,10 @@ pub struct LoadedMesh {
 /// Reads a mesh file, choosing the reader from the extension (case-insensitive `obj`,
 /// `ply`, `stl`, `off`, `gltf`, `glb`) or, for any other extension, from the content
 /// ([`Format::sniff`]). A glTF file's separate buffer files are read from its folder.
+/// Files are read by the default [`FilePolicy`]: regular files only (a device such as
+/// `/dev/zero`, a named pipe or a folder is refused before it is opened), at most
+/// [`DEFAULT_MAX_FILE_BYTES`], glTF buffer files inside the glTF file's folder; see
+/// [`read_with`] for another cap or a root.
 ///
 /// # Examples
 ///
@@ -363,6 +369,7 @@ pub struct LoadedMesh {
 /// # Errors
 ///
 /// - [`IoError::Io`] if the file cannot be read;
+/// - [`IoError::Refused`] if it is not a regular file or larger than the cap;
 /// - [`IoError::UnknownFormat`] if neither the extension nor the content tells the
 ///   format;
 /// - [`IoError::Parse`], with this `path`, if the file is malformed (see the module
@@ -379,18 +386,50 @@ pub struct LoadedMesh {
 /// `dragon_vrip.ply` is in the section *Loading and topology (`sphaera-mesh`)* of
 /// `docs/benchmarks.md` in the repository.
 pub fn read(path: impl AsRef<Path>) -> Result<LoadedMesh, IoError> {
+    read_with(path, &FilePolicy::default())
+}
+
+/// [`read`] by a [`FilePolicy`]: the file, and a glTF file's buffer files, are read only if
+/// the policy admits them (regular files, within its size cap and root; buffer files also
+/// inside the glTF file's folder).
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_io::{FilePolicy, FileRefusal, IoError, read_with};
+///
+/// let folder = std::env::temp_dir().join(format!("sphaera-read-with-{}", std::process::id()));
+/// std::fs::create_dir_all(&folder)?;
+/// let path = folder.join("tri.obj");
+/// std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")?;
+/// let policy = FilePolicy::default().with_root(&folder);
+/// assert_eq!(read_with(&path, &policy)?.mesh.triangle_count(), 1);
+/// let small = policy.with_max_bytes(16);
+/// assert!(matches!(
+///     read_with(&path, &small),
+///     Err(IoError::Refused { refusal: FileRefusal::TooLarge { bytes: 32, cap: 16 }, .. })
+/// ));
+/// std::fs::remove_dir_all(&folder)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`read`]; [`IoError::Refused`] for a file the policy does not read, and
+/// [`ParseReason::BufferRefused`] for such a glTF buffer file.
+pub fn read_with(path: impl AsRef<Path>, policy: &FilePolicy) -> Result<LoadedMesh, IoError> {
     let path = path.as_ref();
-    let bytes = std::fs::read(path).map_err(|source| IoError::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = policy.read(path)?;
     let format = Format::from_path(path)
         .or_else(|| Format::sniff(&bytes))
         .ok_or_else(|| IoError::UnknownFormat {
             path: Some(path.to_path_buf()),
         })?;
-    let base = path.parent().unwrap_or(Path::new(""));
-    read_bytes(&bytes, format, Some(base)).map_err(|error| match error {
+    let base = match path.parent() {
+        Some(folder) if !folder.as_os_str().is_empty() => folder,
+        _ => Path::new("."),
+    };
+    read_bytes(&bytes, format, Some((base, policy))).map_err(|error| match error {
         IoError::Parse {
             format,
             location,
@@ -446,8 +485,13 @@ pub fn read_from_bytes(bytes: &[u8], format: Format) -> Result<LoadedMesh, IoErr
     read_bytes(bytes, format, None)
 }
 
-/// Parses a mesh from bytes; glTF buffer files are resolved in `base` (none without it).
-fn read_bytes(bytes: &[u8], format: Format, base: Option<&Path>) -> Result<LoadedMesh, IoError> {
+/// Parses a mesh from bytes; glTF buffer files are resolved in `base` and read by its
+/// policy (none without it).
+fn read_bytes(
+    bytes: &[u8],
+    format: Format,
+    base: Option<(&Path, &FilePolicy)>,
+) -> Result<LoadedMesh, IoError> {
     match format {
         Format::Obj => obj::read_obj(bytes),
         Format::Ply => ply::read_ply(bytes),

@@ -437,6 +437,18 @@ pub enum ParseReason {
         /// What the operating system said.
         kind: std::io::ErrorKind,
     },
+    /// A glTF buffer's file exists but is not read: it is not a regular file, lies
+    /// outside the glTF file's folder (or the policy's root), or is larger than the cap
+    /// ([`crate::FilePolicy`]).
+    #[error("refused to read buffer `{uri}` ({}): {refusal}", path.display())]
+    BufferRefused {
+        /// The URI as written (at most 40 characters).
+        uri: String,
+        /// The file it resolves to (relative to the glTF file's folder).
+        path: PathBuf,
+        /// Why (boxed: a rare error keeps the common ones small).
+        refusal: Box<crate::FileRefusal>,
+    },
     /// A glTF buffer's URI cannot be decoded (bad base64 or percent-encoding, a URI scheme
     /// other than `data:`).
     #[error("invalid buffer uri `{uri}`: {problem}")]

@@ -1,11 +1,13 @@
-//! The library's errors as Python exceptions: `OSError` when a file could not be read or
-//! written, [`ToleranceUnreachableError`] (a `ValueError`) when a sphere-tree cannot meet
+//! The library's errors as Python exceptions: `PermissionError` (an `OSError`) when the
+//! file policy refuses a file (not a regular file, outside the allowed root, larger than
+//! the cap), `OSError` when a file could not be read or written, [`ToleranceUnreachableError`] (a `ValueError`) when a sphere-tree cannot meet
 //! the tolerance asked for, `ValueError` for everything else (bad input), with the
 //! library's message.
 
 use pyo3::PyErr;
 use pyo3::create_exception;
-use pyo3::exceptions::{PyOSError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyPermissionError, PyValueError};
+use sphaera::io::{IoError, ParseReason};
 
 create_exception!(
     sphaera,
@@ -17,17 +19,30 @@ spheres and levels built; the attributes `tolerance`, `worst`, `spheres` and `le
 hold them. A `ValueError`: ask for a larger tolerance."
 );
 
-/// `OSError` when an I/O error is anywhere in `error`'s chain, else `ValueError`; the
-/// message is the library's.
+/// `PermissionError` when the file policy refused a file anywhere in `error`'s chain,
+/// `OSError` when an I/O error is, else `ValueError`; the message is the library's.
 pub fn to_py(error: &(dyn std::error::Error + 'static)) -> PyErr {
     let mut io = false;
+    let mut refused = false;
     let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(error);
     while let Some(e) = cause {
         io |= e.is::<std::io::Error>();
+        refused |= matches!(
+            e.downcast_ref::<IoError>(),
+            Some(
+                IoError::Refused { .. }
+                    | IoError::Parse {
+                        reason: ParseReason::BufferRefused { .. },
+                        ..
+                    }
+            )
+        );
         cause = e.source();
     }
     let message = error.to_string();
-    if io {
+    if refused {
+        PyPermissionError::new_err(message)
+    } else if io {
         PyOSError::new_err(message)
     } else {
         PyValueError::new_err(message)

@@ -6,6 +6,7 @@ use std::sync::OnceLock;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
+use sphaera::io::FilePolicy;
 use sphaera::mesh::closest::TriangleTree;
 use sphaera::mesh::{TriMesh, topology};
 
@@ -166,11 +167,36 @@ impl Mesh {
 }
 
 /// Reads a mesh file: OBJ, PLY (ASCII or binary), STL (ASCII or binary), OFF, glTF or
-/// GLB.
+/// GLB. Only regular files are read (a device, a named pipe or a folder is refused), of at
+/// most `max_bytes` bytes (default 2 GiB); with `root`, only files inside that folder once
+/// links and `..` are resolved (a service reading uploads). A glTF file's buffer files
+/// must lie in its own folder.
 ///
-/// Raises `OSError` when the file cannot be read, `ValueError` when it is malformed.
+/// Raises `PermissionError` (an `OSError`) for a file the policy refuses, `OSError` when
+/// the file cannot be read, `ValueError` when it is malformed.
 #[pyfunction]
-pub fn load(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
-    let loaded = py.detach(move || sphaera::mesh::io::read(&path)).py_err()?;
+#[pyo3(signature = (path, root=None, max_bytes=None))]
+pub fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    root: Option<PathBuf>,
+    max_bytes: Option<u64>,
+) -> PyResult<Mesh> {
+    let policy = file_policy(root, max_bytes);
+    let loaded = py
+        .detach(move || sphaera::io::read_with(&path, &policy))
+        .py_err()?;
     Ok(Mesh::from_inner(loaded.mesh))
+}
+
+/// The file policy of a call's `root` and `max_bytes` arguments.
+pub(crate) fn file_policy(root: Option<PathBuf>, max_bytes: Option<u64>) -> FilePolicy {
+    let mut policy = FilePolicy::default();
+    if let Some(root) = root {
+        policy = policy.with_root(root);
+    }
+    if let Some(max_bytes) = max_bytes {
+        policy = policy.with_max_bytes(max_bytes);
+    }
+    policy
 }

@@ -100,10 +100,15 @@ pub fn silhouette_labels<'py>(
 /// Returns a dict: `robot`, `links` (per link name: `spheres` an `(n, 4)` array and the
 /// report's figures), `links_without_geometry`.
 ///
-/// Raises `OSError` for a URDF or mesh that cannot be read, `ValueError` for a malformed
-/// one (the messages name the link and the file).
+/// With `root`, the URDF and every mesh it names are read only inside that folder (once
+/// links and `..` are resolved; a service reading uploads); `max_file_bytes` caps each file
+/// (default 2 GiB). Only regular files are read.
+///
+/// Raises `PermissionError` (an `OSError`) for a file the policy refuses, `OSError` for a
+/// URDF or mesh that cannot be read, `ValueError` for a malformed one (the messages name
+/// the link and the file).
 #[pyfunction]
-#[pyo3(signature = (path, spheres_per_link=None, budget=None, tolerance=None, per_link=None, visual=false, packages=None))]
+#[pyo3(signature = (path, spheres_per_link=None, budget=None, tolerance=None, per_link=None, visual=false, packages=None, root=None, max_file_bytes=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn urdf<'py>(
     py: Python<'py>,
@@ -114,7 +119,10 @@ pub fn urdf<'py>(
     per_link: Option<std::collections::BTreeMap<String, usize>>,
     visual: bool,
     packages: Option<std::collections::BTreeMap<String, PathBuf>>,
+    root: Option<PathBuf>,
+    max_file_bytes: Option<u64>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let policy = crate::mesh::file_policy(root, max_file_bytes);
     let chosen = [
         spheres_per_link.is_some(),
         budget.is_some(),
@@ -145,8 +153,8 @@ pub fn urdf<'py>(
     }
     let robot = py
         .detach(move || -> Result<_, sphaera::robot::RobotError> {
-            let urdf = Urdf::read(&path)?;
-            let mut resolver = MeshResolver::new(urdf.folder());
+            let urdf = Urdf::read_with(&path, &policy)?;
+            let mut resolver = MeshResolver::new(urdf.folder()).with_policy(policy);
             for (name, folder) in packages.unwrap_or_default() {
                 resolver = resolver.with_package(name, folder);
             }

@@ -1,5 +1,6 @@
 """Shared fixtures: meshes built here (no files), the shared data folder, the CLI."""
 
+import importlib
 import json
 import os
 import subprocess
@@ -49,11 +50,19 @@ def ball():
     return sphaera.Mesh(vertices, faces)
 
 
+def required(module):
+    """`module` imported; a test needing it is skipped when it is missing, unless
+    SPHAERA_REQUIRE_DATA=1 (CI, which installs it from requirements-test.txt) fails it."""
+    if os.environ.get("SPHAERA_REQUIRE_DATA") == "1":
+        return importlib.import_module(module)
+    return pytest.importorskip(module)
+
+
 @pytest.fixture
 def data_dir():
-    """`../shared/data` beside the repository; skipped when absent, unless
-    SPHAERA_REQUIRE_DATA=1 (CI), which fails instead."""
-    path = REPOSITORY.parent / "shared" / "data"
+    """`$SPHAERA_DATA`, or `../shared/data` beside the repository (as the Rust tests find
+    it); skipped when absent, unless SPHAERA_REQUIRE_DATA=1 (CI), which fails instead."""
+    path = Path(os.environ.get("SPHAERA_DATA") or REPOSITORY.parent / "shared" / "data")
     if not path.is_dir():
         if os.environ.get("SPHAERA_REQUIRE_DATA") == "1":
             pytest.fail(f"the shared meshes are required (SPHAERA_REQUIRE_DATA=1) but {path} is missing")

@@ -6,10 +6,9 @@ import subprocess
 import sys
 
 import numpy as np
-import pytest
 
 import sphaera
-from conftest import REPOSITORY
+from conftest import REPOSITORY, required
 
 SCRIPT = REPOSITORY / "examples" / "python" / "ray_spherize.py"
 
@@ -26,8 +25,8 @@ def run(folder, out, *extra):
 
 
 def test_a_folder_on_a_local_ray_cluster_matches_one_process(tmp_path, data_dir):
-    pytest.importorskip("ray")
-    pq = pytest.importorskip("pyarrow.parquet")
+    required("ray")
+    pq = required("pyarrow.parquet")
     folder = tmp_path / "meshes"
     (folder / "nested").mkdir(parents=True)
     for name in ["bunny_lowres.obj", "spot.obj", "eight.off"]:
@@ -47,7 +46,7 @@ def test_a_folder_on_a_local_ray_cluster_matches_one_process(tmp_path, data_dir)
     assert [r["mesh"] for r in ray_rows] == sorted(
         ["bunny_lowres.obj", "spot.obj", "eight.off", "nested/fandisk.obj", "corrupt.obj"]
     )
-    for a, b in zip(ray_rows, local_rows):
+    for a, b in zip(ray_rows, local_rows, strict=True):
         for key in ["mesh", "status", "error", "triangles", "spheres", "levels", "error_lower", "error_upper"]:
             assert a[key] == b[key], (a["mesh"], key)
     corrupt = next(r for r in ray_rows if r["mesh"] == "corrupt.obj")
@@ -55,6 +54,6 @@ def test_a_folder_on_a_local_ray_cluster_matches_one_process(tmp_path, data_dir)
     # The table holds what the library gives in this process.
     bunny = next(r for r in ray_rows if r["mesh"] == "bunny_lowres.obj")
     tree = sphaera.spheretree(sphaera.load(data_dir / "bunny_lowres.obj"), depth=2)
-    for flat, level in zip(bunny["levels"], tree.levels):
+    for flat, level in zip(bunny["levels"], tree.levels, strict=True):
         np.testing.assert_array_equal(np.asarray(flat).reshape(-1, 4), level)
     assert bunny["error_upper"] == [e[1] for e in tree.errors]

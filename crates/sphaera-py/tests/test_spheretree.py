@@ -266,13 +266,13 @@ def test_scaling_by_two_scales_the_answer_exactly(ellipsoid_arrays, arguments):
     one = sphaera.spheretree(sphaera.Mesh(vertices, faces), **arguments)
     two = sphaera.spheretree(sphaera.Mesh(2 * vertices, faces), **arguments)
     assert len(one.levels) == len(two.levels)
-    for a, b in zip(one.levels, two.levels):
+    for a, b in zip(one.levels, two.levels, strict=True):
         np.testing.assert_array_equal(2 * a, b)
-    for a, b in zip(one.parents, two.parents):
+    for a, b in zip(one.parents, two.parents, strict=True):
         np.testing.assert_array_equal(a, b)
-    for a, b in zip(one.node_errors, two.node_errors):
+    for a, b in zip(one.node_errors, two.node_errors, strict=True):
         np.testing.assert_array_equal(2 * a, b)
-    for a, b in zip(one.errors, two.errors):
+    for a, b in zip(one.errors, two.errors, strict=True):
         assert (2 * a[0], 2 * a[1]) == b
     np.testing.assert_array_equal(2 * one.leaf_errors, two.leaf_errors)
     if one.tolerance is not None:

@@ -19,13 +19,13 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum RobotError {
-    /// A file could not be read.
+    /// A file could not be read, or the file policy refuses it.
     #[error("cannot read {}: {source}", path.display())]
     ReadFile {
         /// The file.
         path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
+        /// Why: the operating system's error, or the policy's refusal.
+        source: Box<sphaera_io::IoError>,
     },
     /// The URDF is not well-formed XML.
     #[error("{}: malformed XML: {message}", path.display())]

@@ -27,7 +27,51 @@ pub enum PlannerFormat {
     Json,
 }
 
+impl std::fmt::Display for PlannerFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for PlannerFormat {
+    type Err = sphaera_mesh::ParseNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|f| f.name() == s)
+            .ok_or_else(|| {
+                sphaera_mesh::ParseNameError::new("planner format", s, "urdf, srdf, curobo or json")
+            })
+    }
+}
+
 impl PlannerFormat {
+    /// Every format.
+    pub const ALL: [Self; 4] = [Self::Urdf, Self::Srdf, Self::Curobo, Self::Json];
+
+    /// The name users type and reports show (`"urdf"`, `"srdf"`, `"curobo"`, `"json"`), as
+    /// [`Display`](std::fmt::Display) writes it and [`FromStr`](std::str::FromStr) reads
+    /// it.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_robot::PlannerFormat;
+    ///
+    /// assert_eq!("curobo".parse(), Ok(PlannerFormat::Curobo));
+    /// assert_eq!(PlannerFormat::Srdf.to_string(), "srdf");
+    /// ```
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Urdf => "urdf",
+            Self::Srdf => "srdf",
+            Self::Curobo => "curobo",
+            Self::Json => "json",
+        }
+    }
+
     /// The format a file name's extension names: `.urdf`, `.srdf`, `.yml`/`.yaml`
     /// (cuRobo) or `.json`.
     ///
@@ -331,8 +375,10 @@ pub fn spherized_urdf(urdf: &Urdf, robot: &RobotSpheres) -> Result<String, Robot
     let text = &urdf.text;
     // (start, end, replacement), in text order.
     let mut edits: Vec<(usize, usize, String)> = Vec::new();
+    let by_name: std::collections::HashMap<&str, &crate::urdf::Link> =
+        urdf.links.iter().map(|l| (l.name.as_str(), l)).collect();
     for spheres in &robot.links {
-        let link = urdf.link(&spheres.link).ok_or_else(|| RobotError::Write {
+        let link = by_name.get(spheres.link.as_str()).ok_or_else(|| RobotError::Write {
             path: urdf.path.clone(),
             message: format!("link \"{}\" is not in the URDF", spheres.link),
         })?;

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use glam::{DAffine3, DVec3};
+use sphaera_io::FilePolicy;
 use sphaera_mesh::TriMesh;
 
 use crate::RobotError;
@@ -48,7 +49,10 @@ impl GeometrySource {
 /// shipped with their meshes beside them, as `package://meshes/…`); as `REST` under the
 /// URDF's folder; and as `REST` under every ancestor of the URDF's folder called `NAME`
 /// (a ROS package the URDF lives in). `file://` paths are taken as they are; any other
-/// path is relative to the URDF's folder.
+/// path is relative to the URDF's folder. Every candidate is read by the resolver's
+/// [`FilePolicy`] ([`MeshResolver::with_policy`]; by default regular files of any folder,
+/// at most [`DEFAULT_MAX_FILE_BYTES`](sphaera_io::DEFAULT_MAX_FILE_BYTES) each): a service
+/// gives it a root, outside which no candidate is read.
 ///
 /// # Examples
 ///
@@ -65,6 +69,7 @@ impl GeometrySource {
 pub struct MeshResolver {
     folder: PathBuf,
     packages: Vec<(String, PathBuf)>,
+    policy: FilePolicy,
 }
 
 impl MeshResolver {
@@ -73,7 +78,21 @@ impl MeshResolver {
         Self {
             folder: folder.into(),
             packages: Vec::new(),
+            policy: FilePolicy::default(),
         }
+    }
+
+    /// Reads mesh files by `policy` only (a root for a service, a size cap).
+    #[must_use]
+    pub fn with_policy(mut self, policy: FilePolicy) -> Self {
+        self.policy = policy;
+        self
+    }
+
+    /// The policy mesh files are read by.
+    #[must_use]
+    pub fn policy(&self) -> &FilePolicy {
+        &self.policy
     }
 
     /// Also looks for `package://name/…` under `folder`, first.
@@ -133,22 +152,37 @@ impl MeshResolver {
         }
     }
 
-    /// The first candidate that is a file.
+    /// The first candidate the policy reads.
     ///
     /// # Errors
     ///
-    /// [`RobotError::MeshNotFound`] naming `link`, the URI and every path tried.
+    /// [`RobotError::MeshNotFound`] naming `link`, the URI and every path tried, when no
+    /// candidate exists; [`RobotError::Mesh`] with the policy's refusal when candidates
+    /// exist but none may be read (a folder, a device, outside the root, too large).
     pub fn resolve(&self, link: &str, uri: &str) -> Result<PathBuf, RobotError> {
         let candidates = self.candidates(uri);
-        candidates
-            .iter()
-            .find(|p| p.is_file())
-            .cloned()
-            .ok_or_else(|| RobotError::MeshNotFound {
+        let mut refused = None;
+        for path in &candidates {
+            match self.policy.check_file(path) {
+                Ok(_) => return Ok(path.clone()),
+                Err(sphaera_io::IoError::Io { .. }) => {}
+                Err(error) => {
+                    refused.get_or_insert((path.clone(), error));
+                }
+            }
+        }
+        Err(match refused {
+            Some((path, error)) => RobotError::Mesh {
+                link: link.to_owned(),
+                path,
+                source: Box::new(error),
+            },
+            None => RobotError::MeshNotFound {
                 link: link.to_owned(),
                 uri: uri.to_owned(),
                 tried: candidates,
-            })
+            },
+        })
     }
 }
 
@@ -230,11 +264,13 @@ impl LinkGeometry {
             let shape = match &element.geometry {
                 Geometry::Mesh { filename, scale } => {
                     let path = resolver.resolve(&link.name, filename)?;
-                    let mesh = sphaera_io::load(&path).map_err(|source| RobotError::Mesh {
-                        link: link.name.clone(),
-                        path: path.clone(),
-                        source: Box::new(source),
-                    })?;
+                    let mesh = sphaera_io::read_with(&path, resolver.policy())
+                        .map(|loaded| loaded.mesh)
+                        .map_err(|source| RobotError::Mesh {
+                            link: link.name.clone(),
+                            path: path.clone(),
+                            source: Box::new(source),
+                        })?;
                     // A file of no triangles (an STL of only its header) must not drop
                     // the link silently: a planner would never see it.
                     if mesh.triangle_count() == 0 {

@@ -1,22 +1,22 @@
 //! Forward kinematics: where every link's frame is for given joint values.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 use glam::{DAffine3, DQuat};
 
 use crate::RobotError;
-use crate::urdf::{JointKind, Urdf};
+use crate::urdf::{Joint, JointKind, Urdf};
 
 impl Urdf {
     /// The pose of every link's frame in the root link's frame, for the joint values in
     /// `positions` (radians or metres, by joint name; a joint not named is at 0, a mimic
-    /// joint follows the joint it copies). Floating and planar joints stay at their
-    /// origin.
+    /// joint follows the joint it copies, through a chain of mimics to the joint that drives
+    /// it). Floating and planar joints stay at their origin. Linear in links and joints.
     ///
     /// # Examples
     ///
     /// ```
-    /// use std::collections::BTreeMap;
+    /// use std::collections::{BTreeMap, HashMap};
     /// use glam::DVec3;
     /// use sphaera_robot::Urdf;
     ///
@@ -42,8 +42,10 @@ impl Urdf {
         &self,
         positions: &BTreeMap<String, f64>,
     ) -> Result<BTreeMap<String, DAffine3>, RobotError> {
+        let joints: HashMap<&str, &Joint> =
+            self.joints.iter().map(|j| (j.name.as_str(), j)).collect();
         for (name, value) in positions {
-            if !self.joints.iter().any(|j| &j.name == name) {
+            if !joints.contains_key(name.as_str()) {
                 return Err(RobotError::Joint {
                     joint: name.clone(),
                     message: "the robot has no joint of this name".to_owned(),
@@ -56,22 +58,14 @@ impl Urdf {
                 });
             }
         }
-        let value = |name: &str| -> f64 {
-            let joint = self.joints.iter().find(|j| j.name == name);
-            match joint.and_then(|j| j.mimic.as_ref()) {
-                Some(m) => {
-                    m.multiplier * positions.get(&m.joint).copied().unwrap_or(0.0) + m.offset
-                }
-                None => positions.get(name).copied().unwrap_or(0.0),
-            }
-        };
+        let values = joint_values(&joints, positions)?;
         let root = self.root()?;
+        let below = self.child_joints();
         let mut poses = BTreeMap::from([(root.to_owned(), DAffine3::IDENTITY)]);
-        let mut frontier = vec![root.to_owned()];
-        while let Some(parent) = frontier.pop() {
-            let parent_pose = poses[&parent];
-            for joint in self.joints.iter().filter(|j| j.parent == parent) {
-                let q = value(&joint.name);
+        let mut frontier = vec![(root, DAffine3::IDENTITY)];
+        while let Some((parent, parent_pose)) = frontier.pop() {
+            for &joint in below.get(parent).into_iter().flatten() {
+                let q = values.get(joint.name.as_str()).copied().unwrap_or(0.0);
                 let motion = match joint.kind {
                     JointKind::Revolute | JointKind::Continuous => {
                         DAffine3::from_quat(DQuat::from_axis_angle(joint.axis, q))
@@ -85,9 +79,55 @@ impl Urdf {
                 if poses.insert(joint.child.clone(), pose).is_some() {
                     return Err(self.reached_twice(joint));
                 }
-                frontier.push(joint.child.clone());
+                frontier.push((joint.child.as_str(), pose));
             }
         }
         Ok(poses)
     }
+}
+
+/// Every joint's value: as given (0 when not), a mimic joint's from the joint that drives
+/// its chain (`a` mimics `b` mimics `c`: `a = m_a (m_b c + o_b) + o_a`). Linear in the
+/// joints: each chain is walked once, its values kept.
+fn joint_values<'a>(
+    joints: &HashMap<&'a str, &'a Joint>,
+    positions: &BTreeMap<String, f64>,
+) -> Result<HashMap<&'a str, f64>, RobotError> {
+    let mut values: HashMap<&'a str, f64> = HashMap::with_capacity(joints.len());
+    for (&name, &joint) in joints {
+        let mut chain = Vec::new();
+        let mut at = joint;
+        let base = loop {
+            if let Some(&known) = values.get(at.name.as_str()) {
+                break known;
+            }
+            let Some(mimic) = &at.mimic else {
+                break positions.get(&at.name).copied().unwrap_or(0.0);
+            };
+            if chain.len() > joints.len() {
+                return Err(RobotError::Joint {
+                    joint: name.to_owned(),
+                    message: "its mimics form a cycle: no joint drives them".to_owned(),
+                });
+            }
+            chain.push(at);
+            at = joints
+                .get(mimic.joint.as_str())
+                .ok_or_else(|| RobotError::Joint {
+                    joint: at.name.clone(),
+                    message: format!("it mimics \"{}\", which is not a joint", mimic.joint),
+                })?;
+        };
+        if at.mimic.is_none() {
+            values.insert(at.name.as_str(), base);
+        }
+        let mut value = base;
+        for link in chain.iter().rev() {
+            if let Some(mimic) = &link.mimic {
+                value = mimic.multiplier * value + mimic.offset;
+            }
+            values.insert(link.name.as_str(), value);
+        }
+    }
+    Ok(values)
 }

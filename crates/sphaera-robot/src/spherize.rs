@@ -125,8 +125,10 @@ pub fn spherize_geometry(
             requirement: "at most 10,000 per link with geometry",
         });
     }
+    let with_names: std::collections::HashSet<&str> =
+        with.iter().map(|g| g.link.as_str()).collect();
     for name in options.per_link.keys() {
-        if !with.iter().any(|g| &g.link == name) {
+        if !with_names.contains(name.as_str()) {
             return Err(RobotError::UnknownLink {
                 name: name.clone(),
                 without_geometry: without.iter().any(|g| &g.link == name),

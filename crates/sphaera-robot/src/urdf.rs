@@ -2,11 +2,15 @@
 //! origins, axes, limits and mimics. Only what spherization and forward kinematics need;
 //! inertia, materials and transmissions are skipped.
 
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DMat3, DVec3};
+use sphaera_io::FilePolicy;
 
 use crate::RobotError;
+
+mod checks;
 
 /// A pose in a parent frame as URDF gives it: a translation and fixed-axis roll, pitch
 /// and yaw (about x, then y, then z).
@@ -212,17 +216,30 @@ pub struct Urdf {
 }
 
 impl Urdf {
-    /// Reads and parses the URDF at `path`.
+    /// Reads and parses the URDF at `path` (by the default [`FilePolicy`]: a regular file
+    /// of at most [`DEFAULT_MAX_FILE_BYTES`](sphaera_io::DEFAULT_MAX_FILE_BYTES)).
     ///
     /// # Errors
     ///
     /// [`RobotError::ReadFile`], then as [`Urdf::parse`].
     pub fn read(path: impl AsRef<Path>) -> Result<Self, RobotError> {
+        Self::read_with(path, &FilePolicy::default())
+    }
+
+    /// [`Urdf::read`] by `policy` (a service confines URDFs and their meshes to a root:
+    /// give the same policy to [`MeshResolver::with_policy`](crate::MeshResolver::with_policy)).
+    ///
+    /// # Errors
+    ///
+    /// As [`Urdf::read`].
+    pub fn read_with(path: impl AsRef<Path>, policy: &FilePolicy) -> Result<Self, RobotError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| RobotError::ReadFile {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = policy
+            .read_to_string(path)
+            .map_err(|source| RobotError::ReadFile {
+                path: path.to_path_buf(),
+                source: Box::new(source),
+            })?;
         Self::parse(&text, path)
     }
 
@@ -243,9 +260,12 @@ impl Urdf {
             path: path.clone(),
             message: e.to_string(),
         })?;
+        let line_starts = std::iter::once(0)
+            .chain(text.match_indices('\n').map(|(at, _)| at + 1))
+            .collect();
         let reader = Reader {
             path: &path,
-            document: &document,
+            line_starts,
         };
         let root = document.root_element();
         if root.tag_name().name() != "robot" {
@@ -292,10 +312,11 @@ impl Urdf {
     ///
     /// [`RobotError::Invalid`] when there is no link, or more than one root.
     pub fn root(&self) -> Result<&str, RobotError> {
+        let children: HashSet<&str> = self.joints.iter().map(|j| j.child.as_str()).collect();
         let roots: Vec<&str> = self
             .links
             .iter()
-            .filter(|l| !self.joints.iter().any(|j| j.child == l.name))
+            .filter(|l| !children.contains(l.name.as_str()))
             .map(|l| l.name.as_str())
             .collect();
         match roots.as_slice() {
@@ -316,121 +337,35 @@ impl Urdf {
         }
     }
 
+    /// The joints below each link, by the link's name, in file order.
+    pub(crate) fn child_joints(&self) -> HashMap<&str, Vec<&Joint>> {
+        let mut below: HashMap<&str, Vec<&Joint>> = HashMap::with_capacity(self.links.len());
+        for joint in &self.joints {
+            below.entry(joint.parent.as_str()).or_default().push(joint);
+        }
+        below
+    }
+
     /// The folder the URDF is in (mesh paths resolve against it).
     #[must_use]
     pub fn folder(&self) -> &Path {
         self.path.parent().unwrap_or_else(|| Path::new(""))
     }
-
-    /// Refuses a robot whose links and joints are not one tree: no link, more than one
-    /// root, a link with two parents, or links cut off from the root by a cycle.
-    fn check_tree(&self) -> Result<(), RobotError> {
-        if self.links.is_empty() {
-            return Err(RobotError::Invalid {
-                path: self.path.clone(),
-                line: 1,
-                place: "robot".to_owned(),
-                message: "the robot has no <link>".to_owned(),
-            });
-        }
-        let root = self.root()?;
-        let mut reached = std::collections::BTreeSet::from([root]);
-        let mut frontier = vec![root];
-        while let Some(parent) = frontier.pop() {
-            for joint in self.joints.iter().filter(|j| j.parent == parent) {
-                if !reached.insert(joint.child.as_str()) {
-                    return Err(self.reached_twice(joint));
-                }
-                frontier.push(joint.child.as_str());
-            }
-        }
-        if let Some(link) = self
-            .links
-            .iter()
-            .find(|l| !reached.contains(l.name.as_str()))
-        {
-            return Err(RobotError::Invalid {
-                path: self.path.clone(),
-                line: link.line,
-                place: format!("link \"{}\"", link.name),
-                message: format!(
-                    "it is not connected to the root link \"{root}\": the joints above it form a cycle"
-                ),
-            });
-        }
-        Ok(())
-    }
-
-    /// The error for a link reached a second time, through `joint`, walking down from
-    /// the root.
-    pub(crate) fn reached_twice(&self, joint: &Joint) -> RobotError {
-        RobotError::Invalid {
-            path: self.path.clone(),
-            line: joint.line,
-            place: format!("joint \"{}\"", joint.name),
-            message: format!(
-                "link \"{}\" is reached twice: it has two parents, or the joints form a cycle",
-                joint.child
-            ),
-        }
-    }
-
-    fn check_names(&self) -> Result<(), RobotError> {
-        let invalid = |line: u32, place: String, message: String| RobotError::Invalid {
-            path: self.path.clone(),
-            line,
-            place,
-            message,
-        };
-        for (i, link) in self.links.iter().enumerate() {
-            if self.links[..i].iter().any(|l| l.name == link.name) {
-                return Err(invalid(
-                    link.line,
-                    format!("link \"{}\"", link.name),
-                    "a second link of this name".to_owned(),
-                ));
-            }
-        }
-        for (i, joint) in self.joints.iter().enumerate() {
-            let place = format!("joint \"{}\"", joint.name);
-            if self.joints[..i].iter().any(|j| j.name == joint.name) {
-                return Err(invalid(
-                    joint.line,
-                    place,
-                    "a second joint of this name".to_owned(),
-                ));
-            }
-            for (role, link) in [("parent", &joint.parent), ("child", &joint.child)] {
-                if self.link(link).is_none() {
-                    return Err(invalid(
-                        joint.line,
-                        place,
-                        format!("its {role} link \"{link}\" is not a link of the robot"),
-                    ));
-                }
-            }
-            if let Some(mimic) = &joint.mimic
-                && !self.joints.iter().any(|j| j.name == mimic.joint)
-            {
-                return Err(invalid(
-                    joint.line,
-                    place,
-                    format!("it mimics \"{}\", which is not a joint", mimic.joint),
-                ));
-            }
-        }
-        Ok(())
-    }
 }
 
-struct Reader<'a, 'input> {
+struct Reader<'a> {
     path: &'a Path,
-    document: &'a roxmltree::Document<'input>,
+    /// The byte offset where each line of the text starts: a node's line by binary
+    /// search (roxmltree's `text_pos_at` scans from the start, quadratic over a file).
+    line_starts: Vec<usize>,
 }
 
-impl Reader<'_, '_> {
+impl Reader<'_> {
+    /// The 1-based line of `node`'s start.
     fn line(&self, node: roxmltree::Node<'_, '_>) -> u32 {
-        self.document.text_pos_at(node.range().start).row
+        let at = node.range().start;
+        let line = self.line_starts.partition_point(|&start| start <= at);
+        u32::try_from(line).unwrap_or(u32::MAX)
     }
 
     fn invalid(

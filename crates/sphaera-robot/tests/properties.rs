@@ -178,38 +178,49 @@ fn mesh_link(mesh: sphaera_mesh::TriMesh) -> LinkGeometry {
 }
 
 /// Every awkward mesh (pinched vertices, tiny components, slivers, far-apart parts,
-/// spikes) as a link: spherized with coverage certified, or a clear error, never a panic.
+/// spikes) as a link: spherized with coverage certified (each is closed with area, which
+/// the minimax trees take), never a panic.
 #[test]
 fn awkward_meshes_as_links() {
     let options = SpherizeOptions::default().with_budget(SphereBudget::PerLink(12));
-    for awkward in sphaera_tests::awkward::all() {
-        match spherize_geometry(
+    let all = sphaera_tests::awkward::all();
+    for awkward in &all {
+        let robot = spherize_geometry(
             "r",
             vec![mesh_link(awkward.mesh.clone())],
             &options,
             &|_| {},
-        ) {
-            Ok(robot) => {
-                let link = &robot.links[0];
-                assert!(link.report.coverage_certified, "{}", awkward.name);
-                assert_eq!(link.report.coverage, 1.0, "{}", awkward.name);
-                assert!(link.report.worst_protrusion.is_finite());
-                for &p in awkward.mesh.positions() {
-                    assert!(
-                        link.spheres
-                            .iter()
-                            .any(|s| s.center.distance(p) <= s.radius * (1.0 + 1e-9)),
-                        "{}: vertex {p} uncovered",
-                        awkward.name
-                    );
-                }
-            }
-            Err(error) => {
-                let message = error.to_string();
-                assert!(message.contains("\"part\""), "{}: {message}", awkward.name);
-            }
+        )
+        .unwrap_or_else(|error| panic!("{}: {error}", awkward.name));
+        let link = &robot.links[0];
+        assert!(link.report.coverage_certified, "{}", awkward.name);
+        assert_eq!(link.report.coverage, 1.0, "{}", awkward.name);
+        assert!(link.report.worst_protrusion.is_finite());
+        assert!(
+            !link.spheres.is_empty() && link.spheres.len() <= 12,
+            "{}",
+            awkward.name
+        );
+        for &p in awkward.mesh.positions() {
+            assert!(
+                link.spheres
+                    .iter()
+                    .any(|s| s.center.distance(p) <= s.radius * (1.0 + 1e-9)),
+                "{}: vertex {p} uncovered",
+                awkward.name
+            );
         }
     }
+    assert!(all.len() >= 7);
+    // A link of no area is an error naming it, not spheres of nothing.
+    let flat = sphaera_mesh::TriMesh::new(
+        vec![DVec3::ZERO, DVec3::X, DVec3::new(2.0, 0.0, 0.0)],
+        vec![[0, 1, 2]],
+    )
+    .expect("a degenerate triangle is a mesh");
+    let error =
+        spherize_geometry("r", vec![mesh_link(flat)], &options, &|_| {}).expect_err("no area");
+    assert!(error.to_string().contains("\"part\""), "{error}");
 }
 
 /// A mesh scaled by a power of two gives the same spheres, scaled exactly.

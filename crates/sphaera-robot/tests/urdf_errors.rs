@@ -5,6 +5,7 @@
 
 use std::path::Path;
 
+use sphaera_io::FilePolicy;
 use sphaera_robot::{
     Geometry, GeometrySource, LinkGeometry, MeshResolver, RobotError, SphereBudget,
     SpherizeOptions, Urdf, spherize,
@@ -473,4 +474,160 @@ fn percent_escapes_in_mesh_uris_are_decoded() {
     );
     // A malformed escape is tried as written only.
     assert_eq!(resolver.candidates("file:///x%zz.obj").len(), 1);
+}
+
+/// A URDF naming a device, a folder or a named pipe as a link's mesh fails at once with
+/// the reason; with a root, a mesh (or the URDF) outside it is refused however it is named
+/// (`file://`, `..`, `package://`), and the ones inside are read.
+#[test]
+fn meshes_named_by_a_urdf_are_read_by_the_file_policy() {
+    let outer = tempfile::tempdir().expect("a folder");
+    let dir = outer.path().join("robot");
+    std::fs::create_dir_all(dir.join("meshes")).expect("mkdir");
+    std::fs::write(dir.join("meshes/box.obj"), box_obj(1.0)).expect("write");
+    std::fs::write(outer.path().join("secret.obj"), box_obj(1.0)).expect("write");
+    let started = std::time::Instant::now();
+    let refused = |filename: &str, policy: &FilePolicy| {
+        let path = dir.join("robot.urdf");
+        std::fs::write(&path, robot(&mesh_collision(filename, None))).expect("write");
+        let result = Urdf::read_with(&path, policy).and_then(|urdf| {
+            let resolver = MeshResolver::new(urdf.folder()).with_policy(policy.clone());
+            spherize(&urdf, &resolver, &options())
+        });
+        result.map(|_| ()).map_err(|e| e.to_string())
+    };
+    let open = FilePolicy::default();
+    #[cfg(unix)]
+    {
+        let message = refused("file:///dev/zero", &open).unwrap_err();
+        assert!(
+            message.contains("\"base\"") && message.contains("it is a device, not a regular file"),
+            "{message}"
+        );
+        let made = std::process::Command::new("mkfifo")
+            .arg(dir.join("meshes/pipe.stl"))
+            .status();
+        assert!(
+            made.is_ok_and(|s| s.success()),
+            "mkfifo is part of coreutils"
+        );
+        let message = refused("meshes/pipe.stl", &open).unwrap_err();
+        assert!(message.contains("a named pipe"), "{message}");
+    }
+    let message = refused("meshes", &open).unwrap_err();
+    assert!(message.contains("it is a folder"), "{message}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(10));
+
+    let root = FilePolicy::default().with_root(&dir);
+    let secret = outer.path().join("secret.obj");
+    for filename in [
+        format!("file://{}", secret.display()),
+        "../secret.obj".to_owned(),
+        "package://meshes/../../secret.obj".to_owned(),
+    ] {
+        let message = refused(&filename, &root).unwrap_err();
+        assert!(
+            message.contains("outside the allowed folder"),
+            "{filename}: {message}"
+        );
+    }
+    assert_eq!(refused("package://meshes/box.obj", &root), Ok(()));
+    assert_eq!(refused("meshes/box.obj", &root), Ok(()));
+    // The URDF itself must lie inside the root too.
+    std::fs::write(outer.path().join("outer.urdf"), robot("")).expect("write");
+    let error = Urdf::read_with(outer.path().join("outer.urdf"), &root).unwrap_err();
+    assert!(matches!(error, RobotError::ReadFile { .. }), "{error}");
+    assert!(
+        error.to_string().contains("outside the allowed folder"),
+        "{error}"
+    );
+}
+
+/// A chain of `n` links, each joint revolute about z and 1 cm up.
+fn chain_urdf(n: usize) -> String {
+    let mut text = String::from("<robot name=\"chain\">\n");
+    for i in 0..n {
+        text.push_str(&format!("<link name=\"l{i}\"/>\n"));
+    }
+    for i in 1..n {
+        text.push_str(&format!(
+            "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{}\"/><child link=\"l{i}\"/><origin xyz=\"0 0 0.01\"/><axis xyz=\"0 0 1\"/></joint>\n",
+            i - 1
+        ));
+    }
+    text.push_str("</robot>\n");
+    text
+}
+
+/// Checking and posing a URDF is linear in its links and joints: a 100,000-link chain
+/// parses, checks and poses in seconds even in the test profile (the release build takes
+/// a fraction of a second; a quadratic check took minutes). Its last link sits 1 km up.
+#[test]
+fn a_hundred_thousand_link_chain_is_checked_and_posed_in_linear_time() {
+    let n = 100_000;
+    let text = chain_urdf(n);
+    let started = std::time::Instant::now();
+    let urdf = Urdf::parse(&text, "chain.urdf").expect("a chain");
+    let poses = urdf
+        .link_poses(&std::collections::BTreeMap::new())
+        .expect("poses");
+    let seconds = started.elapsed().as_secs_f64();
+    assert_eq!(poses.len(), n);
+    let tip = poses[&format!("l{}", n - 1)].translation;
+    assert!((tip.z - 0.01 * (n - 1) as f64).abs() < 1e-6, "{tip}");
+    assert!(seconds < 20.0, "{seconds} s for {n} links");
+    // A cycle deep in a long chain is still found, and named.
+    let cyclic = text.replace(
+        "<parent link=\"l0\"/><child link=\"l1\"/>",
+        &format!("<parent link=\"l{}\"/><child link=\"l1\"/>", n - 1),
+    );
+    let error = Urdf::parse(&cyclic, "cyclic.urdf").expect_err("a cycle");
+    assert!(error.to_string().contains("root link"), "{error}");
+}
+
+/// A chain of mimics is followed to the joint that drives it; a cycle of mimics has no
+/// driver and is refused when the URDF is read.
+#[test]
+fn mimic_chains_are_followed_and_mimic_cycles_refused() {
+    let robot = |mimics: &str| {
+        format!(
+            r#"<robot name="r">
+      <link name="a"/><link name="b"/><link name="c"/><link name="d"/>
+      <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>{}</joint>
+      <joint name="j2" type="revolute"><parent link="b"/><child link="c"/><axis xyz="0 0 1"/>{}</joint>
+      <joint name="j3" type="revolute"><parent link="c"/><child link="d"/><axis xyz="0 0 1"/>{}</joint>
+    </robot>"#,
+            mimics.split('|').next().unwrap_or(""),
+            mimics.split('|').nth(1).unwrap_or(""),
+            mimics.split('|').nth(2).unwrap_or(""),
+        )
+    };
+    // j3 mimics j2 mimics j1: j2 = 2 j1 + 0.1, j3 = -1 j2 + 0.3.
+    let chained = robot(
+        r#"|<mimic joint="j1" multiplier="2" offset="0.1"/>|<mimic joint="j2" multiplier="-1" offset="0.3"/>"#,
+    );
+    let urdf = Urdf::parse(&chained, "r.urdf").expect("a chain of mimics");
+    let q1 = 0.4;
+    let poses = urdf
+        .link_poses(&std::collections::BTreeMap::from([("j1".to_owned(), q1)]))
+        .expect("poses");
+    let q2 = 2.0 * q1 + 0.1;
+    let q3 = -q2 + 0.3;
+    let angle = |name: &str| {
+        let x = poses[name].transform_vector3(glam::DVec3::X);
+        x.y.atan2(x.x)
+    };
+    assert!((angle("b") - q1).abs() < 1e-12);
+    assert!((angle("c") - (q1 + q2)).abs() < 1e-12);
+    assert!((angle("d") - (q1 + q2 + q3)).abs() < 1e-12);
+
+    let cyclic = robot(r#"<mimic joint="j3"/>|<mimic joint="j1"/>|<mimic joint="j2"/>"#);
+    let error = Urdf::parse(&cyclic, "r.urdf").expect_err("a cycle of mimics");
+    assert!(
+        error.to_string().contains("its mimics form a cycle"),
+        "{error}"
+    );
+    let own = robot(r#"<mimic joint="j1"/>"#);
+    let error = Urdf::parse(&own, "r.urdf").expect_err("a joint mimicking itself");
+    assert!(error.to_string().contains("joint \"j1\""), "{error}");
 }

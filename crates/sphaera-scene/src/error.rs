@@ -125,13 +125,13 @@ pub enum SceneError {
         /// The number of instances.
         count: usize,
     },
-    /// A scene file could not be read.
+    /// A scene file could not be read, or the file policy refuses it.
     #[error("cannot read the scene file {}: {source}", path.display())]
     ReadFile {
         /// The scene file.
         path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
+        /// Why: the operating system's error, or the policy's refusal.
+        source: Box<sphaera_io::IoError>,
     },
     /// A scene file is not valid JSON of the scene schema (an unknown key, a missing
     /// field, a wrong type); the message names the line and column.

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use glam::{DQuat, DVec3, EulerRot};
 use serde::Deserialize;
+use sphaera_io::FilePolicy;
 use sphaera_mesh::geometry::Similarity;
 
 use crate::{Camera, ModelOptions, ObjectModel, Scene, SceneError};
@@ -86,27 +87,77 @@ pub struct LoadedScene {
 #[derive(Clone, Debug)]
 pub struct SceneDescription {
     path: PathBuf,
+    policy: FilePolicy,
     file: SceneFile,
     poses: Vec<Similarity>,
     camera: Option<Camera>,
 }
 
 impl SceneDescription {
-    /// Reads and checks a scene file; reads no mesh.
+    /// Reads and checks a scene file; reads no mesh. The scene file and, later, its
+    /// meshes are read by the default [`FilePolicy`] (regular files only, each at most
+    /// [`DEFAULT_MAX_FILE_BYTES`](sphaera_io::DEFAULT_MAX_FILE_BYTES), anywhere): a
+    /// service reading scenes it did not write uses [`SceneDescription::read_with`] with a
+    /// root.
     ///
     /// # Errors
     ///
-    /// [`SceneError::ReadFile`] when the file cannot be read, [`SceneError::ParseFile`]
-    /// for malformed JSON, an unknown key or a wrong type (with the line and column),
-    /// [`SceneError::InvalidEntry`] for an instance naming an undefined mesh, a
-    /// non-finite or zero pose, both rotation forms, or an invalid camera.
+    /// [`SceneError::ReadFile`] when the file cannot be read or the policy refuses it,
+    /// [`SceneError::ParseFile`] for malformed JSON, an unknown key or a wrong type (with
+    /// the line and column), [`SceneError::InvalidEntry`] for an instance naming an
+    /// undefined mesh, a non-finite or zero pose, both rotation forms, or an invalid
+    /// camera.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, SceneError> {
+        Self::read_with(path, &FilePolicy::default())
+    }
+
+    /// [`SceneDescription::read`] by `policy`: the scene file and every mesh it names are
+    /// read only if the policy admits them (with a root, a mesh path may still be absolute
+    /// or climb with `..`, but must end inside the root once links are resolved).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_io::FilePolicy;
+    /// use sphaera_scene::{ModelOptions, SceneDescription};
+    ///
+    /// let folder = std::env::temp_dir().join(format!("sphaera-scene-policy-{}", std::process::id()));
+    /// std::fs::create_dir_all(&folder)?;
+    /// let scene = folder.join("scene.json");
+    /// std::fs::write(&scene, r#"{"meshes": {"zero": "/dev/zero"}, "instances": [{"mesh": "zero"}]}"#)?;
+    /// let policy = FilePolicy::default().with_root(&folder);
+    /// let description = SceneDescription::read_with(&scene, &policy)?;
+    /// let error = description.build(&ModelOptions::default()).unwrap_err();
+    /// assert!(error.to_string().contains("outside the allowed folder"), "{error}");
+    /// std::fs::remove_dir_all(&folder)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`SceneDescription::read`].
+    pub fn read_with(path: impl AsRef<Path>, policy: &FilePolicy) -> Result<Self, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| SceneError::ReadFile {
-            path: path.to_owned(),
-            source,
-        })?;
-        Self::parse(path, &text)
+        let text = policy
+            .read_to_string(path)
+            .map_err(|error| SceneError::ReadFile {
+                path: path.to_owned(),
+                source: Box::new(error),
+            })?;
+        Ok(Self::parse(path, &text)?.with_file_policy(policy.clone()))
+    }
+
+    /// The same description, its meshes read by `policy`.
+    #[must_use]
+    pub fn with_file_policy(mut self, policy: FilePolicy) -> Self {
+        self.policy = policy;
+        self
+    }
+
+    /// The policy the meshes are read by.
+    #[must_use]
+    pub fn file_policy(&self) -> &FilePolicy {
+        &self.policy
     }
 
     /// Checks the text of a scene file; `path` names it in errors and mesh paths are
@@ -166,6 +217,7 @@ impl SceneDescription {
             .map_err(|e| invalid("camera".to_owned(), e.to_string()))?;
         Ok(Self {
             path,
+            policy: FilePolicy::default(),
             file,
             poses,
             camera,
@@ -206,22 +258,24 @@ impl SceneDescription {
         names
     }
 
-    /// Reads every used mesh, builds its model (on every core with `parallel`), and
-    /// places the instances.
+    /// Reads every used mesh (by [`SceneDescription::file_policy`]), builds its model (on
+    /// every core with `parallel`), and places the instances.
     ///
     /// # Errors
     ///
     /// [`SceneError::InvalidEntry`] naming the mesh (`meshes.NAME`) and its file when it
-    /// cannot be read or its model cannot be built.
+    /// cannot be read, the policy refuses it, or its model cannot be built.
     pub fn build(&self, options: &ModelOptions) -> Result<LoadedScene, SceneError> {
         self.build_with(|name, path| {
-            let mesh = sphaera_io::load(path)?;
+            let mesh = sphaera_io::read_with(path, &self.policy)?.mesh;
             ObjectModel::build(name, mesh, options)
         })
     }
 
     /// As [`SceneDescription::build`], with the caller building each model from its name
-    /// and file (to cache models, report progress, or read them from elsewhere).
+    /// and file (to cache models, report progress, or read them from elsewhere). Only
+    /// files [`SceneDescription::file_policy`] admits reach `make`, which should read them
+    /// by that policy too (`sphaera_io::read_with`).
     ///
     /// # Errors
     ///
@@ -233,7 +287,10 @@ impl SceneDescription {
         let names = self.used_meshes();
         let make_one = |name: &&str| -> Result<Arc<ObjectModel>, SceneError> {
             let path = self.mesh_path(name).unwrap_or_default();
-            make(name, &path)
+            self.policy
+                .check_file(&path)
+                .map_err(SceneError::from)
+                .and_then(|_| make(name, &path))
                 .map(Arc::new)
                 .map_err(|e| SceneError::InvalidEntry {
                     path: self.path.clone(),

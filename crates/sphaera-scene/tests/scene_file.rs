@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use sphaera_io as io;
+use sphaera_io::FilePolicy;
 use sphaera_mesh::{DVec3, shapes};
 use sphaera_scene::{SceneDescription, SceneError, Tolerance};
 
@@ -258,5 +259,74 @@ fn malformed_json_and_missing_files_are_clear() {
     assert!(
         message.contains("meshes.sheet") && message.contains("inside"),
         "{message}"
+    );
+}
+
+/// A scene naming a device, a named pipe or a folder as a mesh fails at once with the
+/// reason (it used to read `/dev/zero` until memory ran out, and to wait on a pipe
+/// forever); with a root, a mesh outside it is refused however it is named (absolute,
+/// `..`, a link), and the scene file itself must lie inside.
+#[test]
+fn meshes_named_by_a_scene_are_read_by_the_file_policy() {
+    let dir = folder();
+    let started = std::time::Instant::now();
+    let build = |meshes: &str, policy: &FilePolicy| {
+        let path = write(
+            dir.path(),
+            &format!(r#"{{ "meshes": {{ "m": {meshes} }}, "instances": [ {{ "mesh": "m" }} ] }}"#),
+        );
+        SceneDescription::read_with(&path, policy)
+            .and_then(|d| d.build(&common::options()))
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    let refused = |meshes: &str, policy: &FilePolicy| build(meshes, policy).unwrap_err();
+    let open = FilePolicy::default();
+    #[cfg(unix)]
+    {
+        let message = refused(r#""/dev/zero""#, &open);
+        assert!(
+            message.contains("meshes.m") && message.contains("it is a device, not a regular file"),
+            "{message}"
+        );
+        let pipe = dir.path().join("pipe.obj");
+        let made = std::process::Command::new("mkfifo").arg(&pipe).status();
+        assert!(
+            made.is_ok_and(|s| s.success()),
+            "mkfifo is part of coreutils"
+        );
+        let message = refused(r#""pipe.obj""#, &open);
+        assert!(message.contains("a named pipe"), "{message}");
+    }
+    let message = refused(r#""meshes""#, &open);
+    assert!(message.contains("it is a folder"), "{message}");
+    assert!(started.elapsed() < std::time::Duration::from_secs(10));
+
+    // Confined: the ball inside is read; the same ball outside is refused.
+    let outside = folder();
+    io::write_obj(
+        outside.path().join("ball.obj"),
+        &shapes::sphere(1.0, 16).unwrap(),
+    )
+    .unwrap();
+    let root = FilePolicy::default().with_root(dir.path());
+    let absolute = format!("{:?}", outside.path().join("ball.obj"));
+    let outside_name = outside.path().file_name().unwrap().to_string_lossy();
+    let climbing = format!(r#""meshes/../../{outside_name}/ball.obj""#);
+    for named in [absolute.as_str(), climbing.as_str()] {
+        let message = refused(named, &root);
+        assert!(
+            message.contains("outside the allowed folder"),
+            "{named}: {message}"
+        );
+    }
+    assert_eq!(build(r#""meshes/ball.obj""#, &root), Ok(()));
+    // The scene file itself too.
+    let elsewhere = write(outside.path(), r#"{ "meshes": {}, "instances": [] }"#);
+    let error = SceneDescription::read_with(&elsewhere, &root).unwrap_err();
+    assert!(matches!(error, SceneError::ReadFile { .. }), "{error}");
+    assert!(
+        error.to_string().contains("outside the allowed folder"),
+        "{error}"
     );
 }

@@ -222,8 +222,7 @@ fn random_points(mesh: &TriMesh, n: usize, seed: u64) -> Vec<DVec3> {
 /// The points of a text file: one `x y z` per line, separated by spaces or commas; blank
 /// lines and `#` comments are skipped.
 fn read_points(path: &Path) -> Result<Vec<DVec3>> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read the points file {}", path.display()))?;
+    let text = crate::input::read_text(path, "the points file")?;
     parse_points(&text).with_context(|| format!("in {}", path.display()))
 }
 

@@ -114,8 +114,7 @@ pub fn run(args: &HalArgs) -> Result<()> {
         check_target(path)?;
     }
     let started = Instant::now();
-    let text = std::fs::read_to_string(&args.polygon)
-        .with_context(|| format!("cannot read {}", args.polygon.display()))?;
+    let text = crate::input::read_text(&args.polygon, "the polygon")?;
     let polyline = Polyline2::parse(&text, !args.open)
         .with_context(|| format!("{} is not a polygon", args.polygon.display()))?;
     let load = started.elapsed().as_secs_f64();
@@ -229,7 +228,7 @@ fn locate3(tree: &HalTree3, path: &Path) -> Result<Contains> {
 }
 
 fn read_points(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+    crate::input::read_text(path, "the points")
 }
 
 fn contains_report(path: &Path, answers: &[Containment], seconds: f64) -> Contains {

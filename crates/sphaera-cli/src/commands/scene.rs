@@ -299,8 +299,9 @@ fn load_file(path: &Path, options: &ModelOptions, quiet: bool) -> Result<LoadedS
         &format!("building {used} object models (base sphere-tree and hierarchy)"),
         used as u64,
     );
+    let policy = description.file_policy();
     let loaded = description.build_with(|name, mesh_path| {
-        let mesh = sphaera::mesh::io::load(mesh_path)?;
+        let mesh = sphaera::io::read_with(mesh_path, policy)?.mesh;
         let model = ObjectModel::build(name, mesh, options);
         bar.inc(1);
         model

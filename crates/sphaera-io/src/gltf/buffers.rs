@@ -5,7 +5,6 @@
 //! stored in buffers) are missing still loads its meshes.
 
 use std::borrow::Cow;
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use ::gltf::json;
@@ -13,22 +12,26 @@ use ::gltf::json;
 use super::super::parse_error::token_text;
 use super::super::{GltfObject, Location, ParseReason, percent_decode};
 use super::error;
-use crate::IoError;
+use crate::{FilePolicy, IoError};
 
 /// The buffers of one document, loaded on demand.
 pub(super) struct Buffers<'a> {
     /// The binary chunk of a `.glb`, the data of a first buffer without `uri`.
     bin: Option<&'a [u8]>,
-    /// The folder of the glTF file, against which buffer files are resolved; `None` when
-    /// reading from bytes.
-    base: Option<&'a Path>,
+    /// The folder of the glTF file, against which buffer files are resolved and to which
+    /// they are confined, and the policy they are read by; `None` when reading from bytes.
+    base: Option<(&'a Path, &'a FilePolicy)>,
     /// The data of each buffer, once loaded.
     loaded: Vec<Option<Cow<'a, [u8]>>>,
 }
 
 impl<'a> Buffers<'a> {
     /// No buffer loaded yet.
-    pub(super) fn new(root: &json::Root, bin: Option<&'a [u8]>, base: Option<&'a Path>) -> Self {
+    pub(super) fn new(
+        root: &json::Root,
+        bin: Option<&'a [u8]>,
+        base: Option<(&'a Path, &'a FilePolicy)>,
+    ) -> Self {
         Self {
             bin,
             base,
@@ -93,8 +96,10 @@ impl<'a> Buffers<'a> {
     }
 
     /// The bytes a buffer URI names: a `data:` URI decoded, or the first `byte_length`
-    /// bytes of a file read (a regular file: a device such as `/dev/zero` or a folder is
-    /// refused, and a file longer than its buffer is not read past it).
+    /// bytes of a file read by the policy (a regular file inside the glTF file's folder:
+    /// an absolute path, a path climbing out with `..` or a link leading out, a device
+    /// such as `/dev/zero` or a folder is refused, and a file longer than its buffer is not
+    /// read past it).
     fn resolve(&self, uri: &str, byte_length: u64) -> Result<Cow<'a, [u8]>, ParseReason> {
         let invalid = |problem| ParseReason::InvalidUri {
             uri: token_text(uri.as_bytes()),
@@ -116,7 +121,7 @@ impl<'a> Buffers<'a> {
                 "only `data:` URIs and paths relative to the glTF file are supported",
             ));
         }
-        let Some(base) = self.base else {
+        let Some((base, policy)) = self.base else {
             return Err(ParseReason::ExternalBuffer {
                 uri: token_text(uri.as_bytes()),
             });
@@ -124,23 +129,41 @@ impl<'a> Buffers<'a> {
         let decoded = percent_decode(uri).ok_or_else(|| invalid("bad percent-encoding"))?;
         let relative =
             String::from_utf8(decoded).map_err(|_| invalid("the path is not UTF-8 text"))?;
-        let path: PathBuf = base.join(relative);
-        let failed = |source: std::io::Error| ParseReason::BufferFile {
-            uri: token_text(uri.as_bytes()),
-            path: path.clone(),
-            kind: source.kind(),
-        };
-        // Looked at before opening: opening a named pipe would wait for a writer.
-        if !std::fs::metadata(&path).map_err(failed)?.is_file() {
-            return Err(invalid("the path names a folder or a device, not a file"));
+        if is_absolute(&relative) {
+            return Err(invalid(
+                "an absolute path: glTF buffer files are named relative to the glTF file",
+            ));
         }
-        let file = std::fs::File::open(&path).map_err(failed)?;
-        let mut data = Vec::new();
-        file.take(byte_length)
-            .read_to_end(&mut data)
-            .map_err(failed)?;
+        let path: PathBuf = base.join(relative);
+        let data =
+            policy
+                .read_within(&path, Some(base), byte_length)
+                .map_err(|error| match error {
+                    IoError::Refused { refusal, .. } => ParseReason::BufferRefused {
+                        uri: token_text(uri.as_bytes()),
+                        path: path.clone(),
+                        refusal: Box::new(refusal),
+                    },
+                    IoError::Io { source, .. } => ParseReason::BufferFile {
+                        uri: token_text(uri.as_bytes()),
+                        path: path.clone(),
+                        kind: source.kind(),
+                    },
+                    _ => ParseReason::BufferFile {
+                        uri: token_text(uri.as_bytes()),
+                        path: path.clone(),
+                        kind: std::io::ErrorKind::Other,
+                    },
+                })?;
         Ok(Cow::Owned(data))
     }
+}
+
+/// Whether a decoded URI path is absolute: `/…`, `\\…`, or a Windows drive (`C:/…`).
+fn is_absolute(path: &str) -> bool {
+    let bytes = path.as_bytes();
+    path.starts_with(['/', '\\'])
+        || (bytes.len() >= 2 && bytes[0].is_ascii_alphabetic() && bytes[1] == b':')
 }
 
 /// Whether a URI starts with a scheme (`http:`, `file:`...) of two or more letters; a

@@ -83,8 +83,9 @@ fn buffer_files_are_regular_files_read_up_to_their_length() {
     assert_eq!(
         message,
         format!(
-            "malformed glTF data in {} at buffer 0: invalid buffer uri `folder.bin`: the path names a folder or a device, not a file",
-            gltf.display()
+            "malformed glTF data in {} at buffer 0: refused to read buffer `folder.bin` ({}): it is a folder, not a regular file",
+            gltf.display(),
+            dir.path().join("folder.bin").display()
         )
     );
     // A named pipe is refused before it is opened (opening it would wait for a writer).
@@ -92,14 +93,16 @@ fn buffer_files_are_regular_files_read_up_to_their_length() {
     {
         let pipe = dir.path().join("pipe.bin");
         let made = std::process::Command::new("mkfifo").arg(&pipe).status();
-        if made.is_ok_and(|s| s.success()) {
-            std::fs::write(&gltf, writer.gltf_with_file("pipe.bin")).unwrap();
-            let message = read(&gltf).unwrap_err().to_string();
-            assert!(
-                message.contains("a folder or a device, not a file"),
-                "{message}"
-            );
-        }
+        assert!(
+            made.is_ok_and(|s| s.success()),
+            "mkfifo is part of coreutils"
+        );
+        std::fs::write(&gltf, writer.gltf_with_file("pipe.bin")).unwrap();
+        let message = read(&gltf).unwrap_err().to_string();
+        assert!(
+            message.contains("it is a named pipe, not a regular file"),
+            "{message}"
+        );
     }
     let mut longer = writer.bin.clone();
     longer.extend_from_slice(&[0xff; 64]);
@@ -107,6 +110,76 @@ fn buffer_files_are_regular_files_read_up_to_their_length() {
     std::fs::write(&gltf, writer.gltf_with_file("longer.bin")).unwrap();
     let mesh = read(&gltf).unwrap();
     assert_eq!(mesh, read_from_bytes(&writer.glb(), Format::Gltf).unwrap());
+}
+
+/// Buffer files are relative to the glTF file and may not leave its folder: an absolute
+/// path, a `..` climbing out, a link leading out and a device are refused with the reason,
+/// whatever the file outside holds; a file in a subfolder, or a link within the folder,
+/// is read.
+#[test]
+fn buffer_files_stay_in_the_assets_folder() {
+    let writer = triangle_in_node(json!({}));
+    let outer = tempfile::tempdir().unwrap();
+    let asset = outer.path().join("asset");
+    std::fs::create_dir_all(asset.join("data")).unwrap();
+    // A readable file outside the asset's folder, of the right size to pass as the buffer.
+    let secret = outer.path().join("secret.bin");
+    std::fs::write(&secret, &writer.bin).unwrap();
+    std::fs::write(asset.join("data").join("inside.bin"), &writer.bin).unwrap();
+    let gltf = asset.join("scene.gltf");
+    let read_uri = |uri: &str| {
+        std::fs::write(&gltf, writer.gltf_with_file(uri)).unwrap();
+        read(&gltf)
+    };
+    let refused = |uri: &str, expected: &str| {
+        let error = read_uri(uri).expect_err(uri);
+        let message = error.to_string();
+        assert!(message.contains(expected), "{uri}: {message}");
+    };
+    refused(
+        &secret.display().to_string(),
+        "an absolute path: glTF buffer files are named relative to the glTF file",
+    );
+    refused("../secret.bin", "outside the allowed folder");
+    refused("data/../../secret.bin", "outside the allowed folder");
+    refused("%2E%2E/secret.bin", "outside the allowed folder");
+    refused("/dev/zero", "an absolute path");
+    #[cfg(unix)]
+    {
+        std::os::unix::fs::symlink(&secret, asset.join("link.bin")).unwrap();
+        refused("link.bin", "outside the allowed folder");
+        std::os::unix::fs::symlink(asset.join("data").join("inside.bin"), asset.join("in.bin"))
+            .unwrap();
+        assert!(read_uri("in.bin").is_ok());
+        std::os::unix::fs::symlink("/dev/zero", asset.join("zero.bin")).unwrap();
+        refused("zero.bin", "outside the allowed folder");
+    }
+    let expected = read_from_bytes(&writer.glb(), Format::Gltf).unwrap();
+    assert_eq!(read_uri("data/inside.bin").unwrap(), expected);
+    assert_eq!(read_uri("./data/../data/inside.bin").unwrap(), expected);
+    // The policy's cap applies to buffer files too (to the file, not to the buffer's part).
+    let mut big = writer.bin.clone();
+    big.resize(1 << 20, 0);
+    std::fs::write(asset.join("big.bin"), &big).unwrap();
+    std::fs::write(&gltf, writer.gltf_with_file("big.bin")).unwrap();
+    let capped = crate::FilePolicy::default().with_max_bytes(1 << 16);
+    let error = crate::read_with(&gltf, &capped).unwrap_err();
+    assert!(
+        matches!(
+            &error,
+            IoError::Parse {
+                reason: ParseReason::BufferRefused { refusal, .. },
+                ..
+            } if **refusal == crate::FileRefusal::TooLarge { bytes: 1_048_576, cap: 65_536 }
+        ),
+        "{error}"
+    );
+    assert_eq!(
+        crate::read_with(&gltf, &crate::FilePolicy::default()).unwrap(),
+        expected
+    );
+    let message = error.to_string();
+    assert!(message.contains("more than the cap"), "{message}");
 }
 
 #[test]

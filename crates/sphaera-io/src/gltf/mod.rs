@@ -56,7 +56,7 @@ use glam::{DMat3, DMat4, DQuat, DVec3, DVec4};
 
 use super::builder::{MeshBuilder, finite_point};
 use super::{Format, GltfObject, LoadedMesh, Location, ParseReason};
-use crate::IoError;
+use crate::{FilePolicy, IoError};
 use buffers::Buffers;
 use sphaera_mesh::TriMesh;
 
@@ -84,7 +84,10 @@ const APPEARANCE_EXTENSIONS: &[&str] = &[
 
 /// Reads glTF data; buffer files are resolved against `base` (the glTF file's folder), or
 /// refused when `base` is `None`.
-pub(crate) fn read_gltf(bytes: &[u8], base: Option<&Path>) -> Result<LoadedMesh, IoError> {
+pub(crate) fn read_gltf(
+    bytes: &[u8],
+    base: Option<(&Path, &FilePolicy)>,
+) -> Result<LoadedMesh, IoError> {
     let container = container::split(bytes)?;
     let root = container::parse_json(container.json)?;
     check_document(&root)?;

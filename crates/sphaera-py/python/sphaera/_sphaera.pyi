@@ -158,7 +158,11 @@ class ToleranceUnreachableError(ValueError):
     levels: int
     """Levels built."""
 
-def load(path: Union[str, os.PathLike[str]]) -> Mesh: ...
+def load(
+    path: Union[str, os.PathLike[str]],
+    root: Optional[Union[str, os.PathLike[str]]] = None,
+    max_bytes: Optional[int] = None,
+) -> Mesh: ...
 def simplify(
     mesh: Mesh, ratio: Optional[float] = None, max_error: Optional[Length] = None
 ) -> Simplified: ...
@@ -203,4 +207,6 @@ def urdf(
     per_link: Optional[dict[str, int]] = None,
     visual: bool = False,
     packages: Optional[dict[str, Union[str, os.PathLike[str]]]] = None,
+    root: Optional[Union[str, os.PathLike[str]]] = None,
+    max_file_bytes: Optional[int] = None,
 ) -> dict[str, Any]: ...

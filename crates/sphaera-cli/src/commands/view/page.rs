@@ -189,9 +189,7 @@ pub fn page(contents: &Contents<'_>) -> String {
         "distance": distance,
         "labels": labels,
     });
-    // `</` cannot appear in JSON's output except inside strings; escape it so that the
-    // data cannot close its script element.
-    let data = data.to_string().replace("</", "<\\/");
+    let data = script_json(&data.to_string());
     fill(
         TEMPLATE,
         &[
@@ -225,8 +223,60 @@ fn fill(template: &str, values: &[(&str, &str)]) -> String {
     out
 }
 
+/// `text` as HTML text or a quoted attribute value.
 fn html_escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+        .replace('"', "&quot;")
+        .replace('\'', "&#39;")
+}
+
+/// JSON text made safe as the data of a `<script type="application/json">` element: `<`,
+/// `>` and `&` only occur inside JSON strings, where `\u003c`, `\u003e` and `\u0026` mean
+/// the same, so no `</script>`, `<!--` or `<script` can close the element or switch the
+/// HTML parser into its escaped states (which would swallow the page's own script); the
+/// line and paragraph separators, legal in JSON strings but not in older JavaScript, are
+/// escaped too. `JSON.parse` gives back the same value.
+pub(crate) fn script_json(json: &str) -> String {
+    let mut out = String::with_capacity(json.len());
+    for c in json.chars() {
+        match c {
+            '<' => out.push_str("\\u003c"),
+            '>' => out.push_str("\\u003e"),
+            '&' => out.push_str("\\u0026"),
+            '\u{2028}' => out.push_str("\\u2028"),
+            '\u{2029}' => out.push_str("\\u2029"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{html_escape, script_json};
+
+    /// Hostile names survive the round trip through a page's script data, and leave no
+    /// character that HTML's script-data states react to.
+    #[test]
+    fn script_data_holds_any_name_and_no_markup() {
+        for name in [
+            "x</script><script>alert(1)</script>",
+            "x<!--<script>y.obj",
+            "\"quoted\" & 'single' > <",
+            "line\nbreak\r\n\ttab \u{2028}\u{2029}",
+            "back\\slash \\u003c \\</script>",
+            "\u{fffd}not utf-8\u{fffd}.obj",
+        ] {
+            let json = serde_json::json!({ "name": name }).to_string();
+            let safe = script_json(&json);
+            for bad in ['<', '>', '&', '\u{2028}', '\u{2029}'] {
+                assert!(!safe.contains(bad), "{safe}");
+            }
+            let back: serde_json::Value = serde_json::from_str(&safe).unwrap();
+            assert_eq!(back["name"], name);
+            assert!(!html_escape(name).contains(['<', '>', '"', '\'']));
+        }
+    }
 }

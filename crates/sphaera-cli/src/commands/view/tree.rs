@@ -73,8 +73,7 @@ impl Levels {
 
 /// The levels of a tree file, as cuts: JSON (`sphaera spheretree -o tree.json`) or `.sph`.
 pub fn read_tree(path: &Path) -> Result<Levels> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read the tree {}", path.display()))?;
+    let text = crate::input::read_text(path, "the tree")?;
     let levels = if TreeFormat::from_path(path) == Some(TreeFormat::Sph) {
         let file = read_sph(&text, DVec3::ZERO)
             .with_context(|| format!("{}: not a valid .sph file", path.display()))?;
