@@ -378,10 +378,12 @@ pub fn spherized_urdf(urdf: &Urdf, robot: &RobotSpheres) -> Result<String, Robot
     let by_name: std::collections::HashMap<&str, &crate::urdf::Link> =
         urdf.links.iter().map(|l| (l.name.as_str(), l)).collect();
     for spheres in &robot.links {
-        let link = by_name.get(spheres.link.as_str()).ok_or_else(|| RobotError::Write {
-            path: urdf.path.clone(),
-            message: format!("link \"{}\" is not in the URDF", spheres.link),
-        })?;
+        let link = by_name
+            .get(spheres.link.as_str())
+            .ok_or_else(|| RobotError::Write {
+                path: urdf.path.clone(),
+                message: format!("link \"{}\" is not in the URDF", spheres.link),
+            })?;
         let indent = |at: usize| -> String {
             let line_start = text[..at].rfind('\n').map_or(0, |i| i + 1);
             text[line_start..at]

@@ -48,7 +48,11 @@ pub struct LinkReport {
     /// The fraction of surface samples inside a sphere (1: certified for every point of
     /// the surface, not only the samples).
     pub coverage: f64,
-    /// Whether coverage of every point of the surface is certified.
+    /// Whether coverage of every point of the surface is certified: on the meshes by the
+    /// sphere-tree's coverage certificate (every triangle piece inside one sphere); on a
+    /// primitive by its layout's construction (each sphere circumscribes
+    /// a cell of a tiling of the primitive's surface), checked on 500 points spread over
+    /// the surface (a point left out makes this `false`).
     pub coverage_certified: bool,
     /// Seconds to spherize and evaluate the link.
     pub seconds: f64,
