@@ -28,6 +28,9 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(512)))]
 
     /// Any two seen points of a sphere `error` apart land at most `projected_error` apart.
+    /// Every case checks a displacement: the point is placed where the camera sees it
+    /// (within half the image's corner angle, deep enough that a move of `error` stays
+    /// in view and beyond the near plane), and the sphere around it anywhere.
     #[test]
     fn the_pixel_bound_holds_for_any_displacement(
         eye in prop::array::uniform3(-10.0..10.0f64),
@@ -35,7 +38,9 @@ proptest! {
         fov in 10.0..150.0f64,
         width in 1u32..4000,
         height in 1u32..3000,
-        center in prop::array::uniform3(-20.0..20.0f64),
+        off_axis in 0.0..1.0f64,
+        azimuth in 0.0..std::f64::consts::TAU,
+        farther in 0.0..30.0f64,
         radius in 0.01..5.0f64,
         inside in prop::array::uniform3(-1.0..1.0f64),
         direction in prop::array::uniform3(-1.0..1.0f64),
@@ -44,21 +49,48 @@ proptest! {
         let eye = DVec3::from_array(eye);
         let camera = Camera::perspective(eye, eye + unit(DVec3::from_array(look)), fov, width, height)
             .expect("a camera");
+        let half = 0.5 * camera.half_diagonal_angle();
+        let (right, up) = camera.forward().any_orthonormal_pair();
+        let angle = off_axis * half;
+        let ray = camera.forward() * angle.cos()
+            + (right * azimuth.cos() + up * azimuth.sin()) * angle.sin();
+        // Within `half` of the axis, a move of `error` turns the ray by at most
+        // asin(error / distance) ≤ half, and lowers the depth by at most `error`.
+        let distance = (camera.near() + error) / half.cos() + error / half.sin() + farther;
+        let p = eye + ray * distance;
+        let q = p + unit(DVec3::from_array(direction)) * error;
+        prop_assert!(seen(&camera, p) && seen(&camera, q), "{p} {q}");
+        let sphere = Sphere::new(p - DVec3::from_array(inside).clamp_length_max(1.0) * radius, radius);
+        let bound = camera.projected_error(&sphere, error);
+        prop_assert!(bound.is_some(), "a seen point's sphere said unseen");
+        let bound = bound.unwrap_or_default();
+        let (pp, _) = camera.project(p).expect("in front");
+        let (qq, _) = camera.project(q).expect("in front");
+        prop_assert!(
+            pp.distance(qq) <= bound * (1.0 + 1e-9),
+            "moved {} px, bound {bound}", pp.distance(qq)
+        );
+    }
+
+    /// An unseen sphere is said unseen only when no point of it is seen: points of spheres
+    /// anywhere, including behind the camera.
+    #[test]
+    fn a_sphere_said_unseen_has_no_seen_point(
+        eye in prop::array::uniform3(-10.0..10.0f64),
+        look in prop::array::uniform3(-1.0..1.0f64),
+        fov in 10.0..150.0f64,
+        center in prop::array::uniform3(-20.0..20.0f64),
+        radius in 0.01..5.0f64,
+        inside in prop::array::uniform3(-1.0..1.0f64),
+        error in 1e-4..0.5f64,
+    ) {
+        let eye = DVec3::from_array(eye);
+        let camera = Camera::perspective(eye, eye + unit(DVec3::from_array(look)), fov, 640, 480)
+            .expect("a camera");
         let sphere = Sphere::new(DVec3::from_array(center), radius);
         let p = sphere.center + DVec3::from_array(inside).clamp_length_max(1.0) * radius;
-        let q = p + unit(DVec3::from_array(direction)) * error;
-        match camera.projected_error(&sphere, error) {
-            None => prop_assert!(!seen(&camera, p), "a seen point in a sphere said unseen"),
-            Some(bound) => {
-                if seen(&camera, p) && seen(&camera, q) {
-                    let (pp, _) = camera.project(p).expect("in front");
-                    let (qq, _) = camera.project(q).expect("in front");
-                    prop_assert!(
-                        pp.distance(qq) <= bound * (1.0 + 1e-9),
-                        "moved {} px, bound {bound}", pp.distance(qq)
-                    );
-                }
-            }
+        if camera.projected_error(&sphere, error).is_none() {
+            prop_assert!(!seen(&camera, p), "a seen point in a sphere said unseen");
         }
     }
 
