@@ -13,6 +13,7 @@
 //! | `medial_vs_delaunay.rs` | the medial approximation's Delaunay `validate` after every step, its Voronoi spheres empty by brute force, its sphere errors against sweep's distances |
 //! | `delaunay_fuzz_replay.rs` | the Delaunay fuzz body ([`delaunay_fuzz`]) on proptest's bytes |
 //! | `facade.rs` | the `sphaera` facade used as a user writes it: a broken re-export fails to compile |
+//! | `regions_reference.rs` | [`regions`] against answers known in closed form: rectangles and boxes by their coordinates, a self-crossing star, boxes meeting by their intervals |
 //! | `hausdorff_sampling.rs`, `geometry_real_meshes.rs`, `winding_real_meshes.rs`, `data_topology.rs`, `fixtures.rs` | `sphaera-mesh` and this crate's fixtures against parry3d, brute force and the data README |
 //!
 //! # The helpers
@@ -27,6 +28,7 @@
 //! | [`random`] | [`SplitMix64`] and the MMIX [`random::Lcg64`], each caller's mapping of words to numbers named | unit tests of mesh (indexed heap), simplify (edge radius, quadric, queue, shared fan) and sweep (queue, polyline hierarchy, Hausdorff bounds); the sweep and sphere-tree integration tests; `sphaera-eval`'s query sets |
 //! | [`pattern_search`] | the grid-then-pattern search over a triangle | [`hausdorff`]'s refinement; simplify's edge-radius unit tests |
 //! | [`point_sets`] | reproducible and degenerate point sets for Delaunay codes | medial's unit tests (sample grid), integration tests, bench and example; `sphaera-eval`'s Delaunay bench |
+//! | [`regions`] | where a point lies in a closed outline or mesh, and whether two outlines or solids meet, by routes independent of `sphaera-hal` (winding numbers with exact signs, parry3d's intersection test) | HAL's tests and the CLI's `hal` tests |
 //! | [`delaunay_fuzz`] | the body of the `delaunay` fuzz target | `fuzz/` (by path) and `delaunay_fuzz_replay.rs` |
 //!
 //! # Which helper may use which crate
@@ -39,13 +41,13 @@
 //!
 //! - [`random`], [`pattern_search`] and [`point_sets`] take and return only numbers and
 //!   glam's `DVec3` (one glam for everyone): any unit test may use them;
-//! - [`hausdorff`], [`brute`], [`awkward`] and [`animal`] take or return `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
+//! - [`hausdorff`], [`brute`], [`awkward`], [`animal`] and [`regions`] take or return `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
 //!   `sphaera-medial`: they serve integration tests, benches, experiments and the fuzz
 //!   target only.
 //!
 //! The normal dependencies are what the helpers need and no more: `sphaera-mesh`,
 //! `parry3d-f64` and `rayon` ([`hausdorff`]), `rand` and `rand_chacha` ([`point_sets`]),
-//! `sphaera-medial` and `robust` ([`delaunay_fuzz`]). The crates the tests check against
+//! `sphaera-medial` and `robust` ([`delaunay_fuzz`]; `robust` and parry also [`regions`]). The crates the tests check against
 //! each other (`sphaera-simplify`, `sphaera-sweep`, `sphaera-spheretree`, the facade)
 //! are dev-dependencies.
 //!
@@ -67,6 +69,7 @@ pub mod input_fuzz;
 pub mod pattern_search;
 pub mod point_sets;
 pub mod random;
+pub mod regions;
 
 pub use hausdorff::{ReferenceHausdorff, reference_hausdorff};
 pub use random::SplitMix64;

@@ -5,6 +5,21 @@
 use glam::DVec2;
 use proptest::prelude::*;
 use sphaera_hal::{HalTree2, Polyline2, intersects_brute, segments_intersect};
+use sphaera_tests::regions;
+
+/// Whether the outlines meet, by the reference outside this crate
+/// (`sphaera_tests::regions`: its own exact segment test and a winding number); the
+/// crate's own [`intersects_brute`], a documented reference users call, is checked
+/// against it too.
+fn reference(a: &Polyline2, b: &Polyline2) -> bool {
+    let expected = regions::outlines_meet(a.points(), a.is_closed(), b.points(), b.is_closed());
+    assert_eq!(
+        intersects_brute(a, b),
+        expected,
+        "intersects_brute: {a:?} against {b:?}"
+    );
+    expected
+}
 
 fn outline(points: &[(f64, f64)], closed: bool) -> Polyline2 {
     let points = points.iter().map(|&(x, y)| DVec2::new(x, y)).collect();
@@ -17,7 +32,7 @@ fn outline(points: &[(f64, f64)], closed: bool) -> Polyline2 {
 
 fn both(a: &Polyline2, b: &Polyline2) -> bool {
     let (ta, tb) = (HalTree2::build(a).unwrap(), HalTree2::build(b).unwrap());
-    let expected = intersects_brute(a, b);
+    let expected = reference(a, b);
     assert_eq!(ta.intersects(&tb), expected, "{a:?} against {b:?}");
     assert_eq!(tb.intersects(&ta), expected, "symmetry");
     expected
@@ -90,6 +105,35 @@ fn nested_identical_touching_and_apart() {
     ));
 }
 
+/// The crate's segment test against the reference's on every pair of segments with ends
+/// on a 3 × 3 grid (collinear overlaps, shared ends, degenerate segments included), and
+/// on the same pairs rotated off the axes (no longer exact, so the two must still agree).
+#[test]
+fn segment_test_equals_the_reference_on_a_grid() {
+    let grid: Vec<DVec2> = (0..9)
+        .map(|i| DVec2::new(f64::from(i % 3), f64::from(i / 3)))
+        .collect();
+    let mut outcomes = [0_usize; 2];
+    for &a in &grid {
+        for &b in &grid {
+            for &c in &grid {
+                for &d in &grid {
+                    for map in [
+                        |p: DVec2| p,
+                        |p: DVec2| DVec2::from_angle(0.3).rotate(p) * 7.1,
+                    ] {
+                        let [a, b, c, d] = [a, b, c, d].map(map);
+                        let expected = regions::segments_meet(a, b, c, d);
+                        assert_eq!(segments_intersect(a, b, c, d), expected, "{a} {b} {c} {d}");
+                        outcomes[usize::from(expected)] += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(outcomes[0] > 1000 && outcomes[1] > 1000, "{outcomes:?}");
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(96)))]
 
@@ -155,7 +199,7 @@ proptest! {
         let (ta, tb) = (HalTree2::build(&first).unwrap(), HalTree2::build(&second).unwrap());
         prop_assert_eq!(
             ta.intersects_placed(&tb, placement).unwrap(),
-            intersects_brute(&first, &mapped)
+            reference(&first, &mapped)
         );
     }
 }

@@ -228,12 +228,15 @@ fn adaptive_approximations_shrink_with_the_tolerance_and_torus_is_refused() {
     ));
 }
 
-/// Point inclusion equals brute force (the same segments, exact predicates) and, away
-/// from the surface, the winding number; vertices and face centres are on the boundary.
+/// Point inclusion equals the reference outside this crate (an exact-sign generalised
+/// winding number and exact on-face tests, `sphaera_tests::regions`), and so does the
+/// crate's own `contains3_brute`; away from the surface, also the certified winding
+/// number of `sphaera-query`; vertices are on the boundary.
 #[test]
 fn point_inclusion_equals_brute_force_and_the_winding_number() {
     use sphaera_hal::{Containment, contains3_brute};
     use sphaera_tests::random::SplitMix64;
+    use sphaera_tests::regions::{self, Side};
     let mut rng = SplitMix64::new(31);
     for (name, mesh) in meshes() {
         let tree = HalTree3::build(&mesh).unwrap();
@@ -257,7 +260,17 @@ fn point_inclusion_equals_brute_force_and_the_winding_number() {
         }
         for (k, &x) in queries.iter().enumerate() {
             let answer = tree.contains(x);
-            assert_eq!(answer, contains3_brute(&mesh, x), "{name}: {x}");
+            let expected = match regions::locate_in_solid(&mesh, x) {
+                Side::Inside => Containment::Inside,
+                Side::Boundary => Containment::Boundary,
+                Side::Outside => Containment::Outside,
+            };
+            assert_eq!(answer, expected, "{name}: {x}");
+            assert_eq!(
+                contains3_brute(&mesh, x),
+                expected,
+                "{name}: brute force at {x}"
+            );
             if k < 300 {
                 let near = surface.closest(x).unwrap().distance < 1e-6;
                 if !near {
@@ -281,7 +294,9 @@ fn point_inclusion_equals_brute_force_and_the_winding_number() {
     }
 }
 
-/// Intersection of two placed trees equals brute force on the mapped mesh: apart,
+/// Intersection of two placed trees equals the reference outside this crate (parry3d's
+/// triangle-mesh intersection test and a winding number, `sphaera_tests::regions`) on
+/// the mapped mesh, and so does the crate's own `intersects3_brute`: apart,
 /// overlapping, nested (one solid inside the other), and touching exactly.
 #[test]
 fn placed_intersection_equals_brute_force() {
@@ -289,6 +304,7 @@ fn placed_intersection_equals_brute_force() {
     use sphaera_mesh::geometry::Similarity;
     use sphaera_mesh::glam::{DAffine3, DQuat, EulerRot};
     use sphaera_tests::random::SplitMix64;
+    use sphaera_tests::regions;
     let a = shapes::sphere(1.0, 8).unwrap();
     let b = shapes::cube(1.0, 2).unwrap();
     let (ta, tb) = (HalTree3::build(&a).unwrap(), HalTree3::build(&b).unwrap());
@@ -319,7 +335,12 @@ fn placed_intersection_equals_brute_force() {
             b.triangles().to_vec(),
         )
         .unwrap();
-        let expected = intersects3_brute(&a, &mapped);
+        let expected = regions::solids_meet(&a, &mapped);
+        assert_eq!(
+            intersects3_brute(&a, &mapped),
+            expected,
+            "brute force, placement {k}"
+        );
         assert_eq!(ta.intersects(&tb, &placement), expected, "placement {k}");
         outcomes[usize::from(expected)] += 1;
     }
@@ -331,6 +352,7 @@ fn placed_intersection_equals_brute_force() {
         b.triangles().to_vec(),
     )
     .unwrap();
+    assert!(regions::solids_meet(&b, &moved));
     assert!(intersects3_brute(&b, &moved));
     assert!(tb.intersects(&tb, &touching));
 }
