@@ -42,6 +42,12 @@ pub struct Cli {
     #[arg(long, short, global = true)]
     pub quiet: bool,
 
+    /// The largest file read, in bytes: meshes, points, polygons, trees, scenes, URDFs and
+    /// the files they name (2 GiB by default). A larger file is refused with its size
+    /// before it is read; devices, named pipes and folders are refused whatever the cap.
+    #[arg(long, global = true, value_name = "BYTES", value_parser = file_cap)]
+    pub max_file_bytes: Option<u64>,
+
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -163,6 +169,15 @@ pub struct OutputArgs {
     /// Print the result as one JSON document on stdout instead of text.
     #[arg(long)]
     pub json: bool,
+}
+
+/// A file size cap: a whole number of bytes, at least one.
+fn file_cap(text: &str) -> Result<u64, String> {
+    match text.parse::<u64>() {
+        Ok(0) => Err("a file cap of 0 bytes would refuse every file; give at least 1".to_owned()),
+        Ok(bytes) => Ok(bytes),
+        Err(error) => Err(format!("not a whole number of bytes ({error})")),
+    }
 }
 
 #[cfg(test)]

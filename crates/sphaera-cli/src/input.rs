@@ -1,6 +1,6 @@
 //! Reading the mesh a subcommand works on: a file, or the embedded default mesh.
 
-use std::{path::Path, time::Instant};
+use std::{path::Path, sync::OnceLock, time::Instant};
 
 use anyhow::{Context, Result};
 use sphaera::mesh::io::{self, Format, LoadedMesh};
@@ -36,7 +36,7 @@ pub fn read_mesh(path: Option<&Path>, quiet: bool) -> Result<Input> {
         Some(path) => {
             let source = path.display().to_string();
             let spinner = progress::spinner(quiet, &format!("reading {source}"));
-            let loaded = io::read(path);
+            let loaded = io::read_with(path, &file_policy());
             spinner.finish_and_clear();
             // The error names the file (and the line or byte offset when it is malformed).
             let loaded = loaded?;
@@ -55,16 +55,34 @@ pub fn read_mesh(path: Option<&Path>, quiet: bool) -> Result<Input> {
     })
 }
 
-/// The text of a file a user names (points, a polygon, a tree), by the default file policy:
-/// a regular file (a device or a named pipe is refused at once, not read until memory runs
-/// out or a writer comes) of at most 2 GiB, UTF-8.
+/// The cap `--max-file-bytes` set, if it was given.
+static MAX_FILE_BYTES: OnceLock<u64> = OnceLock::new();
+
+/// Sets the size cap of every file this run reads (`--max-file-bytes`); the first call wins.
+pub fn set_max_file_bytes(bytes: u64) {
+    // A second call (there is none: `commands::run` makes the one) keeps the first cap.
+    let _ = MAX_FILE_BYTES.set(bytes);
+}
+
+/// The policy for every file this run reads, and every file those name: regular files only
+/// (a device or a named pipe is refused at once, not read until memory runs out or a writer
+/// comes), of at most `--max-file-bytes` (2 GiB by default).
+pub fn file_policy() -> io::FilePolicy {
+    let policy = io::FilePolicy::default();
+    match MAX_FILE_BYTES.get() {
+        Some(&bytes) => policy.with_max_bytes(bytes),
+        None => policy,
+    }
+}
+
+/// The text of a file a user names (points, a polygon, a tree), by [`file_policy`], UTF-8.
 ///
 /// # Errors
 ///
 /// When the file cannot be read, the policy refuses it, or it is not UTF-8; `what` names
 /// it in the message.
 pub fn read_text(path: &Path, what: &str) -> Result<String> {
-    io::FilePolicy::default()
+    file_policy()
         .read_to_string(path)
         .with_context(|| format!("cannot read {what} {}", path.display()))
 }

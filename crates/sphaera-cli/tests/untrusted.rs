@@ -178,3 +178,60 @@ fn gltf_buffers_may_not_leave_the_assets_folder() {
         String::from_utf8_lossy(&output.stderr)
     );
 }
+
+/// `--max-file-bytes` caps every file the run reads, the files a scene or a URDF names
+/// included: a file over the cap is refused with its size, one under it is read, and a cap
+/// of zero is refused by the parser.
+#[test]
+fn the_file_size_cap_applies_to_every_file_read() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let mesh = dir.path().join("tetra.obj");
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    std::fs::write(&mesh, text).expect("write");
+    let mesh = mesh.to_str().expect("UTF-8");
+    let size = text.len().to_string();
+    let under = (text.len() - 1).to_string();
+    refused(
+        &["info", mesh, "--max-file-bytes", &under],
+        &format!("it is {size} bytes, more than the cap of {under} bytes"),
+    );
+    let read = sphaera(&["info", mesh, "--max-file-bytes", &size]);
+    assert!(read.status.success(), "{read:?}");
+    // The scene file is small; the mesh it names is over the cap.
+    let scene = dir.path().join("scene.json");
+    std::fs::write(
+        &scene,
+        r#"{ "meshes": { "tetra": "tetra.obj" }, "instances": [ { "mesh": "tetra" } ] }"#,
+    )
+    .expect("write");
+    let scene = scene.to_str().expect("UTF-8");
+    refused(
+        &["scene", "-q", scene, "--max-file-bytes", &under],
+        "more than the cap",
+    );
+    // So is a URDF link's mesh.
+    let urdf = dir.path().join("robot.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="r"><link name="base"><collision><geometry><mesh filename="tetra.obj"/></geometry></collision></link></robot>"#,
+    )
+    .expect("write");
+    let spheres = existing_output(dir.path(), "spheres.urdf");
+    refused(
+        &[
+            "urdf",
+            urdf.to_str().expect("UTF-8"),
+            "-q",
+            "-o",
+            &spheres,
+            "--max-file-bytes",
+            &under,
+        ],
+        "more than the cap",
+    );
+    unchanged(&spheres);
+    let zero = sphaera(&["info", mesh, "--max-file-bytes", "0"]);
+    assert!(!zero.status.success());
+    let message = String::from_utf8_lossy(&zero.stderr);
+    assert!(message.contains("would refuse every file"), "{message}");
+}

@@ -369,7 +369,7 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
         check_target(path)?;
     }
     let started = Instant::now();
-    let loaded = sphaera::mesh::io::read(&args.polygon)?;
+    let loaded = sphaera::mesh::io::read_with(&args.polygon, &crate::input::file_policy())?;
     let mesh = loaded.mesh;
     let load = started.elapsed().as_secs_f64();
     let started = Instant::now();

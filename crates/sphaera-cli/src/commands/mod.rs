@@ -18,6 +18,9 @@ use crate::cli::{Cli, Command};
 
 /// Runs the subcommand the user asked for.
 pub fn run(cli: &Cli) -> Result<()> {
+    if let Some(bytes) = cli.max_file_bytes {
+        crate::input::set_max_file_bytes(bytes);
+    }
     match &cli.command {
         Command::Info(args) => info::run(args, cli.quiet),
         Command::Simplify(args) => simplify::run(args, cli.quiet),

@@ -292,7 +292,7 @@ fn model_report(model: &ObjectModel) -> ModelReport {
 
 /// Reads a scene file and builds its models, one progress step per model.
 fn load_file(path: &Path, options: &ModelOptions, quiet: bool) -> Result<LoadedScene> {
-    let description = SceneDescription::read(path)?;
+    let description = SceneDescription::read_with(path, &crate::input::file_policy())?;
     let used = description.used_meshes().len();
     let bar = progress::bar(
         quiet,

@@ -64,8 +64,9 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
         }
     }
     let started = Instant::now();
-    let urdf = Urdf::read(&args.urdf)?;
-    let mut resolver = MeshResolver::new(urdf.folder());
+    let policy = crate::input::file_policy();
+    let urdf = Urdf::read_with(&args.urdf, &policy)?;
+    let mut resolver = MeshResolver::new(urdf.folder()).with_policy(policy);
     for (name, folder) in &args.packages {
         resolver = resolver.with_package(name.clone(), folder.clone());
     }
