@@ -248,9 +248,8 @@ fn parry_mesh(mesh: &TriMesh) -> Option<ParryTriMesh> {
     Some(built.unwrap_or_else(|e| panic!("parry refuses the mesh: {e}")))
 }
 
-/// Whether two closed meshes meet as solids: their surfaces share a point (parry3d-f64's
-/// intersection test, triangle against triangle under its bounding-volume trees), or one
-/// holds a vertex of the other ([`locate_in_solid`]). A mesh without triangles meets
+/// Whether two closed meshes meet as solids: their surfaces share a point
+/// ([`surfaces_meet`]), or one holds a vertex of the other ([`locate_in_solid`]). A mesh without triangles meets
 /// nothing.
 ///
 /// # Panics
@@ -259,13 +258,29 @@ fn parry_mesh(mesh: &TriMesh) -> Option<ParryTriMesh> {
 /// triangles), or as [`locate_in_solid`].
 #[must_use]
 pub fn solids_meet(first: &TriMesh, second: &TriMesh) -> bool {
+    if first.triangles().is_empty() || second.triangles().is_empty() {
+        return false;
+    }
+    let holds = |solid: &TriMesh, x: DVec3| locate_in_solid(solid, x) != Side::Outside;
+    surfaces_meet(first, second)
+        || holds(second, first.positions()[0])
+        || holds(first, second.positions()[0])
+}
+
+/// Whether two triangle soups share a point: parry3d-f64's intersection test, triangle
+/// against triangle under its bounding-volume trees. Open, non-manifold and degenerate
+/// meshes are fine; a mesh without triangles meets nothing.
+///
+/// # Panics
+///
+/// When parry refuses a mesh or the pair (it takes every triangle mesh with triangles).
+#[must_use]
+pub fn surfaces_meet(first: &TriMesh, second: &TriMesh) -> bool {
     let (Some(a), Some(b)) = (parry_mesh(first), parry_mesh(second)) else {
         return false;
     };
     let identity = Pose::identity();
-    let surfaces = query::intersection_test(&identity, &a, &identity, &b)
+    query::intersection_test(&identity, &a, &identity, &b)
         .expect("parry tests a triangle mesh against a triangle mesh")
-        .intersecting;
-    let holds = |solid: &TriMesh, x: DVec3| locate_in_solid(solid, x) != Side::Outside;
-    surfaces || holds(second, first.positions()[0]) || holds(first, second.positions()[0])
+        .intersecting
 }

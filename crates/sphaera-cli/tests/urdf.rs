@@ -25,7 +25,11 @@ fn the_panda_is_spherized_and_written_in_every_format() {
             "panda.srdf",
             "<link_sphere_approximation link=\"panda_link0\">",
         ),
-        ("panda.yml", "collision_spheres:"),
+        ("panda.yml", "self_collision_ignore:"),
+        (
+            "panda.xml",
+            "<exclude body1=\"panda_link0\" body2=\"panda_link1\"/>",
+        ),
         ("panda.urdf", "<sphere radius="),
         ("panda.json", "\"levels\""),
     ] {
@@ -59,6 +63,54 @@ fn the_panda_is_spherized_and_written_in_every_format() {
             report["links_without_geometry"].as_array().map(Vec::len),
             Some(2)
         );
+        // The self-collision matrix: 55 pairs of the 11 links, the 10 joints between
+        // links with spheres adjacent, every pair one verdict.
+        let matrix = &report["self_collision"];
+        assert_eq!(matrix["pairs"], 55);
+        assert_eq!(matrix["adjacent"], 10);
+        assert_eq!(matrix["samples"], 10_000);
+        let verdicts: u64 = ["adjacent", "default", "always", "never", "checked"]
+            .iter()
+            .map(|k| matrix[k].as_u64().expect("a count"))
+            .sum();
+        assert_eq!(verdicts, 55, "{matrix}");
+        assert!(matrix["never"].as_u64() > Some(0), "{matrix}");
+    }
+    // Without samples, only the adjacent and default rules; the SRDF says so.
+    let srdf = dir.path().join("adjacent.srdf");
+    let report = json(&sphaera(&[
+        "urdf",
+        &urdf,
+        "--spheres-per-link",
+        "4",
+        "--self-collision-samples",
+        "0",
+        "-o",
+        srdf.to_str().expect("utf-8"),
+        "--json",
+    ]));
+    assert_eq!(report["self_collision"]["never"], 0);
+    let text = std::fs::read_to_string(&srdf).expect("written");
+    assert!(!text.contains("reason=\"Never\"") && text.contains("reason=\"Adjacent\""));
+    // A negative clearance and an end effector the robot does not have are refused.
+    for (flag, value, needle) in [
+        ("--self-collision-padding", "-1", "padding"),
+        ("--ee-link", "gripper", "gripper"),
+    ] {
+        let out = dir.path().join("refused.yml");
+        let output = sphaera(&[
+            "urdf",
+            &urdf,
+            "--spheres-per-link",
+            "2",
+            flag,
+            value,
+            "-o",
+            out.to_str().expect("utf-8"),
+        ]);
+        assert!(!output.status.success());
+        assert!(String::from_utf8_lossy(&output.stderr).contains(needle));
+        assert!(!out.exists());
     }
     // A tolerance and a per-link override, as text.
     let output = sphaera(&[

@@ -34,6 +34,7 @@ mod errors;
 mod mesh;
 mod more;
 mod queries;
+mod robot;
 mod simplify;
 mod spheretree;
 
@@ -58,7 +59,8 @@ fn _sphaera(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(spheretree::spheretree, module)?)?;
     module.add_function(wrap_pyfunction!(more::hal, module)?)?;
     module.add_function(wrap_pyfunction!(more::silhouette_labels, module)?)?;
-    module.add_function(wrap_pyfunction!(more::urdf, module)?)?;
+    module.add_function(wrap_pyfunction!(robot::urdf, module)?)?;
+    module.add_function(wrap_pyfunction!(robot::link_poses, module)?)?;
     module.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

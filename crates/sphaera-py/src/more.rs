@@ -1,18 +1,13 @@
-//! The other capabilities: HAL approximations, silhouette labels, and URDF robots
-//! spherized link by link. Their results are plain dicts of numpy arrays and numbers
-//! (they pickle as such).
-
-use std::path::PathBuf;
+//! The other capabilities: HAL approximations and silhouette labels. Their results are
+//! numpy arrays and numbers (they pickle as such).
 
 use numpy::PyArray2;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
 use sphaera::hal::HalTree3;
-use sphaera::robot::{GeometrySource, MeshResolver, SphereBudget, SpherizeOptions, Urdf};
 use sphaera::silhouette::{Contours, LabelOptions, Labels, ViewSet};
 
 use crate::arrays;
-use crate::errors::{IntoPy, value_error};
+use crate::errors::IntoPy;
 use crate::mesh::Mesh;
 use crate::simplify::length;
 
@@ -89,102 +84,4 @@ pub fn silhouette_labels<'py>(
         arrays::rows(py, labels, vertices),
         arrays::points_array(py, &directions),
     ))
-}
-
-/// A URDF robot spherized link by link, each link's spheres in its own frame with
-/// coverage of its surface certified: `spheres_per_link` each (default 16), or `budget`
-/// for the whole robot, or `tolerance` (no sphere protruding more than it, a length or
-/// `"2%"` of each link), with per-link overrides in `per_link`; `visual` for the visual
-/// geometry instead of the collision one; `packages` maps `package://` names to folders.
-///
-/// Returns a dict: `robot`, `links` (per link name: `spheres` an `(n, 4)` array and the
-/// report's figures), `links_without_geometry`.
-///
-/// With `root`, the URDF and every mesh it names are read only inside that folder (once
-/// links and `..` are resolved; a service reading uploads); `max_file_bytes` caps each file
-/// (default 2 GiB). Only regular files are read.
-///
-/// Raises `PermissionError` (an `OSError`) for a file the policy refuses, `OSError` for a
-/// URDF or mesh that cannot be read, `ValueError` for a malformed one (the messages name
-/// the link and the file).
-#[pyfunction]
-#[pyo3(signature = (path, spheres_per_link=None, budget=None, tolerance=None, per_link=None, visual=false, packages=None, root=None, max_file_bytes=None))]
-#[allow(clippy::too_many_arguments)]
-pub fn urdf<'py>(
-    py: Python<'py>,
-    path: PathBuf,
-    spheres_per_link: Option<usize>,
-    budget: Option<usize>,
-    tolerance: Option<&Bound<'_, PyAny>>,
-    per_link: Option<std::collections::BTreeMap<String, usize>>,
-    visual: bool,
-    packages: Option<std::collections::BTreeMap<String, PathBuf>>,
-    root: Option<PathBuf>,
-    max_file_bytes: Option<u64>,
-) -> PyResult<Bound<'py, PyDict>> {
-    let policy = crate::mesh::file_policy(root, max_file_bytes);
-    let chosen = [
-        spheres_per_link.is_some(),
-        budget.is_some(),
-        tolerance.is_some(),
-    ]
-    .into_iter()
-    .filter(|&b| b)
-    .count();
-    if chosen > 1 {
-        return Err(value_error(
-            "give one of spheres_per_link, budget and tolerance",
-        ));
-    }
-    let budget = match (spheres_per_link, budget, tolerance) {
-        (_, Some(total), _) => SphereBudget::Total(total),
-        (_, _, Some(t)) => SphereBudget::Tolerance(length(t)?),
-        (n, _, _) => SphereBudget::PerLink(n.unwrap_or(16)),
-    };
-    let mut options = SpherizeOptions::default()
-        .with_budget(budget)
-        .with_source(if visual {
-            GeometrySource::Visual
-        } else {
-            GeometrySource::Collision
-        });
-    for (name, count) in per_link.unwrap_or_default() {
-        options = options.with_link(name, count);
-    }
-    let robot = py
-        .detach(move || -> Result<_, sphaera::robot::RobotError> {
-            let urdf = Urdf::read_with(&path, &policy)?;
-            let mut resolver = MeshResolver::new(urdf.folder()).with_policy(policy);
-            for (name, folder) in packages.unwrap_or_default() {
-                resolver = resolver.with_package(name, folder);
-            }
-            sphaera::robot::spherize(&urdf, &resolver, &options)
-        })
-        .py_err()?;
-    let links = PyDict::new(py);
-    for link in &robot.links {
-        let entry = PyDict::new(py);
-        let flat: Vec<f64> = link
-            .spheres
-            .iter()
-            .flat_map(|s| [s.center.x, s.center.y, s.center.z, s.radius])
-            .collect();
-        entry.set_item("spheres", arrays::rows(py, flat, 4))?;
-        let r = &link.report;
-        entry.set_item("triangles", r.triangles)?;
-        entry.set_item("worst_protrusion", r.worst_protrusion)?;
-        entry.set_item("p95_protrusion", r.p95_protrusion)?;
-        entry.set_item("coverage", r.coverage)?;
-        entry.set_item("coverage_certified", r.coverage_certified)?;
-        entry.set_item("seconds", r.seconds)?;
-        links.set_item(&link.link, entry)?;
-    }
-    let out = PyDict::new(py);
-    out.set_item("robot", &robot.robot)?;
-    out.set_item("links", links)?;
-    out.set_item(
-        "links_without_geometry",
-        PyList::new(py, &robot.links_without_geometry)?,
-    )?;
-    Ok(out)
 }

@@ -139,25 +139,34 @@
 //! `sphaera-mesh` (the mesh readers and the surface's inside test), and `sphaera urdf`
 //! (also `sphaera robot`) in `sphaera-cli`.
 
+mod chain;
 mod error;
 mod formats;
 mod geometry;
 mod kinematics;
 mod primitive;
+mod self_collision;
 mod spherize;
 mod urdf;
 
+pub use chain::{ActiveJoint, KinematicChain};
 pub use error::RobotError;
-pub use formats::{PlannerFormat, curobo_yaml, json, spherized_urdf, srdf, write_atomic};
+pub use formats::{
+    CuroboOptions, MjcfOptions, PlannerFormat, curobo_robot_yaml, curobo_yaml, json, mjcf,
+    spherized_urdf, srdf, write_atomic,
+};
 pub use geometry::{GeometrySource, LinkGeometry, MeshResolver};
 pub use primitive::{Primitive, Shape};
+pub use self_collision::{
+    DisableReason, LinkPair, SelfCollisionMatrix, SelfCollisionOptions, self_collision_matrix,
+};
 pub use sphaera_mesh::{Length, Sphere};
 pub use sphaera_spheretree::Effort;
 pub use spherize::{
     LinkReport, LinkSpheres, MAX_SPHERES_PER_LINK, RobotSpheres, SphereBudget, SpherizeOptions,
     SpherizeProgress, spherize, spherize_geometry, spherize_with_progress,
 };
-pub use urdf::{Element, Geometry, Joint, JointKind, Link, Mimic, Origin, Urdf};
+pub use urdf::{Element, Geometry, Inertial, Joint, JointKind, Link, Mimic, Origin, Urdf};
 
 /// The quick start of the crate's `README.md` (what crates.io shows), run as a doctest so
 /// that it stays true.

@@ -93,7 +93,11 @@ pub fn spherize_with_progress(
 ) -> Result<RobotSpheres, RobotError> {
     validate(options)?;
     let geometry = LinkGeometry::load_all(urdf, options.source, resolver)?;
-    spherize_geometry(&urdf.name, geometry, options, progress)
+    let mut robot = spherize_geometry(&urdf.name, geometry, options, progress)?;
+    if let Some(self_collision) = &options.self_collision {
+        robot.self_collision = Some(crate::self_collision_matrix(urdf, &robot, self_collision)?);
+    }
+    Ok(robot)
 }
 
 /// [`spherize_with_progress`] on geometry already loaded (one entry per link).
@@ -152,6 +156,7 @@ pub fn spherize_geometry(
         source: options.source,
         links,
         links_without_geometry: without.into_iter().map(|g| g.link).collect(),
+        self_collision: None,
     })
 }
 

@@ -110,11 +110,24 @@ pub struct Element {
     pub range: std::ops::Range<usize>,
 }
 
+/// A link's mass properties: `<inertial>`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Inertial {
+    /// The centre of mass and the inertia's axes, in the link's frame.
+    pub origin: Origin,
+    /// The mass (at least 0).
+    pub mass: f64,
+    /// The inertia about the centre of mass, `[ixx, ixy, ixz, iyy, iyz, izz]`.
+    pub inertia: [f64; 6],
+}
+
 /// A link: its collision and visual elements.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Link {
     /// Its name.
     pub name: String,
+    /// Its mass properties, when the URDF gives them.
+    pub inertial: Option<Inertial>,
     /// Its `<collision>` elements, in file order.
     pub collisions: Vec<Element>,
     /// Its `<visual>` elements, in file order.
@@ -494,12 +507,42 @@ impl Reader<'_> {
             let place = format!("link \"{name}\" {kind}[{}]", list.len());
             list.push(self.element(element, &place)?);
         }
+        let inertial = match child(node, "inertial") {
+            Some(inertial) => Some(self.inertial(inertial, &format!("link \"{name}\" inertial"))?),
+            None => None,
+        };
         Ok(Link {
             name,
+            inertial,
             collisions,
             visuals,
             line: self.line(node),
             range: node.range(),
+        })
+    }
+
+    fn inertial(&self, node: roxmltree::Node<'_, '_>, place: &str) -> Result<Inertial, RobotError> {
+        let origin = self.origin(node, place)?;
+        let mass_node =
+            child(node, "mass").ok_or_else(|| self.invalid(node, place, "it has no <mass>"))?;
+        // Zero occurs in real files (the KUKA iiwa's base, fixed to the world).
+        let mass = self.number(mass_node, "value", place)?;
+        if mass < 0.0 {
+            return Err(self.invalid(mass_node, place, format!("the mass {mass} is negative")));
+        }
+        let inertia_node = child(node, "inertia")
+            .ok_or_else(|| self.invalid(node, place, "it has no <inertia>"))?;
+        let mut inertia = [0.0; 6];
+        for (value, name) in inertia
+            .iter_mut()
+            .zip(["ixx", "ixy", "ixz", "iyy", "iyz", "izz"])
+        {
+            *value = self.number(inertia_node, name, place)?;
+        }
+        Ok(Inertial {
+            origin,
+            mass,
+            inertia,
         })
     }
 

@@ -195,7 +195,9 @@ fn every_format_reads_back_with_the_same_spheres() {
     }
 
     // cuRobo's YAML, with a YAML parser.
-    let yaml = PlannerFormat::Curobo.render(&urdf, &robot).expect("yaml");
+    let yaml = PlannerFormat::CuroboSpheres
+        .render(&urdf, &robot)
+        .expect("yaml");
     let documents = yaml_rust2::YamlLoader::load_from_str(&yaml).expect("the YAML parses");
     let spheres = &documents[0]["collision_spheres"];
     for link in &robot.links {

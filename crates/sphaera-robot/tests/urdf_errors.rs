@@ -631,3 +631,49 @@ fn mimic_chains_are_followed_and_mimic_cycles_refused() {
     let error = Urdf::parse(&own, "r.urdf").expect_err("a joint mimicking itself");
     assert!(error.to_string().contains("joint \"j1\""), "{error}");
 }
+
+/// A link's `<inertial>` is read (MJCF writes it) and checked: a negative mass, a missing
+/// `<mass>` or `<inertia>`, an inertia that is not a number name the link and the line; a
+/// zero mass (the KUKA iiwa's base) is accepted.
+#[test]
+fn inertials_are_read_and_bad_ones_named() {
+    let inertial = |mass: &str, inertia: &str| {
+        robot(&format!(
+            r#"<inertial><origin xyz="0 0 0.1" rpy="0 0 1.5707963267948966"/>{mass}{inertia}</inertial>"#
+        ))
+    };
+    let good_inertia = r#"<inertia ixx="0.1" ixy="0" ixz="0" iyy="0.2" iyz="0" izz="0.3"/>"#;
+    let urdf =
+        Urdf::parse(&inertial(r#"<mass value="2.5"/>"#, good_inertia), "r.urdf").expect("reads");
+    let read = urdf.links[0].inertial.expect("an inertial");
+    assert_eq!(
+        (read.mass, read.inertia),
+        (2.5, [0.1, 0.0, 0.0, 0.2, 0.0, 0.3])
+    );
+    assert_eq!(read.origin.xyz, glam::DVec3::new(0.0, 0.0, 0.1));
+    assert!(Urdf::parse(&inertial(r#"<mass value="0"/>"#, good_inertia), "r.urdf").is_ok());
+    for (mass, inertia, needle) in [
+        (r#"<mass value="-1"/>"#, good_inertia, "negative"),
+        ("", good_inertia, "no <mass>"),
+        (r#"<mass value="1"/>"#, "", "no <inertia>"),
+        (
+            r#"<mass value="1"/>"#,
+            r#"<inertia ixx="x" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/>"#,
+            "ixx",
+        ),
+        (
+            r#"<mass value="1"/>"#,
+            r#"<inertia ixx="1" ixy="0" ixz="0" iyy="0" iyz="0"/>"#,
+            "izz",
+        ),
+    ] {
+        let error = Urdf::parse(&inertial(mass, inertia), "r.urdf").expect_err(needle);
+        let text = error.to_string();
+        assert!(
+            text.contains(needle)
+                && text.contains("link \"base\" inertial")
+                && text.starts_with("r.urdf:"),
+            "{text}"
+        );
+    }
+}

@@ -146,8 +146,12 @@
 //! let options = SpherizeOptions::default().with_budget(SphereBudget::PerLink(12));
 //! let robot = spherize(&urdf, &MeshResolver::new(urdf.folder()), &options)?;
 //! assert!(robot.links[0].report.coverage_certified);
-//! let yaml = PlannerFormat::Curobo.render(&urdf, &robot)?; // cuRobo's collision_spheres
+//! let yaml = PlannerFormat::CuroboSpheres.render(&urdf, &robot)?; // cuRobo's collision_spheres
 //! assert!(yaml.contains("\"palm\":"));
+//! // A complete cuRobo robot file, MuJoCo's MJCF, MoveIt's SRDF: with the self-collision
+//! // matrix, computed when the robot has none.
+//! let robot_file = PlannerFormat::Curobo.render(&urdf, &robot)?;
+//! assert!(robot_file.contains("base_link: \"palm\""));
 //! # Ok::<(), sphaera::Error>(())
 //! ```
 //!

@@ -56,13 +56,40 @@ pub struct UrdfArgs {
     pub packages: Vec<(String, PathBuf)>,
 
     /// The output file; its format follows `--format`, else the extension (`.urdf`,
-    /// `.srdf`, `.yml`/`.yaml` for cuRobo, `.json`).
+    /// `.srdf`, `.yml`/`.yaml` for cuRobo's robot file, `.xml`/`.mjcf` for MuJoCo,
+    /// `.json`).
     #[arg(long, short)]
     pub output: Option<PathBuf>,
 
     /// The output format.
     #[arg(long, value_parser = Choice::of(FORMATS))]
     pub format: Option<PlannerFormat>,
+
+    /// Random joint configurations sampled for the self-collision matrix (MoveIt's
+    /// 10,000 by default): pairs of links whose spheres never meet in them are left out of
+    /// self-collision checks, as are adjacent pairs, pairs in contact at the default
+    /// configuration and pairs in contact in 95 % of the samples. 0 keeps only the
+    /// adjacent and default rules.
+    #[arg(long, default_value_t = 10_000)]
+    pub self_collision_samples: usize,
+
+    /// The random sequence of those configurations.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+
+    /// A clearance, in the URDF's units: pairs whose spheres come closer than this count
+    /// as in contact (so a pair left out as "Never" keeps it).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub self_collision_padding: f64,
+
+    /// The end-effector link of the cuRobo file (default: where the main chain ends; the
+    /// joints below it are locked).
+    #[arg(long)]
+    pub ee_link: Option<String>,
+
+    /// Also write the links' meshes (STL and OBJ files) as visual geoms into the MJCF.
+    #[arg(long)]
+    pub mjcf_meshes: bool,
 
     /// How hard each link's sphere-tree works for tighter spheres: `quick`, `default` or
     /// `thorough`.
@@ -81,9 +108,20 @@ pub const FORMATS: &[(PlannerFormat, &str)] = &[
     ),
     (
         PlannerFormat::Srdf,
-        "MoveIt's SRDF `<link_sphere_approximation>` sidecar",
+        "MoveIt's SRDF sidecar: `<link_sphere_approximation>` per link, `<disable_collisions>` per pair left out",
     ),
-    (PlannerFormat::Curobo, "cuRobo's `collision_spheres` YAML"),
+    (
+        PlannerFormat::Curobo,
+        "A complete cuRobo robot file: URDF, base and end-effector links, spheres, self-collision ignore lists, joint space",
+    ),
+    (
+        PlannerFormat::CuroboSpheres,
+        "cuRobo's `collision_spheres` block alone",
+    ),
+    (
+        PlannerFormat::Mjcf,
+        "MuJoCo's MJCF: bodies, joints and limits, the spheres as geoms, the pairs left out excluded",
+    ),
     (
         PlannerFormat::Json,
         "JSON: per link a tree (the bounding sphere, groups of nearby spheres, the \

@@ -5,8 +5,9 @@ use std::time::Instant;
 use anyhow::{Result, bail};
 use serde::Serialize;
 use sphaera::robot::{
-    GeometrySource, LinkReport, MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions, Urdf,
-    spherize_with_progress, write_atomic,
+    CuroboOptions, DisableReason, GeometrySource, LinkReport, MeshResolver, MjcfOptions,
+    PlannerFormat, SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf, curobo_robot_yaml,
+    mjcf, spherize_with_progress, write_atomic,
 };
 
 use crate::{
@@ -35,9 +36,30 @@ struct Report {
     links_without_geometry: Vec<String>,
     /// The worst protrusion over all links (certified).
     worst_protrusion: f64,
+    /// Which pairs of links a planner need not test, and why.
+    self_collision: SelfCollisionSummary,
     /// The file written and its format, if any.
     output: Option<String>,
     format: Option<PlannerFormat>,
+    seconds: f64,
+}
+
+/// The self-collision matrix in brief (the pairs themselves are in the SRDF, cuRobo, MJCF
+/// and JSON outputs).
+#[derive(Debug, Serialize)]
+struct SelfCollisionSummary {
+    /// Pairs of links with spheres.
+    pairs: usize,
+    /// Pairs left out, by MoveIt's reason.
+    adjacent: usize,
+    default: usize,
+    always: usize,
+    never: usize,
+    /// Pairs the planner must check.
+    checked: usize,
+    /// Random configurations sampled, and their seed.
+    samples: usize,
+    seed: u64,
     seconds: f64,
 }
 
@@ -47,7 +69,7 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
         (None, Some(path)) => match PlannerFormat::from_path(path) {
             Some(f) => Some(f),
             None => bail!(
-                "cannot write {}: the extension is not .urdf, .srdf, .yml/.yaml or .json (or give --format)",
+                "cannot write {}: the extension is not .urdf, .srdf, .yml/.yaml (cuRobo), .xml/.mjcf (MuJoCo) or .json (or give --format)",
                 path.display()
             ),
         },
@@ -94,7 +116,13 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
             GeometrySource::Collision
         })
         .with_effort(args.effort)
-        .with_max_spheres_per_link(args.max_spheres_per_link);
+        .with_max_spheres_per_link(args.max_spheres_per_link)
+        .with_self_collision(
+            SelfCollisionOptions::default()
+                .with_samples(args.self_collision_samples)
+                .with_seed(args.seed)
+                .with_padding(args.self_collision_padding),
+        );
     for (name, count) in &args.per_link {
         options = options.with_link(name.clone(), *count);
     }
@@ -113,10 +141,40 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
     });
     bar.finish_and_clear();
     let robot = robot?;
+    let Some(matrix) = &robot.self_collision else {
+        bail!("the self-collision matrix was asked for and not computed");
+    };
     if let (Some(path), Some(format)) = (&args.output, format) {
-        let text = format.render(&urdf, &robot)?;
+        let text = match format {
+            PlannerFormat::Curobo => {
+                let mut curobo = CuroboOptions::default();
+                if let Some(link) = &args.ee_link {
+                    curobo = curobo.with_ee_link(link.clone());
+                }
+                curobo_robot_yaml(&urdf, &robot, matrix, &curobo)?
+            }
+            PlannerFormat::Mjcf => {
+                let mut options = MjcfOptions::default();
+                if args.mjcf_meshes {
+                    options = options.with_meshes(options_source(args), resolver.clone());
+                }
+                mjcf(&urdf, &robot, matrix, &options)?
+            }
+            other => other.render(&urdf, &robot)?,
+        };
         write_atomic(path, &text)?;
     }
+    let self_collision = SelfCollisionSummary {
+        pairs: matrix.pairs.len(),
+        adjacent: matrix.count(DisableReason::Adjacent),
+        default: matrix.count(DisableReason::Default),
+        always: matrix.count(DisableReason::Always),
+        never: matrix.count(DisableReason::Never),
+        checked: matrix.checked().count(),
+        samples: matrix.samples,
+        seed: matrix.seed,
+        seconds: matrix.seconds,
+    };
     let report = Report {
         urdf: args.urdf.display().to_string(),
         robot: robot.robot.clone(),
@@ -135,6 +193,7 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
             .fold(0.0, f64::max),
         links: robot.links.iter().map(|l| l.report.clone()).collect(),
         links_without_geometry: robot.links_without_geometry.clone(),
+        self_collision,
         output: args.output.as_ref().map(|p| p.display().to_string()),
         format,
         seconds: started.elapsed().as_secs_f64(),
@@ -195,18 +254,35 @@ impl crate::output::Report for Report {
             },
             self.worst_protrusion
         ));
+        let c = &self.self_collision;
+        lines.push(format!(
+            "self-collision  {} pairs: {} adjacent, {} default, {} always, {} never left out; {} to check ({} random configurations, seed {}, {:.3} s)",
+            c.pairs, c.adjacent, c.default, c.always, c.never, c.checked, thousands(c.samples), c.seed, c.seconds
+        ));
         if let Some(output) = &self.output {
             lines.push(format!(
                 "wrote           {output} ({})",
                 match self.format {
                     Some(PlannerFormat::Urdf) => "spherized URDF",
-                    Some(PlannerFormat::Srdf) => "SRDF sphere approximations",
-                    Some(PlannerFormat::Curobo) => "cuRobo collision_spheres YAML",
+                    Some(PlannerFormat::Srdf) =>
+                        "SRDF: sphere approximations and disabled collisions",
+                    Some(PlannerFormat::Curobo) => "cuRobo robot file",
+                    Some(PlannerFormat::CuroboSpheres) => "cuRobo collision_spheres YAML",
+                    Some(PlannerFormat::Mjcf) => "MuJoCo MJCF",
                     Some(PlannerFormat::Json) | None => "JSON",
                 }
             ));
         }
         lines.push(format!("time            {:.3} s", self.seconds));
         lines.join("\n") + "\n"
+    }
+}
+
+/// The geometry `sphaera urdf` spherizes, as the arguments choose it.
+fn options_source(args: &UrdfArgs) -> GeometrySource {
+    if args.visual {
+        GeometrySource::Visual
+    } else {
+        GeometrySource::Collision
     }
 }

@@ -209,4 +209,14 @@ def urdf(
     packages: Optional[dict[str, Union[str, os.PathLike[str]]]] = None,
     root: Optional[Union[str, os.PathLike[str]]] = None,
     max_file_bytes: Optional[int] = None,
+    self_collision_samples: int = 10_000,
+    seed: int = 0,
+    format: Optional[str] = None,
+    mjcf_meshes: bool = False,
 ) -> dict[str, Any]: ...
+def link_poses(
+    path: Union[str, os.PathLike[str]],
+    joints: Optional[dict[str, float]] = None,
+    root: Optional[Union[str, os.PathLike[str]]] = None,
+    max_file_bytes: Optional[int] = None,
+) -> dict[str, npt.NDArray[np.float64]]: ...

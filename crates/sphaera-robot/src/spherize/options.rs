@@ -8,6 +8,7 @@ use sphaera_spheretree::{Effort, Method, SphereTreeOptions};
 
 use crate::RobotError;
 use crate::geometry::GeometrySource;
+use crate::self_collision::SelfCollisionOptions;
 /// How many spheres the links get.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SphereBudget {
@@ -71,6 +72,11 @@ pub struct SpherizeOptions {
     /// The most spheres a tolerance may give a link (default 1,000; at most
     /// [`MAX_SPHERES_PER_LINK`]).
     pub max_spheres_per_link: usize,
+    /// The self-collision matrix to compute after spherizing ([`crate::spherize`] only: it
+    /// needs the URDF's joints), or `None` (the default) to leave
+    /// [`RobotSpheres::self_collision`](crate::RobotSpheres::self_collision) empty; the
+    /// planner formats that need one then compute it with the default options.
+    pub self_collision: Option<SelfCollisionOptions>,
 }
 
 impl Default for SpherizeOptions {
@@ -81,6 +87,7 @@ impl Default for SpherizeOptions {
             per_link: BTreeMap::new(),
             tree: SphereTreeOptions::default(),
             max_spheres_per_link: 1_000,
+            self_collision: None,
         }
     }
 }
@@ -121,6 +128,13 @@ impl SpherizeOptions {
         self
     }
 
+    /// With the self-collision matrix computed by `options` after spherizing.
+    #[must_use]
+    pub fn with_self_collision(mut self, options: SelfCollisionOptions) -> Self {
+        self.self_collision = Some(options);
+        self
+    }
+
     /// With at most `n` spheres per link under a tolerance.
     #[must_use]
     pub fn with_max_spheres_per_link(mut self, n: usize) -> Self {
@@ -134,6 +148,9 @@ impl SpherizeOptions {
 pub const MAX_SPHERES_PER_LINK: usize = 10_000;
 
 pub(super) fn validate(options: &SpherizeOptions) -> Result<(), RobotError> {
+    if let Some(self_collision) = &options.self_collision {
+        crate::self_collision::check_options(self_collision)?;
+    }
     let counts = [
         match options.budget {
             SphereBudget::PerLink(n) | SphereBudget::Total(n) => Some(n),

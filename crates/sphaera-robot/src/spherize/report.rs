@@ -83,6 +83,10 @@ pub struct RobotSpheres {
     pub links: Vec<LinkSpheres>,
     /// The links without geometry of the chosen kind.
     pub links_without_geometry: Vec<String>,
+    /// Which pairs of links a planner need not test against each other, when computed
+    /// ([`SpherizeOptions::self_collision`](crate::SpherizeOptions::self_collision), or
+    /// [`self_collision_matrix`](crate::self_collision_matrix) set here).
+    pub self_collision: Option<crate::SelfCollisionMatrix>,
 }
 
 impl RobotSpheres {

@@ -21,4 +21,4 @@ pub use json::{
 #[cfg(feature = "parry")]
 pub use parry::to_parry_compound;
 pub use sph::{SphDefect, SphFile, read_sph, write_sph};
-pub use yaml::{CollisionLink, collision_spheres_yaml, write_collision_spheres_yaml};
+pub use yaml::{CollisionLink, collision_spheres_yaml, write_collision_spheres_yaml, yaml_float};

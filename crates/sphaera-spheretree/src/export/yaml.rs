@@ -96,7 +96,18 @@ impl CollisionLink {
 /// `v` as a YAML float that YAML 1.1 readers (`PyYAML`) and YAML 1.2 readers both read as
 /// a float: always a decimal point, and an explicit exponent sign. Exact: Rust's
 /// shortest round-trip digits.
-fn yaml_float(v: f64) -> String {
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_spheretree::export::yaml_float;
+///
+/// assert_eq!(yaml_float(1.0), "1.0");
+/// assert_eq!(yaml_float(1e-7), "1.0e-7");
+/// assert_eq!(yaml_float(2.5e20), "2.5e+20");
+/// ```
+#[must_use]
+pub fn yaml_float(v: f64) -> String {
     let text = format!("{v:?}");
     let Some((mantissa, exponent)) = text.split_once('e') else {
         return text;
