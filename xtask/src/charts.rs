@@ -128,6 +128,8 @@ const CHARTS: &[(&str, Coverage)] = &[
     ),
     // Its rows are colliders (four shared meshes in one simulation), not meshes.
     ("scene_time_vs_error", Coverage::Only(&[])),
+    // Its rows are robots (the two shared URDFs), not meshes.
+    ("robot_vs_morphit", Coverage::Only(&[])),
     ("spheres_vs_count", Coverage::Only(SPHERES_VS_COUNT)),
     ("spheres_vs_count_time", Coverage::Only(SPHERES_VS_COUNT)),
     (

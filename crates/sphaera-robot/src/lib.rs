@@ -23,12 +23,15 @@
 //!
 //! Because every link's spheres cover that link in its own frame, the spheres moved by
 //! the robot's forward kinematics ([`Urdf::link_poses`]) cover the posed robot at any
-//! joint configuration. The results go out in the planners' formats
-//! ([`PlannerFormat`]): the spherized URDF, MoveIt's SRDF sidecar, cuRobo's
-//! `collision_spheres` YAML, or JSON with a tree per link (its bounding sphere, groups
-//! of nearby spheres, then the spheres, each enclosing its children, for planners that
-//! stop early) and a report per link (spheres asked and given, worst and
-//! 95th-percentile protrusion, coverage, time).
+//! joint configuration. Which pairs of links a planner need not test against each other
+//! is the self-collision matrix ([`self_collision_matrix`]: MoveIt's rules on the
+//! spheres over 10,000 seeded random configurations, [`KinematicChain`] posing them).
+//! The results go out in the planners' formats ([`PlannerFormat`]): the spherized URDF,
+//! MoveIt's SRDF sidecar with its `<disable_collisions>`, a complete cuRobo robot file
+//! ([`curobo_robot_yaml`]) or its `collision_spheres` block, MuJoCo's MJCF ([`mjcf`]), or
+//! JSON with a tree per link (its bounding sphere, groups of nearby spheres, then the
+//! spheres, each enclosing its children, for planners that stop early) and a report per
+//! link (spheres asked and given, worst and 95th-percentile protrusion, coverage, time).
 //!
 //! # Quick start
 //!

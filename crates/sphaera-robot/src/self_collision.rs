@@ -139,7 +139,7 @@ pub struct LinkPair {
     pub contacts: usize,
 }
 
-/// The verdict on every pair of links with spheres ([module docs](self)).
+/// The verdict on every pair of links with spheres ([`self_collision_matrix`] says how).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SelfCollisionMatrix {
     /// Every pair of links with spheres, in URDF order.
@@ -207,7 +207,19 @@ struct LinkBalls {
     offset: usize,
 }
 
-/// Computes the matrix of `robot`'s spheres on `urdf`'s kinematics ([module docs](self)).
+/// Computes the matrix of `robot`'s spheres on `urdf`'s kinematics.
+///
+/// Every pair of links with spheres gets one verdict, the first rule that holds, in
+/// MoveIt's order: **Adjacent** (joined by a joint; a link without spheres between them
+/// does not separate them), **Default** (in contact at
+/// [`KinematicChain::default_configuration`]), **Always** (in contact in at least
+/// [`SelfCollisionOptions::always_fraction`] of the sampled configurations), **Never** (in
+/// contact in none of them); the rest are left for the planner. Two links are in contact
+/// when a sphere of one meets a sphere of the other (closer than the sum of the radii plus
+/// [`SelfCollisionOptions::padding`]). The spheres cover the links, so a pair whose
+/// spheres never meet in the sampled configurations has links that never meet in them
+/// either; between samples it is the same bet MoveIt's setup assistant makes, with its
+/// default of 10,000 configurations.
 ///
 /// # Examples
 ///

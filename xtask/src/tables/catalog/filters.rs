@@ -61,6 +61,10 @@ pub(super) const KUKA: Filter = &[("robot", "robots/urdf/kuka_iiwa/model.urdf")]
 pub(super) const ROBOT_SPHAERA: Filter = &[("method", "sphaera")];
 /// The voxel baseline's.
 pub(super) const VOXELS: Filter = &[("method", "voxel_kmeans")];
+/// morphit-rs's rows of `robot_vs_morphit.csv`, as returned.
+pub(super) const MORPHIT_RAW: Filter = &[("method", "morphit_raw")];
+/// Grown to cover.
+pub(super) const MORPHIT_GROWN: Filter = &[("method", "morphit_grown")];
 
 /// The meshes of `spheretree_similarity.csv`, as the table names them.
 pub(super) const SIMILARITY_MESHES: &[(&str, &str)] = &[

@@ -269,6 +269,50 @@ pub(super) const TABLES: &[Table] = &[
             ),
         ],
     },
+    // docs/benchmarks.md, "Whole robots against morphit-rs": per robot and count, the
+    // whole-robot rows (link `(robot)`).
+    Table {
+        name: "robot_vs_morphit",
+        csv: "robot_vs_morphit",
+        key: &["robot", "spheres_per_link"],
+        keep: |row| row.get("link") == Some("(robot)"),
+        columns: &[
+            col("robot", "robot", ANY, Format::Text),
+            col("per link", "spheres_per_link", ANY, Format::Right),
+            col(
+                "Sphaera worst mm",
+                "worst_protrusion_mm",
+                ROBOT_SPHAERA,
+                Format::Decimals(1),
+            ),
+            col(
+                "Sphaera uncovered %",
+                "uncovered_pct",
+                ROBOT_SPHAERA,
+                Format::Decimals(1),
+            ),
+            col("Sphaera s", "seconds", ROBOT_SPHAERA, Format::Decimals(2)),
+            col(
+                "morphit worst mm",
+                "worst_protrusion_mm",
+                MORPHIT_RAW,
+                Format::Decimals(1),
+            ),
+            col(
+                "morphit uncovered %",
+                "uncovered_pct",
+                MORPHIT_RAW,
+                Format::Decimals(1),
+            ),
+            col(
+                "morphit grown worst mm",
+                "worst_protrusion_mm",
+                MORPHIT_GROWN,
+                Format::Decimals(1),
+            ),
+            col("morphit s", "seconds", MORPHIT_RAW, Format::Decimals(2)),
+        ],
+    },
     // docs/benchmarks.md, "Stability under similarity transforms": per mesh and level, the
     // spread of the certified worst error (upper end) over the tree of the mesh as given
     // and its 20 transformed copies, and its smallest and largest value.

@@ -41,6 +41,7 @@
 //! Sphaera's worst protrusion over the baseline's on the same link and count.
 
 pub(super) mod budgets;
+pub(super) mod morphit;
 pub mod voxel;
 
 use std::path::Path;
