@@ -14,6 +14,9 @@
 //! report's triangles and its bound in the panel (`#surface=S`), the distance colours show
 //! with the certified bounds in their legend (`#colour=distance`), and the silhouette
 //! labels of one of the report's cameras colour the mesh in grey levels (`#colour=labels`).
+//! Then hostile file names, and the robot page (`browser/robot.rs`).
+
+mod robot;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -200,6 +203,7 @@ pub fn browser_test(update_images: bool) -> Result<()> {
     let levels = tree_levels(&chromium, out, &mut problems)?;
     every_layer(&chromium, out, &mut problems)?;
     hostile_names(&chromium, out, &mut problems)?;
+    robot::robot_page(&chromium, out, &mut problems)?;
     if !problems.is_empty() {
         bail!("the browser test failed:\n  {}", problems.join("\n  "));
     }
@@ -226,7 +230,7 @@ pub fn browser_test(update_images: bool) -> Result<()> {
         }
     }
     eprintln!(
-        "browser test passed: {levels} levels, every layer; pages and screenshots in {}",
+        "browser test passed: {levels} levels, every layer, hostile names, the robot page; pages and screenshots in {}",
         out.display()
     );
     Ok(())

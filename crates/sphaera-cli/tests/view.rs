@@ -792,3 +792,73 @@ fn a_flat_sheet_is_shown_with_its_certified_errors() {
         );
     }
 }
+
+/// `sphaera view ROBOT.urdf`: the robot page with a slider per joint and the posed places
+/// in the report (the browser test checks the page's kinematics against them); bad joints
+/// and mesh-only options are clear errors that write no page.
+#[test]
+fn a_urdf_gets_the_robot_page() {
+    let dir = tempfile::tempdir().expect("a folder");
+    let urdf = dir.path().join("arm.urdf");
+    std::fs::write(
+        &urdf,
+        r#"<robot name="arm">
+          <link name="base"><collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+          <link name="upper"><collision><origin xyz="0 0 0.2"/><geometry><capsule radius="0.04" length="0.3"/></geometry></collision></link>
+          <joint name="shoulder" type="revolute"><parent link="base"/><child link="upper"/>
+            <origin xyz="0 0 0.05"/><axis xyz="0 1 0"/><limit lower="-1" upper="1"/></joint>
+        </robot>"#,
+    )
+    .expect("write");
+    let urdf = urdf.to_str().expect("utf-8");
+    let page = dir.path().join("arm.html");
+    let page_arg = page.to_str().expect("utf-8");
+    let report = json(&sphaera(&[
+        "view",
+        urdf,
+        "-q",
+        "-o",
+        page_arg,
+        "--joint",
+        "shoulder=0.5",
+        "--json",
+    ]));
+    assert_eq!(report["robot"], "arm");
+    assert_eq!(report["joints"]["shoulder"], 0.5);
+    assert_eq!(report["disabled"]["Adjacent"], 1);
+    let html = std::fs::read_to_string(&page).expect("the page");
+    let data = page_data(&html);
+    assert_eq!(data["joints"][0]["name"], "shoulder");
+    assert_eq!(data["steps"][0]["kind"], "rotate");
+    // The upper link's first sphere turned by 0.5 rad about y around the shoulder.
+    let probe = &report["probes"]["upper"];
+    let x = probe[0].as_f64().expect("x");
+    let z = probe[2].as_f64().expect("z");
+    assert!(x > 0.0 && z > 0.05, "{probe}");
+    for (args, needle) in [
+        (vec!["--joint", "elbow=1"], "no moving joint"),
+        (vec!["--simplify", "0.5"], "applies to a mesh"),
+    ] {
+        let out = dir.path().join("refused.html");
+        let mut all = vec!["view", urdf, "-q", "-o", out.to_str().expect("utf-8")];
+        all.extend(args);
+        let output = sphaera(&all);
+        assert!(!output.status.success());
+        assert!(
+            String::from_utf8_lossy(&output.stderr).contains(needle),
+            "{needle}"
+        );
+        assert!(!out.exists());
+    }
+    let out = dir.path().join("mesh.html");
+    let output = sphaera(&[
+        "view",
+        "-q",
+        "-o",
+        out.to_str().expect("utf-8"),
+        "--joint",
+        "a=1",
+    ]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("applies to a robot"));
+}

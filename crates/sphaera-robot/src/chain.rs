@@ -42,30 +42,44 @@ impl ActiveJoint {
     }
 }
 
-/// Where a moving joint's value comes from: an active joint, scaled and offset (a mimic
-/// chain collapsed to the joint that drives it).
+/// Where a moving joint's value comes from: an active joint (an index into
+/// [`KinematicChain::joints`]), scaled and offset (a mimic chain collapsed to the joint that
+/// drives it: `value = multiplier · q[joint] + offset`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Source {
-    active: usize,
-    multiplier: f64,
-    offset: f64,
+pub struct JointSource {
+    /// The active joint.
+    pub joint: usize,
+    /// Its factor.
+    pub multiplier: f64,
+    /// The offset.
+    pub offset: f64,
 }
 
+/// How a joint of the tree moves its child.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Motion {
+pub enum JointMotion {
+    /// Not at all (fixed, floating and planar joints, and mimics of joints that do not move).
     Fixed,
-    Rotate(Source),
-    Slide(Source),
+    /// A rotation about the axis by the source's value (radians).
+    Rotate(JointSource),
+    /// A translation along the axis by the source's value.
+    Slide(JointSource),
 }
 
-/// One joint of the tree, parent before child.
+/// One joint of the tree, parent before child: `pose[child] = pose[parent] · origin ·
+/// motion(value)`.
 #[derive(Clone, Debug, PartialEq)]
-struct Step {
-    parent: usize,
-    child: usize,
-    origin: DAffine3,
-    axis: DVec3,
-    motion: Motion,
+pub struct JointStep {
+    /// The parent link (an index into [`KinematicChain::links`]).
+    pub parent: usize,
+    /// The child link.
+    pub child: usize,
+    /// The child's frame at zero motion, in the parent's.
+    pub origin: DAffine3,
+    /// The unit axis of motion, in the child's frame.
+    pub axis: DVec3,
+    /// How it moves.
+    pub motion: JointMotion,
 }
 
 /// A robot's kinematic tree, compiled: links by index (the root first, every link after
@@ -106,7 +120,7 @@ pub struct KinematicChain {
     links: Vec<String>,
     index: HashMap<String, usize>,
     parents: Vec<Option<usize>>,
-    steps: Vec<Step>,
+    steps: Vec<JointStep>,
     active: Vec<ActiveJoint>,
 }
 
@@ -159,14 +173,14 @@ impl KinematicChain {
             let motion = if moves(joint) {
                 let source = source(joint, &joints, &active_index)?;
                 match (joint.kind, source) {
-                    (_, None) => Motion::Fixed,
-                    (JointKind::Prismatic, Some(s)) => Motion::Slide(s),
-                    (_, Some(s)) => Motion::Rotate(s),
+                    (_, None) => JointMotion::Fixed,
+                    (JointKind::Prismatic, Some(s)) => JointMotion::Slide(s),
+                    (_, Some(s)) => JointMotion::Rotate(s),
                 }
             } else {
-                Motion::Fixed
+                JointMotion::Fixed
             };
-            steps.push(Step {
+            steps.push(JointStep {
                 parent: index[&joint.parent],
                 child: index[&joint.child],
                 origin: joint.origin.affine(),
@@ -203,6 +217,12 @@ impl KinematicChain {
     #[must_use]
     pub fn parent(&self, link: usize) -> Option<usize> {
         self.parents.get(link).copied().flatten()
+    }
+
+    /// The joints of the tree, parent before child (what [`KinematicChain::poses`] walks).
+    #[must_use]
+    pub fn steps(&self) -> &[JointStep] {
+        &self.steps
     }
 
     /// The joints a configuration gives values to, in URDF order.
@@ -269,13 +289,13 @@ impl KinematicChain {
         poses.clear();
         poses.resize(self.links.len(), DAffine3::IDENTITY);
         for step in &self.steps {
-            let value = |s: &Source| s.multiplier * q[s.active] + s.offset;
+            let value = |s: &JointSource| s.multiplier * q[s.joint] + s.offset;
             let motion = match &step.motion {
-                Motion::Fixed => DAffine3::IDENTITY,
-                Motion::Rotate(s) => {
+                JointMotion::Fixed => DAffine3::IDENTITY,
+                JointMotion::Rotate(s) => {
                     DAffine3::from_quat(DQuat::from_axis_angle(step.axis, value(s)))
                 }
-                Motion::Slide(s) => DAffine3::from_translation(step.axis * value(s)),
+                JointMotion::Slide(s) => DAffine3::from_translation(step.axis * value(s)),
             };
             poses[step.child] = poses[step.parent] * step.origin * motion;
         }
@@ -306,13 +326,13 @@ fn source(
     joint: &Joint,
     joints: &HashMap<&str, &Joint>,
     active: &HashMap<&str, usize>,
-) -> Result<Option<Source>, RobotError> {
+) -> Result<Option<JointSource>, RobotError> {
     let (mut multiplier, mut offset) = (1.0, 0.0);
     let mut at = joint;
     for _ in 0..=joints.len() {
         let Some(mimic) = &at.mimic else {
-            return Ok(active.get(at.name.as_str()).map(|&k| Source {
-                active: k,
+            return Ok(active.get(at.name.as_str()).map(|&k| JointSource {
+                joint: k,
                 multiplier,
                 offset,
             }));

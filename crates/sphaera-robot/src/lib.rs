@@ -152,7 +152,7 @@ mod self_collision;
 mod spherize;
 mod urdf;
 
-pub use chain::{ActiveJoint, KinematicChain};
+pub use chain::{ActiveJoint, JointMotion, JointSource, JointStep, KinematicChain};
 pub use error::RobotError;
 pub use formats::{
     CuroboOptions, MjcfOptions, PlannerFormat, curobo_robot_yaml, curobo_yaml, json, mjcf,

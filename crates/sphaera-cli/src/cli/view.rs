@@ -9,8 +9,21 @@ use super::{OutputArgs, parse_length};
 /// Arguments of `sphaera view`.
 #[derive(Debug, Args)]
 pub struct ViewArgs {
-    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted.
+    /// The mesh file (OBJ, PLY, STL, OFF, glTF/GLB); the embedded bunny when omitted. A
+    /// robot's `.urdf` instead gives the robot page: every link's collision meshes and
+    /// spheres, a slider per joint moving them, links coloured by their certified
+    /// protrusion, the self-collision pairs listed.
     pub mesh: Option<PathBuf>,
+
+    /// With a URDF: spheres per link (default 16).
+    #[arg(long, default_value_t = 16)]
+    pub spheres_per_link: usize,
+
+    /// With a URDF: a joint's value when the page opens, `NAME=VALUE` (radians or the
+    /// URDF's units; repeat for more joints; the others at MoveIt's default, 0 where the
+    /// limits allow).
+    #[arg(long = "joint", value_parser = parse_joint, allow_hyphen_values = true)]
+    pub joints: Vec<(String, f64)>,
 
     /// A sphere-tree of this mesh to show (`.json` from `sphaera spheretree -o`, or
     /// `.sph`); built with the default options when omitted.
@@ -57,4 +70,17 @@ fn parse_view_ratio(text: &str) -> Result<f64, String> {
         .ok()
         .filter(|r| *r > 0.0 && *r <= 1.0)
         .ok_or_else(|| format!("`{text}`: the ratio must be a number in (0, 1]"))
+}
+
+fn parse_joint(text: &str) -> Result<(String, f64), String> {
+    let (name, value) = text
+        .rsplit_once('=')
+        .ok_or_else(|| format!("`{text}`: expected NAME=VALUE, e.g. panda_joint4=-1.5"))?;
+    let value: f64 = value
+        .trim()
+        .parse()
+        .ok()
+        .filter(|v: &f64| v.is_finite())
+        .ok_or_else(|| format!("`{text}`: the value must be a finite number"))?;
+    Ok((name.trim().to_owned(), value))
 }

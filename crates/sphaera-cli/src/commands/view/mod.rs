@@ -10,6 +10,7 @@
 
 mod layers;
 mod page;
+mod robot;
 mod tree;
 
 use std::path::PathBuf;
@@ -99,6 +100,16 @@ struct SilhouetteReport {
 }
 
 pub fn run(args: &ViewArgs, quiet: bool) -> Result<()> {
+    if let Some(path) = args.mesh.as_deref()
+        && path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("urdf"))
+    {
+        return robot::run(args, path, quiet);
+    }
+    if !args.joints.is_empty() {
+        bail!("--joint applies to a robot's URDF, not to a mesh");
+    }
     let started = Instant::now();
     let output: PathBuf = args
         .output

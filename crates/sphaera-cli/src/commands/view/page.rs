@@ -16,7 +16,7 @@ use super::layers::{DistanceField, LabelField, Layer, LayerKind};
 use super::tree::{Evaluation, largest};
 
 /// three.js 0.160.1 (MIT; `assets/three/LICENSE`), the single-file ES module.
-const THREE_JS: &str = include_str!("../../../assets/three/three.module.min.js");
+pub(super) const THREE_JS: &str = include_str!("../../../assets/three/three.module.min.js");
 /// The page around the data and the scripts.
 const TEMPLATE: &str = include_str!("../../../assets/view/view.html");
 /// The page's own script.
@@ -62,11 +62,11 @@ struct PageLayer {
     mesh: PageMesh,
 }
 
-fn base64_of(bytes: &[u8]) -> String {
+pub(super) fn base64_of(bytes: &[u8]) -> String {
     base64::engine::general_purpose::STANDARD.encode(bytes)
 }
 
-fn f32_base64(values: impl Iterator<Item = f64>) -> String {
+pub(super) fn f32_base64(values: impl Iterator<Item = f64>) -> String {
     let bytes: Vec<u8> = values.flat_map(|v| (v as f32).to_le_bytes()).collect();
     base64_of(&bytes)
 }
@@ -206,7 +206,7 @@ pub fn page(contents: &Contents<'_>) -> String {
 
 /// `template` with each placeholder replaced by its value, in one pass (a value that
 /// holds a placeholder's name, such as a file name, is left as it is).
-fn fill(template: &str, values: &[(&str, &str)]) -> String {
+pub(super) fn fill(template: &str, values: &[(&str, &str)]) -> String {
     let mut out =
         String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
     let mut rest = template;
@@ -224,7 +224,7 @@ fn fill(template: &str, values: &[(&str, &str)]) -> String {
 }
 
 /// `text` as HTML text or a quoted attribute value.
-fn html_escape(text: &str) -> String {
+pub(super) fn html_escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
