@@ -194,13 +194,18 @@ fn check_against_meshes(
     matrix: &SelfCollisionMatrix,
     configurations: &[Vec<f64>],
 ) -> usize {
+    assert!(
+        matrix.count(DisableReason::Never) > 0,
+        "{name}: some pairs never meet"
+    );
+    check_meshes(urdf, matrix, configurations)
+}
+
+/// How many pairs of posed link meshes parry finds in contact over `configurations`;
+/// fails when one of them is a "Never" pair.
+fn check_meshes(urdf: &Urdf, matrix: &SelfCollisionMatrix, configurations: &[Vec<f64>]) -> usize {
+    let name = &urdf.name;
     let chain = KinematicChain::new(urdf).unwrap();
-    let never: Vec<_> = matrix
-        .pairs
-        .iter()
-        .filter(|p| p.reason == Some(DisableReason::Never))
-        .collect();
-    assert!(!never.is_empty(), "{name}: some pairs never meet");
     let mut meshes_in_contact = 0;
     for q in configurations {
         let meshes = posed_meshes(urdf, &chain, q);
@@ -282,4 +287,76 @@ fn real_robots_never_disable_a_pair_in_contact() {
             "{name}"
         );
     }
+}
+
+/// A generated arm nobody tuned anything for: `links` box links (OBJ files in `dir`, each a
+/// random size) in a chain with random joint origins, axes and limits, the last two links
+/// siblings (a gripper's fingers).
+fn random_arm(dir: &std::path::Path, seed: u64, links: usize) -> Urdf {
+    let mut rng = sphaera_tests::SplitMix64::new(seed);
+    let cube = sphaera_mesh::shapes::cube(1.0, 1).expect("a cube");
+    let mut text = String::from("<robot name=\"random\">");
+    for k in 0..links {
+        let size = glam::DVec3::new(
+            rng.range(0.03, 0.12),
+            rng.range(0.03, 0.12),
+            rng.range(0.1, 0.35),
+        );
+        let mut obj = String::new();
+        for p in cube.positions() {
+            let q = *p * size + glam::DVec3::new(0.0, 0.0, 0.5 * size.z);
+            obj += &format!("v {} {} {}\n", q.x, q.y, q.z);
+        }
+        for t in cube.triangles() {
+            obj += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+        }
+        std::fs::write(dir.join(format!("l{k}.obj")), obj).expect("write a link mesh");
+        text += &format!(
+            "<link name=\"l{k}\"><collision><geometry><mesh filename=\"l{k}.obj\"/></geometry></collision></link>"
+        );
+    }
+    for k in 1..links {
+        let parent = if k == links - 1 { k - 2 } else { k - 1 };
+        let axis = ["1 0 0", "0 1 0", "0 0 1"][rng.below(3) as usize];
+        let lower = -rng.range(0.5, 2.5);
+        let upper = rng.range(0.5, 2.5);
+        text += &format!(
+            "<joint name=\"j{k}\" type=\"revolute\"><parent link=\"l{parent}\"/><child link=\"l{k}\"/><origin xyz=\"{} 0 {}\" rpy=\"{} {} 0\"/><axis xyz=\"{axis}\"/><limit lower=\"{lower}\" upper=\"{upper}\"/></joint>",
+            rng.range(-0.03, 0.03),
+            rng.range(0.1, 0.3),
+            rng.range(-0.4, 0.4),
+            rng.range(-0.4, 0.4),
+        );
+    }
+    text += "</robot>";
+    let path = dir.join("random.urdf");
+    std::fs::write(&path, &text).expect("write the URDF");
+    Urdf::read(&path).expect("the generated arm reads")
+}
+
+/// On arms nobody has seen: every adjacent pair left out, and no "Never" pair whose posed
+/// meshes parry finds in contact at the matrix's own configurations.
+#[test]
+fn generated_arms_never_disable_a_pair_in_contact() {
+    let mut contacts = 0;
+    for seed in 0..4 {
+        let dir = tempfile::tempdir().expect("a folder");
+        let urdf = random_arm(dir.path(), seed, 5 + seed as usize);
+        let robot = spherized(&urdf, 6);
+        let options = SelfCollisionOptions::default()
+            .with_samples(2_000)
+            .with_seed(seed);
+        let matrix = self_collision_matrix(&urdf, &robot, &options).expect("the matrix");
+        for joint in &urdf.joints {
+            assert!(
+                matrix.is_disabled(&joint.parent, &joint.child),
+                "seed {seed}: {}",
+                joint.name
+            );
+        }
+        let chain = KinematicChain::new(&urdf).unwrap();
+        let own: Vec<Vec<f64>> = (0..30).map(|i| chain.sample(seed, i * 60)).collect();
+        contacts += check_meshes(&urdf, &matrix, &own);
+    }
+    assert!(contacts > 0, "the brute-force test found some contact");
 }
