@@ -2,16 +2,19 @@
 
 use std::collections::{BTreeMap, HashMap};
 
-use glam::{DAffine3, DQuat};
+use glam::DAffine3;
 
 use crate::RobotError;
-use crate::urdf::{Joint, JointKind, Urdf};
+use crate::chain::KinematicChain;
+use crate::urdf::{Joint, Urdf};
 
 impl Urdf {
     /// The pose of every link's frame in the root link's frame, for the joint values in
     /// `positions` (radians or metres, by joint name; a joint not named is at 0, a mimic
     /// joint follows the joint it copies, through a chain of mimics to the joint that drives
-    /// it). Floating and planar joints stay at their origin. Linear in links and joints.
+    /// it). Floating and planar joints stay at their origin. Linear in links and joints:
+    /// a [`KinematicChain`] compiled and posed once (compile it yourself to pose many
+    /// configurations).
     ///
     /// # Examples
     ///
@@ -58,76 +61,13 @@ impl Urdf {
                 });
             }
         }
-        let values = joint_values(&joints, positions)?;
-        let root = self.root()?;
-        let below = self.child_joints();
-        let mut poses = BTreeMap::from([(root.to_owned(), DAffine3::IDENTITY)]);
-        let mut frontier = vec![(root, DAffine3::IDENTITY)];
-        while let Some((parent, parent_pose)) = frontier.pop() {
-            for &joint in below.get(parent).into_iter().flatten() {
-                let q = values.get(joint.name.as_str()).copied().unwrap_or(0.0);
-                let motion = match joint.kind {
-                    JointKind::Revolute | JointKind::Continuous => {
-                        DAffine3::from_quat(DQuat::from_axis_angle(joint.axis, q))
-                    }
-                    JointKind::Prismatic => DAffine3::from_translation(joint.axis * q),
-                    JointKind::Fixed | JointKind::Floating | JointKind::Planar => {
-                        DAffine3::IDENTITY
-                    }
-                };
-                let pose = parent_pose * joint.origin.affine() * motion;
-                if poses.insert(joint.child.clone(), pose).is_some() {
-                    return Err(self.reached_twice(joint));
-                }
-                frontier.push((joint.child.as_str(), pose));
-            }
-        }
-        Ok(poses)
+        let chain = KinematicChain::new(self)?;
+        let q: Vec<f64> = chain
+            .joints()
+            .iter()
+            .map(|j| positions.get(&j.name).copied().unwrap_or(0.0))
+            .collect();
+        let poses = chain.poses(&q)?;
+        Ok(chain.links().iter().cloned().zip(poses).collect())
     }
-}
-
-/// Every joint's value: as given (0 when not), a mimic joint's from the joint that drives
-/// its chain (`a` mimics `b` mimics `c`: `a = m_a (m_b c + o_b) + o_a`). Linear in the
-/// joints: each chain is walked once, its values kept.
-fn joint_values<'a>(
-    joints: &HashMap<&'a str, &'a Joint>,
-    positions: &BTreeMap<String, f64>,
-) -> Result<HashMap<&'a str, f64>, RobotError> {
-    let mut values: HashMap<&'a str, f64> = HashMap::with_capacity(joints.len());
-    for (&name, &joint) in joints {
-        let mut chain = Vec::new();
-        let mut at = joint;
-        let base = loop {
-            if let Some(&known) = values.get(at.name.as_str()) {
-                break known;
-            }
-            let Some(mimic) = &at.mimic else {
-                break positions.get(&at.name).copied().unwrap_or(0.0);
-            };
-            if chain.len() > joints.len() {
-                return Err(RobotError::Joint {
-                    joint: name.to_owned(),
-                    message: "its mimics form a cycle: no joint drives them".to_owned(),
-                });
-            }
-            chain.push(at);
-            at = joints
-                .get(mimic.joint.as_str())
-                .ok_or_else(|| RobotError::Joint {
-                    joint: at.name.clone(),
-                    message: format!("it mimics \"{}\", which is not a joint", mimic.joint),
-                })?;
-        };
-        if at.mimic.is_none() {
-            values.insert(at.name.as_str(), base);
-        }
-        let mut value = base;
-        for link in chain.iter().rev() {
-            if let Some(mimic) = &link.mimic {
-                value = mimic.multiplier * value + mimic.offset;
-            }
-            values.insert(link.name.as_str(), value);
-        }
-    }
-    Ok(values)
 }

@@ -37,8 +37,8 @@
 //!
 //! ```
 //! use sphaera_robot::{
-//!     Effort, Length, LinkGeometry, MeshResolver, PlannerFormat, SphereBudget, SpherizeOptions,
-//!     Urdf, spherize, spherize_geometry,
+//!     Effort, Length, LinkGeometry, MeshResolver, PlannerFormat, SelfCollisionOptions,
+//!     SphereBudget, SpherizeOptions, Urdf, self_collision_matrix, spherize, spherize_geometry,
 //! };
 //!
 //! let urdf = Urdf::parse(r#"
@@ -57,8 +57,17 @@
 //! for link in &robot.links {
 //!     assert!(link.report.worst_protrusion <= 0.01 && link.report.coverage == 1.0);
 //! }
-//! let yaml = PlannerFormat::Curobo.render(&urdf, &robot)?;
+//! let yaml = PlannerFormat::CuroboSpheres.render(&urdf, &robot)?;
 //! assert!(yaml.starts_with("collision_spheres:\n  \"base\":"));
+//!
+//! // Which pairs of links a planner need not test: here the two joined by the shoulder.
+//! let matrix = self_collision_matrix(&urdf, &robot, &SelfCollisionOptions::default())?;
+//! assert!(matrix.is_disabled("base", "upper"));
+//! // A complete cuRobo robot file and MuJoCo's MJCF carry it.
+//! let robot_file = PlannerFormat::Curobo.render(&urdf, &robot)?;
+//! assert!(robot_file.contains("self_collision_ignore:\n      \"base\": [\"upper\"]"));
+//! let mjcf = PlannerFormat::Mjcf.render(&urdf, &robot)?;
+//! assert!(mjcf.contains(r#"<exclude body1="base" body2="upper"/>"#));
 //!
 //! // Exactly 10 spheres in all, divided by what each link needs.
 //! let options = SpherizeOptions::default().with_budget(SphereBudget::Total(10));

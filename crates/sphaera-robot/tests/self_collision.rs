@@ -55,31 +55,32 @@ fn arm(n: usize, mimic: bool) -> Urdf {
     Urdf::parse(&text, "arm.urdf").expect("the arm parses")
 }
 
-/// The chain's poses against `Urdf::link_poses` at configuration `q`.
-fn assert_poses_agree(urdf: &Urdf, chain: &KinematicChain, q: &[f64]) {
-    let named: BTreeMap<String, f64> = chain
-        .joints()
-        .iter()
-        .zip(q)
-        .map(|(j, &v)| (j.name.clone(), v))
-        .collect();
-    let expected = urdf.link_poses(&named).expect("poses");
-    let poses = chain.poses(q).expect("poses");
-    for (name, pose) in &expected {
-        let got: DAffine3 = poses[chain.link_index(name).expect("a link")];
-        assert!(
-            got.abs_diff_eq(*pose, 1e-12),
-            "{name}: {got:?} against {pose:?}"
-        );
+/// The arm's poses computed here, independently of the crate: link `k` hangs from link
+/// `k − 1` at `(0, 0, 0.32)`, turned by 0.1 rad about x (the origin's roll), then by its
+/// joint's value about y; the last joint of a mimicking arm is `−0.5 · q[k − 1] + 0.1`.
+fn arm_poses(n: usize, mimic: bool, q: &[f64]) -> Vec<DAffine3> {
+    let mut poses = vec![DAffine3::IDENTITY];
+    let mut values = Vec::new();
+    for k in 1..n {
+        let value = if mimic && k == n - 1 && k >= 2 {
+            -0.5 * values[k - 2] + 0.1
+        } else {
+            q[values.len()]
+        };
+        values.push(value);
+        let origin = DAffine3::from_translation(glam::DVec3::new(0.0, 0.0, 0.32))
+            * DAffine3::from_rotation_x(0.1);
+        poses.push(poses[k - 1] * origin * DAffine3::from_rotation_y(value));
     }
-    assert_eq!(expected.len(), chain.links().len());
+    poses
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(sphaera_tests::cases(32)))]
 
-    /// The compiled chain poses every link as `Urdf::link_poses` does, mimic joints
-    /// included, and its samples stay in the joints' ranges.
+    /// The compiled chain (and `Urdf::link_poses`, which uses it) poses every link as the
+    /// arm's own arithmetic does, mimic joints included, and its samples stay in the
+    /// joints' ranges.
     #[test]
     fn the_chain_poses_as_link_poses(n in 2usize..9, seed in 0u64..1000, index in 0u64..1000, mimic in any::<bool>()) {
         let urdf = arm(n, mimic);
@@ -89,7 +90,17 @@ proptest! {
         for (j, v) in chain.joints().iter().zip(&q) {
             prop_assert!(j.lower <= *v && *v <= j.upper);
         }
-        assert_poses_agree(&urdf, &chain, &q);
+        let expected = arm_poses(n, mimic, &q);
+        let poses = chain.poses(&q).unwrap();
+        let named: BTreeMap<String, f64> =
+            chain.joints().iter().zip(&q).map(|(j, &v)| (j.name.clone(), v)).collect();
+        let by_name = urdf.link_poses(&named).unwrap();
+        for (k, pose) in expected.iter().enumerate() {
+            let name = format!("l{k}");
+            let got = poses[chain.link_index(&name).unwrap()];
+            prop_assert!(got.abs_diff_eq(*pose, 1e-12), "{name}: {got:?} against {pose:?}");
+            prop_assert!(by_name[&name].abs_diff_eq(*pose, 1e-12), "{name} by link_poses");
+        }
     }
 }
 

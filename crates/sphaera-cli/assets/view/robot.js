@@ -3,38 +3,9 @@
 // network), links coloured by their certified protrusion, the self-collision pairs
 // listed. The data is the JSON element `#sphaera-data`, written by the CLI: typed arrays
 // as base64 (little-endian), lengths in page units (the robot's units divided by `scale`).
-import * as THREE from "three";
+// (Shared with the mesh page, in `stage.js` before this script: THREE, `data`, the
+// decoders `floats`, `integers`, the canvas, `renderer`, `scene` and `orbit`.)
 
-// Errors reported on the console are counted on the body, where the browser test reads them.
-let consoleErrors = 0;
-const reportError = console.error.bind(console);
-console.error = (...args) => {
-  consoleErrors += 1;
-  document.body.dataset.consoleErrors = String(consoleErrors);
-  reportError(...args);
-};
-window.addEventListener("error", () => {
-  consoleErrors += 1;
-  document.body.dataset.consoleErrors = String(consoleErrors);
-});
-
-const data = JSON.parse(document.getElementById("sphaera-data").textContent);
-
-function bytesOf(base64) {
-  return Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-}
-const floats = (base64) => new Float32Array(bytesOf(base64).buffer);
-const integers = (base64) => new Uint32Array(bytesOf(base64).buffer);
-
-const canvas = document.getElementById("view");
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xf4f5f7);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 1.6));
-const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-sun.position.set(1, 3, 2);
-scene.add(sun);
 // URDF robots stand on z: the robot turned so that z is up on the screen.
 const robot = new THREE.Group();
 robot.rotation.x = -Math.PI / 2;
@@ -180,43 +151,12 @@ toggle("show-spheres", "balls");
 // The camera turns around the robot's middle: drag to turn, wheel to zoom.
 const target = new THREE.Vector3(data.target[0], data.target[2], -data.target[1]);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 100);
-let azimuth = 0.8;
-let elevation = 0.3;
-let distance = 3.4;
-function place() {
-  camera.position.set(
-    target.x + distance * Math.cos(elevation) * Math.sin(azimuth),
-    target.y + distance * Math.sin(elevation),
-    target.z + distance * Math.cos(elevation) * Math.cos(azimuth),
-  );
-  camera.lookAt(target);
-}
-let dragging = null;
-canvas.addEventListener("pointerdown", (event) => { dragging = { x: event.clientX, y: event.clientY }; });
-window.addEventListener("pointerup", () => { dragging = null; });
-window.addEventListener("pointermove", (event) => {
-  if (!dragging) return;
-  azimuth -= 0.01 * (event.clientX - dragging.x);
-  elevation = Math.max(-1.5, Math.min(1.5, elevation + 0.01 * (event.clientY - dragging.y)));
-  dragging = { x: event.clientX, y: event.clientY };
-  render();
-});
-canvas.addEventListener("wheel", (event) => {
-  event.preventDefault();
-  distance *= Math.exp(0.001 * event.deltaY);
-  render();
-}, { passive: false });
+const frame = orbit(camera, target, { azimuth: 0.8, elevation: 0.3, distance: 3.4 }, () => render());
 
 function render() {
-  const width = window.innerWidth;
-  const height = window.innerHeight;
-  renderer.setSize(width, height, false);
-  camera.aspect = width / Math.max(1, height);
-  camera.updateProjectionMatrix();
-  place();
+  frame();
   renderer.render(scene, camera);
 }
-window.addEventListener("resize", render);
 // The address may set the joints (the browser test uses it): `#q=v1,v2,…` in the order
 // of the sliders, each clamped to its range.
 const asked = new URLSearchParams(window.location.hash.slice(1)).get("q");

@@ -3,48 +3,8 @@
 // surfaces (simplification rungs, HAL approximations), the distance to another mesh as
 // vertex colours, silhouette labels in grey levels. The data is the JSON element
 // `#sphaera-data`, written by the CLI: typed arrays as base64 (little-endian).
-import * as THREE from "three";
-
-// Errors reported on the console (three.js reports WebGL failures there) are counted on
-// the body, where the browser test reads them.
-let consoleErrors = 0;
-const reportError = console.error.bind(console);
-console.error = (...args) => {
-  consoleErrors += 1;
-  document.body.dataset.consoleErrors = String(consoleErrors);
-  reportError(...args);
-};
-window.addEventListener("error", () => {
-  consoleErrors += 1;
-  document.body.dataset.consoleErrors = String(consoleErrors);
-});
-
-const data = JSON.parse(document.getElementById("sphaera-data").textContent);
-
-function floats(base64) {
-  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-  return new Float32Array(bytes.buffer);
-}
-
-function integers(base64) {
-  const bytes = Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-  return new Uint32Array(bytes.buffer);
-}
-
-function bytes(base64) {
-  return Uint8Array.from(atob(base64), (c) => c.charCodeAt(0));
-}
-
-// The scene: the mesh, centred on the origin by the CLI, and a light rig.
-const canvas = document.getElementById("view");
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xf4f5f7);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x667788, 1.6));
-const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-sun.position.set(1, 2, 3);
-scene.add(sun);
+// (Shared with the robot page, in `stage.js` before this script: THREE, `data`, the
+// decoders `floats`, `integers`, `bytes`, the canvas, `renderer`, `scene` and `orbit`.)
 
 function shape(arrays) {
   const geometry = new THREE.BufferGeometry();
@@ -307,44 +267,13 @@ document.getElementById("show-spheres").addEventListener("change", (event) => {
 
 // The camera turns around the origin: drag to turn, wheel to zoom.
 const camera = new THREE.PerspectiveCamera(40, 1, data.radius / 100, data.radius * 100);
-let azimuth = 0.6;
-let elevation = 0.35;
-let distance = 3.2 * data.radius;
-function place() {
-  camera.position.set(
-    distance * Math.cos(elevation) * Math.sin(azimuth),
-    distance * Math.sin(elevation),
-    distance * Math.cos(elevation) * Math.cos(azimuth),
-  );
-  camera.lookAt(0, 0, 0);
-}
-let dragging = null;
-canvas.addEventListener("pointerdown", (event) => { dragging = { x: event.clientX, y: event.clientY }; });
-window.addEventListener("pointerup", () => { dragging = null; });
-window.addEventListener("pointermove", (event) => {
-  if (!dragging) return;
-  azimuth -= 0.01 * (event.clientX - dragging.x);
-  elevation = Math.max(-1.5, Math.min(1.5, elevation + 0.01 * (event.clientY - dragging.y)));
-  dragging = { x: event.clientX, y: event.clientY };
-  render();
-});
-canvas.addEventListener("wheel", (event) => {
-  event.preventDefault();
-  distance *= Math.exp(0.001 * event.deltaY);
-  render();
-}, { passive: false });
+const frame = orbit(camera, new THREE.Vector3(0, 0, 0), { azimuth: 0.6, elevation: 0.35, distance: 3.2 * data.radius }, () => render());
 
 function render() {
-  const width = window.innerWidth;
-  const height = window.innerHeight;
-  renderer.setSize(width, height, false);
-  camera.aspect = width / Math.max(1, height);
-  camera.updateProjectionMatrix();
-  place();
+  frame();
   if (data.labels) updateLabels();
   renderer.render(scene, camera);
 }
-window.addEventListener("resize", render);
 // The address picks what is shown first (the browser test uses it): `#level=K`,
 // `surface=S` (an index of the surface menu), `colour=plain|distance|labels`,
 // `spheres=off`, joined by `&`.

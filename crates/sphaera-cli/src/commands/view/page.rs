@@ -19,6 +19,9 @@ use super::tree::{Evaluation, largest};
 pub(super) const THREE_JS: &str = include_str!("../../../assets/three/three.module.min.js");
 /// The page around the data and the scripts.
 const TEMPLATE: &str = include_str!("../../../assets/view/view.html");
+/// What every page's script starts with (three.js imported, the data, decoders, the
+/// renderer and the orbiting camera).
+pub(super) const STAGE_JS: &str = include_str!("../../../assets/view/stage.js");
 /// The page's own script.
 const VIEW_JS: &str = include_str!("../../../assets/view/view.js");
 
@@ -199,7 +202,7 @@ pub fn page(contents: &Contents<'_>) -> String {
             ),
             ("SPHAERA_THREE_BASE64", &base64_of(THREE_JS.as_bytes())),
             ("SPHAERA_DATA", &data),
-            ("SPHAERA_VIEW_JS", VIEW_JS),
+            ("SPHAERA_VIEW_JS", &format!("{STAGE_JS}\n{VIEW_JS}")),
         ],
     )
 }

@@ -20,7 +20,7 @@ use sphaera::robot::{
     SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf, spherize_with_progress,
 };
 
-use super::page::{THREE_JS, base64_of, f32_base64, fill, html_escape, script_json};
+use super::page::{STAGE_JS, THREE_JS, base64_of, f32_base64, fill, html_escape, script_json};
 use crate::cli::ViewArgs;
 use crate::output::{check_target, print_report, thousands};
 use crate::progress;
@@ -332,7 +332,7 @@ pub fn run(args: &ViewArgs, path: &Path, quiet: bool) -> Result<()> {
             ),
             ("SPHAERA_THREE_BASE64", &base64_of(THREE_JS.as_bytes())),
             ("SPHAERA_DATA", &script_json(&data.to_string())),
-            ("SPHAERA_VIEW_JS", ROBOT_JS),
+            ("SPHAERA_VIEW_JS", &format!("{STAGE_JS}\n{ROBOT_JS}")),
         ],
     );
     sphaera::mesh::io::write_atomic(&output, |w| std::io::Write::write_all(w, page.as_bytes()))
