@@ -170,7 +170,8 @@ pub use formats::{
 pub use geometry::{GeometrySource, LinkGeometry, MeshResolver};
 pub use primitive::{Primitive, Shape};
 pub use self_collision::{
-    DisableReason, LinkPair, SelfCollisionMatrix, SelfCollisionOptions, self_collision_matrix,
+    DisableReason, LinkPair, MAX_SELF_COLLISION_SAMPLES, SelfCollisionMatrix, SelfCollisionOptions,
+    self_collision_matrix,
 };
 pub use sphaera_mesh::{Length, Sphere};
 pub use sphaera_spheretree::Effort;

@@ -122,6 +122,7 @@ fn bad_options_are_refused() {
         SelfCollisionOptions::default().with_always_fraction(f64::NAN),
         SelfCollisionOptions::default().with_padding(-0.1),
         SelfCollisionOptions::default().with_padding(f64::INFINITY),
+        SelfCollisionOptions::default().with_samples(sphaera_robot::MAX_SELF_COLLISION_SAMPLES + 1),
     ] {
         assert!(
             matches!(
@@ -301,9 +302,9 @@ fn real_robots_never_disable_a_pair_in_contact() {
 }
 
 /// A generated arm nobody tuned anything for: `links` box links (OBJ files in `dir`, each a
-/// random size) in a chain with random joint origins, axes and limits, the last two links
+/// random size; every length times `factor`) in a chain with random joint origins, axes and limits, the last two links
 /// siblings (a gripper's fingers).
-fn random_arm(dir: &std::path::Path, seed: u64, links: usize) -> Urdf {
+fn random_arm(dir: &std::path::Path, seed: u64, links: usize, factor: f64) -> Urdf {
     let mut rng = sphaera_tests::SplitMix64::new(seed);
     let cube = sphaera_mesh::shapes::cube(1.0, 1).expect("a cube");
     let mut text = String::from("<robot name=\"random\">");
@@ -315,7 +316,7 @@ fn random_arm(dir: &std::path::Path, seed: u64, links: usize) -> Urdf {
         );
         let mut obj = String::new();
         for p in cube.positions() {
-            let q = *p * size + glam::DVec3::new(0.0, 0.0, 0.5 * size.z);
+            let q = factor * (*p * size + glam::DVec3::new(0.0, 0.0, 0.5 * size.z));
             obj += &format!("v {} {} {}\n", q.x, q.y, q.z);
         }
         for t in cube.triangles() {
@@ -333,8 +334,8 @@ fn random_arm(dir: &std::path::Path, seed: u64, links: usize) -> Urdf {
         let upper = rng.range(0.5, 2.5);
         text += &format!(
             "<joint name=\"j{k}\" type=\"revolute\"><parent link=\"l{parent}\"/><child link=\"l{k}\"/><origin xyz=\"{} 0 {}\" rpy=\"{} {} 0\"/><axis xyz=\"{axis}\"/><limit lower=\"{lower}\" upper=\"{upper}\"/></joint>",
-            rng.range(-0.03, 0.03),
-            rng.range(0.1, 0.3),
+            factor * rng.range(-0.03, 0.03),
+            factor * rng.range(0.1, 0.3),
             rng.range(-0.4, 0.4),
             rng.range(-0.4, 0.4),
         );
@@ -352,7 +353,7 @@ fn generated_arms_never_disable_a_pair_in_contact() {
     let mut contacts = 0;
     for seed in 0..4 {
         let dir = tempfile::tempdir().expect("a folder");
-        let urdf = random_arm(dir.path(), seed, 5 + seed as usize);
+        let urdf = random_arm(dir.path(), seed, 5 + seed as usize, 1.0);
         let robot = spherized(&urdf, 6);
         let options = SelfCollisionOptions::default()
             .with_samples(2_000)
@@ -370,4 +371,33 @@ fn generated_arms_never_disable_a_pair_in_contact() {
         contacts += check_meshes(&urdf, &matrix, &own);
     }
     assert!(contacts > 0, "the brute-force test found some contact");
+}
+
+/// The same arm at twice the size (a power of two: every length exactly doubled) gets the
+/// same verdict and the same contact count on every pair, and spheres exactly doubled.
+#[test]
+fn a_robot_twice_the_size_gets_the_same_matrix() {
+    let (small_dir, large_dir) = (
+        tempfile::tempdir().expect("a folder"),
+        tempfile::tempdir().expect("a folder"),
+    );
+    let small = random_arm(small_dir.path(), 11, 6, 1.0);
+    let large = random_arm(large_dir.path(), 11, 6, 2.0);
+    let (a, b) = (spherized(&small, 5), spherized(&large, 5));
+    for (x, y) in a.links.iter().zip(&b.links) {
+        for (s, t) in x.spheres.iter().zip(&y.spheres) {
+            assert_eq!(
+                (2.0 * s.center, 2.0 * s.radius),
+                (t.center, t.radius),
+                "{}",
+                x.link
+            );
+        }
+    }
+    let options = SelfCollisionOptions::default().with_samples(3_000);
+    let (m, n) = (
+        self_collision_matrix(&small, &a, &options).unwrap(),
+        self_collision_matrix(&large, &b, &options).unwrap(),
+    );
+    assert_eq!(m.pairs, n.pairs);
 }
