@@ -17,6 +17,8 @@
 //! coarse, depth = sphaera.hal(mesh, tolerance="1%")
 //! labels, directions = sphaera.silhouette_labels(mesh)
 //! robot = sphaera.urdf("panda.urdf", spheres_per_link=40)
+//! pairs = robot["self_collision"]              # MoveIt's rules: which pairs to skip
+//! poses = sphaera.link_poses("panda.urdf", {"panda_joint4": -1.5})
 //! ```
 //!
 //! Arrays come in and go out as numpy arrays (`float64` coordinates, `uint32` or any
