@@ -6,8 +6,8 @@ use anyhow::{Result, bail};
 use serde::Serialize;
 use sphaera::robot::{
     CuroboOptions, DisableReason, GeometrySource, LinkReport, MeshResolver, MjcfOptions,
-    PlannerFormat, SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf, curobo_robot_yaml,
-    mjcf, spherize_with_progress, write_atomic,
+    PlannerFormat, RobotSpheres, SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf,
+    curobo_robot_yaml, mjcf, spherize_with_progress, write_atomic,
 };
 
 use crate::{
@@ -126,21 +126,7 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
     for (name, count) in &args.per_link {
         options = options.with_link(name.clone(), *count);
     }
-    let links_with_geometry = urdf
-        .links
-        .iter()
-        .filter(|l| !options.source.elements(l).is_empty())
-        .count();
-    let bar = progress::bar(
-        quiet,
-        &format!("spherizing {links_with_geometry} links of {}", urdf.name),
-        links_with_geometry as u64,
-    );
-    let robot = spherize_with_progress(&urdf, &resolver, &options, &|p| {
-        bar.set_position(p.done as u64);
-    });
-    bar.finish_and_clear();
-    let robot = robot?;
+    let robot = spherize_robot(&urdf, &resolver, &options, quiet)?;
     let Some(matrix) = &robot.self_collision else {
         bail!("the self-collision matrix was asked for and not computed");
     };
@@ -285,4 +271,33 @@ fn options_source(args: &UrdfArgs) -> GeometrySource {
     } else {
         GeometrySource::Collision
     }
+}
+
+/// `urdf` spherized by `options` with a progress bar over its links with geometry (hidden
+/// when `quiet`).
+///
+/// # Errors
+///
+/// As `sphaera::robot::spherize`.
+pub(crate) fn spherize_robot(
+    urdf: &Urdf,
+    resolver: &MeshResolver,
+    options: &SpherizeOptions,
+    quiet: bool,
+) -> Result<RobotSpheres> {
+    let links_with_geometry = urdf
+        .links
+        .iter()
+        .filter(|l| !options.source.elements(l).is_empty())
+        .count();
+    let bar = progress::bar(
+        quiet,
+        &format!("spherizing {links_with_geometry} links of {}", urdf.name),
+        links_with_geometry as u64,
+    );
+    let robot = spherize_with_progress(urdf, resolver, options, &|p| {
+        bar.set_position(p.done as u64);
+    });
+    bar.finish_and_clear();
+    Ok(robot?)
 }

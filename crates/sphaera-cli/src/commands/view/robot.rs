@@ -17,13 +17,12 @@ use sphaera::mesh::io::colormap;
 use sphaera::mesh::{DVec3, Sphere};
 use sphaera::robot::{
     DisableReason, GeometrySource, JointMotion, KinematicChain, LinkGeometry, MeshResolver,
-    SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf, spherize_with_progress,
+    SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf,
 };
 
 use super::page::{STAGE_JS, THREE_JS, base64_of, f32_base64, fill, html_escape, script_json};
 use crate::cli::ViewArgs;
 use crate::output::{check_target, print_report, thousands};
-use crate::progress;
 
 /// The robot page around the data and the scripts.
 const TEMPLATE: &str = include_str!("../../../assets/view/robot.html");
@@ -156,21 +155,7 @@ pub fn run(args: &ViewArgs, path: &Path, quiet: bool) -> Result<()> {
     let options = SpherizeOptions::default()
         .with_budget(SphereBudget::PerLink(args.spheres_per_link))
         .with_self_collision(SelfCollisionOptions::default());
-    let with_geometry = urdf
-        .links
-        .iter()
-        .filter(|l| !GeometrySource::Collision.elements(l).is_empty())
-        .count();
-    let bar = progress::bar(
-        quiet,
-        &format!("spherizing {with_geometry} links of {}", urdf.name),
-        with_geometry as u64,
-    );
-    let robot = spherize_with_progress(&urdf, &resolver, &options, &|p| {
-        bar.set_position(p.done as u64);
-    });
-    bar.finish_and_clear();
-    let robot = robot?;
+    let robot = crate::commands::urdf::spherize_robot(&urdf, &resolver, &options, quiet)?;
     let Some(matrix) = &robot.self_collision else {
         bail!("the self-collision matrix was asked for and not computed");
     };
