@@ -92,6 +92,30 @@ fn the_panda_is_spherized_and_written_in_every_format() {
     assert_eq!(report["self_collision"]["never"], 0);
     let text = std::fs::read_to_string(&srdf).expect("written");
     assert!(!text.contains("reason=\"Never\"") && text.contains("reason=\"Adjacent\""));
+    // The cuRobo file naming its spheres beside it.
+    let robot_file = dir.path().join("beside.yml");
+    let spheres_file = dir.path().join("beside_spheres.yml");
+    let output = sphaera(&[
+        "urdf",
+        &urdf,
+        "--spheres-per-link",
+        "3",
+        "--curobo-spheres",
+        spheres_file.to_str().expect("utf-8"),
+        "-o",
+        robot_file.to_str().expect("utf-8"),
+        "-q",
+    ]);
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let text = std::fs::read_to_string(&robot_file).expect("the robot file");
+    let named = format!("collision_spheres: \"{}\"", spheres_file.display());
+    assert!(text.contains(&named), "{text}");
+    let spheres = std::fs::read_to_string(&spheres_file).expect("the spheres file");
+    assert!(spheres.starts_with("collision_spheres:\n  \"panda_link0\":"));
     // A negative clearance and an end effector the robot does not have are refused.
     for (flag, value, needle) in [
         ("--self-collision-padding", "-1", "padding"),

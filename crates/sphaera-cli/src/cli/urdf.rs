@@ -87,6 +87,11 @@ pub struct UrdfArgs {
     #[arg(long)]
     pub ee_link: Option<String>,
 
+    /// With the cuRobo robot file: write the spheres to this file (cuRobo's
+    /// `collision_spheres` YAML) and name it in the robot file, instead of inline.
+    #[arg(long, value_name = "FILE")]
+    pub curobo_spheres: Option<PathBuf>,
+
     /// Also write the links' meshes (STL and OBJ files) as visual geoms into the MJCF.
     #[arg(long)]
     pub mjcf_meshes: bool,

@@ -7,7 +7,7 @@ use serde::Serialize;
 use sphaera::robot::{
     CuroboOptions, DisableReason, GeometrySource, LinkReport, MeshResolver, MjcfOptions,
     PlannerFormat, RobotSpheres, SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf,
-    curobo_robot_yaml, mjcf, spherize_with_progress, write_atomic,
+    curobo_robot_yaml, curobo_yaml, mjcf, spherize_with_progress, write_atomic,
 };
 
 use crate::{
@@ -136,6 +136,11 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
                 let mut curobo = CuroboOptions::default();
                 if let Some(link) = &args.ee_link {
                     curobo = curobo.with_ee_link(link.clone());
+                }
+                if let Some(spheres) = &args.curobo_spheres {
+                    check_target(spheres)?;
+                    write_atomic(spheres, &curobo_yaml(&robot)?)?;
+                    curobo = curobo.with_spheres_file(spheres.display().to_string());
                 }
                 curobo_robot_yaml(&urdf, &robot, matrix, &curobo)?
             }
