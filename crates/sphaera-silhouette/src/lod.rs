@@ -21,8 +21,8 @@ use crate::labels::{Interpolation, Labels};
 ///
 /// # Errors
 ///
-/// [`SilhouetteError::InvalidParameter`] for a negative or non-finite `factor` or a NaN
-/// `threshold`.
+/// [`SilhouetteError::InvalidParameter`] for a negative or non-finite `factor`, a NaN
+/// `threshold`, or a view the labels do not have (an index past the last).
 pub fn contour_weights(
     labels: &Labels,
     views: &[usize],
@@ -37,8 +37,16 @@ pub fn contour_weights(
             requirement: "a number",
         });
     }
+    let count = labels.views().len();
+    if let Some(&k) = views.iter().find(|&&k| k >= count) {
+        return Err(SilhouetteError::InvalidParameter {
+            name: "view",
+            value: k as f64,
+            requirement: "the index of one of the labels' views",
+        });
+    }
     let chosen: Vec<usize> = if views.is_empty() {
-        (0..labels.views().len()).collect()
+        (0..count).collect()
     } else {
         views.to_vec()
     };

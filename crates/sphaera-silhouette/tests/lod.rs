@@ -312,3 +312,21 @@ fn awkward_settings_still_meet_every_allowance() {
         }
     }
 }
+
+/// A view the labels do not have is an error naming it, not a panic (issue 40).
+#[test]
+fn weights_for_a_view_out_of_range_are_refused() {
+    let (_, _, labels) = setup();
+    let past = labels.views().len();
+    for views in [vec![past], vec![0, usize::MAX]] {
+        let error = contour_weights(&labels, &views, 1.0, 0.0).unwrap_err();
+        assert!(
+            matches!(
+                error,
+                SilhouetteError::InvalidParameter { name: "view", .. }
+            ),
+            "{error}"
+        );
+    }
+    assert!(contour_weights(&labels, &[past - 1], 1.0, 0.0).is_ok());
+}
