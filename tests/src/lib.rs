@@ -135,6 +135,20 @@ pub fn data_dir(test_name: &str) -> Option<PathBuf> {
 /// README apart from its table; [`mesh_files`] leaves them out.
 pub const URDF_ASSETS: &str = "robots/urdf";
 
+/// The URDFs of the two shared robots, `(short name, path)`: the Franka Panda and the
+/// KUKA iiwa, or nothing (said, or failing under `SPHAERA_REQUIRE_DATA=1`, as
+/// [`data_dir`]) when the data folder is absent.
+pub fn robot_urdfs(test_name: &str) -> Vec<(&'static str, PathBuf)> {
+    let Some(data) = data_dir(test_name) else {
+        return Vec::new();
+    };
+    let dir = data.join(URDF_ASSETS);
+    vec![
+        ("panda", dir.join("franka_panda/panda.urdf")),
+        ("kuka", dir.join("kuka_iiwa/model.urdf")),
+    ]
+}
+
 /// Every mesh file under `dir` (recursively), sorted by path, relative to `dir`, except
 /// the robot descriptions' assets under [`URDF_ASSETS`].
 pub fn mesh_files(dir: &Path) -> Vec<PathBuf> {

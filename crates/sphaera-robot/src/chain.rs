@@ -180,6 +180,8 @@ impl KinematicChain {
             } else {
                 JointMotion::Fixed
             };
+            // Both ends are indexed: `order` holds only joints reached from the root, whose
+            // parent was indexed before the joint was pushed and whose child when it was.
             steps.push(JointStep {
                 parent: index[&joint.parent],
                 child: index[&joint.child],

@@ -420,6 +420,7 @@ fn adjacent_pairs(chain: &KinematicChain, links: &[LinkBalls]) -> HashSet<(usize
     pairs
         .into_iter()
         .map(|(a, b)| {
+            // Both are sphered links (only those are added), and `order` holds every one.
             if order[&a] < order[&b] {
                 (a, b)
             } else {

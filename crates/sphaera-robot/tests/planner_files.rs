@@ -4,7 +4,6 @@
 //! prismatic, fixed and floating joints.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::PathBuf;
 
 use sphaera_robot::{
     CuroboOptions, DisableReason, KinematicChain, MeshResolver, MjcfOptions, RobotSpheres,
@@ -12,17 +11,6 @@ use sphaera_robot::{
     curobo_robot_yaml, mjcf, spherize,
 };
 use yaml_rust2::Yaml;
-
-fn real_robots(test: &str) -> Vec<PathBuf> {
-    let Some(data) = sphaera_tests::data_dir(test) else {
-        return Vec::new();
-    };
-    let dir = data.join(sphaera_tests::URDF_ASSETS);
-    vec![
-        dir.join("franka_panda/panda.urdf"),
-        dir.join("kuka_iiwa/model.urdf"),
-    ]
-}
 
 /// A generated robot: a world link, a floating base, a continuous joint, a revolute chain,
 /// a prismatic finger and a mimic finger, a fixed flange.
@@ -269,7 +257,7 @@ fn the_generated_robot_writes_complete_files() {
 
 #[test]
 fn the_real_robots_write_complete_files() {
-    for path in real_robots("the_real_robots_write_complete_files") {
+    for (_, path) in sphaera_tests::robot_urdfs("the_real_robots_write_complete_files") {
         let urdf = Urdf::read(&path).expect("the URDF reads");
         let (robot, matrix) = spherized(&urdf);
         check_curobo(&urdf, &robot, &matrix);
@@ -289,4 +277,36 @@ fn an_unknown_end_effector_is_refused() {
     )
     .unwrap_err();
     assert!(error.to_string().contains("\"hand\""), "{error}");
+}
+
+/// A robot of one link has no pair: an empty matrix, an empty ignore map in the cuRobo file
+/// (a YAML map, not nothing), no joint space, no `<contact>` in the MJCF; all still parse.
+#[test]
+fn a_one_link_robot_has_an_empty_matrix_and_valid_files() {
+    let urdf = Urdf::parse(
+        r#"<robot name="one"><link name="only"><collision><geometry><sphere radius="0.1"/></geometry></collision></link></robot>"#,
+        "one.urdf",
+    )
+    .unwrap();
+    let (robot, matrix) = spherized(&urdf);
+    assert!(matrix.pairs.is_empty());
+    let yaml = curobo_robot_yaml(&urdf, &robot, &matrix, &CuroboOptions::default()).unwrap();
+    let documents = yaml_rust2::YamlLoader::load_from_str(&yaml).expect("the YAML parses");
+    let k = &documents[0]["robot_cfg"]["kinematics"];
+    assert!(
+        k["self_collision_ignore"]
+            .as_hash()
+            .is_some_and(|m| m.is_empty()),
+        "{yaml}"
+    );
+    assert_eq!(k["ee_link"].as_str(), Some("only"));
+    assert!(
+        k["cspace"]["joint_names"]
+            .as_vec()
+            .is_some_and(Vec::is_empty),
+        "{yaml}"
+    );
+    let text = mjcf(&urdf, &robot, &matrix, &MjcfOptions::default()).unwrap();
+    roxmltree::Document::parse(&text).expect("the MJCF parses");
+    assert!(!text.contains("<contact>") && text.contains("<body name=\"only\">"));
 }

@@ -4,7 +4,6 @@
 //! ones), the same matrix whatever the thread count, and bad options refused.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 use glam::DAffine3;
 use proptest::prelude::*;
@@ -14,15 +13,6 @@ use sphaera_robot::{
     RobotSpheres, SelfCollisionMatrix, SelfCollisionOptions, SphereBudget, SpherizeOptions, Urdf,
     self_collision_matrix, spherize,
 };
-
-fn robot_path(name: &str, test: &str) -> Option<PathBuf> {
-    let data = sphaera_tests::data_dir(test)?;
-    let dir = data.join(sphaera_tests::URDF_ASSETS);
-    Some(match name {
-        "panda" => dir.join("franka_panda/panda.urdf"),
-        _ => dir.join("kuka_iiwa/model.urdf"),
-    })
-}
 
 fn spherized(urdf: &Urdf, per_link: usize) -> RobotSpheres {
     let options = SpherizeOptions::default().with_budget(SphereBudget::PerLink(per_link));
@@ -242,10 +232,7 @@ fn check_meshes(urdf: &Urdf, matrix: &SelfCollisionMatrix, configurations: &[Vec
 
 #[test]
 fn real_robots_never_disable_a_pair_in_contact() {
-    for name in ["panda", "kuka"] {
-        let Some(path) = robot_path(name, "real_robots_never_disable_a_pair_in_contact") else {
-            return;
-        };
+    for (name, path) in sphaera_tests::robot_urdfs("real_robots_never_disable_a_pair_in_contact") {
         let urdf = Urdf::read(&path).expect("the URDF reads");
         let robot = spherized(&urdf, 12);
         let options = SelfCollisionOptions::default();

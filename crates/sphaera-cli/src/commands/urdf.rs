@@ -85,6 +85,9 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
             );
         }
     }
+    if let Some(spheres) = &args.curobo_spheres {
+        check_target(spheres)?;
+    }
     let started = Instant::now();
     let policy = crate::input::file_policy();
     let urdf = Urdf::read_with(&args.urdf, &policy)?;
@@ -138,7 +141,6 @@ pub fn run(args: &UrdfArgs, quiet: bool) -> Result<()> {
                     curobo = curobo.with_ee_link(link.clone());
                 }
                 if let Some(spheres) = &args.curobo_spheres {
-                    check_target(spheres)?;
                     write_atomic(spheres, &curobo_yaml(&robot)?)?;
                     curobo = curobo.with_spheres_file(spheres.display().to_string());
                 }

@@ -138,6 +138,8 @@ fn end_of_main_chain(urdf: &Urdf) -> Result<String, RobotError> {
         let live: Vec<&&Joint> = children
             .iter()
             .copied()
+            // Every link reached from the root is in `moving` (filled over `order`, the
+            // whole tree from the root).
             .filter(|j| j.kind != crate::JointKind::Fixed || moving[j.child.as_str()])
             .collect();
         match (children.as_slice(), live.as_slice()) {
