@@ -296,7 +296,7 @@ fn a_one_link_robot_has_an_empty_matrix_and_valid_files() {
     assert!(
         k["self_collision_ignore"]
             .as_hash()
-            .is_some_and(|m| m.is_empty()),
+            .is_some_and(yaml_rust2::yaml::Hash::is_empty),
         "{yaml}"
     );
     assert_eq!(k["ee_link"].as_str(), Some("only"));
