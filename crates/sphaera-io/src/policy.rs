@@ -10,7 +10,7 @@
 //! glTF specification reads relative URIs.
 
 use std::fs::{File, Metadata};
-use std::io::Read;
+use std::io::{Read, Take};
 use std::path::{Path, PathBuf};
 
 use crate::IoError;
@@ -152,16 +152,38 @@ impl FilePolicy {
         })
     }
 
-    /// [`FilePolicy::read`], the file also confined to `folder` (a glTF asset's folder),
-    /// and read to at most `limit` bytes (a glTF buffer's length).
-    pub(crate) fn read_within(
-        &self,
-        path: &Path,
-        folder: Option<&Path>,
-        limit: u64,
-    ) -> Result<Vec<u8>, IoError> {
+    /// The file at `path`, opened for reading if the policy admits it, to be read as a
+    /// stream (a large file need not be held in memory at once): reading stops at the
+    /// length the file had when it was checked, which [`Take::limit`] gives.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use std::io::Read;
+    /// use sphaera_io::FilePolicy;
+    ///
+    /// let dir = tempfile::tempdir()?;
+    /// let path = dir.path().join("note.txt");
+    /// std::fs::write(&path, "hello")?;
+    /// let mut file = FilePolicy::default().open(&path)?;
+    /// assert_eq!(file.limit(), 5);
+    /// let mut text = String::new();
+    /// file.read_to_string(&mut text)?;
+    /// assert_eq!(text, "hello");
+    /// assert!(FilePolicy::default().open(dir.path()).is_err()); // a folder
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`FilePolicy::read`] (the reading's own errors come from the stream).
+    pub fn open(&self, path: &Path) -> Result<Take<File>, IoError> {
+        self.open_within(path, None)
+    }
+
+    /// [`FilePolicy::open`], the file also confined to `folder`.
+    fn open_within(&self, path: &Path, folder: Option<&Path>) -> Result<Take<File>, IoError> {
         let (resolved, length) = self.check(path, folder)?;
-        let length = length.min(limit);
         let io = |source| IoError::Io {
             path: path.to_owned(),
             source,
@@ -170,6 +192,24 @@ impl FilePolicy {
         // Checked again on the file opened: it may have been replaced since.
         let metadata = file.metadata().map_err(io)?;
         self.check_metadata(path, &metadata)?;
+        Ok(file.take(length))
+    }
+
+    /// [`FilePolicy::read`], the file also confined to `folder` (a glTF asset's folder),
+    /// and read to at most `limit` bytes (a glTF buffer's length).
+    pub(crate) fn read_within(
+        &self,
+        path: &Path,
+        folder: Option<&Path>,
+        limit: u64,
+    ) -> Result<Vec<u8>, IoError> {
+        let mut file = self.open_within(path, folder)?;
+        let length = file.limit().min(limit);
+        file.set_limit(length);
+        let io = |source| IoError::Io {
+            path: path.to_owned(),
+            source,
+        };
         let mut bytes = Vec::new();
         // `length` is at most the cap: a file that grew is read to its checked length.
         bytes
@@ -178,7 +218,7 @@ impl FilePolicy {
                 path: path.to_owned(),
                 source: std::io::Error::from(std::io::ErrorKind::OutOfMemory),
             })?;
-        file.take(length).read_to_end(&mut bytes).map_err(io)?;
+        file.read_to_end(&mut bytes).map_err(io)?;
         Ok(bytes)
     }
 
