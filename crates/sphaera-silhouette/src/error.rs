@@ -1,6 +1,10 @@
 //! Errors of the silhouette labels.
 
+use std::path::PathBuf;
+
 use thiserror::Error;
+
+use crate::MeshFingerprint;
 
 /// What can go wrong computing or using silhouette labels.
 #[derive(Debug, Error)]
@@ -74,6 +78,41 @@ pub enum SilhouetteError {
     /// An error from the simplification hierarchy.
     #[error(transparent)]
     Simplify(#[from] sphaera_simplify::SimplifyError),
+    /// A label file that cannot be read, written or used: `problem` says why
+    /// (`<stream>` stands for `path` when the labels came from a reader or went to a
+    /// writer rather than a file).
+    #[error("label file {}: {problem}", path.display())]
+    LabelFile {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        problem: LabelFileProblem,
+    },
+    /// A label file could not be opened: it does not exist, cannot be read, or the file
+    /// policy refuses it (not a regular file, outside the allowed folder, too large).
+    #[error(transparent)]
+    File(#[from] sphaera_io::IoError),
+    /// Labels used with, or written for, a mesh other than the one they were computed
+    /// for (other counts, or the same counts and other positions or triangles).
+    #[error("{}", other_mesh("the labels belong", labels, mesh))]
+    LabelsOfOtherMesh {
+        /// The mesh the labels were computed for.
+        labels: MeshFingerprint,
+        /// The mesh given.
+        mesh: MeshFingerprint,
+    },
+    /// Labels computed with other settings than the ones asked for (the view step, the
+    /// projection, the resolution, the distance transform or the contours).
+    #[error("the labels were computed with {setting} {labels}, not {asked}")]
+    LabelSettingsMismatch {
+        /// Which setting: `"step"`, `"projection"`, `"resolution"`, `"transform"` or
+        /// `"contours"`.
+        setting: &'static str,
+        /// The labels' value, as users type it (`"30°"`, `"orthographic"`, `"128"`, …).
+        labels: String,
+        /// The value asked for.
+        asked: String,
+    },
     /// Interpolation over zero views, or more views than the set has.
     #[error("cannot average the labels of {asked} nearest views out of {available}")]
     InvalidNearest {
@@ -82,4 +121,95 @@ pub enum SilhouetteError {
         /// How many the set has.
         available: usize,
     },
+}
+
+/// Why a label file cannot be read, written or used (in [`SilhouetteError::LabelFile`]).
+///
+/// The file's layout is in the documentation of
+/// [`Labels::write_to`](crate::Labels::write_to).
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum LabelFileProblem {
+    /// The file does not start with the label files' magic bytes.
+    #[error("it is not a sphaera label file (it does not start with `SPHLABEL`)")]
+    NotLabelFile,
+    /// A format version this library does not read.
+    #[error(
+        "it is label file version {found}, and this library reads version {supported} only: \
+         compute the labels again"
+    )]
+    UnsupportedVersion {
+        /// The file's version.
+        found: u32,
+        /// The version this library reads and writes ([`LABEL_FILE_VERSION`](crate::LABEL_FILE_VERSION)).
+        supported: u32,
+    },
+    /// The file ends before what its header announces.
+    #[error("it is truncated: it ends after {found} bytes, {needed} needed")]
+    Truncated {
+        /// Bytes the file has.
+        found: u64,
+        /// Bytes needed: the header, or everything the header announces.
+        needed: u64,
+    },
+    /// The file goes on after what its header announces.
+    #[error("it has bytes after the {expected} its header announces")]
+    TrailingBytes {
+        /// Bytes the header announces.
+        expected: u64,
+    },
+    /// A checksum does not match: the file was damaged.
+    #[error(
+        "its {part} checksum does not match (stored {stored:016x}, computed {computed:016x}): \
+         the file is damaged"
+    )]
+    Checksum {
+        /// `"header"` or `"file"`.
+        part: &'static str,
+        /// The checksum in the file.
+        stored: u64,
+        /// The checksum of the bytes read.
+        computed: u64,
+    },
+    /// The header holds a value this library refuses: an unknown code, a view step,
+    /// resolution or perspective distance labels cannot have, or counts beyond
+    /// [`MAX_VIEWS`](crate::MAX_VIEWS), [`MAX_RESOLUTION`](crate::MAX_RESOLUTION) or
+    /// [`MAX_LABELS`](crate::MAX_LABELS) (checked before anything is allocated).
+    #[error("its header is invalid: {source}")]
+    Header {
+        /// What is wrong with the value.
+        source: Box<SilhouetteError>,
+    },
+    /// The file holds the labels of another mesh.
+    #[error("{}", other_mesh("it belongs", labels, mesh))]
+    OtherMesh {
+        /// The mesh the file's labels were computed for.
+        labels: MeshFingerprint,
+        /// The mesh given.
+        mesh: MeshFingerprint,
+    },
+    /// Reading or writing failed.
+    #[error("{source}")]
+    Io {
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+}
+
+/// The message for labels of another mesh: the counts when they differ, else the
+/// fingerprints.
+fn other_mesh(subject: &str, labels: &MeshFingerprint, mesh: &MeshFingerprint) -> String {
+    if (labels.vertices, labels.triangles) == (mesh.vertices, mesh.triangles) {
+        format!(
+            "{subject} to another mesh: the same counts ({} vertices, {} triangles) but other \
+             positions or triangles (fingerprint {:032x}, the mesh's {:032x})",
+            labels.vertices, labels.triangles, labels.hash, mesh.hash
+        )
+    } else {
+        format!(
+            "{subject} to another mesh: labels of {} vertices and {} triangles, the mesh has {} \
+             vertices and {} triangles",
+            labels.vertices, labels.triangles, mesh.vertices, mesh.triangles
+        )
+    }
 }

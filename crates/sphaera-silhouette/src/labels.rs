@@ -11,6 +11,7 @@ use crate::camera::{ViewCamera, face_normal};
 use crate::caps::{check_label_count, check_resolution};
 use crate::coverage::bounding_sphere;
 use crate::distance::{DistanceTransform, Workspace};
+use crate::label_file::MeshFingerprint;
 use crate::raster::{cell_index, mark_triangle, rows_of_triangle};
 use crate::views::{Projection, ViewSet};
 
@@ -313,6 +314,9 @@ pub struct Labels {
     views: ViewSet,
     resolution: usize,
     transform: DistanceTransform,
+    contours: Contours,
+    /// The mesh labelled: its counts and fingerprint (label files are checked against it).
+    mesh: MeshFingerprint,
     vertex_count: usize,
     /// View-major: view `k`'s labels are `values[k · vertex_count..][..vertex_count]`.
     values: Vec<u16>,
@@ -495,9 +499,35 @@ impl Labels {
             views: views.clone(),
             resolution,
             transform,
+            contours,
+            mesh: MeshFingerprint::of(mesh),
             vertex_count,
             values,
         })
+    }
+
+    /// Labels read from a file: `values` holds `views.len() · mesh.vertices` labels,
+    /// view-major (the reader checked it).
+    pub(crate) fn from_parts(
+        views: ViewSet,
+        options: LabelOptions,
+        mesh: MeshFingerprint,
+        values: Vec<u16>,
+    ) -> Self {
+        Self {
+            views,
+            resolution: options.resolution,
+            transform: options.transform,
+            contours: options.contours,
+            mesh,
+            vertex_count: mesh.vertices,
+            values,
+        }
+    }
+
+    /// Every stored label, view-major.
+    pub(crate) fn values(&self) -> &[u16] {
+        &self.values
     }
 
     /// Vertices labelled (the mesh's vertex count).
@@ -522,6 +552,28 @@ impl Labels {
     #[must_use]
     pub fn transform(&self) -> DistanceTransform {
         self.transform
+    }
+
+    /// The silhouettes the labels measure the distance to.
+    #[must_use]
+    pub fn contours(&self) -> Contours {
+        self.contours
+    }
+
+    /// The options the labels were computed with (resolution, transform, contours).
+    #[must_use]
+    pub fn options(&self) -> LabelOptions {
+        LabelOptions {
+            resolution: self.resolution,
+            transform: self.transform,
+            contours: self.contours,
+        }
+    }
+
+    /// The mesh the labels were computed for: its counts and fingerprint.
+    #[must_use]
+    pub fn mesh_fingerprint(&self) -> MeshFingerprint {
+        self.mesh
     }
 
     /// Bytes of label storage (2 per vertex per view).

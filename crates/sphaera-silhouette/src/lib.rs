@@ -16,7 +16,9 @@
 //! the static simplifier ([`contour_weights`]). To judge the result: the image-space
 //! silhouette error ([`coverage`], [`silhouette_difference`], [`contour_displacement`])
 //! and pictures made by code ([`shaded_picture`], the paper's Fig. 3, and
-//! [`overlay_picture`]). The `sphaera silhouette` subcommand runs all of it on a mesh file.
+//! [`overlay_picture`]). Labels are saved to and loaded from versioned label files
+//! checked against the mesh they belong to ([`Labels::save`], [`Labels::load`]). The
+//! `sphaera silhouette` subcommand runs all of it on a mesh file.
 //!
 //! # Quick start
 //!
@@ -53,6 +55,12 @@
 //!   cells, an edge over the cells it crosses, a vertex the distance of its own cell (see
 //!   [`ViewLabels::vertices`] for why); stored as `u16` sixteenths of a cell; new views
 //!   interpolate the nearest or the `n` nearest views' labels.
+//! - **Label files** ([`Labels::save`], [`Labels::load`], [`Labels::load_with`] by a
+//!   file policy, [`Labels::write_to`], [`Labels::read_from`]): the paper's Algorithm 1
+//!   stores the labels; a file holds them with their settings and the mesh's
+//!   [`MeshFingerprint`], and is read back only for that mesh
+//!   ([`Labels::check_settings`] tells whether they are the ones asked for). See *Label
+//!   files* below.
 //!
 //! - **Level of detail** ([`ViewDependent::extract`]): the contour region is the
 //!   triangles with a corner at most `threshold` cells from the silhouette; its allowed
@@ -85,13 +93,52 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # Label files
+//!
+//! Labelling a large mesh takes seconds, every view rasterized and transformed; reading
+//! its labels back is one pass over 2 bytes per vertex per view. A file is written atomically and
+//! holds the labels with the settings they were computed with and the fingerprint of
+//! their mesh; a reader refuses another version, a damaged file (two checksums), a
+//! header whose counts pass the caps (before allocating), and another mesh, each with an
+//! error naming the file and the problem ([`SilhouetteError::LabelFile`]).
+//!
+//! ```
+//! use sphaera_mesh::{DVec3, TriMesh, shapes};
+//! use sphaera_silhouette::{LabelOptions, Labels, ViewSet};
+//!
+//! let mesh = shapes::sphere(1.0, 12)?;
+//! let views = ViewSet::regular(45.0)?;
+//! let options = LabelOptions::default().with_resolution(32);
+//! let labels = Labels::compute(&mesh, &views, &options)?;
+//! let dir = tempfile::tempdir()?;
+//! let path = dir.path().join("sphere.labels");
+//! labels.save(&mesh, &path)?;
+//!
+//! // A later run: the labels read back equal, and are the ones asked for.
+//! let loaded = Labels::load(&path, &mesh)?;
+//! assert_eq!(loaded, labels);
+//! loaded.check_settings(&views, &options)?;
+//!
+//! // The same sphere twice as large is another mesh: its labels are refused.
+//! let scaled: Vec<DVec3> = mesh.positions().iter().map(|&p| 2.0 * p).collect();
+//! let scaled = TriMesh::new(scaled, mesh.triangles().to_vec())?;
+//! assert!(Labels::load(&path, &scaled).is_err());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+#![doc = include_str!("label_file.md")]
+//!
 //! # Errors
 //!
 //! [`SilhouetteError`]: a step that does not divide 180°, a zero resolution, a zero or
 //! non-finite direction, a parameter beyond its cap (a step below 1.40625°, more than
 //! [`MAX_VIEWS`] views; a resolution above [`MAX_RESOLUTION`]; more than [`MAX_LABELS`]
 //! labels, vertices × views; more than [`MAX_FACE_GRID_ENTRIES`] face–cell pairs), a perspective camera inside the bounding sphere, an empty mesh;
-//! labels of another mesh, a hierarchy that moves vertices, a negative error or factor.
+//! labels of another mesh, a hierarchy that moves vertices, a negative error or factor;
+//! a label file that cannot be read or used ([`SilhouetteError::LabelFile`] with its
+//! [`LabelFileProblem`]), labels used with a mesh they were not computed for
+//! ([`SilhouetteError::LabelsOfOtherMesh`]) or of other settings
+//! ([`SilhouetteError::LabelSettingsMismatch`]).
 //!
 //! # Performance
 //!
@@ -125,6 +172,7 @@ mod caps;
 mod coverage;
 mod distance;
 mod error;
+mod label_file;
 mod labels;
 mod lod;
 mod picture;
@@ -139,7 +187,8 @@ pub use caps::{MAX_FACE_GRID_ENTRIES, MAX_LABELS, MAX_RESOLUTION, MAX_VIEWS};
 pub type Camera = ViewCamera;
 pub use coverage::{bounding_sphere, contour_displacement, coverage, silhouette_difference};
 pub use distance::DistanceTransform;
-pub use error::SilhouetteError;
+pub use error::{LabelFileProblem, SilhouetteError};
+pub use label_file::{LABEL_FILE_MAGIC, LABEL_FILE_VERSION, MeshFingerprint};
 pub use labels::{
     Contours, Interpolation, LABEL_SCALE, LabelOptions, Labels, ViewLabels, label_view,
 };

@@ -107,6 +107,26 @@ impl ViewSet {
         Ok(self)
     }
 
+    /// The angular step between neighbouring views, in degrees: `180 / k` for the `k`
+    /// intervals of 180° the set has, so that [`ViewSet::regular`] of it gives the same
+    /// set again.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_silhouette::ViewSet;
+    ///
+    /// let views = ViewSet::regular(15.0)?;
+    /// assert_eq!(views.step_degrees(), 15.0);
+    /// let odd = ViewSet::regular(180.0 / 7.0)?;
+    /// assert_eq!(ViewSet::regular(odd.step_degrees())?, odd);
+    /// # Ok::<(), sphaera_silhouette::SilhouetteError>(())
+    /// ```
+    #[must_use]
+    pub fn step_degrees(&self) -> f64 {
+        180.0 / (self.rings - 1) as f64
+    }
+
     /// The projection of every view.
     #[must_use]
     pub fn projection(&self) -> Projection {
