@@ -192,3 +192,133 @@ fn bad_arguments_are_named_and_nothing_is_written() {
     std::fs::write(&broken, "v 0 0 0\nv 1 0 0\nf 1 2 9\n").unwrap();
     fails_with(&[broken.to_str().unwrap()], "broken.obj");
 }
+
+/// The numbers a run reports that must not depend on where its labels came from.
+const SAME: [&str; 9] = [
+    "cameras",
+    "label_bytes",
+    "triangles_out",
+    "contour_triangles",
+    "contour_error",
+    "other_error",
+    "silhouette_pixels_wrong",
+    "contour_displacement",
+    "unweighted_pixels_wrong",
+];
+
+#[test]
+fn a_label_file_is_written_then_reused_with_the_same_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let labels = dir.path().join("bunny.labels");
+    let labels_arg = labels.to_str().unwrap();
+    let first_mesh = dir.path().join("first.obj");
+    let second_mesh = dir.path().join("second.obj");
+    let view = ["--view", "0.3,-0.4,0.8", "--nearest", "4"];
+    let mut args = vec!["--labels", labels_arg, "-o", first_mesh.to_str().unwrap()];
+    args.extend_from_slice(&view);
+    let first = run_json(&args);
+    assert_eq!(first["labels_file"]["path"], labels_arg);
+    assert_eq!(first["labels_file"]["reused"], false);
+    let written = std::fs::read(&labels).unwrap();
+    // 62 views of 1,839 vertices, 2 bytes each, an 80-byte header and a checksum.
+    assert_eq!(written.len(), 80 + 2 * 62 * 1839 + 8);
+
+    let mut args = vec!["--labels", labels_arg, "-o", second_mesh.to_str().unwrap()];
+    args.extend_from_slice(&view);
+    let second = run_json(&args);
+    assert_eq!(second["labels_file"]["reused"], true);
+    for key in SAME {
+        assert_eq!(first[key], second[key], "{key}");
+    }
+    assert_eq!(
+        std::fs::read(&first_mesh).unwrap(),
+        std::fs::read(&second_mesh).unwrap()
+    );
+    // Reading the file leaves it as it was; the text report says where the labels came
+    // from.
+    assert_eq!(std::fs::read(&labels).unwrap(), written);
+    let mut all = vec!["silhouette"];
+    all.extend_from_slice(&FAST);
+    all.extend_from_slice(&["--labels", labels_arg]);
+    let text = sphaera(&all);
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("bunny.labels (read instead of labelling)"),
+        "{text}"
+    );
+    // Without --labels the report says none.
+    assert!(run_json(&[])["labels_file"].is_null());
+}
+
+#[test]
+fn a_label_file_of_other_options_or_another_mesh_is_refused_and_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let labels = dir.path().join("bunny.labels");
+    let labels_arg = labels.to_str().unwrap();
+    run_json(&["--labels", labels_arg]);
+    let written = std::fs::read(&labels).unwrap();
+    // FAST is 30° and 128²; each option that differs is named, with the file's value.
+    let with = |extra: &[&'static str]| {
+        let mut args = FAST.to_vec();
+        args.extend_from_slice(extra);
+        args
+    };
+    for (args, named, file_setting) in [
+        (
+            vec!["--step", "15", "--resolution", "128"],
+            "step 30°, not 15°",
+            "--step 30",
+        ),
+        (
+            vec!["--step", "30", "--resolution", "64"],
+            "resolution 128, not 64",
+            "--resolution 128",
+        ),
+        (
+            with(&["--transform", "chamfer"]),
+            "transform euclidean, not chamfer",
+            "--transform euclidean",
+        ),
+        (
+            with(&["--contours", "all"]),
+            "contours outline, not all",
+            "--contours outline",
+        ),
+        (
+            with(&["--perspective", "3"]),
+            "projection orthographic, not perspective at 3 radii",
+            "without --perspective",
+        ),
+    ] {
+        let mut all = vec!["silhouette", "--labels", labels_arg];
+        all.extend_from_slice(&args);
+        let output = sphaera(&all);
+        assert!(!output.status.success(), "{args:?}");
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(message.lines().count(), 1, "{message}");
+        for part in [named, file_setting, "bunny.labels", "delete the file"] {
+            assert!(message.contains(part), "{args:?}: {part}: {message}");
+        }
+        assert_eq!(std::fs::read(&labels).unwrap(), written, "{args:?}");
+    }
+    // Another mesh.
+    let sphere = write(dir.path(), "sphere.obj", &shapes::sphere(1.0, 12).unwrap());
+    fails_with(&[&sphere, "--labels", labels_arg], "another mesh");
+    assert_eq!(std::fs::read(&labels).unwrap(), written);
+    // A damaged file.
+    let mut damaged = written.clone();
+    let middle = damaged.len() / 2;
+    damaged[middle] ^= 1;
+    std::fs::write(&labels, &damaged).unwrap();
+    fails_with(&["--labels", labels_arg], "checksum");
+    assert_eq!(std::fs::read(&labels).unwrap(), damaged);
+    // A folder, and a file in a folder that does not exist.
+    fails_with(
+        &["--labels", dir.path().to_str().unwrap()],
+        "not a regular file",
+    );
+    let nowhere = dir.path().join("no").join("labels");
+    fails_with(&["--labels", nowhere.to_str().unwrap()], "does not exist");
+    assert!(!nowhere.exists());
+}

@@ -59,6 +59,14 @@ pub struct SilhouetteArgs {
     #[arg(long)]
     pub perspective: Option<f64>,
 
+    /// Keep the labels in this file (any name, e.g. `bunny.labels`). When it exists it is
+    /// read instead of labelling again: it must belong to the mesh and have been computed
+    /// with the same --step, --resolution, --transform, --contours and --perspective
+    /// (otherwise an error says what differs). When it does not, the labels are computed
+    /// and written to it, atomically, for the next run.
+    #[arg(long, value_name = "FILE")]
+    pub labels: Option<PathBuf>,
+
     /// Write the extracted mesh, atomically (`.obj` or `.ply`).
     #[arg(long, short)]
     pub output: Option<PathBuf>,

@@ -2,7 +2,10 @@
 //! they guide for one view, with its certified error per region and its silhouette error
 //! in pixels against an unweighted level of as many triangles.
 
-use std::{path::Path, time::Instant};
+use std::{
+    path::{Path, PathBuf},
+    time::Instant,
+};
 
 use anyhow::{Context, Result, bail};
 use image::{ImageEncoder, codecs::png::PngEncoder};
@@ -10,15 +13,15 @@ use serde::Serialize;
 use sphaera::{
     mesh::{DVec3, TriMesh, io},
     silhouette::{
-        ContourTolerance, Interpolation, LabelOptions, Labels, Picture, Projection, ViewDependent,
-        ViewSet, bounding_sphere, contour_displacement, coverage, overlay_picture, shaded_picture,
-        silhouette_difference,
+        ContourTolerance, Interpolation, LabelOptions, Labels, Picture, Projection,
+        SilhouetteError, ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage,
+        overlay_picture, shaded_picture, silhouette_difference,
     },
 };
 
 use crate::{
     cli::SilhouetteArgs,
-    input::read_mesh,
+    input::{file_policy, read_mesh},
     output::{check_mesh_format, check_target, print_report, thousands},
     progress,
 };
@@ -53,6 +56,9 @@ struct Report {
     error_relative: f64,
     /// Bytes of the stored labels (one `u16` per vertex per camera).
     label_bytes: usize,
+    /// The label file (`--labels`; `null` when not given): read instead of labelling
+    /// (`reused`), or written after labelling.
+    labels_file: Option<LabelsFile>,
     triangles_in: usize,
     triangles_out: usize,
     contour_triangles: usize,
@@ -77,6 +83,13 @@ struct Report {
 }
 
 #[derive(Debug, Serialize)]
+struct LabelsFile {
+    path: String,
+    /// Whether the labels were read from the file (`true`) or computed and written to it.
+    reused: bool,
+}
+
+#[derive(Debug, Serialize)]
 struct Seconds {
     load: f64,
     labels: f64,
@@ -93,6 +106,11 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     }
     for path in [&args.labels_png, &args.compare_png].into_iter().flatten() {
         check_png(path)?;
+        check_target(path)?;
+    }
+    // An existing label file is read (and checked) later; a new one must be writable.
+    let reuse = args.labels.as_ref().is_some_and(|path| path.exists());
+    if let Some(path) = args.labels.as_ref().filter(|_| !reuse) {
         check_target(path)?;
     }
     let view = DVec3::from_array(args.view).normalize();
@@ -128,22 +146,29 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     };
 
     let started = Instant::now();
-    let bar = progress::bar(
-        quiet,
-        &format!("labelling {} views at {}²", views.len(), args.resolution),
-        views.len() as u64,
-    );
-    let labels = Labels::compute_with_progress(
-        mesh,
-        &views,
-        &LabelOptions::default()
-            .with_resolution(args.resolution)
-            .with_transform(args.transform)
-            .with_contours(args.contours),
-        &|done| bar.set_position(done as u64),
-    );
-    bar.finish_and_clear();
-    let labels = labels?;
+    let options = LabelOptions::default()
+        .with_resolution(args.resolution)
+        .with_transform(args.transform)
+        .with_contours(args.contours);
+    let labels = match &args.labels {
+        Some(path) if reuse => read_labels(path, mesh, &views, &options, quiet)?,
+        _ => {
+            let bar = progress::bar(
+                quiet,
+                &format!("labelling {} views at {}²", views.len(), args.resolution),
+                views.len() as u64,
+            );
+            let labels = Labels::compute_with_progress(mesh, &views, &options, &|done| {
+                bar.set_position(done as u64);
+            });
+            bar.finish_and_clear();
+            let labels = labels?;
+            if let Some(path) = &args.labels {
+                labels.save(mesh, path)?;
+            }
+            labels
+        }
+    };
     let labels_seconds = started.elapsed().as_secs_f64();
 
     let started = Instant::now();
@@ -188,7 +213,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     }
     let write_seconds = started.elapsed().as_secs_f64();
 
-    let shown = |p: &Option<std::path::PathBuf>| p.as_ref().map(|p| p.display().to_string());
+    let shown = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
     let report = Report {
         source: input.source,
         view: view.to_array(),
@@ -211,6 +236,10 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
             0.0
         },
         label_bytes: labels.storage_bytes(),
+        labels_file: shown(&args.labels).map(|path| LabelsFile {
+            path,
+            reused: reuse,
+        }),
         triangles_in: mesh.triangle_count(),
         triangles_out: result.triangle_count(),
         contour_triangles: extraction.contour_triangles,
@@ -234,6 +263,52 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         },
     };
     print_report(&report, args.print.json)
+}
+
+/// The labels of `mesh` in the label file at `path`, read by the run's file policy, if
+/// they belong to `mesh` and were computed for `views` and `options`; else an error
+/// naming the file, what differs and how to go on.
+fn read_labels(
+    path: &Path,
+    mesh: &TriMesh,
+    views: &ViewSet,
+    options: &LabelOptions,
+    quiet: bool,
+) -> Result<Labels> {
+    let shown = path.display();
+    let spinner = progress::spinner(quiet, &format!("reading labels {shown}"));
+    let labels = Labels::load_with(path, mesh, &file_policy());
+    spinner.finish_and_clear();
+    let labels = match labels {
+        Ok(labels) => labels,
+        Err(error @ SilhouetteError::LabelFile { .. }) => {
+            bail!("{error} (delete the file to label again, or give another --labels file)")
+        }
+        Err(error) => return Err(error.into()),
+    };
+    if let Err(SilhouetteError::LabelSettingsMismatch {
+        setting,
+        labels: theirs,
+        asked,
+    }) = labels.check_settings(views, options)
+    {
+        let file_option = match setting {
+            "step" => format!("--step {}", labels.views().step_degrees()),
+            "projection" => match labels.views().projection() {
+                Projection::Perspective { distance } => format!("--perspective {distance}"),
+                _ => "without --perspective".to_owned(),
+            },
+            "resolution" => format!("--resolution {}", labels.resolution()),
+            "transform" => format!("--transform {}", labels.transform()),
+            _ => format!("--contours {}", labels.contours()),
+        };
+        bail!(
+            "label file {shown}: its labels were computed with {setting} {theirs}, not {asked}: \
+             delete the file to label again with these options, or run with the file's \
+             settings ({file_option})"
+        );
+    }
+    Ok(labels)
 }
 
 /// Fails before any work unless `path` ends in `.png`.
@@ -285,6 +360,21 @@ impl crate::output::Report for Report {
                 self.label_bytes / 1024
             ),
             format!(
+                "labels file     {}",
+                self.labels_file.as_ref().map_or_else(
+                    || "none (give --labels FILE to keep the labels for the next run)".to_owned(),
+                    |f| format!(
+                        "{} ({})",
+                        f.path,
+                        if f.reused {
+                            "read instead of labelling"
+                        } else {
+                            "written"
+                        }
+                    )
+                )
+            ),
+            format!(
                 "view            {x:.3},{y:.3},{z:.3} (labels of {} nearest camera{})",
                 self.nearest,
                 if self.nearest == 1 { "" } else { "s" }
@@ -326,11 +416,21 @@ impl crate::output::Report for Report {
                 self.seconds.write
             ),
         ];
-        let written: Vec<&str> = [&self.output, &self.labels_png, &self.compare_png]
-            .into_iter()
-            .flatten()
-            .map(String::as_str)
-            .collect();
+        let labels_written = self
+            .labels_file
+            .as_ref()
+            .filter(|f| !f.reused)
+            .map(|f| f.path.clone());
+        let written: Vec<&str> = [
+            &labels_written,
+            &self.output,
+            &self.labels_png,
+            &self.compare_png,
+        ]
+        .into_iter()
+        .flatten()
+        .map(String::as_str)
+        .collect();
         lines.push(if written.is_empty() {
             "written to      nothing (give --output FILE.obj, --labels-png, --compare-png)"
                 .to_owned()
