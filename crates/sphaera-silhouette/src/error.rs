@@ -78,7 +78,7 @@ pub enum SilhouetteError {
     /// An error from the simplification hierarchy.
     #[error(transparent)]
     Simplify(#[from] sphaera_simplify::SimplifyError),
-    /// A label file that cannot be read, written or used: `problem` says why
+    /// A label file that cannot be opened, read, written or used: `problem` says why
     /// (`<stream>` stands for `path` when the labels came from a reader or went to a
     /// writer rather than a file).
     #[error("label file {}: {problem}", path.display())]
@@ -86,12 +86,9 @@ pub enum SilhouetteError {
         /// The file.
         path: PathBuf,
         /// What is wrong with it.
+        #[source]
         problem: LabelFileProblem,
     },
-    /// A label file could not be opened: it does not exist, cannot be read, or the file
-    /// policy refuses it (not a regular file, outside the allowed folder, too large).
-    #[error(transparent)]
-    File(#[from] sphaera_io::IoError),
     /// Labels used with, or written for, a mesh other than the one they were computed
     /// for (other counts, or the same counts and other positions or triangles).
     #[error("{}", other_mesh("the labels belong", labels, mesh))]
@@ -188,12 +185,34 @@ pub enum LabelFileProblem {
         /// The mesh given.
         mesh: MeshFingerprint,
     },
-    /// Reading or writing failed.
+    /// The file policy refuses the file: it is not a regular file (a folder, a device, a
+    /// pipe), lies outside the allowed folder, or is larger than the cap.
+    #[error("{refusal}")]
+    Refused {
+        /// Why.
+        #[source]
+        refusal: sphaera_io::FileRefusal,
+    },
+    /// Opening, reading or writing failed (the file does not exist, a folder is missing,
+    /// the disk is full, the reader or writer failed).
     #[error("{source}")]
     Io {
         /// The operating system's error.
         source: std::io::Error,
     },
+}
+
+impl LabelFileProblem {
+    /// The problem of an error of the file policy or the atomic write.
+    pub(crate) fn from_io(error: sphaera_io::IoError) -> Self {
+        match error {
+            sphaera_io::IoError::Refused { refusal, .. } => Self::Refused { refusal },
+            sphaera_io::IoError::Io { source, .. } => Self::Io { source },
+            other => Self::Io {
+                source: std::io::Error::other(other),
+            },
+        }
+    }
 }
 
 /// The message for labels of another mesh: the counts when they differ, else the
@@ -203,7 +222,10 @@ fn other_mesh(subject: &str, labels: &MeshFingerprint, mesh: &MeshFingerprint) -
         format!(
             "{subject} to another mesh: the same counts ({} vertices, {} triangles) but other \
              positions or triangles (fingerprint {:032x}, the mesh's {:032x})",
-            labels.vertices, labels.triangles, labels.hash, mesh.hash
+            labels.vertices,
+            labels.triangles,
+            labels.hash(),
+            mesh.hash()
         )
     } else {
         format!(

@@ -14,7 +14,7 @@
 use std::io::{self, BufReader, Read, Write};
 use std::path::Path;
 
-use sphaera_io::{FilePolicy, IoError};
+use sphaera_io::FilePolicy;
 use sphaera_mesh::TriMesh;
 use xxhash_rust::xxh3::{Xxh3Default, xxh3_64};
 
@@ -64,7 +64,7 @@ const STREAM: &str = "<stream>";
 /// assert_eq!(fingerprint, MeshFingerprint::of(&mesh.clone()));
 /// let scaled: Vec<DVec3> = mesh.positions().iter().map(|&p| 2.0 * p).collect();
 /// let scaled = TriMesh::new(scaled, mesh.triangles().to_vec())?;
-/// assert_ne!(MeshFingerprint::of(&scaled).hash, fingerprint.hash);
+/// assert_ne!(MeshFingerprint::of(&scaled).hash(), fingerprint.hash());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -73,8 +73,9 @@ pub struct MeshFingerprint {
     pub vertices: usize,
     /// Triangles of the mesh.
     pub triangles: usize,
-    /// XXH3-128 of the counts, the positions and the triangles.
-    pub hash: u128,
+    /// The hash's bytes, little-endian (as in a label file; bytes rather than a `u128`
+    /// keep errors holding a fingerprint small).
+    digest: [u8; 16],
 }
 
 impl MeshFingerprint {
@@ -113,8 +114,14 @@ impl MeshFingerprint {
         Self {
             vertices,
             triangles,
-            hash: hasher.digest128(),
+            digest: hasher.digest128().to_le_bytes(),
         }
+    }
+
+    /// The hash: XXH3-128 of the counts, the positions and the triangles.
+    #[must_use]
+    pub fn hash(&self) -> u128 {
+        u128::from_le_bytes(self.digest)
     }
 }
 
@@ -123,7 +130,9 @@ impl std::fmt::Display for MeshFingerprint {
         write!(
             f,
             "{} vertices, {} triangles, fingerprint {:032x}",
-            self.vertices, self.triangles, self.hash
+            self.vertices,
+            self.triangles,
+            self.hash()
         )
     }
 }
@@ -295,10 +304,8 @@ impl Labels {
     pub fn save(&self, mesh: &TriMesh, path: impl AsRef<Path>) -> Result<(), SilhouetteError> {
         let path = path.as_ref();
         self.check_mesh(mesh)?;
-        sphaera_io::write_atomic(path, |w| self.encode(w)).map_err(|error| match error {
-            IoError::Io { source, .. } => file_error(path, LabelFileProblem::Io { source }),
-            other => SilhouetteError::File(other),
-        })
+        sphaera_io::write_atomic(path, |w| self.encode(w))
+            .map_err(|error| file_error(path, LabelFileProblem::from_io(error)))
     }
 
     /// Reads labels in the label file format from `reader`, for `mesh`: the file's mesh
@@ -355,8 +362,9 @@ impl Labels {
     ///
     /// # Errors
     ///
-    /// [`SilhouetteError::File`] when the file cannot be opened or the policy refuses it;
-    /// else as [`Labels::read_from`], naming `path` ([`LabelFileProblem::Truncated`] or
+    /// [`SilhouetteError::LabelFile`] naming `path`: with [`LabelFileProblem::Refused`] when
+    /// the policy refuses the file, [`LabelFileProblem::Io`] when it cannot be opened (it
+    /// does not exist); else as [`Labels::read_from`] ([`LabelFileProblem::Truncated`] or
     /// [`LabelFileProblem::TrailingBytes`] as soon as the header is read when the file's
     /// length does not match it).
     pub fn load_with(
@@ -365,7 +373,9 @@ impl Labels {
         policy: &FilePolicy,
     ) -> Result<Self, SilhouetteError> {
         let path = path.as_ref();
-        let file = policy.open(path)?;
+        let file = policy
+            .open(path)
+            .map_err(|error| file_error(path, LabelFileProblem::from_io(error)))?;
         let length = file.limit();
         decode(BufReader::with_capacity(CHUNK, file), mesh, Some(length))
             .map_err(|problem| file_error(path, problem))
@@ -401,7 +411,7 @@ impl Labels {
         put(36, &(views.len() as u32).to_le_bytes());
         put(40, &(fingerprint.vertices as u64).to_le_bytes());
         put(48, &(fingerprint.triangles as u64).to_le_bytes());
-        put(56, &fingerprint.hash.to_le_bytes());
+        put(56, &fingerprint.digest);
         let checksum = xxh3_64(&header[..FIELDS]);
         header[FIELDS..].copy_from_slice(&checksum.to_le_bytes());
         header
@@ -634,7 +644,7 @@ fn parse_fields(
     let mesh = MeshFingerprint {
         vertices,
         triangles,
-        hash: u128::from_le_bytes(bytes_at(header, 56)),
+        digest: bytes_at(header, 56),
     };
     let options = LabelOptions {
         resolution,

@@ -5,7 +5,7 @@
 use std::io::Read;
 
 use proptest::prelude::*;
-use sphaera_io::{FileRefusal, IoError};
+use sphaera_io::{FilePolicy, FileRefusal};
 use sphaera_mesh::shapes::{self, DEFAULT_SHAPES};
 use sphaera_mesh::{DVec3, TriMesh};
 use sphaera_silhouette::{
@@ -122,7 +122,7 @@ fn the_header_starts_with_the_magic_and_the_version() {
     assert_eq!(bytes[12..16], 8_u32.to_le_bytes());
     assert_eq!(bytes[16..24], 90.0_f64.to_le_bytes());
     let fingerprint = MeshFingerprint::of(&mesh);
-    assert_eq!(bytes[56..72], fingerprint.hash.to_le_bytes());
+    assert_eq!(bytes[56..72], fingerprint.hash().to_le_bytes());
     assert_eq!(labels.mesh_fingerprint(), fingerprint);
     // The labels follow the header, view-major, little-endian.
     let first = labels.stored(0);
@@ -456,21 +456,45 @@ fn files_that_are_not_regular_are_refused() {
     }
     for place in places {
         let error = Labels::load(&place, &mesh).unwrap_err();
+        let message = error.to_string();
+        assert!(message.contains("not a regular file"), "{message}");
         assert!(
             matches!(
-                &error,
-                SilhouetteError::File(IoError::Refused {
-                    refusal: FileRefusal::NotRegular { .. },
-                    ..
-                })
+                problem(error),
+                LabelFileProblem::Refused {
+                    refusal: FileRefusal::NotRegular { .. }
+                }
             ),
-            "{}: {error}",
+            "{}: {message}",
             place.display()
         );
     }
     let missing = dir.path().join("missing.sphl");
     let error = Labels::load(&missing, &mesh).unwrap_err();
     assert!(error.to_string().contains("missing.sphl"), "{error}");
+    assert!(
+        matches!(problem(error), LabelFileProblem::Io { source } if source.kind() == std::io::ErrorKind::NotFound)
+    );
+    // A file larger than the policy's cap is refused before it is read.
+    let (_, _, _, labels) = small();
+    let path = dir.path().join("labels.sphl");
+    labels.save(&mesh, &path).unwrap();
+    let policy = FilePolicy::default().with_max_bytes(100);
+    let error = Labels::load_with(&path, &mesh, &policy).unwrap_err();
+    assert!(matches!(
+        problem(error),
+        LabelFileProblem::Refused {
+            refusal: FileRefusal::TooLarge { .. }
+        }
+    ));
+    // A policy with a root refuses a file outside it.
+    let elsewhere = tempfile::tempdir().unwrap();
+    let policy = FilePolicy::default().with_root(elsewhere.path());
+    let error = Labels::load_with(&path, &mesh, &policy).unwrap_err();
+    assert!(
+        error.to_string().contains("outside the allowed folder"),
+        "{error}"
+    );
 }
 
 #[test]

@@ -13,9 +13,9 @@ use serde::Serialize;
 use sphaera::{
     mesh::{DVec3, TriMesh, io},
     silhouette::{
-        ContourTolerance, Interpolation, LabelOptions, Labels, Picture, Projection,
-        SilhouetteError, ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage,
-        overlay_picture, shaded_picture, silhouette_difference,
+        ContourTolerance, Interpolation, LabelFileProblem, LabelOptions, Labels, Picture,
+        Projection, SilhouetteError, ViewDependent, ViewSet, bounding_sphere, contour_displacement,
+        coverage, overlay_picture, shaded_picture, silhouette_difference,
     },
 };
 
@@ -281,10 +281,17 @@ fn read_labels(
     spinner.finish_and_clear();
     let labels = match labels {
         Ok(labels) => labels,
-        Err(error @ SilhouetteError::LabelFile { .. }) => {
+        // The file could not be opened: the error says why.
+        Err(
+            error @ SilhouetteError::LabelFile {
+                problem: LabelFileProblem::Refused { .. } | LabelFileProblem::Io { .. },
+                ..
+            },
+        ) => return Err(error.into()),
+        // It was read, and is not this mesh's labels: say how to go on.
+        Err(error) => {
             bail!("{error} (delete the file to label again, or give another --labels file)")
         }
-        Err(error) => return Err(error.into()),
     };
     if let Err(SilhouetteError::LabelSettingsMismatch {
         setting,
