@@ -289,3 +289,65 @@ fn the_four_shared_meshes_at_two_percent() {
     }
     assert!(detail["triangles_saved_percent"].as_f64().unwrap() > 50.0);
 }
+
+/// A label file written by `sphaera silhouette` at the scene's label settings (30°, 128²,
+/// outlines) is what a scene file's `labels` takes: the silhouette choice is the same as
+/// with labels computed by the scene, and a file of other settings is refused naming the
+/// model and the file.
+#[test]
+fn a_scene_reads_the_label_files_sphaera_silhouette_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("ball.obj");
+    let ball = sphaera::mesh::shapes::sphere(1.0, 16).unwrap();
+    sphaera::mesh::io::save(&mesh, &ball).unwrap();
+    let write_labels = |name: &str, step: &str| {
+        let path = dir.path().join(name);
+        let report = json(&sphaera(&[
+            "silhouette",
+            "--json",
+            mesh.to_str().unwrap(),
+            "--step",
+            step,
+            "--resolution",
+            "128",
+            "--labels",
+            path.to_str().unwrap(),
+        ]));
+        assert_eq!(report["labels_file"]["reused"], false);
+    };
+    write_labels("ball.labels", "30");
+    write_labels("coarse.labels", "45");
+    let scene = |labels: Option<&str>| {
+        let labels = labels.map_or(String::new(), |l| {
+            format!(r#", "labels": {{ "ball": "{l}" }}"#)
+        });
+        let text = format!(
+            r#"{{ "meshes": {{ "ball": "ball.obj" }}, "instances": [ {{ "mesh": "ball" }} ],
+               "camera": {{ "eye": [0, 0, 6], "target": [0, 0, 0], "fov_y_degrees": 50,
+                            "width": 640, "height": 480 }}{labels} }}"#
+        );
+        let path = dir.path().join("scene.json");
+        std::fs::write(&path, text).unwrap();
+        sphaera(&[
+            "scene",
+            "--json",
+            path.to_str().unwrap(),
+            "--silhouette",
+            "4",
+        ])
+    };
+    let computed = json(&scene(None));
+    let read = json(&scene(Some("ball.labels")));
+    assert_eq!(computed["silhouette"], read["silhouette"]);
+    let refused = scene(Some("coarse.labels"));
+    assert!(!refused.status.success());
+    let message = String::from_utf8_lossy(&refused.stderr);
+    for part in [
+        "labels.ball",
+        "coarse.labels",
+        "model `ball`",
+        "step 45°, not 30°",
+    ] {
+        assert!(message.contains(part), "{part}: {message}");
+    }
+}

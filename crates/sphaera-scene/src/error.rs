@@ -49,6 +49,17 @@ pub enum SceneError {
         /// Why the labelling failed.
         reason: String,
     },
+    /// Silhouette labels given to a model (`ObjectModel::with_silhouette_labels`, a scene
+    /// file's `labels`) that it cannot use: they belong to another mesh, or were computed
+    /// with other settings than its `ModelOptions::silhouette`.
+    #[cfg(feature = "silhouette")]
+    #[error("model `{model}`: its silhouette labels cannot be used: {source}")]
+    SilhouetteLabels {
+        /// The model's name.
+        model: String,
+        /// Why (boxed: it keeps the error small).
+        source: Box<sphaera_silhouette::SilhouetteError>,
+    },
     /// A tolerance is NaN, negative, infinite or does not parse.
     #[error(
         "invalid tolerance `{text}`: must be a non-negative number of world units (`0.01`), a percentage of each object's diagonal (`0.5%`) or pixels (`2px`)"

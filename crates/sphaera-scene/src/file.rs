@@ -24,6 +24,13 @@ pub struct SceneFile {
     /// The camera, if any.
     #[serde(default)]
     pub camera: Option<CameraEntry>,
+    /// Silhouette label files by mesh name (feature `silhouette`; read by no build
+    /// without it): each mesh's model reads its labels from the file instead of computing
+    /// them, and the file must hold labels of that mesh computed with the model's
+    /// silhouette options. A name given twice, or one not in [`SceneFile::meshes`], is an
+    /// error.
+    #[serde(default, deserialize_with = "unique_names")]
+    pub labels: BTreeMap<String, PathBuf>,
 }
 
 /// One instance of a scene file.
@@ -197,6 +204,12 @@ impl SceneDescription {
             }
             poses.push(pose(entry).map_err(|message| invalid(place, message))?);
         }
+        if let Some(name) = file.labels.keys().find(|n| !file.meshes.contains_key(*n)) {
+            return Err(invalid(
+                format!("labels.{name}"),
+                format!("mesh `{name}` is not defined in `meshes`"),
+            ));
+        }
         let camera = file
             .camera
             .as_ref()
@@ -240,8 +253,20 @@ impl SceneDescription {
     #[must_use]
     pub fn mesh_path(&self, name: &str) -> Option<PathBuf> {
         let relative = self.file.meshes.get(name)?;
-        let folder = self.path.parent().unwrap_or_else(|| Path::new(""));
-        Some(folder.join(relative))
+        Some(self.folder().join(relative))
+    }
+
+    /// The silhouette label file of mesh `name`, if the scene names one, resolved against
+    /// the scene file's folder.
+    #[must_use]
+    pub fn labels_path(&self, name: &str) -> Option<PathBuf> {
+        let relative = self.file.labels.get(name)?;
+        Some(self.folder().join(relative))
+    }
+
+    /// The folder relative paths start from.
+    fn folder(&self) -> &Path {
+        self.path.parent().unwrap_or_else(|| Path::new(""))
     }
 
     /// The names of the meshes some instance uses, sorted.
@@ -259,12 +284,16 @@ impl SceneDescription {
     }
 
     /// Reads every used mesh (by [`SceneDescription::file_policy`]), builds its model (on
-    /// every core with `parallel`), and places the instances.
+    /// every core with `parallel`), gives it the labels of its label file if the scene
+    /// names one (feature `silhouette`), and places the instances.
     ///
     /// # Errors
     ///
     /// [`SceneError::InvalidEntry`] naming the mesh (`meshes.NAME`) and its file when it
-    /// cannot be read, the policy refuses it, or its model cannot be built.
+    /// cannot be read, the policy refuses it, or its model cannot be built; naming the
+    /// label file (`labels.NAME`) when it cannot be read, the policy refuses it, or its
+    /// labels do not fit the model (another mesh, other settings:
+    /// `SceneError::SilhouetteLabels` in the message).
     pub fn build(&self, options: &ModelOptions) -> Result<LoadedScene, SceneError> {
         self.build_with(|name, path| {
             let mesh = sphaera_io::read_with(path, &self.policy)?.mesh;
@@ -275,7 +304,8 @@ impl SceneDescription {
     /// As [`SceneDescription::build`], with the caller building each model from its name
     /// and file (to cache models, report progress, or read them from elsewhere). Only
     /// files [`SceneDescription::file_policy`] admits reach `make`, which should read them
-    /// by that policy too (`sphaera_io::read_with`).
+    /// by that policy too (`sphaera_io::read_with`). Label files are read here, after
+    /// `make`, as [`SceneDescription::build`] reads them.
     ///
     /// # Errors
     ///
@@ -291,12 +321,13 @@ impl SceneDescription {
                 .check_file(&path)
                 .map_err(SceneError::from)
                 .and_then(|_| make(name, &path))
-                .map(Arc::new)
                 .map_err(|e| SceneError::InvalidEntry {
                     path: self.path.clone(),
                     place: format!("meshes.{name} ({})", path.display()),
                     message: e.to_string(),
                 })
+                .and_then(|model| self.with_labels(name, model))
+                .map(Arc::new)
         };
         #[cfg(feature = "parallel")]
         let models: Vec<Arc<ObjectModel>> = {
@@ -320,6 +351,33 @@ impl SceneDescription {
             camera: self.camera,
             models,
         })
+    }
+}
+
+impl SceneDescription {
+    /// `model` with the labels of mesh `name`'s label file, if the scene names one
+    /// (feature `silhouette`; without it the model is returned as it is).
+    #[cfg_attr(not(feature = "silhouette"), allow(clippy::unnecessary_wraps))]
+    fn with_labels(&self, name: &str, model: ObjectModel) -> Result<ObjectModel, SceneError> {
+        #[cfg(feature = "silhouette")]
+        if let Some(path) = self.labels_path(name) {
+            let with = |model: ObjectModel| -> Result<ObjectModel, String> {
+                let labels =
+                    sphaera_silhouette::Labels::load_with(&path, model.mesh(), &self.policy)
+                        .map_err(|e| format!("model `{name}`: {e}"))?;
+                model
+                    .with_silhouette_labels(labels)
+                    .map_err(|e| e.to_string())
+            };
+            return with(model).map_err(|message| SceneError::InvalidEntry {
+                path: self.path.clone(),
+                place: format!("labels.{name} ({})", path.display()),
+                message,
+            });
+        }
+        #[cfg(not(feature = "silhouette"))]
+        let _ = name;
+        Ok(model)
     }
 }
 

@@ -95,7 +95,8 @@
 //!     { "mesh": "link", "quaternion": [0, 0, 0.7071068, 0.7071068] }
 //!   ],
 //!   "camera": { "eye": [0, 0.1, 1], "target": [0, 0.1, 0], "fov_y_degrees": 60,
-//!               "width": 1280, "height": 720 }
+//!               "width": 1280, "height": 720 },
+//!   "labels": { "bunny": "meshes/bunny.labels" }
 //! }
 //! ```
 //!
@@ -107,6 +108,13 @@
 //!   x, then y, then z, in degrees) or as a unit `quaternion` `[x, y, z, w]` (not both),
 //!   and a uniform `scale` (default 1).
 //! - `camera` is optional: needed for tolerances in pixels. `near` is optional.
+//! - `labels` is optional (feature `silhouette`; not read without it): silhouette label
+//!   files by mesh name, read by the same file policy as the meshes, which the models
+//!   use instead of labelling (`ObjectModel::with_silhouette_labels` checks them: the
+//!   labels of that mesh, computed with [`ModelOptions::silhouette`]'s settings; the
+//!   error names the model and the file). Write one with `Labels::save` on a model's
+//!   `silhouette_labels()`, or with `sphaera silhouette MESH --labels FILE --step 30
+//!   --resolution 128` for the default options.
 //!
 //! Unknown keys are errors (a misspelt `"rotation_degree"` must not be silently
 //! ignored), and every error names the file and the entry. Each mesh is read and built

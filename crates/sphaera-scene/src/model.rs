@@ -561,7 +561,8 @@ impl ObjectModel {
     }
 
     /// The silhouette labels of the mesh (feature `silhouette`), computed on the first
-    /// call: for each of [`ModelOptions::silhouette`]'s views, how many image cells each
+    /// call (or given: [`ObjectModel::with_silhouette_labels`]): for each of
+    /// [`ModelOptions::silhouette`]'s views, how many image cells each
     /// vertex lies from the silhouette (Mata, Pastor and Rodríguez).
     /// [`Scene::silhouette_detail`](crate::Scene::silhouette_detail) uses them to keep
     /// outlines finer than interiors; the reason when the mesh has none (bad options).
@@ -576,6 +577,60 @@ impl ObjectModel {
         self.silhouette
             .get_or_init(|| silhouette_labels(self.mesh(), &self.silhouette_options))
             .as_ref()
+    }
+
+    /// The same model with `labels` as its silhouette labels (feature `silhouette`), in
+    /// place of computing them on first use: labels computed earlier, kept in a label
+    /// file (`sphaera_silhouette::Labels::load`, or a scene file's `labels`). They must
+    /// belong to the model's mesh and have been computed with
+    /// [`ModelOptions::silhouette`]'s settings (its step, resolution and contours,
+    /// orthographic views and the exact Euclidean transform), so that the model answers
+    /// the same as if it had computed them.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_scene::{ModelOptions, ObjectModel};
+    /// use sphaera_silhouette::Labels;
+    ///
+    /// let options = ModelOptions::default();
+    /// let mesh = sphaera_mesh::shapes::sphere(1.0, 10)?;
+    /// let model = ObjectModel::build("ball", mesh.clone(), &options)?;
+    /// // Label once and keep the labels in a file...
+    /// let dir = tempfile::tempdir()?;
+    /// let path = dir.path().join("ball.labels");
+    /// let labels = model.silhouette_labels().expect("the default options give labels");
+    /// labels.save(model.mesh(), &path)?;
+    /// // ... which a later model of the same mesh reads instead of labelling.
+    /// let again = ObjectModel::build("ball", mesh, &options)?;
+    /// let labels = Labels::load(&path, again.mesh())?;
+    /// let again = again.with_silhouette_labels(labels)?;
+    /// assert_eq!(again.silhouette_labels().ok(), model.silhouette_labels().ok());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`SceneError::SilhouetteLabels`] naming the model when the labels belong to
+    /// another mesh or were computed with other settings (the message names the
+    /// setting), or when the model's options cannot give labels at all.
+    #[cfg(feature = "silhouette")]
+    pub fn with_silhouette_labels(
+        mut self,
+        labels: sphaera_silhouette::Labels,
+    ) -> Result<Self, SceneError> {
+        let fits = silhouette_settings(&self.silhouette_options).and_then(|(views, options)| {
+            labels.check_mesh(self.mesh())?;
+            labels.check_settings(&views, &options)
+        });
+        if let Err(error) = fits {
+            return Err(SceneError::SilhouetteLabels {
+                model: self.name.clone(),
+                source: Box::new(error),
+            });
+        }
+        self.silhouette = OnceLock::from(Ok(labels));
+        Ok(self)
     }
 
     /// The certified error of each mesh ladder level, coarsest first (model units).
@@ -608,26 +663,39 @@ impl ObjectModel {
     }
 }
 
-/// The labels of `mesh` for `options`' orthographic views, exact Euclidean distances.
+/// The views and label options of `options`: orthographic views, exact Euclidean
+/// distances.
 #[cfg(feature = "silhouette")]
-fn silhouette_labels(
-    mesh: &TriMesh,
+fn silhouette_settings(
     options: &SilhouetteOptions,
-) -> Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError> {
-    use sphaera_silhouette::{Contours, LabelOptions, Labels, ViewSet};
+) -> Result<
+    (
+        sphaera_silhouette::ViewSet,
+        sphaera_silhouette::LabelOptions,
+    ),
+    sphaera_silhouette::SilhouetteError,
+> {
+    use sphaera_silhouette::{Contours, LabelOptions, ViewSet};
     let views = ViewSet::regular(options.step_degrees)?;
     let contours = if options.outline_only {
         Contours::External
     } else {
         Contours::All
     };
-    Labels::compute(
-        mesh,
-        &views,
-        &LabelOptions::default()
-            .with_resolution(options.resolution)
-            .with_contours(contours),
-    )
+    let label_options = LabelOptions::default()
+        .with_resolution(options.resolution)
+        .with_contours(contours);
+    Ok((views, label_options))
+}
+
+/// The labels of `mesh` for `options`' views.
+#[cfg(feature = "silhouette")]
+fn silhouette_labels(
+    mesh: &TriMesh,
+    options: &SilhouetteOptions,
+) -> Result<sphaera_silhouette::Labels, sphaera_silhouette::SilhouetteError> {
+    let (views, label_options) = silhouette_settings(options)?;
+    sphaera_silhouette::Labels::compute(mesh, &views, &label_options)
 }
 
 /// The most mesh levels a model's ladder may have ([`ModelOptions::mesh_ladder_levels`]):
