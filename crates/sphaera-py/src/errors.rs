@@ -7,7 +7,7 @@
 use pyo3::PyErr;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyPermissionError, PyValueError};
-use sphaera::io::{IoError, ParseReason};
+use sphaera::io::{FileRefusal, IoError, ParseReason};
 
 create_exception!(
     sphaera,
@@ -27,6 +27,7 @@ pub fn to_py(error: &(dyn std::error::Error + 'static)) -> PyErr {
     let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(error);
     while let Some(e) = cause {
         io |= e.is::<std::io::Error>();
+        refused |= e.is::<FileRefusal>();
         refused |= matches!(
             e.downcast_ref::<IoError>(),
             Some(

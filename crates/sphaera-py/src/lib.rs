@@ -15,7 +15,7 @@
 //! fine.cut(2), fine.leaves, fine.leaf_errors  # what covers the surface, and how well
 //! eight = sphaera.spheretree(mesh, spheres=8) # exactly 8 spheres: eight.cut(1)
 //! coarse, depth = sphaera.hal(mesh, tolerance="1%")
-//! labels, directions = sphaera.silhouette_labels(mesh)
+//! labels, directions = sphaera.silhouette_labels(mesh, labels_file="bunny.labels")
 //! robot = sphaera.urdf("panda.urdf", spheres_per_link=40)
 //! pairs = robot["self_collision"]              # MoveIt's rules: which pairs to skip
 //! poses = sphaera.link_poses("panda.urdf", {"panda_joint4": -1.5})

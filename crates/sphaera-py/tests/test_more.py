@@ -49,6 +49,61 @@ def test_silhouette_labels_per_view_and_vertex(ball):
         sphaera.silhouette_labels(ball, step_degrees=7)
 
 
+def test_silhouette_labels_are_kept_in_a_label_file(ball, tmp_path):
+    path = tmp_path / "ball.labels"
+    labels, directions = sphaera.silhouette_labels(ball, step_degrees=45, resolution=32, labels_file=path)
+    written = path.read_bytes()
+    # 80-byte header, 2 bytes per label, 8-byte checksum.
+    assert len(written) == 80 + 2 * labels.size + 8
+    again, again_directions = sphaera.silhouette_labels(
+        ball, step_degrees=45, resolution=32, labels_file=str(path), root=tmp_path
+    )
+    np.testing.assert_array_equal(again, labels)
+    np.testing.assert_array_equal(again_directions, directions)
+    assert path.read_bytes() == written
+
+    # Other settings, another mesh, a damaged file: refused by name, the file kept.
+    with pytest.raises(ValueError, match="step 45°, not 30°"):
+        sphaera.silhouette_labels(ball, resolution=32, labels_file=path)
+    with pytest.raises(ValueError, match="resolution 32, not 64"):
+        sphaera.silhouette_labels(ball, step_degrees=45, resolution=64, labels_file=path)
+    with pytest.raises(ValueError, match="contours outline, not all"):
+        sphaera.silhouette_labels(
+            ball, step_degrees=45, resolution=32, outline_only=False, labels_file=path
+        )
+    vertices, faces = uv_sphere(radius=2.0)
+    with pytest.raises(ValueError, match="another mesh"):
+        sphaera.silhouette_labels(
+            sphaera.Mesh(vertices, faces), step_degrees=45, resolution=32, labels_file=path
+        )
+    assert path.read_bytes() == written
+    damaged = bytearray(written)
+    damaged[len(damaged) // 2] ^= 1
+    path.write_bytes(bytes(damaged))
+    with pytest.raises(ValueError, match="checksum"):
+        sphaera.silhouette_labels(ball, step_degrees=45, resolution=32, labels_file=path)
+
+    # The file policy: a folder, a file outside the root, a file over the cap.
+    with pytest.raises(PermissionError, match="not a regular file"):
+        sphaera.silhouette_labels(ball, step_degrees=45, resolution=32, labels_file=tmp_path)
+    path.write_bytes(written)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    with pytest.raises(PermissionError, match="outside the allowed folder"):
+        sphaera.silhouette_labels(
+            ball, step_degrees=45, resolution=32, labels_file=path, root=elsewhere
+        )
+    with pytest.raises(PermissionError, match="cap"):
+        sphaera.silhouette_labels(
+            ball, step_degrees=45, resolution=32, labels_file=path, max_bytes=100
+        )
+    # A folder that does not exist cannot take a new file.
+    with pytest.raises(OSError, match="missing"):
+        sphaera.silhouette_labels(
+            ball, step_degrees=45, resolution=32, labels_file=tmp_path / "missing" / "x.labels"
+        )
+
+
 def test_a_robot_from_its_urdf(data_dir):
     robot = sphaera.urdf(data_dir / "robots" / "urdf" / "kuka_iiwa" / "model.urdf", spheres_per_link=8)
     assert robot["links"] and pickle.loads(pickle.dumps(robot)).keys() == robot.keys()

@@ -197,7 +197,13 @@ def hal(
     mesh: Mesh, tolerance: Optional[Length] = None, level: int = 0
 ) -> Tuple[Mesh, int]: ...
 def silhouette_labels(
-    mesh: Mesh, step_degrees: float = 30.0, resolution: int = 128, outline_only: bool = True
+    mesh: Mesh,
+    step_degrees: float = 30.0,
+    resolution: int = 128,
+    outline_only: bool = True,
+    labels_file: Optional[Union[str, os.PathLike[str]]] = None,
+    root: Optional[Union[str, os.PathLike[str]]] = None,
+    max_bytes: Optional[int] = None,
 ) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float64]]: ...
 def urdf(
     path: Union[str, os.PathLike[str]],
