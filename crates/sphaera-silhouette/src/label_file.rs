@@ -26,6 +26,11 @@ use crate::{
 
 /// The label file format this library writes and reads (1). A file of another version is
 /// refused with [`LabelFileProblem::UnsupportedVersion`], which names both versions.
+///
+/// The version changes with the layout and with the labels' meaning: when the way labels
+/// are computed changes (what the binary image cuts out, how a vertex takes its label),
+/// the version goes up too, so that files of the older labelling are refused and
+/// computed again rather than silently used.
 pub const LABEL_FILE_VERSION: u32 = 1;
 
 /// The first 8 bytes of every label file.
