@@ -182,6 +182,9 @@ fn bad_arguments_are_named_and_nothing_is_written() {
     fails_with(&["--nearest", "0"], "nearest");
     fails_with(&["--nearest", "500"], "nearest");
     fails_with(&["--step", "7"], "step");
+    fails_with(&["--contour-cells=-1"], "cells");
+    fails_with(&["--contour-cells", "NaN"], "cells");
+    fails_with(&["--region", "edges"], "widened");
     let output = sphaera(&["silhouette", "--resolution", "0"]);
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("resolution"));
@@ -191,4 +194,54 @@ fn bad_arguments_are_named_and_nothing_is_written() {
     let broken = dir.path().join("broken.obj");
     std::fs::write(&broken, "v 0 0 0\nv 1 0 0\nf 1 2 9\n").unwrap();
     fails_with(&[broken.to_str().unwrap()], "broken.obj");
+}
+
+#[test]
+fn the_result_is_judged_against_the_plain_simplifier_and_says_when_nothing_is_gained() {
+    // The bunny has outline detail to keep: the guided level beats `sphaera simplify`.
+    let report = run_json(&["--view", "0.3,-0.4,0.8", "--error", "1%"]);
+    assert_eq!(report["region"], "widened");
+    assert_eq!(report["contour_cells"], 0.25);
+    assert_eq!(report["plain_triangles"], report["triangles_out"]);
+    let (ours, plain) = (
+        number(&report, "silhouette_pixels_wrong"),
+        number(&report, "plain_pixels_wrong"),
+    );
+    assert_eq!(report["gains"], ours < plain, "{report}");
+    assert!(ours < plain, "{report}");
+    // A quarter of a 128² cell of the bunny's bounding sphere, and within ¼ e.
+    let allowance = number(&report, "contour_allowance");
+    assert!(allowance <= 0.25 * number(&report, "error") * (1.0 + 1e-12));
+    assert!(number(&report, "contour_error") <= allowance * (1.0 + 1e-12));
+    // The paper's rule, no cap in cells: `null` in the report.
+    let paper = run_json(&[
+        "--view",
+        "0.3,-0.4,0.8",
+        "--error",
+        "1%",
+        "--region",
+        "corners",
+        "--contour-cells",
+        "inf",
+    ]);
+    assert_eq!(paper["region"], "corners");
+    assert!(paper["contour_cells"].is_null(), "{paper}");
+    assert!(
+        (number(&paper, "contour_allowance") - 0.25 * number(&paper, "error")).abs()
+            <= 1e-12 * number(&paper, "error")
+    );
+    // A cube has no outline detail to keep: both keep its silhouette, and the text says
+    // the plain simplifier does as well.
+    let dir = tempfile::tempdir().unwrap();
+    let cube = write(dir.path(), "cube.obj", &shapes::cube(1.0, 4).unwrap());
+    let mut args = vec!["silhouette", cube.as_str()];
+    args.extend_from_slice(&FAST);
+    let output = sphaera(&args);
+    assert!(output.status.success());
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(text.contains("no gain on this mesh"), "{text}");
+    let mut args = vec!["silhouette", "--json", cube.as_str()];
+    args.extend_from_slice(&FAST);
+    let report = json(&sphaera(&args));
+    assert_eq!(report["gains"], false, "{report}");
 }

@@ -85,6 +85,7 @@ fn bench(c: &mut Criterion) {
         error: 0.01 * bunny.bounding_box_diagonal(),
         factor: 0.25,
         threshold: 2.0,
+        cells: f64::INFINITY,
     };
     let between = DVec3::new(0.31, 0.44, 0.52);
     let mut group = c.benchmark_group("extraction_bunny_69k");

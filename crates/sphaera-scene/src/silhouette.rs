@@ -257,10 +257,12 @@ fn choose_silhouette(
     let extraction = lod.extract(
         direction,
         Interpolation::Average(4),
+        // The allowance comes from the scene's camera, not the labels' cells.
         ContourTolerance {
             error,
             factor,
             threshold: options.threshold_cells,
+            cells: f64::INFINITY,
         },
     )?;
     let measured = |e: f64| measure(instance, Some(camera), tolerance, e * scale).unwrap_or(0.0);

@@ -178,6 +178,11 @@ impl Frame {
         self.sides.clear();
         self.sides.resize(positions.len(), 0);
         for (t, &normal) in mesh.triangles().iter().zip(normals) {
+            // A zero-area face faces neither way: counted as facing away, it would make
+            // every vertex of a sliver a silhouette vertex.
+            if normal == DVec3::ZERO {
+                continue;
+            }
             let toward = camera.normal_faces_camera(normal, positions[t[0] as usize]);
             let side = if toward { 1 } else { 2 };
             for &v in t {

@@ -55,8 +55,10 @@
 //!   interpolate the nearest or the `n` nearest views' labels.
 //!
 //! - **Level of detail** ([`ViewDependent::extract`]): the contour region is the
-//!   triangles with a corner at most `threshold` cells from the silhouette; its allowed
-//!   error is `e · f`, elsewhere `e`. Labels of the outline alone ([`Contours::External`])
+//!   triangles with a corner at most `threshold` cells from the silhouette once the
+//!   triangle's own error bound is counted ([`ContourRegion`]; the paper counts the
+//!   corner alone); its allowed error is the smaller of `e · f` and a quarter of a cell
+//!   ([`ContourTolerance`]), elsewhere `e`. Labels of the outline alone ([`Contours::External`])
 //!   make a narrower region than with the internal silhouettes ([`Contours::All`]). The
 //!   hierarchy is refined until every triangle's error-sphere bound meets its allowance,
 //!   so the result carries a certified bound per region, which the paper's extraction
@@ -79,9 +81,11 @@
 //! let view = lod.extract(
 //!     DVec3::new(0.2, 0.3, 0.9),
 //!     Interpolation::Average(4),
-//!     ContourTolerance { error, factor: 0.25, threshold: 2.0 },
+//!     ContourTolerance::new(error),
 //! )?;
-//! assert!(view.contour_error <= 0.25 * error && view.other_error <= error);
+//! // In the contour region: within ¼ e and ¼ cell of the 64² images.
+//! assert!(view.contour_error <= view.contour_allowance);
+//! assert!(view.contour_allowance <= 0.25 * error && view.other_error <= error);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
@@ -143,7 +147,7 @@ pub use error::SilhouetteError;
 pub use labels::{
     Contours, Interpolation, LABEL_SCALE, LabelOptions, Labels, ViewLabels, label_view,
 };
-pub use lod::{ContourTolerance, Extraction, ViewDependent, contour_weights};
+pub use lod::{ContourRegion, ContourTolerance, Extraction, ViewDependent, contour_weights};
 pub use picture::{Picture, overlay_picture, shaded_picture};
 pub use raster::FaceGrid;
 pub use views::{Projection, ViewSet};

@@ -38,6 +38,7 @@ fn every_triangle_meets_its_allowance() {
                 error: 0.02 * diagonal,
                 factor,
                 threshold: 3.0,
+                cells: f64::INFINITY,
             };
             let out = extractor
                 .extract(direction, interpolation, tolerance)
@@ -82,6 +83,7 @@ fn every_triangle_meets_its_allowance() {
                     error: error * diagonal,
                     factor: 0.5,
                     threshold: 2.0,
+                    cells: f64::INFINITY,
                 },
             )
             .unwrap()
@@ -107,6 +109,7 @@ fn coherent_extraction_equals_extraction_from_scratch() {
         error: error * diagonal,
         factor,
         threshold: 2.0,
+        cells: f64::INFINITY,
     };
     let mut moving = ViewDependent::new(&hierarchy, &labels).unwrap();
     let path = (0..12).map(|i| {
@@ -210,7 +213,8 @@ fn mismatched_inputs_are_refused() {
                 ContourTolerance {
                     error,
                     factor,
-                    threshold: 1.0
+                    threshold: 1.0,
+                    cells: f64::INFINITY,
                 }
             ),
             Err(SilhouetteError::InvalidParameter { .. })
@@ -248,6 +252,7 @@ fn scaling_by_a_power_of_two_scales_the_extraction_exactly() {
                     error: 0.03 * scale,
                     factor: 0.25,
                     threshold: 2.0,
+                    cells: f64::INFINITY,
                 },
             )
             .unwrap()
@@ -304,6 +309,7 @@ fn awkward_settings_still_meet_every_allowance() {
                         error,
                         factor: 0.5,
                         threshold,
+                        cells: f64::INFINITY,
                     },
                 )
                 .unwrap();

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use sphaera::mesh::Length;
-use sphaera::silhouette::{Contours, DistanceTransform};
+use sphaera::silhouette::{ContourRegion, Contours, DistanceTransform};
 
 use super::choice::Choice;
 use super::{OutputArgs, parse_length};
@@ -23,14 +23,23 @@ pub struct SilhouetteArgs {
     #[arg(long, default_value_t = 512)]
     pub resolution: usize,
 
-    /// The contour region: triangles with a corner at most this many cells from the
-    /// silhouette.
+    /// The contour region: triangles within this many cells of the silhouette (how it is
+    /// decided: `--region`).
     #[arg(long, default_value_t = 2.0)]
     pub threshold: f32,
+
+    /// Which triangles are in the contour region.
+    #[arg(long, default_value = "widened", value_parser = Choice::of(REGIONS))]
+    pub region: ContourRegion,
 
     /// The contour region's allowed error as a fraction of `--error` (0: exact there).
     #[arg(long, default_value_t = 0.25)]
     pub factor: f64,
+
+    /// The contour region's allowed error is also at most this many cells of the view
+    /// (`inf`: `--factor` alone, the paper's rule).
+    #[arg(long, default_value_t = 0.25)]
+    pub contour_cells: f64,
 
     /// The error allowed away from the contour: a distance (`0.002`) or a percentage of
     /// the bounding-box diagonal (`1%`).
@@ -86,6 +95,22 @@ pub const CONTOURS: &[(Contours, &str)] = &[
     (
         Contours::All,
         "The outline and the internal silhouettes (the paper's Fig. 2)",
+    ),
+];
+
+/// `--region`: which triangles are in the contour region (every [`ContourRegion`]).
+pub const REGIONS: &[(ContourRegion, &str)] = &[
+    (
+        ContourRegion::Widened,
+        "A corner within the threshold once the triangle's error bound is counted (the best outline per triangle, measured)",
+    ),
+    (
+        ContourRegion::Corners,
+        "A corner within the threshold (the paper's rule)",
+    ),
+    (
+        ContourRegion::Certified,
+        "Any point of the triangle's error region within the threshold (more triangles)",
     ),
 ];
 

@@ -80,3 +80,7 @@ pub(super) const LEVEL_1: Filter = &[("level", "1")];
 pub(super) const LEVEL_2: Filter = &[("level", "2")];
 /// Level 3.
 pub(super) const LEVEL_3: Filter = &[("level", "3")];
+/// The defaults of `silhouette_vs_simplify.csv` (widened region, ¼ e and ¼ cell).
+pub(super) const GUIDED_DEFAULT: Filter = &[("method", "default: widened, f = 0.25, 1/4 cell")];
+/// The paper's rule there (corners, `e · f` alone): the defaults before issue 40.
+pub(super) const GUIDED_PAPER: Filter = &[("method", "paper: corners, f = 0.25")];
