@@ -185,6 +185,12 @@ fn bad_arguments_are_named_and_nothing_is_written() {
     fails_with(&["--contour-cells=-1"], "cells");
     fails_with(&["--contour-cells", "NaN"], "cells");
     fails_with(&["--region", "edges"], "widened");
+    fails_with(&["--eye", "0,0,0"], "inside the bounding sphere");
+    fails_with(&["--eye", "0,0,inf"], "finite");
+    fails_with(
+        &["--eye", "0,0,9", "--view", "0,0,1"],
+        "cannot be used with",
+    );
     let output = sphaera(&["silhouette", "--resolution", "0"]);
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("resolution"));
@@ -244,4 +250,26 @@ fn the_result_is_judged_against_the_plain_simplifier_and_says_when_nothing_is_ga
     args.extend_from_slice(&FAST);
     let report = json(&sphaera(&args));
     assert_eq!(report["gains"], false, "{report}");
+}
+
+#[test]
+fn a_camera_position_gives_the_view_and_a_finer_contour_when_near() {
+    // A unit ball around the origin.
+    let dir = tempfile::tempdir().unwrap();
+    let ball = write(dir.path(), "ball.obj", &shapes::sphere(1.0, 24).unwrap());
+    let far = run_json(&[ball.as_str(), "--eye", "0.2,-0.3,40"]);
+    let near = run_json(&[ball.as_str(), "--eye", "0.03,-0.045,1.5"]);
+    assert_eq!(far["eye"][2], 40.0);
+    for report in [&far, &near] {
+        assert!(
+            number(report, "contour_error") <= number(report, "contour_allowance") * (1.0 + 1e-12)
+        );
+        let [x, y, z] = [0, 1, 2].map(|k| report["view"][k].as_f64().unwrap());
+        assert!(z > 0.99 && x > 0.0 && y < 0.0, "{report}");
+    }
+    assert!(number(&near, "contour_allowance") < number(&far, "contour_allowance"));
+    let mut args = vec!["silhouette", ball.as_str(), "--eye", "0.2,-0.3,40"];
+    args.extend_from_slice(&FAST);
+    let text = String::from_utf8_lossy(&sphaera(&args).stdout).into_owned();
+    assert!(text.contains("from a camera at 0.2,-0.3,40"), "{text}");
 }

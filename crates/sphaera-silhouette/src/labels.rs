@@ -9,7 +9,7 @@ use sphaera_mesh::{Sphere, TriMesh};
 use crate::SilhouetteError;
 use crate::camera::{ViewCamera, face_normal};
 use crate::caps::{check_label_count, check_resolution};
-use crate::coverage::bounding_sphere;
+use crate::coverage::{bounding_sphere, for_each_covered_center};
 use crate::distance::{DistanceTransform, Workspace};
 use crate::raster::{cell_index, mark_triangle, rows_of_triangle};
 use crate::views::{Projection, ViewSet};
@@ -40,7 +40,9 @@ pub struct ViewLabels {
     /// Per face: the smallest distance over the cells its projection touches (the paper).
     pub faces: Vec<f32>,
     /// Per vertex: whether it is on a silhouette (shared by a face toward the camera and
-    /// one away from it).
+    /// one away from it; a zero-area face faces neither way). With [`Contours::All`],
+    /// only those no other face hides: these are the ones that cut the image, and their
+    /// label is 0.
     pub silhouette: Vec<bool>,
 }
 
@@ -92,12 +94,17 @@ pub(crate) fn check(
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Contours {
     /// The outline only (the paper: "in the case that only the external contour has to be
-    /// preserved"): labels measure the distance to the mesh's outline in the image.
-    External,
-    /// The outline and the internal silhouettes (the paper's Fig. 2): cells under faces
-    /// holding a silhouette vertex are background too. On a bumpy scan every bump is a
-    /// silhouette somewhere, so much of the mesh gets small labels.
+    /// preserved"): labels measure the distance to the mesh's outline in the image. The
+    /// default: measured against the plain simplifier, it keeps the outline best for its
+    /// triangles (`silhouette_error_vs_triangles` and `silhouette_vs_simplify` in
+    /// `docs/benchmarks.md`).
     #[default]
+    External,
+    /// The outline and the internal silhouettes the camera sees (the paper's Fig. 2):
+    /// cells under faces holding a silhouette vertex are background too, unless another
+    /// face hides that vertex (a depth buffer per view; the paper cuts hidden contours
+    /// too). On a bumpy scan every bump is a silhouette somewhere, so much of the mesh
+    /// gets small labels.
     All,
 }
 
@@ -148,6 +155,11 @@ struct Frame {
     marks: Vec<u8>,
     /// The faces holding no silhouette vertex (mark 1), marked after the others.
     later: Vec<usize>,
+    /// Per cell (with [`Contours::All`]): the nearest depth of a face covering its centre
+    /// (larger is nearer) and that face.
+    depth: Vec<(f64, u32)>,
+    /// Per vertex (with [`Contours::All`]): a silhouette vertex no other face hides.
+    visible: Vec<bool>,
     /// Per cell: whether it is an object cell.
     object: Vec<bool>,
     /// Per cell: the distance transform of `object`.
@@ -189,15 +201,17 @@ impl Frame {
                 self.sides[v as usize] |= side;
             }
         }
-        // Occupancy (mark 1), with every cell under a face holding a silhouette vertex cut
-        // out (mark 2). Cut faces go first, so that more rows of the others are already
+        if contours == Contours::All {
+            self.find_visible(mesh, normals, camera, resolution);
+        }
+        // Occupancy (mark 1), with every cell under a face holding a visible silhouette
+        // vertex cut out (mark 2). Cut faces go first, so that more rows of the others are already
         // marked and skipped; the marks do not depend on the order.
         self.marks.clear();
         self.marks.resize(resolution * resolution, 0);
         self.later.clear();
         for (f, t) in mesh.triangles().iter().enumerate() {
-            let cut = contours == Contours::All
-                && t.iter().any(|&v| self.sides[v as usize] == BOTH_SIDES);
+            let cut = contours == Contours::All && t.iter().any(|&v| self.visible[v as usize]);
             if cut {
                 let corners = t.map(|v| self.image[v as usize]);
                 mark_triangle(corners, resolution, &mut self.marks, 2);
@@ -218,6 +232,56 @@ impl Frame {
             &mut self.workspace,
             &mut self.distances,
         );
+    }
+
+    /// Marks the silhouette vertices that no face hides: a depth buffer at cell centres
+    /// (the nearest face over each centre), and a silhouette vertex is hidden when the
+    /// nearest face over its cell's centre is not one of its own and lies nearer than it
+    /// by more than two cells' length (a surface seen edge-on changes depth fast across
+    /// a cell; a fold or another part hiding a contour is farther in front than that).
+    fn find_visible(
+        &mut self,
+        mesh: &TriMesh,
+        normals: &[DVec3],
+        camera: &ViewCamera,
+        resolution: usize,
+    ) {
+        let positions = mesh.positions();
+        self.depth.clear();
+        self.depth
+            .resize(resolution * resolution, (f64::NEG_INFINITY, u32::MAX));
+        for (f, (t, &normal)) in mesh.triangles().iter().zip(normals).enumerate() {
+            if normal == DVec3::ZERO {
+                continue;
+            }
+            let corners = t.map(|v| self.image[v as usize]);
+            let [a, b, c] = corners;
+            let area = (b - a).perp_dot(c - a);
+            if area == 0.0 {
+                continue;
+            }
+            let [za, zb, zc] = t.map(|v| camera.nearness(positions[v as usize]));
+            let depth = &mut self.depth;
+            for_each_covered_center(corners, resolution, |cell, x| {
+                let wa = (b - x).perp_dot(c - x) / area;
+                let wb = (c - x).perp_dot(a - x) / area;
+                let z = wa * za + wb * zb + (1.0 - wa - wb) * zc;
+                if z > depth[cell].0 {
+                    depth[cell] = (z, f as u32);
+                }
+            });
+        }
+        let slack = 2.0 * camera.cell_length(resolution);
+        self.visible.clear();
+        self.visible
+            .extend(self.sides.iter().enumerate().map(|(v, &sides)| {
+                if sides != BOTH_SIDES {
+                    return false;
+                }
+                let (z, f) = self.depth[cell_index(self.image[v], resolution)];
+                let own = f == u32::MAX || mesh.triangles()[f as usize].contains(&(v as u32));
+                own || z <= camera.nearness(positions[v]) + slack
+            }));
     }
 
     /// The distance of the cell holding image point `p`.
@@ -290,7 +354,11 @@ fn label_in_frame(
         .iter()
         .map(|&p| frame.distance_at(p, resolution))
         .collect();
-    let silhouette = frame.sides.iter().map(|&s| s == BOTH_SIDES).collect();
+    let silhouette = if contours == Contours::All {
+        frame.visible.clone()
+    } else {
+        frame.sides.iter().map(|&s| s == BOTH_SIDES).collect()
+    };
     ViewLabels {
         resolution,
         cells: frame.distances,
@@ -338,9 +406,9 @@ fn quantize(d: f32) -> u16 {
 /// let options = LabelOptions::default();
 /// assert_eq!(options.resolution, 512);
 /// assert_eq!(options.transform, DistanceTransform::Euclidean);
-/// assert_eq!(options.contours, Contours::All);
-/// let coarse = options.with_resolution(64).with_contours(Contours::External);
-/// assert_eq!((coarse.resolution, coarse.contours), (64, Contours::External));
+/// assert_eq!(options.contours, Contours::External);
+/// let coarse = options.with_resolution(64).with_contours(Contours::All);
+/// assert_eq!((coarse.resolution, coarse.contours), (64, Contours::All));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -350,7 +418,7 @@ pub struct LabelOptions {
     pub resolution: usize,
     /// The distance transform (default the exact Euclidean one).
     pub transform: DistanceTransform,
-    /// Which silhouettes the labels measure the distance to (default all of them).
+    /// Which silhouettes the labels measure the distance to (default the outline).
     pub contours: Contours,
 }
 
@@ -359,7 +427,7 @@ impl Default for LabelOptions {
         Self {
             resolution: 512,
             transform: DistanceTransform::Euclidean,
-            contours: Contours::All,
+            contours: Contours::External,
         }
     }
 }

@@ -44,9 +44,11 @@
 //!   constant time.
 //! - **Mapping** ([`FaceGrid`]): every face projected and rasterized conservatively (every
 //!   cell it touches) onto a square grid over the bounding sphere's image.
-//! - **Binary image**: cells under some face are object; cells under a face that holds a
-//!   silhouette vertex (one shared by faces toward and away from the camera) are
-//!   background, which brings out the internal silhouettes (the paper's Fig. 2).
+//! - **Binary image**: cells under some face are object. With [`Contours::All`], cells
+//!   under a face that holds a silhouette vertex (one shared by faces toward and away
+//!   from the camera) that no other face hides (a depth buffer per view) are background,
+//!   which brings out the internal silhouettes the camera sees (the paper's Fig. 2, where
+//!   hidden ones cut too); the default, [`Contours::External`], keeps the outline alone.
 //! - **Distance transform** ([`DistanceTransform`]): exact Euclidean (separable, linear
 //!   time) or the paper's two-pass 3–4 chamfer.
 //! - **Labels** ([`label_view`], [`Labels`]): a face gets the smallest distance over its
@@ -141,7 +143,9 @@ pub use caps::{MAX_FACE_GRID_ENTRIES, MAX_LABELS, MAX_RESOLUTION, MAX_VIEWS};
 /// perspective camera, is the workspace's only `Camera`).
 #[deprecated(since = "0.2.0", note = "renamed `ViewCamera`")]
 pub type Camera = ViewCamera;
-pub use coverage::{bounding_sphere, contour_displacement, coverage, silhouette_difference};
+pub use coverage::{
+    bounding_sphere, contour_displacement, coverage, coverage_of_projection, silhouette_difference,
+};
 pub use distance::DistanceTransform;
 pub use error::SilhouetteError;
 pub use labels::{

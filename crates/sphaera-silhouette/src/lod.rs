@@ -313,6 +313,9 @@ pub struct ViewDependent<'h> {
     region: ContourRegion,
     /// Cells of the labels' images per unit of length, at the nearest point of the frame.
     cells_per_unit: f64,
+    /// The labels' frame: the smallest ball of the input.
+    center: DVec3,
+    radius: f64,
     /// The first phase for the last error asked for.
     prefix: Option<Prefix>,
     /// Reused lists of the second phase.
@@ -353,10 +356,9 @@ impl<'h> ViewDependent<'h> {
             .collect();
         // The labels' frame: the smallest ball of the input (copies of non-manifold
         // vertices add no point), as `Labels::compute` frames its views.
-        let radius = minimum_enclosing_ball(hierarchy.positions())
-            .map_err(|_| SilhouetteError::EmptyMesh)?
-            .radius;
-        let radius = if radius > 0.0 { radius } else { 1.0 };
+        let ball = minimum_enclosing_ball(hierarchy.positions())
+            .map_err(|_| SilhouetteError::EmptyMesh)?;
+        let radius = if ball.radius > 0.0 { ball.radius } else { 1.0 };
         let half = labels.resolution() as f64 / 2.0;
         let cells_per_unit = match labels.views().projection() {
             Projection::Orthographic => half / radius,
@@ -373,6 +375,8 @@ impl<'h> ViewDependent<'h> {
             input,
             region: ContourRegion::default(),
             cells_per_unit,
+            center: ball.center,
+            radius,
             prefix: None,
             work: Vec::new(),
             added: Vec::new(),
@@ -414,6 +418,70 @@ impl<'h> ViewDependent<'h> {
         interpolation: Interpolation,
         tolerance: ContourTolerance,
     ) -> Result<Extraction, SilhouetteError> {
+        self.extract_scaled(direction, interpolation, tolerance, self.cells_per_unit)
+    }
+
+    /// [`ViewDependent::extract`] for a pinhole camera at `eye` (a point in the mesh's
+    /// frame, outside the smallest ball around the mesh): the labels of the views nearest
+    /// the direction from the ball's centre to the eye, and the cap in cells taken at the
+    /// finer of two scales, the labels' images' and the camera's own image of the same
+    /// resolution whose field of view just holds the ball (a camera nearer than the
+    /// labels' cameras sees the outline larger, so its contour gets less error).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_mesh::{DVec3, shapes};
+    /// use sphaera_silhouette::{ContourTolerance, Interpolation, LabelOptions, Labels, ViewDependent, ViewSet};
+    /// use sphaera_simplify::{Hierarchy, SimplifyOptions};
+    ///
+    /// let mesh = shapes::torus(1.0, 0.3, 32)?;
+    /// let labels = Labels::compute(&mesh, &ViewSet::regular(30.0)?, &LabelOptions::default().with_resolution(64))?;
+    /// let hierarchy = Hierarchy::build(&mesh, &SimplifyOptions::default())?;
+    /// let mut lod = ViewDependent::new(&hierarchy, &labels)?;
+    /// let tolerance = ContourTolerance::new(0.02 * mesh.bounding_box_diagonal());
+    /// let near = lod.extract_at(DVec3::new(0.0, 0.0, 2.0), Interpolation::Nearest, tolerance)?;
+    /// let far = lod.extract_at(DVec3::new(0.0, 0.0, 100.0), Interpolation::Nearest, tolerance)?;
+    /// assert!(near.contour_allowance < far.contour_allowance);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`SilhouetteError::CameraInside`] for an eye inside the ball or not finite; as
+    /// [`ViewDependent::extract`].
+    pub fn extract_at(
+        &mut self,
+        eye: DVec3,
+        interpolation: Interpolation,
+        tolerance: ContourTolerance,
+    ) -> Result<Extraction, SilhouetteError> {
+        let offset = eye - self.center;
+        let distance = offset.length() / self.radius;
+        if !(distance.is_finite() && distance > 1.0) {
+            return Err(SilhouetteError::CameraInside { distance });
+        }
+        // As for perspective labels: the scale `√(D² − 1) / depth` at the ball's nearest
+        // point, at depth `(D − 1) · radius`.
+        let half = self.labels.resolution() as f64 / 2.0;
+        let camera = half * (distance * distance - 1.0).sqrt() / ((distance - 1.0) * self.radius);
+        self.extract_scaled(
+            offset,
+            interpolation,
+            tolerance,
+            self.cells_per_unit.max(camera),
+        )
+    }
+
+    /// [`ViewDependent::extract`] with `cells_per_unit` cells per unit of length for the
+    /// cap in cells and the region's widening.
+    fn extract_scaled(
+        &mut self,
+        direction: DVec3,
+        interpolation: Interpolation,
+        tolerance: ContourTolerance,
+        cells_per_unit: f64,
+    ) -> Result<Extraction, SilhouetteError> {
         check("error", tolerance.error)?;
         check("factor", tolerance.factor)?;
         if tolerance.factor > 1.0 {
@@ -444,7 +512,7 @@ impl<'h> ViewDependent<'h> {
             region: self.region,
             labels: &labels,
             threshold: tolerance.threshold,
-            cells_per_unit: self.cells_per_unit,
+            cells_per_unit,
         };
         // Subset placement: a corner is an input vertex and keeps its label.
         let in_contour = |refinement: &Refinement<'_>, corners: [u32; 3]| {
@@ -455,7 +523,7 @@ impl<'h> ViewDependent<'h> {
             )
         };
         let contour_allowance =
-            (tolerance.error * tolerance.factor).min(tolerance.cells / self.cells_per_unit);
+            (tolerance.error * tolerance.factor).min(tolerance.cells / cells_per_unit);
         let refinement = &mut self.refinement;
         let hierarchy = self.hierarchy;
         // Away from the contour every triangle meets `error` after the first phase, so

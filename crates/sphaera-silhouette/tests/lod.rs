@@ -17,8 +17,14 @@ fn setup() -> (sphaera_mesh::TriMesh, Hierarchy, Labels) {
     let hierarchy =
         Hierarchy::build(&mesh, &SimplifyOptions::default().with_target_triangles(60)).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels =
-        Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(96)).unwrap();
+    let labels = Labels::compute(
+        &mesh,
+        &views,
+        &LabelOptions::default()
+            .with_resolution(96)
+            .with_contours(Contours::All),
+    )
+    .unwrap();
     (mesh, hierarchy, labels)
 }
 
@@ -335,4 +341,58 @@ fn weights_for_a_view_out_of_range_are_refused() {
         );
     }
     assert!(contour_weights(&labels, &[past - 1], 1.0, 0.0).is_ok());
+}
+
+#[test]
+fn a_camera_position_sets_the_view_and_the_scale() {
+    let (mesh, hierarchy, labels) = setup();
+    let mut lod = ViewDependent::new(&hierarchy, &labels).unwrap();
+    let tolerance = ContourTolerance::new(0.02 * mesh.bounding_box_diagonal());
+    let ball = sphaera_silhouette::bounding_sphere(&mesh).unwrap();
+    let (centre, radius) = (ball.center, ball.radius);
+    let toward = DVec3::new(0.3, -0.2, 0.9).normalize();
+    let mut previous = 0.0;
+    // From far away to near (in radii of the ball): the view is the same, the outline
+    // grows, its allowance shrinks, and every triangle meets its own.
+    for distance in [1e6, 10.0, 3.0, 1.2] {
+        let out = lod
+            .extract_at(
+                centre + toward * (distance * radius),
+                Interpolation::Nearest,
+                tolerance,
+            )
+            .unwrap();
+        assert!(out.contour_error <= out.contour_allowance);
+        assert!(out.other_error <= tolerance.error);
+        assert!(out.contour_allowance <= tolerance.error * tolerance.factor);
+        if previous > 0.0 {
+            assert!(out.contour_allowance <= previous, "{distance}");
+        }
+        previous = out.contour_allowance;
+    }
+    // Far away it is the orthographic view from that direction.
+    let far = lod
+        .extract_at(centre + toward * 1e9, Interpolation::Nearest, tolerance)
+        .unwrap();
+    let along = lod
+        .extract(toward, Interpolation::Nearest, tolerance)
+        .unwrap();
+    assert_eq!(
+        far.simplified.mesh.triangles(),
+        along.simplified.mesh.triangles()
+    );
+    for eye in [
+        centre,
+        centre + DVec3::X * (0.5 * radius),
+        DVec3::splat(f64::NAN),
+        DVec3::splat(f64::INFINITY),
+    ] {
+        assert!(
+            matches!(
+                lod.extract_at(eye, Interpolation::Nearest, tolerance),
+                Err(SilhouetteError::CameraInside { .. })
+            ),
+            "{eye}"
+        );
+    }
 }

@@ -50,6 +50,13 @@ pub struct SilhouetteArgs {
     #[arg(long, value_parser = parse_direction, default_value = "0,0,1", allow_hyphen_values = true)]
     pub view: [f64; 3],
 
+    /// A pinhole camera at this point `x,y,z` (the mesh's coordinates, outside its
+    /// bounding sphere) instead of `--view`: the view is from the sphere's centre toward
+    /// it, the contour's cap in cells is taken at the camera's scale when it is nearer
+    /// than the labels' cameras, and the silhouettes are compared as it sees them.
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, conflicts_with = "view")]
+    pub eye: Option<[f64; 3]>,
+
     /// Labels for the view: those of the nearest camera (1) or the average of this many
     /// nearest cameras.
     #[arg(long, default_value_t = 1)]
@@ -123,6 +130,25 @@ pub const TRANSFORMS: &[(DistanceTransform, &str)] = &[
         "The paper's two-pass 3–4 chamfer (within 8 % of Euclidean)",
     ),
 ];
+
+/// A point on the command line: `x,y,z`, finite.
+fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(format!("`{text}` is not a point `x,y,z`"));
+    };
+    let mut out = [0.0_f64; 3];
+    for (o, part) in out.iter_mut().zip([x, y, z]) {
+        *o = part
+            .trim()
+            .parse()
+            .map_err(|e| format!("`{part}` in `{text}` is not a number: {e}"))?;
+        if !o.is_finite() {
+            return Err(format!("`{part}` in `{text}` is not finite"));
+        }
+    }
+    Ok(out)
+}
 
 /// A direction on the command line: `x,y,z`, finite and not zero.
 fn parse_direction(text: &str) -> Result<[f64; 3], String> {

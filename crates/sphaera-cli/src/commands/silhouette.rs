@@ -31,6 +31,8 @@ struct Report {
     source: String,
     /// The view: the unit direction toward the camera.
     view: [f64; 3],
+    /// The camera's position when `--eye` gave one (`null` otherwise).
+    eye: Option<[f64; 3]>,
     /// Cameras of the view set and the degrees between them.
     cameras: usize,
     step_degrees: f64,
@@ -109,6 +111,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         check_target(path)?;
     }
     let view = DVec3::from_array(args.view).normalize();
+    let eye = args.eye.map(DVec3::from_array);
     let interpolation = match args.nearest {
         0 => bail!("--nearest must be at least 1"),
         1 => Interpolation::Nearest,
@@ -166,15 +169,26 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     let hierarchy_seconds = started.elapsed().as_secs_f64();
 
     let started = Instant::now();
-    let extraction = ViewDependent::new(&hierarchy, &labels)?
-        .with_region(args.region)
-        .extract(view, interpolation, tolerance)?;
+    let mut lod = ViewDependent::new(&hierarchy, &labels)?.with_region(args.region);
+    let extraction = match eye {
+        Some(eye) => lod.extract_at(eye, interpolation, tolerance)?,
+        None => lod.extract(view, interpolation, tolerance)?,
+    };
     let extract_seconds = started.elapsed().as_secs_f64();
     let result = &extraction.simplified.mesh;
 
     let started = Instant::now();
     let frame = bounding_sphere(mesh)?;
-    let picture = |m: &TriMesh| coverage(m, frame, view, projection, args.resolution);
+    // The images the camera sees: from the eye, perspective at its distance.
+    let (view, seen_as) = match eye {
+        Some(eye) => {
+            let offset = eye - frame.center;
+            let distance = offset.length() / frame.radius;
+            (offset.normalize(), Projection::Perspective { distance })
+        }
+        None => (view, projection),
+    };
+    let picture = |m: &TriMesh| coverage(m, frame, view, seen_as, args.resolution);
     let original = picture(mesh)?;
     let ours = picture(result)?;
     let plain = simplify(
@@ -192,15 +206,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     if let Some(path) = &args.labels_png {
         let values = labels.for_view(view, interpolation)?;
         let scale = values.iter().copied().fold(0.0_f32, f32::max).max(1.0);
-        let shaded = shaded_picture(
-            mesh,
-            frame,
-            view,
-            projection,
-            args.resolution,
-            &values,
-            scale,
-        )?;
+        let shaded = shaded_picture(mesh, frame, view, seen_as, args.resolution, &values, scale)?;
         write_png(path, &shaded)?;
     }
     if let Some(path) = &args.compare_png {
@@ -212,6 +218,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     let report = Report {
         source: input.source,
         view: view.to_array(),
+        eye: args.eye,
         cameras: views.len(),
         step_degrees: args.step,
         projection: match projection {
@@ -315,7 +322,10 @@ impl crate::output::Report for Report {
                 self.label_bytes / 1024
             ),
             format!(
-                "view            {x:.3},{y:.3},{z:.3} (labels of {} nearest camera{})",
+                "view            {x:.3},{y:.3},{z:.3}{} (labels of {} nearest camera{})",
+                self.eye.map_or(String::new(), |[a, b, c]| format!(
+                    ", from a camera at {a},{b},{c}"
+                )),
                 self.nearest,
                 if self.nearest == 1 { "" } else { "s" }
             ),

@@ -30,6 +30,7 @@
 
 pub mod picture;
 pub mod plain;
+pub mod temporal;
 pub mod timing;
 
 use std::path::Path;

@@ -146,6 +146,15 @@ pub fn variants() -> Vec<Variant> {
             0.25,
             Some(0.25),
         ),
+        Variant {
+            contours: Contours::All,
+            ..variant(
+                "internal silhouettes too, widened, 1/4 cell",
+                ContourRegion::Widened,
+                0.25,
+                Some(0.25),
+            )
+        },
         variant("widened, f = 0.1", ContourRegion::Widened, 0.1, None),
         variant("widened, f = 0.5", ContourRegion::Widened, 0.5, None),
     ]
