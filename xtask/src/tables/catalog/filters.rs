@@ -95,3 +95,8 @@ pub(super) const GUIDED_INTERNAL: Filter =
 pub(super) const GUIDED_F_01: Filter = &[("method", "widened, f = 0.1")];
 /// See [`GUIDED_F_01`].
 pub(super) const GUIDED_F_05: Filter = &[("method", "widened, f = 0.5")];
+/// The scene's coarser labels.
+pub(super) const GUIDED_SCENE_LABELS: Filter = &[(
+    "method",
+    "the scene's labels (30°, 128²), widened, 1/4 cell",
+)];

@@ -185,6 +185,12 @@ pub(super) const TABLES: &[Table] = &[
                 Format::Decimals(2),
             ),
             col(
+                "the scene's labels (30°, 128²)",
+                "given_view_ratio",
+                GUIDED_SCENE_LABELS,
+                Format::Decimals(2),
+            ),
+            col(
                 "paper: f = 0.25",
                 "given_view_ratio",
                 GUIDED_PAPER,
