@@ -9,7 +9,7 @@ use sphaera_mesh::{Sphere, TriMesh};
 use crate::SilhouetteError;
 use crate::camera::{ViewCamera, face_normal};
 use crate::caps::{check_label_count, check_resolution};
-use crate::coverage::{bounding_sphere, for_each_covered_center};
+use crate::coverage::bounding_sphere;
 use crate::distance::{DistanceTransform, Workspace};
 use crate::raster::{cell_index, mark_triangle, rows_of_triangle};
 use crate::views::{Projection, ViewSet};
@@ -155,9 +155,10 @@ struct Frame {
     marks: Vec<u8>,
     /// The faces holding no silhouette vertex (mark 1), marked after the others.
     later: Vec<usize>,
-    /// Per cell (with [`Contours::All`]): the nearest depth of a face covering its centre
-    /// (larger is nearer) and that face.
-    depth: Vec<(f64, u32)>,
+    /// With [`Contours::All`]: the silhouette vertices by bucket of a coarse grid, bucket
+    /// `k`'s being `bucketed[start[k]..start[k + 1]]`.
+    start: Vec<u32>,
+    bucketed: Vec<u32>,
     /// Per vertex (with [`Contours::All`]): a silhouette vertex no other face hides.
     visible: Vec<bool>,
     /// Per cell: whether it is an object cell.
@@ -234,11 +235,13 @@ impl Frame {
         );
     }
 
-    /// Marks the silhouette vertices that no face hides: a depth buffer at cell centres
-    /// (the nearest face over each centre), and a silhouette vertex is hidden when the
-    /// nearest face over its cell's centre is not one of its own and lies nearer than it
-    /// by more than two cells' length (a surface seen edge-on changes depth fast across
-    /// a cell; a fold or another part hiding a contour is farther in front than that).
+    /// Marks the silhouette vertices that no face hides: a vertex is hidden when a face
+    /// that is not one of its own covers its image point nearer the camera than it by
+    /// more than two cells' length (a fold or another part hiding a contour is farther
+    /// in front than that; a neighbour of a vertex seen edge-on is not). The silhouette
+    /// vertices are put in buckets of a coarse grid, and each face tests only those in
+    /// the buckets its image's bounding box meets: silhouette vertices are few, so this
+    /// costs little more than a pass over the faces.
     fn find_visible(
         &mut self,
         mesh: &TriMesh,
@@ -247,41 +250,75 @@ impl Frame {
         resolution: usize,
     ) {
         let positions = mesh.positions();
-        self.depth.clear();
-        self.depth
-            .resize(resolution * resolution, (f64::NEG_INFINITY, u32::MAX));
-        for (f, (t, &normal)) in mesh.triangles().iter().zip(normals).enumerate() {
+        self.visible.clear();
+        self.visible
+            .extend(self.sides.iter().map(|&sides| sides == BOTH_SIDES));
+        // Buckets of silhouette vertices, counted then filled (a counting sort).
+        let side = (resolution / 8).clamp(1, 64);
+        let bucket =
+            |x: f64| ((x + 1.0) * 0.5 * side as f64).clamp(0.0, side as f64 - 1.0) as usize;
+        self.start.clear();
+        self.start.resize(side * side + 1, 0);
+        for (v, &on) in self.visible.iter().enumerate() {
+            if on {
+                let p = self.image[v];
+                self.start[bucket(p.y) * side + bucket(p.x) + 1] += 1;
+            }
+        }
+        if self.start.iter().all(|&n| n == 0) {
+            return;
+        }
+        for k in 0..side * side {
+            self.start[k + 1] += self.start[k];
+        }
+        self.bucketed.clear();
+        self.bucketed.resize(self.start[side * side] as usize, 0);
+        let mut fill = self.start.clone();
+        for (v, &on) in self.visible.iter().enumerate() {
+            if on {
+                let p = self.image[v];
+                let k = bucket(p.y) * side + bucket(p.x);
+                self.bucketed[fill[k] as usize] = v as u32;
+                fill[k] += 1;
+            }
+        }
+        let slack = 2.0 * camera.cell_length(resolution);
+        for (t, &normal) in mesh.triangles().iter().zip(normals) {
             if normal == DVec3::ZERO {
                 continue;
             }
-            let corners = t.map(|v| self.image[v as usize]);
-            let [a, b, c] = corners;
+            let [a, b, c] = t.map(|v| self.image[v as usize]);
             let area = (b - a).perp_dot(c - a);
-            if area == 0.0 {
+            if area == 0.0 || !area.is_finite() {
                 continue;
             }
+            let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
             let [za, zb, zc] = t.map(|v| camera.nearness(positions[v as usize]));
-            let depth = &mut self.depth;
-            for_each_covered_center(corners, resolution, |cell, x| {
-                let wa = (b - x).perp_dot(c - x) / area;
-                let wb = (c - x).perp_dot(a - x) / area;
-                let z = wa * za + wb * zb + (1.0 - wa - wb) * zc;
-                if z > depth[cell].0 {
-                    depth[cell] = (z, f as u32);
+            for j in bucket(lo.y)..=bucket(hi.y) {
+                for i in bucket(lo.x)..=bucket(hi.x) {
+                    let k = j * side + i;
+                    for &v in &self.bucketed[self.start[k] as usize..self.start[k + 1] as usize] {
+                        if !self.visible[v as usize] || t.contains(&v) {
+                            continue;
+                        }
+                        let x = self.image[v as usize];
+                        if x.x < lo.x || x.x > hi.x || x.y < lo.y || x.y > hi.y {
+                            continue;
+                        }
+                        let wa = (b - x).perp_dot(c - x) / area;
+                        let wb = (c - x).perp_dot(a - x) / area;
+                        let wc = 1.0 - wa - wb;
+                        if wa < 0.0 || wb < 0.0 || wc < 0.0 {
+                            continue;
+                        }
+                        let z = wa * za + wb * zb + wc * zc;
+                        if z > camera.nearness(positions[v as usize]) + slack {
+                            self.visible[v as usize] = false;
+                        }
+                    }
                 }
-            });
+            }
         }
-        let slack = 2.0 * camera.cell_length(resolution);
-        self.visible.clear();
-        self.visible
-            .extend(self.sides.iter().enumerate().map(|(v, &sides)| {
-                if sides != BOTH_SIDES {
-                    return false;
-                }
-                let (z, f) = self.depth[cell_index(self.image[v], resolution)];
-                let own = f == u32::MAX || mesh.triangles()[f as usize].contains(&(v as u32));
-                own || z <= camera.nearness(positions[v]) + slack
-            }));
     }
 
     /// The distance of the cell holding image point `p`.
