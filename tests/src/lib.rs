@@ -13,6 +13,7 @@
 //! | `medial_vs_delaunay.rs` | the medial approximation's Delaunay `validate` after every step, its Voronoi spheres empty by brute force, its sphere errors against sweep's distances |
 //! | `delaunay_fuzz_replay.rs` | the Delaunay fuzz body ([`delaunay_fuzz`]) on proptest's bytes |
 //! | `facade.rs` | the `sphaera` facade used as a user writes it: a broken re-export fails to compile |
+//! | `silhouette_image_reference.rs` | [`silhouette_image`] against pixel counts known in closed form: a cube's face, a disc, a perspective square |
 //! | `regions_reference.rs` | [`regions`] against answers known in closed form: rectangles and boxes by their coordinates, a self-crossing star, boxes meeting by their intervals |
 //! | `hausdorff_sampling.rs`, `geometry_real_meshes.rs`, `winding_real_meshes.rs`, `data_topology.rs`, `fixtures.rs` | `sphaera-mesh` and this crate's fixtures against parry3d, brute force and the data README |
 //!
@@ -29,6 +30,7 @@
 //! | [`pattern_search`] | the grid-then-pattern search over a triangle | [`hausdorff`]'s refinement; simplify's edge-radius unit tests |
 //! | [`point_sets`] | reproducible and degenerate point sets for Delaunay codes | medial's unit tests (sample grid), integration tests, bench and example; `sphaera-eval`'s Delaunay bench |
 //! | [`regions`] | where a point lies in a closed outline or mesh, and whether two outlines or solids meet, by routes independent of `sphaera-hal` (winding numbers with exact signs, parry3d's intersection test) | HAL's tests and the CLI's `hal` tests |
+//! | [`silhouette_image`] | silhouette images (pixel centres covered) rasterised by edge functions on a frame of its own, not `sphaera-silhouette`'s | the silhouette tests and `sphaera-eval`'s `silhouette_vs_simplify` experiment |
 //! | [`delaunay_fuzz`] | the body of the `delaunay` fuzz target | `fuzz/` (by path) and `delaunay_fuzz_replay.rs` |
 //!
 //! # Which helper may use which crate
@@ -41,7 +43,7 @@
 //!
 //! - [`random`], [`pattern_search`] and [`point_sets`] take and return only numbers and
 //!   glam's `DVec3` (one glam for everyone): any unit test may use them;
-//! - [`hausdorff`], [`brute`], [`awkward`], [`animal`] and [`regions`] take or return `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
+//! - [`hausdorff`], [`brute`], [`awkward`], [`animal`], [`regions`] and [`silhouette_image`] take or return `sphaera-mesh`'s `TriMesh` and [`delaunay_fuzz`] drives
 //!   `sphaera-medial`: they serve integration tests, benches, experiments and the fuzz
 //!   target only.
 //!
@@ -70,6 +72,7 @@ pub mod pattern_search;
 pub mod point_sets;
 pub mod random;
 pub mod regions;
+pub mod silhouette_image;
 
 pub use hausdorff::{ReferenceHausdorff, reference_hausdorff};
 pub use random::SplitMix64;

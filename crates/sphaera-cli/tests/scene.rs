@@ -46,6 +46,10 @@ fn the_demo_scene_chooses_coarser_levels_far_away_and_finds_the_touching_pair() 
         assert!(i["contour_measured"].as_f64().unwrap() <= 2.0, "{i}");
         assert!(i["interior_measured"].as_f64().unwrap() <= 8.0, "{i}");
         assert_eq!(i["meets"], true);
+        // Drawn at the camera's pixels: the outline within 2 px and a pixel's diagonal
+        // of sampling (every instance of the default scene is in front of the camera).
+        let moved = i["outline_pixels"].as_f64().expect("drawn");
+        assert!(moved <= 2.0 + std::f64::consts::SQRT_2, "{i}");
     }
     // bunny-0 and bunny-1 touch, nothing else does.
     let contacts = report["contacts"].as_array().expect("contacts");

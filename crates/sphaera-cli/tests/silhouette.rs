@@ -182,6 +182,15 @@ fn bad_arguments_are_named_and_nothing_is_written() {
     fails_with(&["--nearest", "0"], "nearest");
     fails_with(&["--nearest", "500"], "nearest");
     fails_with(&["--step", "7"], "step");
+    fails_with(&["--contour-cells=-1"], "cells");
+    fails_with(&["--contour-cells", "NaN"], "cells");
+    fails_with(&["--region", "edges"], "widened");
+    fails_with(&["--eye", "0,0,0"], "inside the bounding sphere");
+    fails_with(&["--eye", "0,0,inf"], "finite");
+    fails_with(
+        &["--eye", "0,0,9", "--view", "0,0,1"],
+        "cannot be used with",
+    );
     let output = sphaera(&["silhouette", "--resolution", "0"]);
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("resolution"));
@@ -194,16 +203,18 @@ fn bad_arguments_are_named_and_nothing_is_written() {
 }
 
 /// The numbers a run reports that must not depend on where its labels came from.
-const SAME: [&str; 9] = [
+const SAME: [&str; 11] = [
     "cameras",
     "label_bytes",
     "triangles_out",
     "contour_triangles",
+    "contour_allowance",
     "contour_error",
     "other_error",
     "silhouette_pixels_wrong",
     "contour_displacement",
-    "unweighted_pixels_wrong",
+    "plain_pixels_wrong",
+    "gains",
 ];
 
 #[test]
@@ -228,6 +239,7 @@ fn a_label_file_is_written_then_reused_with_the_same_result() {
     let second = run_json(&args);
     assert_eq!(second["labels_file"]["reused"], true);
     for key in SAME {
+        assert!(!first[key].is_null(), "{key}");
         assert_eq!(first[key], second[key], "{key}");
     }
     assert_eq!(
@@ -321,4 +333,76 @@ fn a_label_file_of_other_options_or_another_mesh_is_refused_and_kept() {
     let nowhere = dir.path().join("no").join("labels");
     fails_with(&["--labels", nowhere.to_str().unwrap()], "does not exist");
     assert!(!nowhere.exists());
+}
+
+#[test]
+fn the_result_is_judged_against_the_plain_simplifier_and_says_when_nothing_is_gained() {
+    // The bunny has outline detail to keep: the guided level beats `sphaera simplify`.
+    let report = run_json(&["--view", "0.3,-0.4,0.8", "--error", "1%"]);
+    assert_eq!(report["region"], "widened");
+    assert_eq!(report["contour_cells"], 0.25);
+    assert_eq!(report["plain_triangles"], report["triangles_out"]);
+    let (ours, plain) = (
+        number(&report, "silhouette_pixels_wrong"),
+        number(&report, "plain_pixels_wrong"),
+    );
+    assert_eq!(report["gains"], ours < plain, "{report}");
+    assert!(ours < plain, "{report}");
+    // A quarter of a 128² cell of the bunny's bounding sphere, and within ¼ e.
+    let allowance = number(&report, "contour_allowance");
+    assert!(allowance <= 0.25 * number(&report, "error") * (1.0 + 1e-12));
+    assert!(number(&report, "contour_error") <= allowance * (1.0 + 1e-12));
+    // The paper's rule, no cap in cells: `null` in the report.
+    let paper = run_json(&[
+        "--view",
+        "0.3,-0.4,0.8",
+        "--error",
+        "1%",
+        "--region",
+        "corners",
+        "--contour-cells",
+        "inf",
+    ]);
+    assert_eq!(paper["region"], "corners");
+    assert!(paper["contour_cells"].is_null(), "{paper}");
+    assert!(
+        (number(&paper, "contour_allowance") - 0.25 * number(&paper, "error")).abs()
+            <= 1e-12 * number(&paper, "error")
+    );
+    // A cube has no outline detail to keep: both keep its silhouette, and the text says
+    // the plain simplifier does as well.
+    let dir = tempfile::tempdir().unwrap();
+    let cube = write(dir.path(), "cube.obj", &shapes::cube(1.0, 4).unwrap());
+    let mut args = vec!["silhouette", cube.as_str()];
+    args.extend_from_slice(&FAST);
+    let output = sphaera(&args);
+    assert!(output.status.success());
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(text.contains("no gain on this mesh"), "{text}");
+    let mut args = vec!["silhouette", "--json", cube.as_str()];
+    args.extend_from_slice(&FAST);
+    let report = json(&sphaera(&args));
+    assert_eq!(report["gains"], false, "{report}");
+}
+
+#[test]
+fn a_camera_position_gives_the_view_and_a_finer_contour_when_near() {
+    // A unit ball around the origin.
+    let dir = tempfile::tempdir().unwrap();
+    let ball = write(dir.path(), "ball.obj", &shapes::sphere(1.0, 24).unwrap());
+    let far = run_json(&[ball.as_str(), "--eye", "0.2,-0.3,40"]);
+    let near = run_json(&[ball.as_str(), "--eye", "0.03,-0.045,1.5"]);
+    assert_eq!(far["eye"][2], 40.0);
+    for report in [&far, &near] {
+        assert!(
+            number(report, "contour_error") <= number(report, "contour_allowance") * (1.0 + 1e-12)
+        );
+        let [x, y, z] = [0, 1, 2].map(|k| report["view"][k].as_f64().unwrap());
+        assert!(z > 0.99 && x > 0.0 && y < 0.0, "{report}");
+    }
+    assert!(number(&near, "contour_allowance") < number(&far, "contour_allowance"));
+    let mut args = vec!["silhouette", ball.as_str(), "--eye", "0.2,-0.3,40"];
+    args.extend_from_slice(&FAST);
+    let text = String::from_utf8_lossy(&sphaera(&args).stdout).into_owned();
+    assert!(text.contains("from a camera at 0.2,-0.3,40"), "{text}");
 }

@@ -154,7 +154,8 @@ fn bench(c: &mut Criterion) {
                     .silhouette_detail(
                         &camera,
                         Tolerance::Pixels(2.0),
-                        &SilhouetteDetailOptions::default(),
+                        // The extraction alone, as before the outline check existed.
+                        &SilhouetteDetailOptions::default().with_check_outline(false),
                     )
                     .expect("silhouettes"),
             )

@@ -85,6 +85,7 @@ fn bench(c: &mut Criterion) {
         error: 0.01 * bunny.bounding_box_diagonal(),
         factor: 0.25,
         threshold: 2.0,
+        cells: f64::INFINITY,
     };
     let between = DVec3::new(0.31, 0.44, 0.52);
     let mut group = c.benchmark_group("extraction_bunny_69k");
@@ -129,18 +130,27 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("labels_bunny_69k");
     group.sample_size(10);
     group.measurement_time(Duration::from_secs(20));
-    group.bench_function("266_views_512", |b| {
-        b.iter(|| {
-            black_box(
-                Labels::compute(
-                    &bunny,
-                    &views,
-                    &LabelOptions::default().with_resolution(RESOLUTION),
+    // The outline (the default) and every silhouette the camera sees (a depth buffer per
+    // view on top).
+    for (name, contours) in [
+        ("266_views_512_outline", Contours::External),
+        ("266_views_512_all_visible", Contours::All),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                black_box(
+                    Labels::compute(
+                        &bunny,
+                        &views,
+                        &LabelOptions::default()
+                            .with_resolution(RESOLUTION)
+                            .with_contours(contours),
+                    )
+                    .expect("labels"),
                 )
-                .expect("labels"),
-            )
+            });
         });
-    });
+    }
     group.finish();
 }
 

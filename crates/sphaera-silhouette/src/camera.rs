@@ -68,6 +68,25 @@ impl ViewCamera {
         }
     }
 
+    /// How near `p` is to the camera along the view axis (larger is nearer): the
+    /// coordinate along the direction toward the camera.
+    pub(crate) fn nearness(&self, p: DVec3) -> f64 {
+        match self.eye {
+            None => (p - self.center).dot(self.w),
+            Some((eye, _)) => (p - eye).dot(self.w),
+        }
+    }
+
+    /// The length a cell of a `resolution`-wide image spans at the frame's centre.
+    pub(crate) fn cell_length(&self, resolution: usize) -> f64 {
+        let across = match self.eye {
+            None => 2.0 * self.radius,
+            // The image's half width is the depth over the cotangent.
+            Some((eye, cotangent)) => 2.0 * (eye - self.center).length() / cotangent,
+        };
+        across / resolution as f64
+    }
+
     /// Whether triangle `t` of `mesh` faces the camera (its counter-clockwise normal
     /// points toward it; an edge-on face does not).
     #[must_use]

@@ -7,6 +7,7 @@ use sphaera_mesh::geometry::minimum_enclosing_ball;
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::camera::ViewCamera;
+use crate::caps::check_resolution;
 use crate::views::Projection;
 use crate::{DistanceTransform, SilhouetteError};
 
@@ -98,6 +99,58 @@ pub(crate) fn for_each_covered_center(
             }
         }
     }
+}
+
+/// The coverage image of triangles already projected: `image` holds each vertex's image
+/// point (the square `[−1, 1]²` is the picture), `triangles` index it; `resolution²`
+/// cells, row-major from the bottom, `true` where a triangle covers the cell's centre
+/// (edges included). For cameras this crate does not model (a scene's camera, a
+/// renderer's): project with them, then compare with [`silhouette_difference`] and
+/// [`contour_displacement`].
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_mesh::glam::DVec2;
+/// use sphaera_silhouette::coverage_of_projection;
+///
+/// // A square over the right half of a 4 × 4 picture.
+/// let image = [DVec2::new(0.0, -1.0), DVec2::new(1.0, -1.0), DVec2::new(1.0, 1.0), DVec2::new(0.0, 1.0)];
+/// let covered = coverage_of_projection(&image, &[[0, 1, 2], [0, 2, 3]], 4)?;
+/// assert_eq!(covered.iter().filter(|&&c| c).count(), 8);
+/// assert!(covered[3] && !covered[0]);
+/// # Ok::<(), sphaera_silhouette::SilhouetteError>(())
+/// ```
+///
+/// # Errors
+///
+/// [`SilhouetteError::InvalidResolution`]; [`SilhouetteError::InvalidParameter`] for a
+/// resolution above [`MAX_RESOLUTION`](crate::MAX_RESOLUTION) or a triangle naming a
+/// point `image` does not have.
+pub fn coverage_of_projection(
+    image: &[DVec2],
+    triangles: &[[u32; 3]],
+    resolution: usize,
+) -> Result<Vec<bool>, SilhouetteError> {
+    check_resolution(resolution)?;
+    if let Some(&v) = triangles
+        .iter()
+        .flatten()
+        .find(|&&v| v as usize >= image.len())
+    {
+        return Err(SilhouetteError::InvalidParameter {
+            name: "vertex",
+            value: f64::from(v),
+            requirement: "the index of one of the projected points",
+        });
+    }
+    let mut covered = vec![false; resolution * resolution];
+    for t in triangles {
+        for_each_covered_center(t.map(|v| image[v as usize]), resolution, |cell, _| {
+            covered[cell] = true;
+        });
+    }
+    Ok(covered)
 }
 
 /// The number of cells where two coverage images of the same size differ.

@@ -194,9 +194,9 @@ impl Labels {
     /// assert!(labels.check_settings(&views, &options).is_ok());
     /// let other = labels.check_settings(&ViewSet::regular(45.0)?, &options).unwrap_err();
     /// assert_eq!(other.to_string(), "the labels were computed with step 90°, not 45°");
-    /// let outline = options.with_contours(Contours::External);
+    /// let all = options.with_contours(Contours::All);
     /// assert!(matches!(
-    ///     labels.check_settings(&views, &outline),
+    ///     labels.check_settings(&views, &all),
     ///     Err(SilhouetteError::LabelSettingsMismatch { setting: "contours", .. })
     /// ));
     /// # Ok::<(), Box<dyn std::error::Error>>(())

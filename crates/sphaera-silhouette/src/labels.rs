@@ -41,7 +41,9 @@ pub struct ViewLabels {
     /// Per face: the smallest distance over the cells its projection touches (the paper).
     pub faces: Vec<f32>,
     /// Per vertex: whether it is on a silhouette (shared by a face toward the camera and
-    /// one away from it).
+    /// one away from it; a zero-area face faces neither way). With [`Contours::All`],
+    /// only those no other face hides: these are the ones that cut the image, and their
+    /// label is 0.
     pub silhouette: Vec<bool>,
 }
 
@@ -93,12 +95,17 @@ pub(crate) fn check(
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Contours {
     /// The outline only (the paper: "in the case that only the external contour has to be
-    /// preserved"): labels measure the distance to the mesh's outline in the image.
-    External,
-    /// The outline and the internal silhouettes (the paper's Fig. 2): cells under faces
-    /// holding a silhouette vertex are background too. On a bumpy scan every bump is a
-    /// silhouette somewhere, so much of the mesh gets small labels.
+    /// preserved"): labels measure the distance to the mesh's outline in the image. The
+    /// default: measured against the plain simplifier, it keeps the outline best for its
+    /// triangles (`silhouette_error_vs_triangles` and `silhouette_vs_simplify` in
+    /// `docs/benchmarks.md`).
     #[default]
+    External,
+    /// The outline and the internal silhouettes the camera sees (the paper's Fig. 2):
+    /// cells under faces holding a silhouette vertex are background too, unless another
+    /// face hides that vertex (a depth buffer per view; the paper cuts hidden contours
+    /// too). On a bumpy scan every bump is a silhouette somewhere, so much of the mesh
+    /// gets small labels.
     All,
 }
 
@@ -149,6 +156,12 @@ struct Frame {
     marks: Vec<u8>,
     /// The faces holding no silhouette vertex (mark 1), marked after the others.
     later: Vec<usize>,
+    /// With [`Contours::All`]: the silhouette vertices by bucket of a coarse grid, bucket
+    /// `k`'s being `bucketed[start[k]..start[k + 1]]`.
+    start: Vec<u32>,
+    bucketed: Vec<u32>,
+    /// Per vertex (with [`Contours::All`]): a silhouette vertex no other face hides.
+    visible: Vec<bool>,
     /// Per cell: whether it is an object cell.
     object: Vec<bool>,
     /// Per cell: the distance transform of `object`.
@@ -179,21 +192,28 @@ impl Frame {
         self.sides.clear();
         self.sides.resize(positions.len(), 0);
         for (t, &normal) in mesh.triangles().iter().zip(normals) {
+            // A zero-area face faces neither way: counted as facing away, it would make
+            // every vertex of a sliver a silhouette vertex.
+            if normal == DVec3::ZERO {
+                continue;
+            }
             let toward = camera.normal_faces_camera(normal, positions[t[0] as usize]);
             let side = if toward { 1 } else { 2 };
             for &v in t {
                 self.sides[v as usize] |= side;
             }
         }
-        // Occupancy (mark 1), with every cell under a face holding a silhouette vertex cut
-        // out (mark 2). Cut faces go first, so that more rows of the others are already
+        if contours == Contours::All {
+            self.find_visible(mesh, normals, camera, resolution);
+        }
+        // Occupancy (mark 1), with every cell under a face holding a visible silhouette
+        // vertex cut out (mark 2). Cut faces go first, so that more rows of the others are already
         // marked and skipped; the marks do not depend on the order.
         self.marks.clear();
         self.marks.resize(resolution * resolution, 0);
         self.later.clear();
         for (f, t) in mesh.triangles().iter().enumerate() {
-            let cut = contours == Contours::All
-                && t.iter().any(|&v| self.sides[v as usize] == BOTH_SIDES);
+            let cut = contours == Contours::All && t.iter().any(|&v| self.visible[v as usize]);
             if cut {
                 let corners = t.map(|v| self.image[v as usize]);
                 mark_triangle(corners, resolution, &mut self.marks, 2);
@@ -214,6 +234,92 @@ impl Frame {
             &mut self.workspace,
             &mut self.distances,
         );
+    }
+
+    /// Marks the silhouette vertices that no face hides: a vertex is hidden when a face
+    /// that is not one of its own covers its image point nearer the camera than it by
+    /// more than two cells' length (a fold or another part hiding a contour is farther
+    /// in front than that; a neighbour of a vertex seen edge-on is not). The silhouette
+    /// vertices are put in buckets of a coarse grid, and each face tests only those in
+    /// the buckets its image's bounding box meets: silhouette vertices are few, so this
+    /// costs little more than a pass over the faces.
+    fn find_visible(
+        &mut self,
+        mesh: &TriMesh,
+        normals: &[DVec3],
+        camera: &ViewCamera,
+        resolution: usize,
+    ) {
+        let positions = mesh.positions();
+        self.visible.clear();
+        self.visible
+            .extend(self.sides.iter().map(|&sides| sides == BOTH_SIDES));
+        // Buckets of silhouette vertices, counted then filled (a counting sort).
+        let side = (resolution / 8).clamp(1, 64);
+        let bucket =
+            |x: f64| ((x + 1.0) * 0.5 * side as f64).clamp(0.0, side as f64 - 1.0) as usize;
+        self.start.clear();
+        self.start.resize(side * side + 1, 0);
+        for (v, &on) in self.visible.iter().enumerate() {
+            if on {
+                let p = self.image[v];
+                self.start[bucket(p.y) * side + bucket(p.x) + 1] += 1;
+            }
+        }
+        if self.start.iter().all(|&n| n == 0) {
+            return;
+        }
+        for k in 0..side * side {
+            self.start[k + 1] += self.start[k];
+        }
+        self.bucketed.clear();
+        self.bucketed.resize(self.start[side * side] as usize, 0);
+        let mut fill = self.start.clone();
+        for (v, &on) in self.visible.iter().enumerate() {
+            if on {
+                let p = self.image[v];
+                let k = bucket(p.y) * side + bucket(p.x);
+                self.bucketed[fill[k] as usize] = v as u32;
+                fill[k] += 1;
+            }
+        }
+        let slack = 2.0 * camera.cell_length(resolution);
+        for (t, &normal) in mesh.triangles().iter().zip(normals) {
+            if normal == DVec3::ZERO {
+                continue;
+            }
+            let [a, b, c] = t.map(|v| self.image[v as usize]);
+            let area = (b - a).perp_dot(c - a);
+            if area == 0.0 || !area.is_finite() {
+                continue;
+            }
+            let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+            let [za, zb, zc] = t.map(|v| camera.nearness(positions[v as usize]));
+            for j in bucket(lo.y)..=bucket(hi.y) {
+                for i in bucket(lo.x)..=bucket(hi.x) {
+                    let k = j * side + i;
+                    for &v in &self.bucketed[self.start[k] as usize..self.start[k + 1] as usize] {
+                        if !self.visible[v as usize] || t.contains(&v) {
+                            continue;
+                        }
+                        let x = self.image[v as usize];
+                        if x.x < lo.x || x.x > hi.x || x.y < lo.y || x.y > hi.y {
+                            continue;
+                        }
+                        let wa = (b - x).perp_dot(c - x) / area;
+                        let wb = (c - x).perp_dot(a - x) / area;
+                        let wc = 1.0 - wa - wb;
+                        if wa < 0.0 || wb < 0.0 || wc < 0.0 {
+                            continue;
+                        }
+                        let z = wa * za + wb * zb + wc * zc;
+                        if z > camera.nearness(positions[v as usize]) + slack {
+                            self.visible[v as usize] = false;
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// The distance of the cell holding image point `p`.
@@ -286,7 +392,11 @@ fn label_in_frame(
         .iter()
         .map(|&p| frame.distance_at(p, resolution))
         .collect();
-    let silhouette = frame.sides.iter().map(|&s| s == BOTH_SIDES).collect();
+    let silhouette = if contours == Contours::All {
+        frame.visible.clone()
+    } else {
+        frame.sides.iter().map(|&s| s == BOTH_SIDES).collect()
+    };
     ViewLabels {
         resolution,
         cells: frame.distances,
@@ -337,9 +447,9 @@ fn quantize(d: f32) -> u16 {
 /// let options = LabelOptions::default();
 /// assert_eq!(options.resolution, 512);
 /// assert_eq!(options.transform, DistanceTransform::Euclidean);
-/// assert_eq!(options.contours, Contours::All);
-/// let coarse = options.with_resolution(64).with_contours(Contours::External);
-/// assert_eq!((coarse.resolution, coarse.contours), (64, Contours::External));
+/// assert_eq!(options.contours, Contours::External);
+/// let coarse = options.with_resolution(64).with_contours(Contours::All);
+/// assert_eq!((coarse.resolution, coarse.contours), (64, Contours::All));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -349,7 +459,7 @@ pub struct LabelOptions {
     pub resolution: usize,
     /// The distance transform (default the exact Euclidean one).
     pub transform: DistanceTransform,
-    /// Which silhouettes the labels measure the distance to (default all of them).
+    /// Which silhouettes the labels measure the distance to (default the outline).
     pub contours: Contours,
 }
 
@@ -358,7 +468,7 @@ impl Default for LabelOptions {
         Self {
             resolution: 512,
             transform: DistanceTransform::Euclidean,
-            contours: Contours::All,
+            contours: Contours::External,
         }
     }
 }

@@ -429,7 +429,7 @@ fn settings_that_differ_are_named() {
         "transform"
     );
     assert_eq!(
-        setting(&views, &options.with_contours(Contours::External)),
+        setting(&views, &options.with_contours(Contours::All)),
         "contours"
     );
     let error = labels

@@ -92,8 +92,14 @@ fn silhouette_vertices_have_label_zero_and_labels_grow_inward() {
 fn precomputed_views_come_back_exactly_and_new_views_interpolate() {
     let mesh = shapes::torus(1.0, 0.35, 20).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels =
-        Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(64)).unwrap();
+    let labels = Labels::compute(
+        &mesh,
+        &views,
+        &LabelOptions::default()
+            .with_resolution(64)
+            .with_contours(Contours::All),
+    )
+    .unwrap();
     assert_eq!(
         labels.storage_bytes(),
         2 * mesh.positions().len() * views.len()
@@ -369,4 +375,122 @@ fn coverage_of_a_sphere_is_its_disc_and_a_simplification_differs_at_its_outline(
         coverage(&mesh, frame, DVec3::ZERO, Projection::Orthographic, 8),
         Err(SilhouetteError::InvalidDirection { .. })
     ));
+}
+
+/// `mesh` moved by `offset`.
+fn shifted(mesh: &TriMesh, offset: DVec3) -> TriMesh {
+    TriMesh::new(
+        mesh.positions().iter().map(|&p| p + offset).collect(),
+        mesh.triangles().to_vec(),
+    )
+    .unwrap()
+}
+
+/// Two meshes as one.
+fn both(a: &TriMesh, b: &TriMesh) -> TriMesh {
+    let n = a.positions().len() as u32;
+    TriMesh::new(
+        [a.positions(), b.positions()].concat(),
+        a.triangles()
+            .iter()
+            .copied()
+            .chain(b.triangles().iter().map(|t| t.map(|v| v + n)))
+            .collect(),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_contour_hidden_behind_another_part_cuts_no_hole() {
+    // A small ball right behind a big one, seen from +z: its outline is hidden.
+    let big = shapes::sphere(1.0, 48).unwrap();
+    let small = shifted(
+        &shapes::sphere(0.3, 24).unwrap(),
+        DVec3::new(0.2, 0.1, -2.0),
+    );
+    let scene = both(&big, &small);
+    let label = |contours| {
+        label_view(
+            &scene,
+            DVec3::Z,
+            Projection::Orthographic,
+            128,
+            DistanceTransform::Euclidean,
+            contours,
+        )
+        .unwrap()
+    };
+    // Front vertices of the big ball well inside its outline (more than 6 cells of the
+    // 128² image, framed on a ball of radius about 1.65).
+    let inside: Vec<usize> = (0..big.positions().len())
+        .filter(|&v| {
+            let p = big.positions()[v];
+            p.z > 0.0 && p.x * p.x + p.y * p.y < 0.8 * 0.8
+        })
+        .collect();
+    assert!(inside.len() > 100);
+    let all = label(Contours::All);
+    // The small ball's silhouette is hidden: none of its vertices counts, and the big
+    // ball's labels keep their distance to its own outline.
+    let n = big.positions().len();
+    assert!(all.silhouette[n..].iter().all(|&s| !s));
+    let nearest = inside
+        .iter()
+        .map(|&v| all.vertices[v])
+        .fold(f32::INFINITY, f32::min);
+    assert!(nearest > 3.0, "{nearest}");
+    // Seen from −z the small ball is in front: its outline is an internal silhouette of
+    // the image and cuts the big ball's labels near it.
+    let from_below = label_view(
+        &scene,
+        DVec3::NEG_Z,
+        Projection::Orthographic,
+        128,
+        DistanceTransform::Euclidean,
+        Contours::All,
+    )
+    .unwrap();
+    assert!(from_below.silhouette[n..].iter().any(|&s| s));
+    let behind: Vec<usize> = (0..n)
+        .filter(|&v| {
+            let p = big.positions()[v];
+            p.z < 0.0 && p.x * p.x + p.y * p.y < 0.8 * 0.8
+        })
+        .collect();
+    let cut = behind
+        .iter()
+        .filter(|&&v| from_below.vertices[v] <= 1.0)
+        .count();
+    assert!(cut > 5, "{cut}");
+}
+
+#[test]
+fn a_zero_area_face_makes_no_silhouette_vertex() {
+    // A flat square seen face on, with a zero-area sliver along its diagonal: no vertex
+    // is shared by faces toward and away from the camera.
+    let mesh = TriMesh::new(
+        vec![
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, 1.0, 0.0),
+            DVec3::new(0.0, 0.0, 0.0),
+        ],
+        vec![[0, 1, 2], [0, 2, 3], [0, 4, 2]],
+    )
+    .unwrap();
+    let labels = label_view(
+        &mesh,
+        DVec3::Z,
+        Projection::Orthographic,
+        32,
+        DistanceTransform::Euclidean,
+        Contours::All,
+    )
+    .unwrap();
+    assert!(
+        labels.silhouette.iter().all(|&s| !s),
+        "{:?}",
+        labels.silhouette
+    );
 }

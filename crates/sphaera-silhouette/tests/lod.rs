@@ -17,8 +17,14 @@ fn setup() -> (sphaera_mesh::TriMesh, Hierarchy, Labels) {
     let hierarchy =
         Hierarchy::build(&mesh, &SimplifyOptions::default().with_target_triangles(60)).unwrap();
     let views = ViewSet::regular(30.0).unwrap();
-    let labels =
-        Labels::compute(&mesh, &views, &LabelOptions::default().with_resolution(96)).unwrap();
+    let labels = Labels::compute(
+        &mesh,
+        &views,
+        &LabelOptions::default()
+            .with_resolution(96)
+            .with_contours(Contours::All),
+    )
+    .unwrap();
     (mesh, hierarchy, labels)
 }
 
@@ -38,6 +44,7 @@ fn every_triangle_meets_its_allowance() {
                 error: 0.02 * diagonal,
                 factor,
                 threshold: 3.0,
+                cells: f64::INFINITY,
             };
             let out = extractor
                 .extract(direction, interpolation, tolerance)
@@ -82,6 +89,7 @@ fn every_triangle_meets_its_allowance() {
                     error: error * diagonal,
                     factor: 0.5,
                     threshold: 2.0,
+                    cells: f64::INFINITY,
                 },
             )
             .unwrap()
@@ -107,6 +115,7 @@ fn coherent_extraction_equals_extraction_from_scratch() {
         error: error * diagonal,
         factor,
         threshold: 2.0,
+        cells: f64::INFINITY,
     };
     let mut moving = ViewDependent::new(&hierarchy, &labels).unwrap();
     let path = (0..12).map(|i| {
@@ -210,7 +219,8 @@ fn mismatched_inputs_are_refused() {
                 ContourTolerance {
                     error,
                     factor,
-                    threshold: 1.0
+                    threshold: 1.0,
+                    cells: f64::INFINITY,
                 }
             ),
             Err(SilhouetteError::InvalidParameter { .. })
@@ -248,6 +258,7 @@ fn scaling_by_a_power_of_two_scales_the_extraction_exactly() {
                     error: 0.03 * scale,
                     factor: 0.25,
                     threshold: 2.0,
+                    cells: f64::INFINITY,
                 },
             )
             .unwrap()
@@ -304,6 +315,7 @@ fn awkward_settings_still_meet_every_allowance() {
                         error,
                         factor: 0.5,
                         threshold,
+                        cells: f64::INFINITY,
                     },
                 )
                 .unwrap();
@@ -329,4 +341,58 @@ fn weights_for_a_view_out_of_range_are_refused() {
         );
     }
     assert!(contour_weights(&labels, &[past - 1], 1.0, 0.0).is_ok());
+}
+
+#[test]
+fn a_camera_position_sets_the_view_and_the_scale() {
+    let (mesh, hierarchy, labels) = setup();
+    let mut lod = ViewDependent::new(&hierarchy, &labels).unwrap();
+    let tolerance = ContourTolerance::new(0.02 * mesh.bounding_box_diagonal());
+    let ball = sphaera_silhouette::bounding_sphere(&mesh).unwrap();
+    let (centre, radius) = (ball.center, ball.radius);
+    let toward = DVec3::new(0.3, -0.2, 0.9).normalize();
+    let mut previous = 0.0;
+    // From far away to near (in radii of the ball): the view is the same, the outline
+    // grows, its allowance shrinks, and every triangle meets its own.
+    for distance in [1e6, 10.0, 3.0, 1.2] {
+        let out = lod
+            .extract_at(
+                centre + toward * (distance * radius),
+                Interpolation::Nearest,
+                tolerance,
+            )
+            .unwrap();
+        assert!(out.contour_error <= out.contour_allowance);
+        assert!(out.other_error <= tolerance.error);
+        assert!(out.contour_allowance <= tolerance.error * tolerance.factor);
+        if previous > 0.0 {
+            assert!(out.contour_allowance <= previous, "{distance}");
+        }
+        previous = out.contour_allowance;
+    }
+    // Far away it is the orthographic view from that direction.
+    let far = lod
+        .extract_at(centre + toward * 1e9, Interpolation::Nearest, tolerance)
+        .unwrap();
+    let along = lod
+        .extract(toward, Interpolation::Nearest, tolerance)
+        .unwrap();
+    assert_eq!(
+        far.simplified.mesh.triangles(),
+        along.simplified.mesh.triangles()
+    );
+    for eye in [
+        centre,
+        centre + DVec3::X * (0.5 * radius),
+        DVec3::splat(f64::NAN),
+        DVec3::splat(f64::INFINITY),
+    ] {
+        assert!(
+            matches!(
+                lod.extract_at(eye, Interpolation::Nearest, tolerance),
+                Err(SilhouetteError::CameraInside { .. })
+            ),
+            "{eye}"
+        );
+    }
 }

@@ -9,7 +9,7 @@ use clap::error::ErrorKind;
 use sphaera::medial::CoverCriterion;
 use sphaera::mesh::ParseNameError;
 use sphaera::robot::PlannerFormat;
-use sphaera::silhouette::{Contours, DistanceTransform};
+use sphaera::silhouette::{ContourRegion, Contours, DistanceTransform};
 use sphaera::simplify::{Order, Placement};
 use sphaera::spheretree::{Effort, Method};
 
@@ -35,6 +35,7 @@ named!(
     Placement,
     Order,
     Contours,
+    ContourRegion,
     DistanceTransform,
     CoverCriterion,
     PlannerFormat
@@ -105,6 +106,7 @@ mod tests {
         reads_back(Choice::of(super::super::simplify::ORDERS));
         reads_back(Choice::of(super::super::silhouette::CONTOURS));
         reads_back(Choice::of(super::super::silhouette::TRANSFORMS));
+        reads_back(Choice::of(super::super::silhouette::REGIONS));
         reads_back(Choice::of(super::super::medial::COVERS));
         reads_back(Choice::of(super::super::urdf::FORMATS));
     }

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use sphaera::mesh::Length;
-use sphaera::silhouette::{Contours, DistanceTransform};
+use sphaera::silhouette::{ContourRegion, Contours, DistanceTransform};
 
 use super::choice::Choice;
 use super::{OutputArgs, parse_length};
@@ -23,14 +23,23 @@ pub struct SilhouetteArgs {
     #[arg(long, default_value_t = 512)]
     pub resolution: usize,
 
-    /// The contour region: triangles with a corner at most this many cells from the
-    /// silhouette.
+    /// The contour region: triangles within this many cells of the silhouette (how it is
+    /// decided: `--region`).
     #[arg(long, default_value_t = 2.0)]
     pub threshold: f32,
+
+    /// Which triangles are in the contour region.
+    #[arg(long, default_value = "widened", value_parser = Choice::of(REGIONS))]
+    pub region: ContourRegion,
 
     /// The contour region's allowed error as a fraction of `--error` (0: exact there).
     #[arg(long, default_value_t = 0.25)]
     pub factor: f64,
+
+    /// The contour region's allowed error is also at most this many cells of the view
+    /// (`inf`: `--factor` alone, the paper's rule).
+    #[arg(long, default_value_t = 0.25)]
+    pub contour_cells: f64,
 
     /// The error allowed away from the contour: a distance (`0.002`) or a percentage of
     /// the bounding-box diagonal (`1%`).
@@ -40,6 +49,13 @@ pub struct SilhouetteArgs {
     /// The view: the direction toward the camera, `x,y,z`.
     #[arg(long, value_parser = parse_direction, default_value = "0,0,1", allow_hyphen_values = true)]
     pub view: [f64; 3],
+
+    /// A pinhole camera at this point `x,y,z` (the mesh's coordinates, outside its
+    /// bounding sphere) instead of `--view`: the view is from the sphere's centre toward
+    /// it, the contour's cap in cells is taken at the camera's scale when it is nearer
+    /// than the labels' cameras, and the silhouettes are compared as it sees them.
+    #[arg(long, value_parser = parse_point, allow_hyphen_values = true, conflicts_with = "view")]
+    pub eye: Option<[f64; 3]>,
 
     /// Labels for the view: those of the nearest camera (1) or the average of this many
     /// nearest cameras.
@@ -97,6 +113,22 @@ pub const CONTOURS: &[(Contours, &str)] = &[
     ),
 ];
 
+/// `--region`: which triangles are in the contour region (every [`ContourRegion`]).
+pub const REGIONS: &[(ContourRegion, &str)] = &[
+    (
+        ContourRegion::Widened,
+        "A corner within the threshold once the triangle's error bound is counted (the best outline per triangle, measured)",
+    ),
+    (
+        ContourRegion::Corners,
+        "A corner within the threshold (the paper's rule)",
+    ),
+    (
+        ContourRegion::Certified,
+        "Any point of the triangle's error region within the threshold (more triangles)",
+    ),
+];
+
 /// `--transform`: the distance transform of the label images (every
 /// [`DistanceTransform`]).
 pub const TRANSFORMS: &[(DistanceTransform, &str)] = &[
@@ -106,6 +138,25 @@ pub const TRANSFORMS: &[(DistanceTransform, &str)] = &[
         "The paper's two-pass 3–4 chamfer (within 8 % of Euclidean)",
     ),
 ];
+
+/// A point on the command line: `x,y,z`, finite.
+fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = text.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(format!("`{text}` is not a point `x,y,z`"));
+    };
+    let mut out = [0.0_f64; 3];
+    for (o, part) in out.iter_mut().zip([x, y, z]) {
+        *o = part
+            .trim()
+            .parse()
+            .map_err(|e| format!("`{part}` in `{text}` is not a number: {e}"))?;
+        if !o.is_finite() {
+            return Err(format!("`{part}` in `{text}` is not finite"));
+        }
+    }
+    Ok(out)
+}
 
 /// A direction on the command line: `x,y,z`, finite and not zero.
 fn parse_direction(text: &str) -> Result<[f64; 3], String> {

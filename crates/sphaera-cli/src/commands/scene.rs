@@ -527,6 +527,22 @@ impl crate::output::Report for Report {
                 saved(s.triangles, s.uniform_triangles),
                 if s.all_meet { "" } else { " ! not all met" }
             ));
+            // The outline drawn at the camera's pixels, the claim checked.
+            let moved = s
+                .instances
+                .iter()
+                .filter_map(|c| c.outline_pixels)
+                .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))));
+            if let Some(moved) = moved {
+                let drawn = s
+                    .instances
+                    .iter()
+                    .filter(|c| c.outline_pixels.is_some())
+                    .count();
+                lines.push(format!(
+                    "                drawn at the camera's pixels, the outlines of {drawn} instances moved at most {moved:.1} px (whole pixels)"
+                ));
+            }
         }
         let c = &self.collision;
         lines.push(format!(

@@ -1,6 +1,6 @@
 //! `sphaera silhouette`: silhouette labels from a set of cameras, and the level of detail
 //! they guide for one view, with its certified error per region and its silhouette error
-//! in pixels against an unweighted level of as many triangles.
+//! in pixels against the plain simplifier's (`sphaera simplify`) at as many triangles.
 
 use std::{
     path::{Path, PathBuf},
@@ -17,6 +17,7 @@ use sphaera::{
         Projection, SilhouetteError, ViewDependent, ViewSet, bounding_sphere, contour_displacement,
         coverage, overlay_picture, shaded_picture, silhouette_difference,
     },
+    simplify::{SimplifyOptions, simplify},
 };
 
 use crate::{
@@ -33,6 +34,8 @@ struct Report {
     source: String,
     /// The view: the unit direction toward the camera.
     view: [f64; 3],
+    /// The camera's position when `--eye` gave one (`null` otherwise).
+    eye: Option<[f64; 3]>,
     /// Cameras of the view set and the degrees between them.
     cameras: usize,
     step_degrees: f64,
@@ -46,11 +49,17 @@ struct Report {
     transform: &'static str,
     /// Cameras whose labels the view's are the average of (1: the nearest).
     nearest: usize,
-    /// The contour region: triangles with a corner at most this many cells from the
-    /// silhouette.
+    /// The contour region: triangles within this many cells of the silhouette.
     threshold: f32,
+    /// How the contour region is decided: `widened`, `corners` or `certified`.
+    region: &'static str,
     /// The contour region's allowed error as a fraction of `error`.
     factor: f64,
+    /// The contour region's allowed error is also at most this many cells (`null`: no
+    /// cap).
+    contour_cells: Option<f64>,
+    /// The error allowed in the contour region (the smaller of the two), a length.
+    contour_allowance: f64,
     /// The error allowed away from the contour, absolute and relative to the diagonal.
     error: f64,
     error_relative: f64,
@@ -70,9 +79,15 @@ struct Report {
     /// The farthest a differing cell lies from the other silhouette, in cells (`null`
     /// when the result shows nothing).
     contour_displacement: Option<f64>,
-    /// The same for the hierarchy's unweighted level of as many triangles.
-    unweighted_pixels_wrong: usize,
-    unweighted_contour_displacement: Option<f64>,
+    /// The same for the plain simplifier (`sphaera simplify --triangles N`, its
+    /// defaults) at as many triangles as the result, and its triangle count.
+    plain_triangles: usize,
+    plain_pixels_wrong: usize,
+    plain_contour_displacement: Option<f64>,
+    /// Whether the guided result has fewer wrong silhouette pixels than the plain
+    /// simplifier's; when it has not, the mesh has no outline detail to keep at this
+    /// error and view, and `sphaera simplify` does as well.
+    gains: bool,
     /// Cells the original covers in the view.
     silhouette_pixels: usize,
     /// Written files (`null` when not asked for).
@@ -114,6 +129,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         check_target(path)?;
     }
     let view = DVec3::from_array(args.view).normalize();
+    let eye = args.eye.map(DVec3::from_array);
     let interpolation = match args.nearest {
         0 => bail!("--nearest must be at least 1"),
         1 => Interpolation::Nearest,
@@ -143,6 +159,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         error,
         factor: args.factor,
         threshold: args.threshold,
+        cells: args.contour_cells,
     };
 
     let started = Instant::now();
@@ -177,17 +194,34 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     let hierarchy_seconds = started.elapsed().as_secs_f64();
 
     let started = Instant::now();
-    let extraction =
-        ViewDependent::new(&hierarchy, &labels)?.extract(view, interpolation, tolerance)?;
+    let mut lod = ViewDependent::new(&hierarchy, &labels)?.with_region(args.region);
+    let extraction = match eye {
+        Some(eye) => lod.extract_at(eye, interpolation, tolerance)?,
+        None => lod.extract(view, interpolation, tolerance)?,
+    };
     let extract_seconds = started.elapsed().as_secs_f64();
     let result = &extraction.simplified.mesh;
 
     let started = Instant::now();
     let frame = bounding_sphere(mesh)?;
-    let picture = |m: &TriMesh| coverage(m, frame, view, projection, args.resolution);
+    // The images the camera sees: from the eye, perspective at its distance.
+    let (view, seen_as) = match eye {
+        Some(eye) => {
+            let offset = eye - frame.center;
+            let distance = offset.length() / frame.radius;
+            (offset.normalize(), Projection::Perspective { distance })
+        }
+        None => (view, projection),
+    };
+    let picture = |m: &TriMesh| coverage(m, frame, view, seen_as, args.resolution);
     let original = picture(mesh)?;
     let ours = picture(result)?;
-    let uniform = picture(&hierarchy.level_by_triangles(result.triangle_count()).mesh)?;
+    let plain = simplify(
+        mesh,
+        &SimplifyOptions::default().with_target_triangles(result.triangle_count()),
+    )?
+    .mesh;
+    let plain_picture = picture(&plain)?;
     let compare_seconds = started.elapsed().as_secs_f64();
 
     let started = Instant::now();
@@ -197,15 +231,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     if let Some(path) = &args.labels_png {
         let values = labels.for_view(view, interpolation)?;
         let scale = values.iter().copied().fold(0.0_f32, f32::max).max(1.0);
-        let shaded = shaded_picture(
-            mesh,
-            frame,
-            view,
-            projection,
-            args.resolution,
-            &values,
-            scale,
-        )?;
+        let shaded = shaded_picture(mesh, frame, view, seen_as, args.resolution, &values, scale)?;
         write_png(path, &shaded)?;
     }
     if let Some(path) = &args.compare_png {
@@ -217,6 +243,7 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
     let report = Report {
         source: input.source,
         view: view.to_array(),
+        eye: args.eye,
         cameras: views.len(),
         step_degrees: args.step,
         projection: match projection {
@@ -228,7 +255,10 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         transform: args.transform.name(),
         nearest: args.nearest,
         threshold: args.threshold,
+        region: args.region.name(),
         factor: args.factor,
+        contour_cells: args.contour_cells.is_finite().then_some(args.contour_cells),
+        contour_allowance: extraction.contour_allowance,
         error,
         error_relative: if diagonal > 0.0 {
             error / diagonal
@@ -247,8 +277,15 @@ pub fn run(args: &SilhouetteArgs, quiet: bool) -> Result<()> {
         other_error: extraction.other_error,
         silhouette_pixels_wrong: silhouette_difference(&original, &ours),
         contour_displacement: contour_displacement(&original, &ours, args.resolution),
-        unweighted_pixels_wrong: silhouette_difference(&original, &uniform),
-        unweighted_contour_displacement: contour_displacement(&original, &uniform, args.resolution),
+        plain_triangles: plain.triangle_count(),
+        plain_pixels_wrong: silhouette_difference(&original, &plain_picture),
+        plain_contour_displacement: contour_displacement(
+            &original,
+            &plain_picture,
+            args.resolution,
+        ),
+        gains: silhouette_difference(&original, &ours)
+            < silhouette_difference(&original, &plain_picture),
         silhouette_pixels: original.iter().filter(|&&c| c).count(),
         output: shown(&args.output),
         labels_png: shown(&args.labels_png),
@@ -382,35 +419,44 @@ impl crate::output::Report for Report {
                 )
             ),
             format!(
-                "view            {x:.3},{y:.3},{z:.3} (labels of {} nearest camera{})",
+                "view            {x:.3},{y:.3},{z:.3}{} (labels of {} nearest camera{})",
+                self.eye.map_or(String::new(), |[a, b, c]| format!(
+                    ", from a camera at {a},{b},{c}"
+                )),
                 self.nearest,
                 if self.nearest == 1 { "" } else { "s" }
             ),
             format!(
-                "triangles       {} -> {} ({} in the contour region, {} cells)",
+                "triangles       {} -> {} ({} in the contour region: {}, {} cells)",
                 thousands(self.triangles_in),
                 thousands(self.triangles_out),
                 thousands(self.contour_triangles),
+                self.region,
                 self.threshold
             ),
             format!(
-                "error bound     {:.4e} ({:.4} %) in the contour region, {:.4e} ({:.4} %) \
-                 elsewhere; allowed {:.4} % × {}",
+                "error bound     {:.4e} ({:.4} %) in the contour region, allowed {:.4e} \
+                 ({:.4} % × {}{}); {:.4e} ({:.4} %) elsewhere, allowed {:.4} %",
                 self.contour_error,
                 percent(self.contour_error),
+                self.contour_allowance,
+                100.0 * self.error_relative,
+                self.factor,
+                self.contour_cells
+                    .map_or(String::new(), |c| format!(", at most {c} cell")),
                 self.other_error,
                 percent(self.other_error),
                 100.0 * self.error_relative,
-                self.factor
             ),
             format!(
                 "silhouette      {} of {} pixels wrong, contour moved up to {} cells \
-                 (unweighted, as many triangles: {} wrong, {} cells)",
+                 (sphaera simplify, {} triangles: {} wrong, {} cells)",
                 thousands(self.silhouette_pixels_wrong),
                 thousands(self.silhouette_pixels),
                 cells(self.contour_displacement),
-                thousands(self.unweighted_pixels_wrong),
-                cells(self.unweighted_contour_displacement)
+                thousands(self.plain_triangles),
+                thousands(self.plain_pixels_wrong),
+                cells(self.plain_contour_displacement)
             ),
             format!(
                 "time            {:.3} s to read, {:.3} s to label, {:.3} s for the hierarchy, \
@@ -423,6 +469,14 @@ impl crate::output::Report for Report {
                 self.seconds.write
             ),
         ];
+        if !self.gains {
+            lines.push(
+                "note            no gain on this mesh from this view: the plain simplifier \
+                 keeps the outline as well with as many triangles (no outline detail to keep \
+                 at this error); `sphaera simplify --triangles N` does the same job"
+                    .to_owned(),
+            );
+        }
         let labels_written = self
             .labels_file
             .as_ref()

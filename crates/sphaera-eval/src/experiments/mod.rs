@@ -19,6 +19,10 @@
 //!   silhouette labels against unweighted ones, in image space and object space; the
 //!   Fig. 3 picture in `silhouette/picture.rs`);
 //! - `silhouette_time_vs_faces`: `silhouette/timing.rs` (the paper's Tables 1–2);
+//! - `silhouette_vs_simplify`: `silhouette/plain.rs` (guided against the plain simplifier
+//!   at equal triangle counts, on meshes nobody tuned it for; the paper's factor swept);
+//! - `silhouette_temporal`: `silhouette/temporal.rs` (popping along an orbit, nearest
+//!   camera against the mean of the 4 nearest);
 //! - `scene_time_vs_error`: `scene/mod.rs` (200 bodies falling into a box in rapier with
 //!   Sphaera's ball compounds, trimesh and convex-decomposition colliders; the simulation
 //!   and the measurement on the true meshes in `scene/physics.rs`);
@@ -78,6 +82,8 @@ pub const NAMES: &[&str] = &[
     hal::NAME,
     silhouette::NAME,
     silhouette::timing::NAME,
+    silhouette::plain::NAME,
+    silhouette::temporal::NAME,
     scene::NAME,
     robot::NAME,
     robot::budgets::NAME,
@@ -101,6 +107,8 @@ pub fn run(name: &str, data: &Path, out: &Path) -> Result<()> {
         hal::NAME => hal::run(data, out),
         silhouette::NAME => silhouette::run(data, out),
         silhouette::timing::NAME => silhouette::timing::run(data, out),
+        silhouette::plain::NAME => silhouette::plain::run(data, out),
+        silhouette::temporal::NAME => silhouette::temporal::run(data, out),
         scene::NAME => scene::run(data, out),
         robot::NAME => robot::run(data, out),
         robot::budgets::NAME => robot::budgets::run(data, out),

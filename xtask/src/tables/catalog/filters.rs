@@ -80,3 +80,23 @@ pub(super) const LEVEL_1: Filter = &[("level", "1")];
 pub(super) const LEVEL_2: Filter = &[("level", "2")];
 /// Level 3.
 pub(super) const LEVEL_3: Filter = &[("level", "3")];
+/// The defaults of `silhouette_vs_simplify.csv` (widened region, ¼ e and ¼ cell).
+pub(super) const GUIDED_DEFAULT: Filter = &[("method", "default: widened, f = 0.25, 1/4 cell")];
+/// The paper's rule there (corners, `e · f` alone): the defaults before issue 40.
+pub(super) const GUIDED_PAPER: Filter = &[("method", "paper: corners, f = 0.25")];
+/// The other variants of `silhouette_vs_simplify.csv`.
+pub(super) const GUIDED_CORNERS_CELL: Filter = &[("method", "corners, 1/4 cell")];
+/// The certified region.
+pub(super) const GUIDED_CERTIFIED: Filter = &[("method", "certified, 1/4 cell")];
+/// With the internal silhouettes the camera sees.
+pub(super) const GUIDED_INTERNAL: Filter =
+    &[("method", "internal silhouettes too, widened, 1/4 cell")];
+/// The paper's factor swept with the widened region, no cap in cells.
+pub(super) const GUIDED_F_01: Filter = &[("method", "widened, f = 0.1")];
+/// See [`GUIDED_F_01`].
+pub(super) const GUIDED_F_05: Filter = &[("method", "widened, f = 0.5")];
+/// The scene's coarser labels.
+pub(super) const GUIDED_SCENE_LABELS: Filter = &[(
+    "method",
+    "the scene's labels (30°, 128²), widened, 1/4 cell",
+)];

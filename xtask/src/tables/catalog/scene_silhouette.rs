@@ -100,6 +100,136 @@ pub(super) const TABLES: &[Table] = &[
             ),
         ],
     },
+    // docs/benchmarks.md, "Guided against the plain simplifier": per mesh and error, the
+    // defaults' wrong pixels against the plain simplifier's at as many triangles, and the
+    // paper's rule's ratios.
+    Table {
+        name: "silhouette_vs_simplify",
+        csv: "silhouette_vs_simplify",
+        key: &["mesh", "error_rel_diagonal"],
+        keep: |row| row.get("error_rel_diagonal") != Some("0.02"),
+        columns: &[
+            col("mesh", "mesh", ANY, Format::Text),
+            col("e %", "error_rel_diagonal", ANY, Format::Decimals(2)).times(100.0),
+            col(
+                "triangles",
+                "mean_triangles_guided",
+                GUIDED_DEFAULT,
+                Format::Grouped(0),
+            ),
+            col(
+                "wrong px, guided",
+                "given_view_pixels_guided",
+                GUIDED_DEFAULT,
+                Format::Decimals(1),
+            ),
+            col(
+                "wrong px, plain",
+                "given_view_pixels_plain",
+                GUIDED_DEFAULT,
+                Format::Decimals(1),
+            ),
+            col(
+                "ratio at the view",
+                "given_view_ratio",
+                GUIDED_DEFAULT,
+                Format::Decimals(2),
+            ),
+            col(
+                "ratio 7.5° around",
+                "around_ratio",
+                GUIDED_DEFAULT,
+                Format::Decimals(2),
+            ),
+            col("verdict", "verdict", GUIDED_DEFAULT, Format::Text),
+            col(
+                "paper's rule: ratio at the view",
+                "given_view_ratio",
+                GUIDED_PAPER,
+                Format::Decimals(2),
+            ),
+            col("around", "around_ratio", GUIDED_PAPER, Format::Decimals(2)),
+        ],
+    },
+    // docs/benchmarks.md, "Guided against the plain simplifier": every variant's ratio at
+    // the view, at e = 1 %.
+    Table {
+        name: "silhouette_vs_simplify_variants",
+        csv: "silhouette_vs_simplify",
+        key: &["mesh"],
+        keep: |row| row.get("error_rel_diagonal") == Some("0.01"),
+        columns: &[
+            col("mesh", "mesh", ANY, Format::Text),
+            col(
+                "defaults",
+                "given_view_ratio",
+                GUIDED_DEFAULT,
+                Format::Decimals(2),
+            ),
+            col(
+                "corners, 1/4 cell",
+                "given_view_ratio",
+                GUIDED_CORNERS_CELL,
+                Format::Decimals(2),
+            ),
+            col(
+                "certified, 1/4 cell",
+                "given_view_ratio",
+                GUIDED_CERTIFIED,
+                Format::Decimals(2),
+            ),
+            col(
+                "internal silhouettes too",
+                "given_view_ratio",
+                GUIDED_INTERNAL,
+                Format::Decimals(2),
+            ),
+            col(
+                "the scene's labels (30°, 128²)",
+                "given_view_ratio",
+                GUIDED_SCENE_LABELS,
+                Format::Decimals(2),
+            ),
+            col(
+                "paper: f = 0.25",
+                "given_view_ratio",
+                GUIDED_PAPER,
+                Format::Decimals(2),
+            ),
+            col(
+                "widened, f = 0.1",
+                "given_view_ratio",
+                GUIDED_F_01,
+                Format::Decimals(2),
+            ),
+            col(
+                "widened, f = 0.5",
+                "given_view_ratio",
+                GUIDED_F_05,
+                Format::Decimals(2),
+            ),
+        ],
+    },
+    // docs/benchmarks.md, "Guided against the plain simplifier": popping along an orbit.
+    Table {
+        name: "silhouette_temporal",
+        csv: "silhouette_temporal",
+        key: &["mesh", "interpolation"],
+        keep: |_| true,
+        columns: &[
+            col("mesh", "mesh", ANY, Format::Text),
+            col("labels", "interpolation", ANY, Format::Text),
+            col(
+                "popping px a frame",
+                "mean_popping_pixels",
+                ANY,
+                Format::Decimals(2),
+            ),
+            col("largest", "largest_popping_pixels", ANY, Format::Right),
+            col("wrong px", "mean_wrong_pixels", ANY, Format::Decimals(1)),
+            col("triangles", "mean_triangles", ANY, Format::Grouped(0)),
+        ],
+    },
     // docs/benchmarks.md, "Does the level of detail keep the outline?": per mesh, views
     // and error, the unweighted level's wrong pixels over the guided one's, per labelling.
     Table {

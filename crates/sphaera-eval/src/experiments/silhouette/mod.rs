@@ -29,6 +29,8 @@
 //! (`timing.rs`, [`timing::NAME`]).
 
 pub mod picture;
+pub mod plain;
+pub mod temporal;
 pub mod timing;
 
 use std::path::Path;
@@ -36,8 +38,9 @@ use std::path::Path;
 use anyhow::{Context, Result};
 use sphaera::mesh::{DVec3, Length, TriMesh};
 use sphaera::silhouette::{
-    ContourTolerance, Contours, Extraction, Interpolation, LabelOptions, Labels, Projection,
-    ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage, silhouette_difference,
+    ContourRegion, ContourTolerance, Contours, Extraction, Interpolation, LabelOptions, Labels,
+    Projection, ViewDependent, ViewSet, bounding_sphere, contour_displacement, coverage,
+    silhouette_difference,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions};
 use sphaera::sweep::{HausdorffOptions, hausdorff};
@@ -135,9 +138,10 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
         if *file == MESHES[0] {
             picture::write(out, &mesh, &hierarchy, [&labels[1], &labels[0]], RESOLUTION)?;
         }
+        // The paper's method: its region rule, `e · f` alone.
         let mut lods = [
-            ViewDependent::new(&hierarchy, &labels[0])?,
-            ViewDependent::new(&hierarchy, &labels[1])?,
+            ViewDependent::new(&hierarchy, &labels[0])?.with_region(ContourRegion::Corners),
+            ViewDependent::new(&hierarchy, &labels[1])?.with_region(ContourRegion::Corners),
         ];
         let diagonal = mesh.bounding_box_diagonal();
         object_rows.extend(object_errors(
@@ -166,6 +170,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
                                 error: e * diagonal,
                                 factor: FACTOR,
                                 threshold: variant.threshold,
+                                cells: f64::INFINITY,
                             },
                         )?;
                         let n = extraction.simplified.mesh.triangle_count();
@@ -295,6 +300,7 @@ fn object_errors(
                     error: e * diagonal,
                     factor: FACTOR,
                     threshold: 2.0,
+                    cells: f64::INFINITY,
                 },
             )?;
             for (k, contour) in [true, false].into_iter().enumerate() {

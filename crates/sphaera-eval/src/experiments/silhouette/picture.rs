@@ -56,6 +56,7 @@ pub fn write(
             error: 0.04 * mesh.bounding_box_diagonal(),
             factor: 0.1,
             threshold: 2.0,
+            cells: f64::INFINITY,
         },
     )?;
     let result = &extraction.simplified.mesh;

@@ -72,6 +72,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
             error: 0.01 * mesh.bounding_box_diagonal(),
             factor: 0.25,
             threshold: 2.0,
+            cells: f64::INFINITY,
         };
         let direction = |frame: u32| {
             let a = f64::from(frame).to_radians() + 0.1;
