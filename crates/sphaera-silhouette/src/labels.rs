@@ -4,6 +4,7 @@
 //! the nearest precomputed view or the average of the `n` nearest.
 
 use glam::{DVec2, DVec3};
+use sphaera_mesh::topology::{TopologyOptions, analyze_with};
 use sphaera_mesh::{Sphere, TriMesh};
 
 use crate::SilhouetteError;
@@ -177,13 +178,13 @@ impl Frame {
     /// vertices and builds the binary image and its distance transform.
     fn map(
         &mut self,
-        mesh: &TriMesh,
-        normals: &[DVec3],
+        surface: &Surface<'_>,
         camera: &ViewCamera,
         resolution: usize,
         transform: DistanceTransform,
         contours: Contours,
     ) {
+        let (mesh, normals) = (surface.mesh, surface.normals.as_slice());
         let positions = mesh.positions();
         self.image.clear();
         self.image
@@ -204,7 +205,7 @@ impl Frame {
             }
         }
         if contours == Contours::All {
-            self.find_visible(mesh, normals, camera, resolution);
+            self.find_visible(surface, camera, resolution);
         }
         // Occupancy (mark 1), with every cell under a face holding a visible silhouette
         // vertex cut out (mark 2). Cut faces go first, so that more rows of the others are already
@@ -243,13 +244,8 @@ impl Frame {
     /// vertices are put in buckets of a coarse grid, and each face tests only those in
     /// the buckets its image's bounding box meets: silhouette vertices are few, so this
     /// costs little more than a pass over the faces.
-    fn find_visible(
-        &mut self,
-        mesh: &TriMesh,
-        normals: &[DVec3],
-        camera: &ViewCamera,
-        resolution: usize,
-    ) {
+    fn find_visible(&mut self, surface: &Surface<'_>, camera: &ViewCamera, resolution: usize) {
+        let (mesh, normals) = (surface.mesh, surface.normals.as_slice());
         let positions = mesh.positions();
         self.visible.clear();
         self.visible
@@ -286,6 +282,11 @@ impl Frame {
         let slack = 2.0 * camera.cell_length(resolution);
         for (t, &normal) in mesh.triangles().iter().zip(normals) {
             if normal == DVec3::ZERO {
+                continue;
+            }
+            // On a closed, oriented surface the last face a ray crosses toward the camera
+            // leaves the solid, so faces it: one facing away never hides alone.
+            if surface.closed && !camera.normal_faces_camera(normal, positions[t[0] as usize]) {
                 continue;
             }
             let [a, b, c] = t.map(|v| self.image[v as usize]);
@@ -328,6 +329,28 @@ impl Frame {
     }
 }
 
+/// A mesh with what every view needs of it: its faces' normals and, for the internal
+/// silhouettes, whether it is closed and oriented.
+struct Surface<'a> {
+    mesh: &'a TriMesh,
+    normals: Vec<DVec3>,
+    closed: bool,
+}
+
+impl<'a> Surface<'a> {
+    fn new(mesh: &'a TriMesh, contours: Contours) -> Self {
+        let closed = contours == Contours::All && {
+            let report = analyze_with(mesh, &TopologyOptions::indices_as_given());
+            report.is_closed && report.is_oriented
+        };
+        Self {
+            mesh,
+            normals: face_normals(mesh),
+            closed,
+        }
+    }
+}
+
 /// The (unnormalized) normal of every face of `mesh`.
 fn face_normals(mesh: &TriMesh) -> Vec<DVec3> {
     let positions = mesh.positions();
@@ -349,8 +372,7 @@ fn label_in_frame(
     let camera = ViewCamera::new(sphere, direction.normalize(), projection);
     let mut frame = Frame::default();
     frame.map(
-        mesh,
-        &face_normals(mesh),
+        &Surface::new(mesh, contours),
         &camera,
         resolution,
         transform,
@@ -563,12 +585,12 @@ impl Labels {
         let sphere = bounding_sphere(mesh)?;
         let vertex_count = mesh.positions().len();
         check_label_count(vertex_count, views.len())?;
-        let normals = face_normals(mesh);
+        let surface = Surface::new(mesh, contours);
         // View k's vertex labels into `out`, with `frame`'s buffers.
         let one = |frame: &mut Frame, k: usize, out: &mut [u16]| {
             let camera =
                 ViewCamera::new(sphere, views.direction(k).normalize(), views.projection());
-            frame.map(mesh, &normals, &camera, resolution, transform, contours);
+            frame.map(&surface, &camera, resolution, transform, contours);
             for (q, &p) in out.iter_mut().zip(&frame.image) {
                 *q = quantize(frame.distance_at(p, resolution));
             }
