@@ -136,6 +136,18 @@ pub(crate) fn min_time<T>(runs: usize, mut f: impl FnMut() -> Result<T>) -> Resu
     }
 }
 
+/// The meshes of `files` found in `data`, each with its file name; the missing ones
+/// skipped with a message ([`load_or_skip`]).
+pub(crate) fn load_all_or_skip(data: &Path, files: &[&str]) -> Result<Vec<(String, TriMesh)>> {
+    let mut meshes = Vec::new();
+    for file in files {
+        if let Some(mesh) = load_or_skip(data, file)? {
+            meshes.push(((*file).to_owned(), mesh));
+        }
+    }
+    Ok(meshes)
+}
+
 /// Loads the mesh at `path`; the error names the file.
 pub(crate) fn load_mesh(path: &Path) -> Result<TriMesh> {
     io::load(path).with_context(|| format!("cannot load {}", path.display()))

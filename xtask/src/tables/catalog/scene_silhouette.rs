@@ -340,6 +340,18 @@ pub(super) const TABLES: &[Table] = &[
             )
             .over("other_bound_rel", ANY)
             .times(100.0),
+            col(
+                "paper's direction: contour vertices",
+                "contour_from_original_rel",
+                ANY,
+                Format::Scientific(2),
+            ),
+            col(
+                "other vertices",
+                "other_from_original_rel",
+                ANY,
+                Format::Scientific(2),
+            ),
         ],
     },
 ];

@@ -27,7 +27,6 @@ use sphaera::silhouette::{
     ViewSet,
 };
 use sphaera::simplify::{Hierarchy, SimplifyOptions, simplify};
-use sphaera_tests::random::SplitMix64;
 use sphaera_tests::silhouette_image::{Frame, directions_around, render, wrong_pixels};
 
 use crate::chart::{ChartSpec, Panel, Series, SeriesLabelPosition, log_log_panels, write_csv};
@@ -177,12 +176,7 @@ pub fn variants() -> Vec<Variant> {
 /// Runs the experiment.
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let views = ViewSet::regular(15.0)?;
-    let mut meshes = Vec::new();
-    for file in SHARED {
-        if let Some(mesh) = crate::experiments::load_or_skip(data, file)? {
-            meshes.push(((*file).to_owned(), mesh));
-        }
-    }
+    let mut meshes = crate::experiments::load_all_or_skip(data, SHARED)?;
     meshes.extend(procedural()?);
     let variants = variants();
     let mut rows = Vec::new();
@@ -378,29 +372,11 @@ struct Sums {
     plain: [usize; 2],
 }
 
-/// `count` seeded random directions (seeded by the mesh's name), none within 2° of a
-/// camera of `views`.
+/// `count` random directions seeded by the mesh's name, none within 2° of a camera of
+/// `views`.
 fn given_views(views: &ViewSet, count: usize, name: &str) -> Vec<DVec3> {
     let seed = name.bytes().fold(0x5eed_u64, |h, b| {
         h.wrapping_mul(31).wrapping_add(u64::from(b))
     });
-    let mut rng = SplitMix64::new(seed);
-    let mut out = Vec::with_capacity(count);
-    while out.len() < count {
-        let d = DVec3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        );
-        let length = d.length();
-        if length > 0.2 && length <= 1.0 {
-            let d = d / length;
-            // Invariant: `d` is a unit vector, a valid direction.
-            let nearest = views.nearest(d).expect("a unit direction");
-            if views.direction(nearest).dot(d) < 2f64.to_radians().cos() {
-                out.push(d);
-            }
-        }
-    }
-    out
+    super::between_cameras(views, count, seed)
 }

@@ -39,12 +39,7 @@ pub const SHARED: &[&str] = &["bunny_lowres.obj", "spot.obj"];
 /// Runs the experiment.
 pub fn run(data: &Path, out: &Path) -> Result<()> {
     let views = ViewSet::regular(15.0)?;
-    let mut meshes = Vec::new();
-    for file in SHARED {
-        if let Some(mesh) = crate::experiments::load_or_skip(data, file)? {
-            meshes.push(((*file).to_owned(), mesh));
-        }
-    }
+    let mut meshes = crate::experiments::load_all_or_skip(data, SHARED)?;
     meshes.push((
         "quadruped (procedural)".to_owned(),
         sphaera_tests::animal::quadruped(),
