@@ -320,13 +320,20 @@ impl HalTree3 {
     pub fn intersects(&self, other: &Self, placement: &Similarity) -> bool {
         let (mine, theirs) = (self.mesh(), other.mesh());
         let identity = Similarity::IDENTITY;
-        let reach = |m: &TriMesh, s: &Similarity| {
-            m.positions()
-                .iter()
-                .fold(0.0_f64, |r, &p| r.max(s.point(p).abs().max_element()))
-        };
-        let slack =
-            1e-9 * (reach(mine, &identity) + reach(theirs, placement)).max(f64::MIN_POSITIVE);
+        // At least the largest coordinate of each placed mesh, in constant time: its root
+        // ball holds it.
+        let (a, b) = (self.root_ball(), other.root_ball());
+        let (ca, cb, rb) = (
+            a.center,
+            placement.point(b.center),
+            b.radius * placement.scale(),
+        );
+        let reach = |c: DVec3, r: f64| (c.abs().max_element() + r) * (1.0 + 1e-12);
+        let slack = 1e-9 * (reach(ca, a.radius) + reach(cb, rb)).max(f64::MIN_POSITIVE);
+        // Balls apart: neither the surfaces meet nor does one solid hold the other.
+        if ca.distance(cb) > a.radius + rb + slack {
+            return false;
+        }
         let mut stack: Vec<(u32, u32)> = Vec::new();
         for &a in self.roots() {
             for &b in other.roots() {

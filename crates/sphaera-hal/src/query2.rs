@@ -225,6 +225,8 @@ struct Part {
 struct Placed<'a> {
     tree: &'a HalTree2,
     map: DAffine2,
+    /// The map's scale.
+    scale: f64,
 }
 
 impl Placed<'_> {
@@ -283,11 +285,18 @@ impl Placed<'_> {
             + self.tree.nodes()[id].width.min(f64::MAX)
     }
 
-    /// The largest coordinate of the placed outline.
+    /// At least the largest coordinate of the placed outline, in constant time: the
+    /// placed root disc's (the outline lies in it), or a scan when there is no disc.
     fn reach(&self) -> f64 {
-        self.tree.polyline().points().iter().fold(0.0_f64, |m, &p| {
-            m.max(self.map.transform_point2(p).abs().max_element())
-        })
+        match self.tree.root_disc() {
+            Some((c, r)) => {
+                let c = self.map.transform_point2(c);
+                (c.abs().max_element() + r * self.scale) * (1.0 + 1e-12)
+            }
+            None => self.tree.polyline().points().iter().fold(0.0_f64, |m, &p| {
+                m.max(self.map.transform_point2(p).abs().max_element())
+            }),
+        }
     }
 }
 
@@ -340,10 +349,12 @@ impl HalTree2 {
             Placed {
                 tree: self,
                 map: DAffine2::IDENTITY,
+                scale: 1.0,
             },
             Placed {
                 tree: other,
                 map: placement,
+                scale,
             },
         );
         if let (Some((c, r)), Some((d, s))) = (self.root_disc(), other.root_disc()) {

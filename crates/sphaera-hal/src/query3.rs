@@ -189,7 +189,7 @@ impl HalTree3 {
         }
         let mesh = self.mesh();
         let positions = mesh.positions();
-        let bounds = mesh.bounding_box();
+        let bounds = self.bounding_box();
         if outside_box(&bounds, x) {
             return Containment::Outside;
         }

@@ -7,7 +7,7 @@ mod gaps;
 mod placement;
 mod refine;
 
-use sphaera_mesh::{Sphere, TriMesh};
+use sphaera_mesh::{Aabb, Sphere, TriMesh};
 
 use crate::HalError;
 use crate::intersect3::{Region, bound_regions};
@@ -61,6 +61,8 @@ pub struct HalTree3 {
     /// Per node, the two convex regions holding its patch (everything for a leaf), for
     /// point inclusion.
     regions: Vec<[Region; 2]>,
+    /// The mesh's bounding box, kept so that no query scans the mesh.
+    bounds: Aabb,
 }
 
 impl HalTree3 {
@@ -73,6 +75,7 @@ impl HalTree3 {
         let surface = GenusZeroSurface::new(mesh)?;
         let root = surface.root()?;
         let [i, j, k] = root.vertices;
+        let bounds = surface.mesh().bounding_box();
         let mut tree = Self {
             surface,
             root,
@@ -80,6 +83,7 @@ impl HalTree3 {
             roots: Vec::new(),
             sides: Vec::new(),
             regions: Vec::new(),
+            bounds,
         };
         let ij = tree.new_side(tree.surface.shortest_path(i, j));
         let jk = tree.new_side(tree.surface.shortest_path(j, k));
@@ -147,6 +151,12 @@ impl HalTree3 {
     #[must_use]
     pub fn root_ball(&self) -> Sphere {
         self.root.sphere
+    }
+
+    /// The mesh's bounding box (kept from the build).
+    #[must_use]
+    pub fn bounding_box(&self) -> Aabb {
+        self.bounds
     }
 
     /// The deepest level.
