@@ -83,8 +83,9 @@
 //! real coastlines a strip tree localizes better.
 //!
 //! In 3D (`cargo bench -p sphaera-eval --bench hal3_vs_parry`): point inclusion is exact
-//! but an order of magnitude slower than parry3d-f64's, because balls through a thin
-//! triangle's corners are huge and cull little. As a simplification a HAL approximation
+//! and about as fast as parry3d-f64's (faster on some meshes, slower on a CAD part with
+//! large flat faces): balls through a thin triangle's corners are huge and cull little,
+//! so each patch also keeps its bounding box, which is clipped first. As a simplification a HAL approximation
 //! is far farther from the surface than `sphaera-simplify`'s at the same triangle count.
 //! Every figure (the 2D queries and builds, the tree depths, the 3D builds and queries,
 //! the comparison with `sphaera-simplify`) is in the section *HAL trees (`sphaera-hal`,

@@ -42,6 +42,13 @@ fn coord(p: DVec3) -> robust::Coord3D<f64> {
 /// `Err(true)` when `x` lies on it, `Err(false)` when the segment passes through an edge,
 /// a vertex or along the plane (shoot again), else whether it crosses the interior.
 fn crossing(t: [DVec3; 3], x: DVec3, y: DVec3) -> Result<bool, bool> {
+    // The boxes of the segment and the triangle apart (coordinates compared, no
+    // arithmetic, so exact): the segment misses the triangle and its edges, and `x` is not
+    // on it.
+    let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+    if x.min(y).cmpgt(hi).any() || x.max(y).cmplt(lo).any() {
+        return Ok(false);
+    }
     let [a, b, c] = t.map(coord);
     let (cx, cy) = (coord(x), coord(y));
     let sx = robust::orient3d(a, b, c, cx);
@@ -187,46 +194,101 @@ impl HalTree3 {
         if x.distance(root.center) > root.radius + slack {
             return Containment::Outside;
         }
-        let mesh = self.mesh();
-        let positions = mesh.positions();
         let bounds = self.bounding_box();
         if outside_box(&bounds, x) {
             return Containment::Outside;
         }
         let slack = 1e-9 * (bounds.diagonal() + x.abs().max_element());
-        'directions: for y in far_ends(&bounds, x) {
-            let mut inside = false;
+        for y in far_ends(&bounds, x) {
             let d = y - x;
             // Each node is visited with the part of the segment inside all its ancestors'
-            // volumes, clipped further by its own.
-            let mut stack: Vec<(u32, (f64, f64))> =
-                self.roots().iter().map(|&r| (r, (0.0, 1.0))).collect();
-            while let Some((n, span)) = stack.pop() {
-                let node = &self.nodes()[n as usize];
-                let mut span = Some(span);
-                for region in self.node_regions(n) {
-                    span = span.and_then(|s| region.clip(x, d, s, slack));
+            // volumes, clipped further by its own. The stack is the thread's, kept from
+            // query to query (no allocation per query).
+            let mut stack = STACK.with(|s| std::mem::take(&mut *s.borrow_mut()));
+            stack.clear();
+            stack.extend(self.roots().iter().map(|&r| (r, (0.0, 1.0))));
+            let answer = self.cross(&mut stack, x, y, d, slack);
+            STACK.with(|s| *s.borrow_mut() = stack);
+            match answer {
+                Ok(inside) => {
+                    return if inside {
+                        Containment::Inside
+                    } else {
+                        Containment::Outside
+                    };
                 }
-                let Some(span) = span else { continue };
-                if node.children.is_empty() {
-                    for &f in &node.faces {
-                        let t = mesh.triangles()[f as usize].map(|v| positions[v as usize]);
-                        match crossing(t, x, y) {
-                            Ok(crossed) => inside ^= crossed,
-                            Err(true) => return Containment::Boundary,
-                            Err(false) => continue 'directions,
-                        }
-                    }
-                } else {
-                    stack.extend(node.children.iter().map(|&c| (c, span)));
-                }
+                Err(true) => return Containment::Boundary,
+                Err(false) => {}
             }
-            return if inside {
-                Containment::Inside
-            } else {
-                Containment::Outside
-            };
         }
         Containment::Boundary
     }
+
+    /// The crossing parity of the segment `x → y` (`d = y − x`) with the faces under the
+    /// nodes on `stack`: `Err(true)` when `x` is on a face, `Err(false)` when the segment
+    /// passes through an edge or a vertex (shoot another).
+    fn cross(
+        &self,
+        stack: &mut Vec<(u32, (f64, f64))>,
+        x: DVec3,
+        y: DVec3,
+        d: DVec3,
+        slack: f64,
+    ) -> Result<bool, bool> {
+        let mesh = self.mesh();
+        let positions = mesh.positions();
+        let mut inside = false;
+        while let Some((n, span)) = stack.pop() {
+            let node = &self.nodes()[n as usize];
+            let mut span = clip_to_box(self.node_box(n), x, d, span, slack);
+            for region in self.node_regions(n) {
+                span = span.and_then(|s| region.clip(x, d, s, slack));
+            }
+            let Some(span) = span else { continue };
+            if node.children.is_empty() {
+                for &f in &node.faces {
+                    let t = mesh.triangles()[f as usize].map(|v| positions[v as usize]);
+                    inside ^= crossing(t, x, y)?;
+                }
+            } else {
+                stack.extend(node.children.iter().map(|&c| (c, span)));
+            }
+        }
+        Ok(inside)
+    }
+}
+
+/// The part `(t0, t1)` of `span` where `x + t·d` lies in `bounds` grown by `slack`
+/// (the slab method), or `None` when it does not.
+fn clip_to_box(
+    bounds: &Aabb,
+    x: DVec3,
+    d: DVec3,
+    span: (f64, f64),
+    slack: f64,
+) -> Option<(f64, f64)> {
+    let (mut t0, mut t1) = span;
+    for axis in 0..3 {
+        let (lo, hi) = (bounds.min[axis] - slack, bounds.max[axis] + slack);
+        if d[axis] == 0.0 {
+            if x[axis] < lo || x[axis] > hi {
+                return None;
+            }
+            continue;
+        }
+        let (a, b) = ((lo - x[axis]) / d[axis], (hi - x[axis]) / d[axis]);
+        let (enter, exit) = if a <= b { (a, b) } else { (b, a) };
+        t0 = t0.max(enter);
+        t1 = t1.min(exit);
+        if t0 > t1 {
+            return None;
+        }
+    }
+    Some((t0, t1))
+}
+
+thread_local! {
+    /// The node stack of [`HalTree3::contains`], one per thread.
+    static STACK: std::cell::RefCell<Vec<(u32, (f64, f64))>> =
+        const { std::cell::RefCell::new(Vec::new()) };
 }

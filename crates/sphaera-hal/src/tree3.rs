@@ -7,7 +7,7 @@ mod gaps;
 mod placement;
 mod refine;
 
-use sphaera_mesh::{Aabb, Sphere, TriMesh};
+use sphaera_mesh::{Aabb, DVec3, Sphere, TriMesh};
 
 use crate::HalError;
 use crate::intersect3::{Region, bound_regions};
@@ -63,6 +63,9 @@ pub struct HalTree3 {
     regions: Vec<[Region; 2]>,
     /// The mesh's bounding box, kept so that no query scans the mesh.
     bounds: Aabb,
+    /// Per node, the bounding box of its patch's vertices: a cheap, tight first cull for
+    /// point inclusion before the bounding volume's.
+    boxes: Vec<Aabb>,
 }
 
 impl HalTree3 {
@@ -84,6 +87,7 @@ impl HalTree3 {
             sides: Vec::new(),
             regions: Vec::new(),
             bounds,
+            boxes: Vec::new(),
         };
         let ij = tree.new_side(tree.surface.shortest_path(i, j));
         let jk = tree.new_side(tree.surface.shortest_path(j, k));
@@ -106,7 +110,28 @@ impl HalTree3 {
                 })
             })
             .collect();
+        let mesh = tree.surface.mesh();
+        tree.boxes = tree
+            .nodes
+            .iter()
+            .map(|node| {
+                let (lo, hi) = node
+                    .faces
+                    .iter()
+                    .flat_map(|&f| mesh.triangles()[f as usize])
+                    .map(|v| positions[v as usize])
+                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                        (lo.min(p), hi.max(p))
+                    });
+                Aabb { min: lo, max: hi }
+            })
+            .collect();
         Ok(tree)
+    }
+
+    /// The bounding box of node `n`'s patch.
+    pub(crate) fn node_box(&self, n: u32) -> &Aabb {
+        &self.boxes[n as usize]
     }
 
     fn new_side(&mut self, path: Vec<u32>) -> u32 {
