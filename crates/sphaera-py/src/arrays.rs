@@ -5,6 +5,7 @@ use numpy::ndarray::Array2;
 use numpy::{PyArray1, PyArray2, PyReadonlyArray2};
 use pyo3::prelude::*;
 use sphaera::mesh::DVec3;
+use sphaera::mesh::glam::DVec2;
 
 use crate::errors::value_error;
 
@@ -36,6 +37,18 @@ fn three_columns<'py, T: numpy::Element>(
     what: &str,
     rows: &str,
 ) -> PyResult<Option<PyReadonlyArray2<'py, T>>> {
+    columns(value, 3, kinds, dtype, what, rows)
+}
+
+/// [`three_columns`] with `count` columns.
+fn columns<'py, T: numpy::Element>(
+    value: &Bound<'py, PyAny>,
+    count: usize,
+    kinds: &[&str],
+    dtype: &str,
+    what: &str,
+    rows: &str,
+) -> PyResult<Option<PyReadonlyArray2<'py, T>>> {
     let (array, kind) = as_array(value)?;
     let size: usize = array.getattr("size")?.extract()?;
     if size == 0 {
@@ -55,9 +68,9 @@ fn three_columns<'py, T: numpy::Element>(
     let ndim: usize = array.getattr("ndim")?.extract()?;
     let array = array.call_method1("astype", (dtype,))?;
     match (ndim, array.extract::<PyReadonlyArray2<'py, T>>()) {
-        (2, Ok(view)) if view.as_array().ncols() == 3 => Ok(Some(view)),
+        (2, Ok(view)) if view.as_array().ncols() == count => Ok(Some(view)),
         _ => Err(value_error(format!(
-            "{what} must have shape ({rows}, 3), got {}",
+            "{what} must have shape ({rows}, {count}), got {}",
             shape_of(&array)
         ))),
     }
@@ -82,6 +95,32 @@ pub fn points(value: &Bound<'_, PyAny>, what: &str, finite: bool) -> PyResult<Ve
             return Err(value_error(format!(
                 "{what}: row {i} is not finite ({}, {}, {})",
                 p.x, p.y, p.z
+            )));
+        }
+        out.push(p);
+    }
+    Ok(out)
+}
+
+/// An `(n, 2)` array of numbers (any real dtype, or nested lists) as finite points of
+/// the plane.
+///
+/// # Errors
+///
+/// `ValueError` naming `what` for another shape or dtype, or a coordinate that is not
+/// finite.
+pub fn points2(value: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<DVec2>> {
+    let Some(view) = columns::<f64>(value, 2, &["f", "i", "u", "b"], "float64", what, "n")? else {
+        return Ok(Vec::new());
+    };
+    let view = view.as_array();
+    let mut out = Vec::with_capacity(view.nrows());
+    for (i, row) in view.rows().into_iter().enumerate() {
+        let p = DVec2::new(row[0], row[1]);
+        if !p.is_finite() {
+            return Err(value_error(format!(
+                "{what}: row {i} is not finite ({}, {})",
+                p.x, p.y
             )));
         }
         out.push(p);

@@ -33,6 +33,7 @@
 
 mod arrays;
 mod errors;
+mod hal;
 mod mesh;
 mod more;
 mod queries;
@@ -50,6 +51,8 @@ fn _sphaera(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<queries::Distances>()?;
     module.add_class::<queries::Hausdorff>()?;
     module.add_class::<spheretree::SphereTree>()?;
+    module.add_class::<hal::HalTree2>()?;
+    module.add_class::<hal::HalTree3>()?;
     module.add(
         "ToleranceUnreachableError",
         module.py().get_type::<errors::ToleranceUnreachableError>(),

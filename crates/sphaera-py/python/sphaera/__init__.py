@@ -16,6 +16,8 @@ release the GIL and use every core; every result pickles exactly.
 
 from ._sphaera import (
     Distances,
+    HalTree2,
+    HalTree3,
     Hausdorff,
     Mesh,
     SphereTree,
@@ -35,6 +37,8 @@ from ._sphaera import (
 
 __all__ = [
     "Distances",
+    "HalTree2",
+    "HalTree3",
     "Hausdorff",
     "Mesh",
     "Simplified",
