@@ -157,8 +157,8 @@
 //! a frame. Against the simplifier a user would otherwise run (`sphaera_simplify::simplify`
 //! at as many triangles), on every closed mesh of the shared data and on procedural shapes
 //! nobody tuned it for, the defaults (the outline's labels, [`ContourRegion::Widened`], a
-//! quarter of a cell) get at most half its wrong silhouette pixels at `e` ≤ 1 % of the
-//! diagonal, judged by a rasteriser of the test crate's own (`cargo run --release -p
+//! quarter of a cell) are compared with it at equal triangle counts, judged by a
+//! rasteriser of the test crate's own (`cargo run --release -p
 //! sphaera-eval -- --out docs/charts --only silhouette_vs_simplify`); the nearest
 //! camera's labels pop less along an orbit than the mean of the 4 nearest
 //! (`--only silhouette_temporal`). The paper's rules reproduced, against the hierarchy's

@@ -139,11 +139,11 @@ pub const TRANSFORMS: &[(DistanceTransform, &str)] = &[
     ),
 ];
 
-/// A point on the command line: `x,y,z`, finite.
-fn parse_point(text: &str) -> Result<[f64; 3], String> {
+/// Three numbers `x,y,z` on the command line; `kind` names them in the message.
+fn parse_triple(text: &str, kind: &str) -> Result<[f64; 3], String> {
     let parts: Vec<&str> = text.split(',').collect();
     let [x, y, z] = parts.as_slice() else {
-        return Err(format!("`{text}` is not a point `x,y,z`"));
+        return Err(format!("`{text}` is not a {kind} `x,y,z`"));
     };
     let mut out = [0.0_f64; 3];
     for (o, part) in out.iter_mut().zip([x, y, z]) {
@@ -151,26 +151,22 @@ fn parse_point(text: &str) -> Result<[f64; 3], String> {
             .trim()
             .parse()
             .map_err(|e| format!("`{part}` in `{text}` is not a number: {e}"))?;
-        if !o.is_finite() {
-            return Err(format!("`{part}` in `{text}` is not finite"));
-        }
+    }
+    Ok(out)
+}
+
+/// A point on the command line: `x,y,z`, finite.
+fn parse_point(text: &str) -> Result<[f64; 3], String> {
+    let out = parse_triple(text, "point")?;
+    if let Some(c) = out.iter().find(|c| !c.is_finite()) {
+        return Err(format!("`{c}` in `{text}` is not finite"));
     }
     Ok(out)
 }
 
 /// A direction on the command line: `x,y,z`, finite and not zero.
 fn parse_direction(text: &str) -> Result<[f64; 3], String> {
-    let parts: Vec<&str> = text.split(',').collect();
-    let [x, y, z] = parts.as_slice() else {
-        return Err(format!("`{text}` is not a direction `x,y,z`"));
-    };
-    let mut out = [0.0_f64; 3];
-    for (o, part) in out.iter_mut().zip([x, y, z]) {
-        *o = part
-            .trim()
-            .parse()
-            .map_err(|e| format!("`{part}` in `{text}` is not a number: {e}"))?;
-    }
+    let out = parse_triple(text, "direction")?;
     if out.iter().any(|c| !c.is_finite()) || out.iter().all(|&c| c == 0.0) {
         return Err(format!("`{text}` must be finite and not zero"));
     }
