@@ -133,10 +133,11 @@ pub fn locate_in_outline(ring: &[DVec2], x: DVec2) -> Side {
     }
 }
 
-/// Whether two outlines meet: their edges share a point, or, both closed, one holds a
-/// vertex of the other (the regions overlap with disjoint boundaries only when one holds
-/// the other's whole boundary, whatever the fill rule). An outline with a single point
-/// has no edges and meets nothing.
+/// Whether two outlines meet as GEOS sees them (a closed outline is a region, an open
+/// one a curve): their edges share a point, or a closed one holds a vertex of the other
+/// (with disjoint boundaries, a region meets a connected outline only when it holds the
+/// whole of it, whatever the fill rule). An outline with a single point has no edges and
+/// meets nothing.
 #[must_use]
 pub fn outlines_meet(
     first: &[DVec2],
@@ -164,7 +165,8 @@ pub fn outlines_meet(
     let holds = |ring: &[DVec2], x: Option<&DVec2>| {
         x.is_some_and(|&x| locate_in_outline(ring, x) != Side::Outside)
     };
-    first_closed && second_closed && (holds(second, first.first()) || holds(first, second.first()))
+    (second_closed && holds(second, first.first()))
+        || (first_closed && holds(first, second.first()))
 }
 
 /// Whether `x` lies on the closed triangle `t`, exactly: on its plane, and inside it in

@@ -217,3 +217,148 @@ fn a_genus_zero_mesh_gets_a_3d_tree_and_a_torus_a_clear_error() {
         "{message}"
     );
 }
+
+/// The country files kept in the repository (`tests/data/countries`).
+fn country(name: &str) -> String {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../tests/data/countries")
+        .join(format!("{name}.geojson"))
+        .to_str()
+        .unwrap()
+        .to_owned()
+}
+
+#[test]
+fn a_country_with_islands_and_holes_says_where_and_meets_its_enclave() {
+    let dir = tempfile::tempdir().unwrap();
+    let points = dir.path().join("points.txt");
+    // Rome, San Marino, the sea west of Sardinia.
+    std::fs::write(&points, "12.5 41.9\n12.45 43.93\n6 40\n").unwrap();
+    let report = json(&sphaera(&[
+        "hal",
+        &country("italy"),
+        "--contains",
+        points.to_str().unwrap(),
+        "--intersect",
+        &country("san-marino"),
+        "--json",
+    ]));
+    assert_eq!(report["polygons"], 29);
+    assert_eq!(report["holes"], 1, "{report}");
+    // The Vatican is two points at 1:10m: dropped, and said so.
+    assert_eq!(report["dropped_rings"][0]["ring"], 2);
+    let answers = report["contains"]["answers"].as_array().unwrap();
+    assert_eq!(answers[0]["containment"], "inside");
+    assert_eq!(answers[0]["ring"]["ring"], 0);
+    assert_eq!(answers[1]["containment"], "outside");
+    assert_eq!(answers[1]["ring"]["ring"], 1, "San Marino is Italy's hole");
+    assert_eq!(answers[2]["containment"], "outside");
+    assert!(answers[2]["ring"].is_null());
+    assert!(answers[2]["distance"].as_f64().unwrap() > 0.1);
+    let intersect = &report["intersect"];
+    assert_eq!(intersect["intersects"], true);
+    let pairs = intersect["edge_pairs"].as_array().unwrap();
+    assert_eq!(pairs.len(), intersect["pairs"].as_u64().unwrap() as usize);
+    assert!(pairs.iter().all(|p| p[0]["ring"] == 1 && p[1]["ring"] == 0));
+}
+
+#[test]
+fn wkt_lines_inside_a_polygon_meet_it_and_a_text_polygon_intersects_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let lake = dir.path().join("lake.wkt");
+    std::fs::write(
+        &lake,
+        "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0), (4 4, 6 4, 6 6, 4 6, 4 4))",
+    )
+    .unwrap();
+    let road = dir.path().join("road.wkt");
+    std::fs::write(&road, "LINESTRING (1 1, 2 3)").unwrap();
+    let report = json(&sphaera(&[
+        "hal",
+        lake.to_str().unwrap(),
+        "--intersect",
+        road.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(
+        report["intersect"]["intersects"], true,
+        "a road inside the land"
+    );
+    assert_eq!(report["intersect"]["pairs"], 0);
+    let pier = dir.path().join("pier.wkt");
+    std::fs::write(&pier, "MULTILINESTRING ((4.5 4.5, 5.5 5.5), (3 5, 5 5))").unwrap();
+    let report = json(&sphaera(&[
+        "hal",
+        lake.to_str().unwrap(),
+        "--intersect",
+        pier.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(report["intersect"]["intersects"], true);
+    let pairs = report["intersect"]["edge_pairs"].as_array().unwrap();
+    assert_eq!(pairs.len(), 1, "{pairs:?}");
+    assert_eq!(pairs[0][0]["ring"], 1, "the lake's shore");
+    assert_eq!(pairs[0][1]["line"], 1);
+    // A single ring from a text file against the WKT.
+    let polygon = write_polygon(dir.path());
+    let report = json(&sphaera(&[
+        "hal",
+        polygon.to_str().unwrap(),
+        "--intersect",
+        lake.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(report["intersect"]["intersects"], true);
+    // Text: the answer and the pairs.
+    let output = sphaera(&[
+        "hal",
+        lake.to_str().unwrap(),
+        "--intersect",
+        pier.to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        text.contains("polygon 0 hole 0 edge 3 meets line 1 edge 0"),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_gis_files_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let broken = dir.path().join("broken.geojson");
+    std::fs::write(
+        &broken,
+        "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1",
+    )
+    .unwrap();
+    let output = sphaera(&["hal", broken.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("broken.geojson") && message.contains("GeoJSON"),
+        "{message}"
+    );
+    let short = dir.path().join("short.wkt");
+    std::fs::write(
+        &short,
+        "MULTIPOLYGON (((0 0, 1 0, 1 1, 0 0)), ((5 5, 6 5, 5 5)))",
+    )
+    .unwrap();
+    let output = sphaera(&["hal", short.to_str().unwrap(), "--json"]);
+    assert!(output.status.success());
+    assert_eq!(json(&output)["dropped_rings"][0]["polygon"], 1);
+    let nan = dir.path().join("nan.wkt");
+    std::fs::write(&nan, "POLYGON ((0 0, 1 0, 1e999 1, 0 0))").unwrap();
+    let output = sphaera(&["hal", nan.to_str().unwrap()]);
+    assert!(!output.status.success());
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(message.contains("non-finite"), "{message}");
+    let lines = dir.path().join("lines.wkt");
+    std::fs::write(&lines, "LINESTRING (0 0, 1 1)").unwrap();
+    let output = sphaera(&["hal", lines.to_str().unwrap()]);
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("no polygon"));
+    let output = sphaera(&["hal", &country("lesotho"), "-o", "out.svg"]);
+    assert!(!output.status.success());
+}

@@ -35,6 +35,25 @@ pub enum HalError {
     /// Point inclusion asked of an open polyline, which has no inside.
     #[error("an open polyline has no inside: point inclusion needs a closed polygon")]
     OpenPolyline,
+    /// A ring of a polygon with holes is an open polyline.
+    #[error("ring {ring} of the polygon is an open polyline: a polygon's rings are closed")]
+    OpenRing {
+        /// The ring (0 the exterior, `k` the hole `k − 1`).
+        ring: usize,
+    },
+    /// A multipolygon with no polygon.
+    #[error("the multipolygon has no polygon")]
+    EmptyMultiPolygon,
+    /// A ring of a multipolygon is not a valid outline.
+    #[error("polygon {polygon}, {}: {source}", ring_name(*ring))]
+    Ring {
+        /// The polygon's index (from 0).
+        polygon: usize,
+        /// The ring (0 the exterior, `k` the hole `k − 1`).
+        ring: usize,
+        /// What is wrong with it.
+        source: Box<HalError>,
+    },
     /// A polygon file could not be read.
     #[error("cannot read {}: {source}", path.display())]
     Io {
@@ -109,4 +128,13 @@ pub enum HalError {
     /// An error of the mesh crate (the smallest bounding disc or ball).
     #[error(transparent)]
     Mesh(#[from] sphaera_mesh::MeshError),
+}
+
+/// "the exterior" or "hole k" (from 0) for ring `ring` of a polygon.
+fn ring_name(ring: usize) -> String {
+    if ring == 0 {
+        "the exterior".to_owned()
+    } else {
+        format!("hole {}", ring - 1)
+    }
 }

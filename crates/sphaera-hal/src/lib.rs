@@ -102,9 +102,12 @@
 mod error;
 mod intersect3;
 mod lens;
+mod multipolygon;
+mod nearest2;
 mod polyline;
 mod query2;
 mod query3;
+mod ring_index;
 mod surface3;
 mod svg;
 mod tree2;
@@ -113,8 +116,15 @@ mod tree3;
 pub use error::HalError;
 pub use intersect3::{intersects3_brute, triangles_meet};
 pub use lens::{CONTAINMENT_SLACK, Lens, LensKind, SignedDisc, vertex_bulge};
+pub use multipolygon::{
+    HalMultiPolygon2, Location2, MultiPolygon2, NearestRingEdge, Polygon2, RingEdge, RingId,
+};
+pub use nearest2::{NearestEdge, closest_on_segment, nearest_edge_brute};
 pub use polyline::{Polyline2, parse_points, parse_points3};
-pub use query2::{Containment, contains_brute, intersects_brute, ray_crossing, segments_intersect};
+pub use query2::{
+    Containment, contains_brute, intersecting_edges_brute, intersects_brute, ray_crossing,
+    segments_intersect,
+};
 /// The old name of [`Containment`] (renamed so that `sphaera-io`'s `Location`, where in a
 /// file, is the workspace's only `Location`).
 #[deprecated(since = "0.2.0", note = "renamed `Containment`")]

@@ -1,10 +1,12 @@
 //! Hierarchical operations on 2D HAL trees (section 5 of the paper): point inclusion and
 //! intersection detection, with their brute-force references.
 
+use std::ops::ControlFlow;
+
 use glam::{DAffine2, DVec2};
 
 use crate::lens::{CONTAINMENT_SLACK, coord};
-use crate::tree2::Node2;
+use crate::tree2::{Box2, Node2};
 use crate::{HalError, HalTree2, Polyline2};
 
 /// Where a point lies with respect to a polygon.
@@ -89,42 +91,74 @@ impl HalTree2 {
         if !self.polyline().is_closed() {
             return Err(HalError::OpenPolyline);
         }
-        if let Some((center, radius)) = self.root_disc() {
-            let slack = CONTAINMENT_SLACK * (radius + center.abs().max_element());
-            if x.distance(center) > radius + slack {
-                return Ok(Containment::Outside);
-            }
+        Ok(self.ring_containment(x))
+    }
+
+    /// [`HalTree2::contains`] of a closed ring, without the check.
+    ///
+    /// A part is replaced by its chord when `x` lies outside its bounding box or its
+    /// bounding area. With the horizontal ray, the box often decides more: a part wholly
+    /// above, below or left of `x` crosses nothing, and one wholly right of it crosses as
+    /// often (mod 2) as its ends lie on different sides of `x`'s height; these are
+    /// coordinate comparisons, exact, and agree with the exact orientation tests.
+    pub(crate) fn ring_containment(&self, x: DVec2) -> Containment {
+        if !self.bounds().holds(x) {
+            return Containment::Outside;
         }
-        let mut inside = false;
-        let mut stack: Vec<(u32, u32, Option<usize>)> = Vec::new();
-        for chain in self.chains() {
-            stack.push((chain.first, chain.last, chain.node));
-            while let Some((p, s, node)) = stack.pop() {
-                let (a, b) = (self.point_at(p), self.point_at(s));
-                let Some(id) = node else {
-                    // One original edge.
-                    match ray_crossing(a, b, x) {
-                        None => return Ok(Containment::Boundary),
-                        Some(crossed) => inside ^= crossed,
+        PART_STACK.with_borrow_mut(|stack| {
+            stack.clear();
+            let mut inside = false;
+            for chain in self.chains() {
+                stack.push((
+                    chain.first,
+                    chain.last,
+                    chain.node.map_or(EDGE, |n| n as u32),
+                ));
+                while let Some((p, s, id)) = stack.pop() {
+                    let (a, b) = (self.point_at(p), self.point_at(s));
+                    if id == EDGE {
+                        // One original edge.
+                        match ray_crossing(a, b, x) {
+                            None => return Containment::Boundary,
+                            Some(crossed) => inside ^= crossed,
+                        }
+                        continue;
                     }
-                    continue;
-                };
-                let n: &Node2 = &self.nodes()[id];
-                if n.lens.may_contain(a, b, x) {
-                    let [left, right] = n.children();
-                    stack.push((n.split, s, right));
-                    stack.push((p, n.split, left));
-                } else if let Some(crossed) = ray_crossing(a, b, x) {
-                    inside ^= crossed;
+                    let bounds = self.node_box(id as usize);
+                    if x.y < bounds.min.y || x.y > bounds.max.y || x.x > bounds.max.x {
+                        continue;
+                    }
+                    if x.x < bounds.min.x {
+                        inside ^= (a.y > x.y) != (b.y > x.y);
+                        continue;
+                    }
+                    let n: &Node2 = &self.nodes()[id as usize];
+                    if n.lens.may_contain(a, b, x) {
+                        let [left, right] = n.children();
+                        stack.push((n.split, s, right.map_or(EDGE, |c| c as u32)));
+                        stack.push((p, n.split, left.map_or(EDGE, |c| c as u32)));
+                    } else if let Some(crossed) = ray_crossing(a, b, x) {
+                        inside ^= crossed;
+                    }
                 }
             }
-        }
-        Ok(if inside {
-            Containment::Inside
-        } else {
-            Containment::Outside
+            if inside {
+                Containment::Inside
+            } else {
+                Containment::Outside
+            }
         })
     }
+}
+
+/// A part in the point-inclusion walk with no node: one original edge.
+const EDGE: u32 = u32::MAX;
+
+thread_local! {
+    /// The parts still to visit of a point-inclusion walk: `(first, last, node or EDGE)`,
+    /// kept per thread so that a query allocates nothing once warm.
+    static PART_STACK: std::cell::RefCell<Vec<(u32, u32, u32)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
 }
 
 /// Whether the closed segments `a–b` and `c–d` share a point (touching and collinear
@@ -149,38 +183,47 @@ pub fn segments_intersect(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
 }
 
 /// Whether two outlines intersect, by brute force: the reference for
-/// [`HalTree2::intersects`]. Two closed polygons intersect when their boundaries share a
-/// point or one lies inside the other (regions, as the paper's section 5.2 means);
-/// anything with an open polyline, when the outlines share a point.
+/// [`HalTree2::intersects`]. A closed polygon is a region (its outline and its inside),
+/// an open polyline a curve, as in GEOS and shapely: two outlines intersect when they
+/// share a point, or when one lies inside a closed polygon (a polygon nested in another,
+/// a polyline wholly inside a polygon; the paper's section 5.2 means regions).
 #[must_use]
 pub fn intersects_brute(first: &Polyline2, second: &Polyline2) -> bool {
+    !intersecting_edges_brute(first, second).is_empty()
+        || one_inside_the_other(first, second, contains_brute)
+}
+
+/// Every pair of intersecting edges `(edge of first, edge of second)`, by brute force, in
+/// increasing order: the reference for [`HalTree2::intersecting_edges`]. Edge `i` runs from
+/// vertex `i` to the next.
+#[must_use]
+pub fn intersecting_edges_brute(first: &Polyline2, second: &Polyline2) -> Vec<(usize, usize)> {
+    let mut pairs = Vec::new();
     for i in 0..first.edge_count() {
         let (a, b) = first.edge(i);
         for j in 0..second.edge_count() {
             let (c, d) = second.edge(j);
             if segments_intersect(a, b, c, d) {
-                return true;
+                pairs.push((i, j));
             }
         }
     }
-    one_inside_the_other(first, second, contains_brute)
+    pairs
 }
 
-/// With boundaries known to be disjoint: whether one closed polygon lies inside the other
-/// (one vertex of each decides).
+/// With boundaries known to be disjoint: whether one outline lies inside the other, a
+/// closed polygon (one vertex decides, the outline being connected).
 fn one_inside_the_other(
     first: &Polyline2,
     second: &Polyline2,
     locate: impl Fn(&Polyline2, DVec2) -> Result<Containment, HalError>,
 ) -> bool {
-    if !(first.is_closed() && second.is_closed()) {
-        return false;
-    }
     let within = |polygon: &Polyline2, x: DVec2| {
-        matches!(
-            locate(polygon, x),
-            Ok(Containment::Inside | Containment::Boundary)
-        )
+        polygon.is_closed()
+            && matches!(
+                locate(polygon, x),
+                Ok(Containment::Inside | Containment::Boundary)
+            )
     };
     within(second, first.points()[0]) || within(first, second.points()[0])
 }
@@ -196,13 +239,23 @@ enum Region {
 }
 
 impl Region {
-    /// Whether the two regions are certainly disjoint (false when in doubt).
+    /// Whether the two regions are certainly disjoint (false when in doubt). `slack` is
+    /// the rounding allowance at the outlines' coordinates; a disc's own size adds its
+    /// share, so that the huge discs of nearly straight parts (a vertex a few ulps off its
+    /// chord's line) never prune on rounding.
     fn apart(self, other: Self, slack: f64) -> bool {
+        const RELATIVE: f64 = 4.0 * f64::EPSILON;
         match (self, other) {
             (Self::Everything, _) | (_, Self::Everything) => false,
-            (Self::Disc(c, r), Self::Disc(d, s)) => c.distance(d) > r + s + slack,
+            (Self::Disc(c, r), Self::Disc(d, s)) => {
+                let gap = c.distance(d);
+                gap > r + s + slack + RELATIVE * (gap + r + s)
+            }
             (Self::Disc(c, r), Self::HalfPlane(p, n))
-            | (Self::HalfPlane(p, n), Self::Disc(c, r)) => (c - p).dot(n) < -r - slack,
+            | (Self::HalfPlane(p, n), Self::Disc(c, r)) => {
+                let offset = (c - p).dot(n);
+                offset < -r - slack - RELATIVE * (r + (c - p).abs().element_sum())
+            }
             (Self::HalfPlane(p, n), Self::HalfPlane(q, m)) => {
                 (n + m).length() <= 1e-12 && (q - p).dot(n) < -slack
             }
@@ -211,13 +264,14 @@ impl Region {
 }
 
 /// A part of an outline in the pair traversal: its chord, its node (`None`: one original
-/// edge), and the two regions whose intersection bounds it.
+/// edge), the two regions whose intersection bounds it, and its bounding box.
 #[derive(Clone, Copy, Debug)]
 struct Part {
     first: u32,
     last: u32,
     node: Option<usize>,
     regions: [Region; 2],
+    bounds: Box2,
 }
 
 /// A tree seen through a placement (a proper similarity) into another tree's coordinates.
@@ -227,11 +281,40 @@ struct Placed<'a> {
     map: DAffine2,
     /// The map's scale.
     scale: f64,
+    /// Whether the map is the identity (boxes are then the tree's own, exactly).
+    identity: bool,
+    /// What rounding may move a mapped vertex by.
+    slack: f64,
 }
 
 impl Placed<'_> {
     fn point(&self, position: u32) -> DVec2 {
+        if self.identity {
+            return self.tree.point_at(position);
+        }
         self.map.transform_point2(self.tree.point_at(position))
+    }
+
+    /// The box holding the mapped vertices of a node's part: its own box mapped, corner
+    /// by corner, widened by what rounding may move a mapped vertex.
+    fn node_box(&self, id: usize) -> Box2 {
+        let own = *self.tree.node_box(id);
+        if self.identity {
+            return own;
+        }
+        let corners = [
+            own.min,
+            own.max,
+            DVec2::new(own.min.x, own.max.y),
+            DVec2::new(own.max.x, own.min.y),
+        ];
+        let mapped = corners
+            .iter()
+            .fold(Box2::EMPTY, |b, &c| b.grow(self.map.transform_point2(c)));
+        Box2 {
+            min: mapped.min - self.slack,
+            max: mapped.max + self.slack,
+        }
     }
 
     /// The part over positions `first..=last` with node `node`. A proper similarity maps
@@ -239,15 +322,15 @@ impl Placed<'_> {
     /// ends, so the lens is rebuilt from the mapped chord.
     fn part(&self, first: u32, last: u32, node: Option<usize>) -> Part {
         let (a, b) = (self.point(first), self.point(last));
-        let regions = match node {
+        let (regions, bounds) = match node {
             // An edge lies in its diametral disc.
             None => {
                 let disc = Region::Disc(a.midpoint(b), 0.5 * a.distance(b));
-                [disc, disc]
+                ([disc, disc], Box2::EMPTY.grow(a).grow(b))
             }
             Some(id) => {
                 let lens = self.tree.nodes()[id].lens;
-                if lens.kind() == crate::LensKind::Union {
+                let regions = if lens.kind() == crate::LensKind::Union {
                     [Region::Everything, Region::Everything]
                 } else {
                     lens.discs(a, b).map(|d| match d {
@@ -258,7 +341,8 @@ impl Placed<'_> {
                             Region::HalfPlane(point, inward)
                         }
                     })
-                }
+                };
+                (regions, self.node_box(id))
             }
         };
         Part {
@@ -266,6 +350,7 @@ impl Placed<'_> {
             last,
             node,
             regions,
+            bounds,
         }
     }
 
@@ -286,16 +371,19 @@ impl Placed<'_> {
     }
 
     /// At least the largest coordinate of the placed outline, in constant time: the
-    /// placed root disc's (the outline lies in it), or a scan when there is no disc.
+    /// placed root disc's (the outline lies in it), or the placed box's.
     fn reach(&self) -> f64 {
         match self.tree.root_disc() {
             Some((c, r)) => {
                 let c = self.map.transform_point2(c);
                 (c.abs().max_element() + r * self.scale) * (1.0 + 1e-12)
             }
-            None => self.tree.polyline().points().iter().fold(0.0_f64, |m, &p| {
-                m.max(self.map.transform_point2(p).abs().max_element())
-            }),
+            None => {
+                let (lo, hi) = self.tree.bounding_box();
+                let (c, r) = (lo.midpoint(hi), 0.5 * lo.distance(hi));
+                let c = self.map.transform_point2(c);
+                (c.abs().max_element() + r * self.scale) * (1.0 + 1e-12)
+            }
         }
     }
 }
@@ -320,13 +408,32 @@ fn check_placement(placement: &DAffine2) -> Result<f64, HalError> {
 }
 
 impl HalTree2 {
-    /// Intersection detection (section 5.2): pairs of parts whose bounding areas may meet
-    /// are refined, the larger part first, down to pairs of original edges, which are
-    /// tested exactly; two closed polygons whose boundaries are apart then intersect when
-    /// one holds a vertex of the other. Equal to [`intersects_brute`] on every input.
+    /// Intersection detection (section 5.2): pairs of parts whose bounding areas and boxes
+    /// may meet are refined, the larger part first, down to pairs of original edges, which
+    /// are tested exactly; when no edges meet, a closed polygon intersects an outline that
+    /// lies inside it (a nested polygon, or an open polyline: GEOS's and shapely's
+    /// semantics). Equal to [`intersects_brute`] on every input.
     ///
     /// Both outlines are in the same coordinates ([`HalTree2::intersects_placed`] places
     /// one against the other).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec2;
+    /// use sphaera_hal::{HalTree2, Polyline2};
+    ///
+    /// let square = |lo: f64, hi: f64| {
+    ///     let p = |x, y| DVec2::new(x, y);
+    ///     Polyline2::polygon(vec![p(lo, lo), p(hi, lo), p(hi, hi), p(lo, hi)])
+    /// };
+    /// let big = HalTree2::build(&square(0.0, 10.0)?)?;
+    /// let small = HalTree2::build(&square(2.0, 3.0)?)?;
+    /// assert!(big.intersects(&small)); // nested: the regions meet
+    /// let road = Polyline2::open(vec![DVec2::new(4.0, 4.0), DVec2::new(5.0, 6.0)])?;
+    /// assert!(big.intersects(&HalTree2::build(&road)?)); // a polyline inside
+    /// # Ok::<(), sphaera_hal::HalError>(())
+    /// ```
     #[must_use]
     pub fn intersects(&self, other: &Self) -> bool {
         // The identity is a proper similarity: the check cannot fail.
@@ -344,27 +451,119 @@ impl HalTree2 {
     /// [`HalError::InvalidPlacement`] for a map that is not a proper similarity (a shear,
     /// an uneven scale, a mirror, a singular or non-finite matrix).
     pub fn intersects_placed(&self, other: &Self, placement: DAffine2) -> Result<bool, HalError> {
+        let mut met = false;
+        self.edge_pairs(other, placement, |_, _| {
+            met = true;
+            ControlFlow::Break(())
+        })?;
+        if met {
+            return Ok(true);
+        }
+        // Boundaries apart: one inside the other, decided by one vertex each way.
+        let inside = |l: Result<Containment, HalError>| {
+            matches!(l, Ok(Containment::Inside | Containment::Boundary))
+        };
+        let theirs_first = placement.transform_point2(other.polyline().points()[0]);
+        let mine_first = placement
+            .inverse()
+            .transform_point2(self.polyline().points()[0]);
+        Ok(inside(self.contains(theirs_first)) || inside(other.contains(mine_first)))
+    }
+
+    /// The paper's section 5.2 carried to the end: every pair of intersecting edges
+    /// `(edge of self, edge of other)`, in increasing order (edge `i` runs from vertex `i`
+    /// to the next, as [`Polyline2::edge`]); equal to [`intersecting_edges_brute`]. Empty
+    /// when the outlines do not cross or touch, even if one lies inside the other (ask
+    /// [`HalTree2::intersects`] for regions).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use glam::DVec2;
+    /// use sphaera_hal::{HalTree2, Polyline2};
+    ///
+    /// let p = |x, y| DVec2::new(x, y);
+    /// let square = HalTree2::build(&Polyline2::polygon(vec![
+    ///     p(0.0, 0.0), p(2.0, 0.0), p(2.0, 2.0), p(0.0, 2.0),
+    /// ])?)?;
+    /// // A road entering through the bottom edge (0) and leaving through the right (1).
+    /// let road = HalTree2::build(&Polyline2::open(vec![p(1.0, -1.0), p(1.0, 1.0), p(3.0, 1.0)])?)?;
+    /// assert_eq!(square.intersecting_edges(&road), vec![(0, 0), (1, 1)]);
+    /// # Ok::<(), sphaera_hal::HalError>(())
+    /// ```
+    #[must_use]
+    pub fn intersecting_edges(&self, other: &Self) -> Vec<(usize, usize)> {
+        // The identity is a proper similarity: the check cannot fail.
+        self.intersecting_edges_placed(other, DAffine2::IDENTITY)
+            .unwrap_or_default()
+    }
+
+    /// [`HalTree2::intersecting_edges`] with `other` placed by `placement`, as
+    /// [`HalTree2::intersects_placed`].
+    ///
+    /// # Errors
+    ///
+    /// [`HalError::InvalidPlacement`], as [`HalTree2::intersects_placed`].
+    pub fn intersecting_edges_placed(
+        &self,
+        other: &Self,
+        placement: DAffine2,
+    ) -> Result<Vec<(usize, usize)>, HalError> {
+        let mut pairs = Vec::new();
+        self.edge_pairs(other, placement, |i, j| {
+            pairs.push((i, j));
+            ControlFlow::Continue(())
+        })?;
+        pairs.sort_unstable();
+        Ok(pairs)
+    }
+
+    /// Calls `visit` with every pair of intersecting edges (indices into each outline's
+    /// edges), until it breaks.
+    pub(crate) fn edge_pairs(
+        &self,
+        other: &Self,
+        placement: DAffine2,
+        mut visit: impl FnMut(usize, usize) -> ControlFlow<()>,
+    ) -> Result<(), HalError> {
         let scale = check_placement(&placement)?;
-        let (mine, theirs) = (
-            Placed {
-                tree: self,
-                map: DAffine2::IDENTITY,
-                scale: 1.0,
-            },
-            Placed {
-                tree: other,
-                map: placement,
-                scale,
-            },
-        );
-        if let (Some((c, r)), Some((d, s))) = (self.root_disc(), other.root_disc()) {
-            let (d, s) = (placement.transform_point2(d), s * scale);
-            let slack = CONTAINMENT_SLACK * (r + s + c.abs().max_element() + d.abs().max_element());
-            if c.distance(d) > r + s + slack {
-                return Ok(false);
+        let identity = placement == DAffine2::IDENTITY;
+        let mine = Placed {
+            tree: self,
+            map: DAffine2::IDENTITY,
+            scale: 1.0,
+            identity: true,
+            slack: 0.0,
+        };
+        let mut theirs = Placed {
+            tree: other,
+            map: placement,
+            scale,
+            identity,
+            slack: 0.0,
+        };
+        let slack = CONTAINMENT_SLACK * (mine.reach() + theirs.reach()).max(f64::MIN_POSITIVE);
+        theirs.slack = if identity { 0.0 } else { slack };
+        {
+            let (lo, hi) = self.bounding_box();
+            let own = Box2 { min: lo, max: hi };
+            let (lo, hi) = other.bounding_box();
+            let placed = if identity {
+                Box2 { min: lo, max: hi }
+            } else {
+                let corners = [lo, hi, DVec2::new(lo.x, hi.y), DVec2::new(hi.x, lo.y)];
+                let b = corners
+                    .iter()
+                    .fold(Box2::EMPTY, |b, &c| b.grow(placement.transform_point2(c)));
+                Box2 {
+                    min: b.min - slack,
+                    max: b.max + slack,
+                }
+            };
+            if own.apart(&placed) {
+                return Ok(());
             }
         }
-        let slack = CONTAINMENT_SLACK * (mine.reach() + theirs.reach()).max(f64::MIN_POSITIVE);
         let mut stack: Vec<(Part, Part)> = Vec::new();
         for a in self.chains() {
             for b in other.chains() {
@@ -375,10 +574,10 @@ impl HalTree2 {
             }
         }
         while let Some((a, b)) = stack.pop() {
-            let apart = a
-                .regions
-                .iter()
-                .any(|&r| b.regions.iter().any(|&s| r.apart(s, slack)));
+            let apart = a.bounds.apart(&b.bounds)
+                || a.regions
+                    .iter()
+                    .any(|&r| b.regions.iter().any(|&s| r.apart(s, slack)));
             if apart {
                 continue;
             }
@@ -386,8 +585,10 @@ impl HalTree2 {
                 (None, None) => {
                     let (p, q) = (mine.point(a.first), mine.point(a.last));
                     let (r, s) = (theirs.point(b.first), theirs.point(b.last));
-                    if segments_intersect(p, q, r, s) {
-                        return Ok(true);
+                    if segments_intersect(p, q, r, s)
+                        && visit(self.vertex_at(a.first), other.vertex_at(b.first)).is_break()
+                    {
+                        return Ok(());
                     }
                 }
                 (Some(_), None) => stack.extend(mine.halves(&a).map(|h| (h, b))),
@@ -401,17 +602,6 @@ impl HalTree2 {
                 }
             }
         }
-        if !(self.polyline().is_closed() && other.polyline().is_closed()) {
-            return Ok(false);
-        }
-        // Boundaries apart: one inside the other, decided by one vertex each way.
-        let inside = |l: Result<Containment, HalError>| {
-            matches!(l, Ok(Containment::Inside | Containment::Boundary))
-        };
-        let theirs_first = placement.transform_point2(other.polyline().points()[0]);
-        let mine_first = placement
-            .inverse()
-            .transform_point2(self.polyline().points()[0]);
-        Ok(inside(self.contains(theirs_first)) || inside(other.contains(mine_first)))
+        Ok(())
     }
 }

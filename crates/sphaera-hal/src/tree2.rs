@@ -63,7 +63,10 @@ pub struct Chain {
 /// approximation the chord between the two vertices on it farthest apart; each node splits
 /// its polyline at the vertex whose disc is larger (Algorithm 1), so that the in-order
 /// traversal gives the outline back. Storage is `Θ(N)`: one node per vertex not in the
-/// level-0 chord (Theorem 3).
+/// level-0 chord (Theorem 3). Beside the paper's bounding areas each node keeps the
+/// bounding box of its part (32 bytes), and the tree keeps the vertices in outline order
+/// (16 bytes each): point inclusion and intersection test the box first, with coordinate
+/// comparisons only, and use the lens where the box cannot decide.
 ///
 /// # Examples
 ///
@@ -94,6 +97,61 @@ pub struct HalTree2 {
     root_disc: Option<(DVec2, f64)>,
     chains: Vec<Chain>,
     nodes: Vec<Node2>,
+    /// Per node, the bounding box of its part's vertices.
+    boxes: Vec<Box2>,
+    /// The vertices by position (a polygon's start repeated at position `n`).
+    ordered: Vec<DVec2>,
+    /// The bounding box of every vertex.
+    bounds: Box2,
+}
+
+/// An axis-aligned box: `min` and `max` corners, closed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Box2 {
+    pub(crate) min: DVec2,
+    pub(crate) max: DVec2,
+}
+
+impl Box2 {
+    /// The empty box (the identity of [`Box2::grow`]).
+    pub(crate) const EMPTY: Self = Self {
+        min: DVec2::splat(f64::INFINITY),
+        max: DVec2::splat(f64::NEG_INFINITY),
+    };
+
+    /// The box around `self` and `p`.
+    pub(crate) fn grow(self, p: DVec2) -> Self {
+        Self {
+            min: self.min.min(p),
+            max: self.max.max(p),
+        }
+    }
+
+    /// The box around both.
+    pub(crate) fn union(&self, other: &Self) -> Self {
+        Self {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Whether `p` lies in the closed box.
+    pub(crate) fn holds(&self, p: DVec2) -> bool {
+        p.x >= self.min.x && p.x <= self.max.x && p.y >= self.min.y && p.y <= self.max.y
+    }
+
+    /// Whether the closed boxes share no point.
+    pub(crate) fn apart(&self, other: &Self) -> bool {
+        self.max.x < other.min.x
+            || other.max.x < self.min.x
+            || self.max.y < other.min.y
+            || other.max.y < self.min.y
+    }
+
+    /// The distance from `p` to the box (0 inside).
+    pub(crate) fn distance(&self, p: DVec2) -> f64 {
+        (self.min - p).max(p - self.max).max(DVec2::ZERO).length()
+    }
 }
 
 impl HalTree2 {
@@ -122,12 +180,18 @@ impl HalTree2 {
         } else {
             (0, None, vec![0, n - 1])
         };
+        let positions = if polyline.is_closed() { n + 1 } else { n };
+        let ordered: Vec<DVec2> = (0..positions).map(|k| points[(start + k) % n]).collect();
+        let bounds = points.iter().fold(Box2::EMPTY, |b, &p| b.grow(p));
         let mut tree = Self {
             polyline: polyline.clone(),
             start,
             root_disc,
             chains: Vec::new(),
             nodes: Vec::with_capacity(n.saturating_sub(2)),
+            boxes: Vec::with_capacity(n.saturating_sub(2)),
+            ordered,
+            bounds,
         };
         for pair in ends.windows(2) {
             let (first, last) = (pair[0] as u32, pair[1] as u32);
@@ -152,8 +216,9 @@ impl HalTree2 {
         let mut work = vec![(first, last, level, None::<(u32, usize)>)];
         while let Some((p, s, level, parent)) = work.pop() {
             let id = self.nodes.len() as u32;
-            let (split, lens) = self.split(p, s);
+            let (split, lens, bounds) = self.split(p, s);
             let width = lens.width(self.at(p), self.at(s));
+            self.boxes.push(bounds);
             self.nodes.push(Node2 {
                 first: p,
                 last: s,
@@ -178,13 +243,16 @@ impl HalTree2 {
     }
 
     /// The split vertex and bounding area of the polyline at positions `p..=s`
-    /// (Definition 3 and Algorithm 1).
-    fn split(&self, p: u32, s: u32) -> (u32, Lens) {
+    /// (Definition 3 and Algorithm 1), and its vertices' bounding box.
+    fn split(&self, p: u32, s: u32) -> (u32, Lens, Box2) {
         let (a, b) = (self.at(p), self.at(s));
         let mut left: Option<(f64, u32)> = None;
         let mut right: Option<(f64, u32)> = None;
+        let mut bounds = Box2::EMPTY.grow(a).grow(b);
         for position in p + 1..s {
-            match vertex_bulge(a, b, self.at(position)) {
+            let x = self.at(position);
+            bounds = bounds.grow(x);
+            match vertex_bulge(a, b, x) {
                 Some((k, true)) if left.is_none_or(|(best, _)| k > best) => {
                     left = Some((k, position));
                 }
@@ -213,12 +281,12 @@ impl HalTree2 {
             }
             (None, None) => p + (s - p) / 2,
         };
-        (split, lens)
+        (split, lens, bounds)
     }
 
     /// The vertex at position `position` along the outline.
     fn at(&self, position: u32) -> DVec2 {
-        self.polyline.points()[self.vertex_at(position)]
+        self.ordered[position as usize]
     }
 
     /// The vertex index at `position` (positions run from the start vertex; for a
@@ -426,6 +494,22 @@ impl HalTree2 {
     #[must_use]
     pub fn point_at(&self, position: u32) -> DVec2 {
         self.at(position)
+    }
+
+    /// The bounding box of node `id`'s part.
+    pub(crate) fn node_box(&self, id: usize) -> &Box2 {
+        &self.boxes[id]
+    }
+
+    /// The bounding box of every vertex: `(min, max)`.
+    #[must_use]
+    pub fn bounding_box(&self) -> (DVec2, DVec2) {
+        (self.bounds.min, self.bounds.max)
+    }
+
+    /// The bounding box of every vertex.
+    pub(crate) fn bounds(&self) -> &Box2 {
+        &self.bounds
     }
 }
 

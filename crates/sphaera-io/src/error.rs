@@ -65,6 +65,25 @@ pub enum IoError {
         /// The file, when the data came from one.
         path: Option<PathBuf>,
     },
+    /// A 2D shapes file whose extension is not `.geojson`, `.json` or `.wkt`.
+    #[error(
+        "cannot tell the shapes format of {}: the extension is not geojson, json or wkt",
+        path.display()
+    )]
+    UnknownShapeFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A GeoJSON or WKT file (or text) is malformed.
+    #[error("malformed {format} data{}: {message}", crate::describe_path(path.as_deref()))]
+    MalformedShapes {
+        /// The file, when the text came from one.
+        path: Option<PathBuf>,
+        /// The format the text was parsed as.
+        format: crate::ShapeFormat,
+        /// What is wrong, and where (the JSON line and column, the feature and polygon).
+        message: String,
+    },
     /// Writing this format is not supported (only OBJ and PLY are written).
     #[error("writing {format} files is not supported (write obj or ply instead)")]
     UnsupportedWriteFormat {

@@ -157,6 +157,7 @@ mod parse_error;
 mod ply;
 mod policy;
 mod polygon;
+mod shapes2;
 mod stl;
 mod text;
 mod uri;
@@ -174,6 +175,7 @@ pub use error::IoError;
 pub(crate) use parse_error::describe_path;
 pub use parse_error::{GltfObject, Location, ParseReason};
 pub use policy::{DEFAULT_MAX_FILE_BYTES, FilePolicy, FileRefusal};
+pub use shapes2::{ShapeFormat, Shapes2, parse_shapes, read_shapes};
 pub use uri::percent_decode;
 pub use write::{
     PlyEncoding, save, write_atomic, write_obj, write_obj_to, write_ply, write_ply_to,

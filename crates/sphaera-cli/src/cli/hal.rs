@@ -10,8 +10,10 @@ use super::{OutputArgs, parse_length};
 #[derive(Debug, Args)]
 pub struct HalArgs {
     /// The polygon: a text file of `x y` lines (`#` comments allowed), closed implicitly;
-    /// or a closed genus-0 mesh (`.obj`, `.ply`, `.stl`, `.off`, `.gltf`, `.glb`) for the
-    /// 3D tree.
+    /// GeoJSON (`.geojson`, `.json`) or WKT (`.wkt`) polygons with holes and
+    /// multipolygons (a country with its islands: one tree per ring, one answer); or a
+    /// closed genus-0 mesh (`.obj`, `.ply`, `.stl`, `.off`, `.gltf`, `.glb`) for the 3D
+    /// tree.
     pub polygon: PathBuf,
 
     /// Read the file as an open polyline (no closing edge, no inside).
@@ -34,9 +36,16 @@ pub struct HalArgs {
     pub output: Option<PathBuf>,
 
     /// Locate every point of this file (`x y` lines for a polygon, `x y z` for a mesh):
-    /// inside, outside or boundary, in file order.
+    /// inside, outside or boundary, in file order; for GeoJSON and WKT also where (the
+    /// polygon or hole holding it, the nearest edge and its distance).
     #[arg(long)]
     pub contains: Option<PathBuf>,
+
+    /// Intersect with this outline (a text file of `x y` lines read as a polygon, or
+    /// GeoJSON or WKT polygons and lines): whether they meet, as GEOS's `intersects` (a
+    /// line inside a polygon meets it), and every pair of crossing or touching edges.
+    #[arg(long, value_name = "OTHER")]
+    pub intersect: Option<PathBuf>,
 
     #[command(flatten)]
     pub print: OutputArgs,

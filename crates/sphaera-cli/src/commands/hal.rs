@@ -14,6 +14,7 @@ use sphaera::hal::{
 };
 use sphaera::mesh::io::write_atomic;
 
+use super::hal_shapes;
 use crate::{
     cli::HalArgs,
     output::{check_target, print_json, thousands},
@@ -36,6 +37,8 @@ struct Report {
     approximation: Option<Approximation>,
     /// Point inclusion of `--contains`, if given.
     contains: Option<Contains>,
+    /// Intersection with `--intersect`, if given.
+    intersect: Option<hal_shapes::Intersect>,
     output: Option<String>,
     seconds: Seconds,
 }
@@ -103,6 +106,9 @@ pub fn run(args: &HalArgs) -> Result<()> {
     if sphaera::mesh::io::Format::from_path(&args.polygon).is_some() {
         return run_mesh(args);
     }
+    if sphaera::mesh::io::ShapeFormat::from_path(&args.polygon).is_some() {
+        return hal_shapes::run_shapes(args);
+    }
     if let Some(path) = &args.output {
         let extension = extension(path);
         if extension != "txt" && extension != "svg" {
@@ -145,6 +151,14 @@ pub fn run(args: &HalArgs) -> Result<()> {
         Some(path) => Some(locate(&tree, path)?),
         None => None,
     };
+    let intersect = match &args.intersect {
+        Some(path) => Some(hal_shapes::intersect(
+            &hal_shapes::read_shape(&args.polygon, args.open)?,
+            &hal_shapes::read_shape(path, false)?,
+            path,
+        )),
+        None => None,
+    };
     if let Some(path) = &args.output {
         let points = tree.polyline().points();
         let bytes = if extension(path) == "svg" {
@@ -180,6 +194,7 @@ pub fn run(args: &HalArgs) -> Result<()> {
             .collect(),
         approximation,
         contains,
+        intersect,
         output: args.output.as_ref().map(|p| p.display().to_string()),
         seconds: Seconds { load, build },
     };
@@ -239,14 +254,7 @@ fn contains_report(path: &Path, answers: &[Containment], seconds: f64) -> Contai
         inside: count(Containment::Inside),
         outside: count(Containment::Outside),
         boundary: count(Containment::Boundary),
-        answers: answers
-            .iter()
-            .map(|a| match a {
-                Containment::Inside => "inside",
-                Containment::Outside => "outside",
-                Containment::Boundary => "boundary",
-            })
-            .collect(),
+        answers: answers.iter().map(|&a| hal_shapes::name(a)).collect(),
         seconds,
     }
 }
@@ -310,6 +318,9 @@ fn print_text(report: &Report) {
     }
     if let Some(c) = &report.contains {
         print_contains(c);
+    }
+    if let Some(i) = &report.intersect {
+        hal_shapes::print_intersect(i);
     }
     if let Some(output) = &report.output {
         println!("wrote {output}");

@@ -2,6 +2,7 @@
 
 mod distance;
 mod hal;
+mod hal_shapes;
 mod hausdorff;
 mod info;
 mod medial;
