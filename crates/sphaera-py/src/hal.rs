@@ -14,8 +14,15 @@ use crate::mesh::Mesh;
 /// What `HalTree2.__reduce__` returns: the class and its constructor's arguments.
 type Reduced2<'py> = (Bound<'py, PyAny>, (Bound<'py, numpy::PyArray2<f64>>, bool));
 
+/// What `HalTree2.nearest_edge` returns: distances, edges and nearest points.
+type NearestArrays<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<i64>>,
+    Bound<'py, numpy::PyArray2<f64>>,
+);
+
 /// 1 inside, 0 on the boundary, −1 outside.
-fn code(c: Containment) -> i8 {
+pub fn code(c: Containment) -> i8 {
     match c {
         Containment::Inside => 1,
         Containment::Boundary => 0,
@@ -35,6 +42,13 @@ fn code(c: Containment) -> i8 {
 #[pyclass(module = "sphaera", frozen)]
 pub struct HalTree2 {
     inner: Tree2,
+}
+
+impl HalTree2 {
+    /// The tree.
+    pub fn tree(&self) -> &Tree2 {
+        &self.inner
+    }
 }
 
 #[pymethods]
@@ -103,10 +117,48 @@ impl HalTree2 {
         Ok(arrays::vector(py, answers.py_err()?))
     }
 
-    /// Whether this outline and `other` meet (edges crossing or touching, or one closed
-    /// outline holding the other).
+    /// Whether this outline and `other` meet (edges crossing or touching, or one lying
+    /// inside the other's closed outline: GEOS's `intersects`).
     fn intersects(&self, py: Python<'_>, other: &HalTree2) -> bool {
         py.detach(|| self.inner.intersects(&other.inner))
+    }
+
+    /// Every pair of intersecting edges, `(k, 2)` `int64` rows: an edge here, one of
+    /// `other` (edge `i` runs from point `i` to the next).
+    fn intersecting_edges<'py>(
+        &self,
+        py: Python<'py>,
+        other: &HalTree2,
+    ) -> Bound<'py, numpy::PyArray2<i64>> {
+        let pairs = py.detach(|| self.inner.intersecting_edges(&other.inner));
+        let flat: Vec<i64> = pairs
+            .into_iter()
+            .flat_map(|(i, j)| [i as i64, j as i64])
+            .collect();
+        arrays::rows(py, flat, 2)
+    }
+
+    /// The nearest edge to every row of `points` (`(m, 2)`): `(distance, edge, point)`
+    /// arrays (`float64`, `int64`, `(m, 2)`).
+    fn nearest_edge<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<NearestArrays<'py>> {
+        let queries = arrays::points2(points, "points")?;
+        let tree = &self.inner;
+        let nearest: Vec<_> = py.detach(|| queries.iter().map(|&x| tree.nearest_edge(x)).collect());
+        let distance: Vec<f64> = nearest.iter().map(|n| n.distance).collect();
+        let edge: Vec<i64> = nearest.iter().map(|n| n.edge as i64).collect();
+        let point: Vec<f64> = nearest
+            .iter()
+            .flat_map(|n| [n.point.x, n.point.y])
+            .collect();
+        Ok((
+            arrays::vector(py, distance),
+            arrays::vector(py, edge),
+            arrays::rows(py, point, 2),
+        ))
     }
 
     fn __len__(&self) -> usize {

@@ -34,6 +34,7 @@
 mod arrays;
 mod errors;
 mod hal;
+mod hal_multi;
 mod mesh;
 mod more;
 mod queries;
@@ -53,6 +54,7 @@ fn _sphaera(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<spheretree::SphereTree>()?;
     module.add_class::<hal::HalTree2>()?;
     module.add_class::<hal::HalTree3>()?;
+    module.add_class::<hal_multi::HalMultiPolygon2>()?;
     module.add(
         "ToleranceUnreachableError",
         module.py().get_type::<errors::ToleranceUnreachableError>(),

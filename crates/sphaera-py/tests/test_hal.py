@@ -107,3 +107,76 @@ def test_trees_pickle_and_answer_the_same():
     again = pickle.loads(pickle.dumps(solid))
     queries = np.random.default_rng(2).uniform(-1.2, 1.2, (200, 3))
     np.testing.assert_array_equal(again.contains(queries), solid.contains(queries))
+
+
+def square(lo, hi):
+    return np.array([[lo, lo], [hi, lo], [hi, hi], [lo, hi]], dtype=float)
+
+
+def test_multipolygon_with_a_lake_and_an_island_says_where():
+    land = sphaera.HalMultiPolygon2([[square(0, 10), square(4, 6)], [square(12, 13)]])
+    assert land.polygon_count == 2 and len(land) == 2
+    points = np.array([[1, 1], [5, 5], [12.5, 12.5], [4, 5], [20, 20]], dtype=float)
+    np.testing.assert_array_equal(land.contains(points), [1, -1, 1, 0, -1])
+    where = land.locate(points)
+    np.testing.assert_array_equal(where["containment"], [1, -1, 1, 0, -1])
+    np.testing.assert_array_equal(where["polygon"], [0, 0, 1, 0, -1])
+    np.testing.assert_array_equal(where["ring"], [0, 1, 0, 1, -1])
+    nearest = land.nearest_edge(points)
+    np.testing.assert_allclose(nearest["distance"], [1, 1, 0.5, 0, np.hypot(7, 7)])
+    assert nearest["point"].shape == (5, 2)
+    np.testing.assert_array_equal(nearest["ring"][:2], [0, 1])
+
+
+def test_multipolygon_against_even_odd_on_random_islands():
+    rings = [star(30, seed) * 0.4 + offset for seed, offset in ((1, 0.0), (2, 1.0), (3, -1.0))]
+    shape = sphaera.HalMultiPolygon2([[r] for r in rings])
+    rng = np.random.default_rng(9)
+    points = rng.uniform(-1.5, 1.5, (3000, 2))
+    expected = np.zeros(len(points), dtype=bool)
+    for r in rings:
+        expected |= even_odd(r, points)
+    np.testing.assert_array_equal(shape.contains(points) == 1, expected)
+
+
+def test_geojson_wkt_intersection_and_pickling():
+    lake = sphaera.HalMultiPolygon2.from_wkt(
+        "POLYGON ((0 0, 10 0, 10 10, 0 10, 0 0), (4 4, 6 4, 6 6, 4 6, 4 4))"
+    )
+    same = sphaera.HalMultiPolygon2.from_geojson(
+        '{"type": "Polygon", "coordinates": [[[0,0],[10,0],[10,10],[0,10],[0,0]],'
+        '[[4,4],[6,4],[6,6],[4,6],[4,4]]]}'
+    )
+    points = np.array([[1, 1], [5, 5], [4, 4.5]], dtype=float)
+    np.testing.assert_array_equal(lake.contains(points), same.contains(points))
+    boat = sphaera.HalMultiPolygon2([[square(4.5, 5.5)]])
+    assert not lake.intersects(boat)
+    assert lake.intersecting_edges(boat).shape == (0, 6)
+    road = sphaera.HalTree2(np.array([[1.0, 1.0], [2.0, 3.0]]), closed=False)
+    assert lake.intersects(road), "a road inside the land meets it"
+    pier = sphaera.HalTree2(np.array([[3.0, 5.0], [5.0, 5.0]]), closed=False)
+    pairs = lake.intersecting_edges(pier)
+    np.testing.assert_array_equal(pairs, [[0, 1, 3, -1, -1, 0]])
+    square_tree = sphaera.HalTree2(square(0, 2))
+    crossing = sphaera.HalTree2(np.array([[1.0, -1.0], [1.0, 1.0], [3.0, 1.0]]), closed=False)
+    np.testing.assert_array_equal(square_tree.intersecting_edges(crossing), [[0, 0], [1, 1]])
+    distance, edge, nearest = square_tree.nearest_edge(np.array([[1.0, 0.5]]))
+    assert distance[0] == 0.5 and edge[0] == 0 and nearest.tolist() == [[1.0, 0.0]]
+    again = pickle.loads(pickle.dumps(lake))
+    np.testing.assert_array_equal(again.contains(points), lake.contains(points))
+    assert repr(again) == "HalMultiPolygon2(1 polygons, 1 holes)"
+
+
+def test_multipolygon_bad_input_is_named():
+    with pytest.raises(ValueError, match="polygon 1, ring 0"):
+        sphaera.HalMultiPolygon2([[square(0, 1)], [np.array([[0.0, np.nan], [1, 1], [2, 0]])]])
+    with pytest.raises(ValueError, match="no polygon"):
+        sphaera.HalMultiPolygon2([])
+    with pytest.raises(ValueError, match="WKT"):
+        sphaera.HalMultiPolygon2.from_wkt("POLYGON ((0 0,")
+    with pytest.raises(ValueError, match="holds no polygon"):
+        sphaera.HalMultiPolygon2.from_wkt("LINESTRING (0 0, 1 1)")
+    with pytest.raises(ValueError, match="HalMultiPolygon2 or a HalTree2"):
+        sphaera.HalMultiPolygon2([[square(0, 1)]]).intersects(3)
+    sliver = sphaera.HalMultiPolygon2([[square(0, 4), np.array([[1.0, 1], [2, 2], [1, 1]])]])
+    assert sliver.dropped_rings == [(0, 1)]

@@ -16,6 +16,7 @@ release the GIL and use every core; every result pickles exactly.
 
 from ._sphaera import (
     Distances,
+    HalMultiPolygon2,
     HalTree2,
     HalTree3,
     Hausdorff,
@@ -37,6 +38,7 @@ from ._sphaera import (
 
 __all__ = [
     "Distances",
+    "HalMultiPolygon2",
     "HalTree2",
     "HalTree3",
     "Hausdorff",
