@@ -362,3 +362,25 @@ fn bad_gis_files_are_named() {
     let output = sphaera(&["hal", &country("lesotho"), "-o", "out.svg"]);
     assert!(!output.status.success());
 }
+
+/// A reader that stops early (`… --json | head`) gets no panic on stderr: the tool leaves
+/// with the status of a process the closed pipe ended.
+#[test]
+fn a_closed_stdout_is_not_a_panic() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    let indonesia = country("indonesia");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_sphaera"))
+        .args(["hal", &indonesia, "--intersect", &indonesia, "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0_u8; 16];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+    // The pipe's read end is dropped here, with megabytes of pairs still to print.
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(output.status.code(), Some(141), "{stderr}");
+}
