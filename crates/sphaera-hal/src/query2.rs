@@ -6,7 +6,7 @@ use std::ops::ControlFlow;
 use glam::{DAffine2, DVec2};
 
 use crate::lens::{CONTAINMENT_SLACK, coord};
-use crate::tree2::{Box2, Node2};
+use crate::tree2::{Box2, EDGE};
 use crate::{HalError, HalTree2, Polyline2};
 
 /// Where a point lies with respect to a polygon.
@@ -124,7 +124,8 @@ impl HalTree2 {
                         }
                         continue;
                     }
-                    let bounds = self.node_box(id as usize);
+                    let n = self.walk(id);
+                    let bounds = &n.bounds;
                     if x.y < bounds.min.y || x.y > bounds.max.y || x.x > bounds.max.x {
                         continue;
                     }
@@ -132,11 +133,9 @@ impl HalTree2 {
                         inside ^= (a.y > x.y) != (b.y > x.y);
                         continue;
                     }
-                    let n: &Node2 = &self.nodes()[id as usize];
                     if n.lens.may_contain(a, b, x) {
-                        let [left, right] = n.children();
-                        stack.push((n.split, s, right.map_or(EDGE, |c| c as u32)));
-                        stack.push((p, n.split, left.map_or(EDGE, |c| c as u32)));
+                        stack.push((n.split, s, n.children[1]));
+                        stack.push((p, n.split, n.children[0]));
                     } else if let Some(crossed) = ray_crossing(a, b, x) {
                         inside ^= crossed;
                     }
@@ -151,8 +150,6 @@ impl HalTree2 {
     }
 }
 
-/// A part in the point-inclusion walk with no node: one original edge.
-const EDGE: u32 = u32::MAX;
 
 thread_local! {
     /// The parts still to visit of a point-inclusion walk: `(first, last, node or EDGE)`,

@@ -8,7 +8,7 @@ use crate::lens::{Lens, vertex_bulge};
 use crate::{HalError, Polyline2};
 
 /// A child that is an original edge, not a node.
-const EDGE: u32 = u32::MAX;
+pub(crate) const EDGE: u32 = u32::MAX;
 
 /// Relative tolerance for a vertex to count as lying on the smallest bounding disc.
 const ON_DISC: f64 = 1e-12;
@@ -97,12 +97,23 @@ pub struct HalTree2 {
     root_disc: Option<(DVec2, f64)>,
     chains: Vec<Chain>,
     nodes: Vec<Node2>,
-    /// Per node, the bounding box of its part's vertices.
-    boxes: Vec<Box2>,
+    /// Per node, what point inclusion reads, in one cache line.
+    walk: Vec<Walk2>,
     /// The vertices by position (a polygon's start repeated at position `n`).
     ordered: Vec<DVec2>,
     /// The bounding box of every vertex.
     bounds: Box2,
+}
+
+/// What point inclusion reads of a node, packed in one cache line: its part's bounding
+/// box, its lens, its split position and its children ([`EDGE`] for an original edge).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(align(64))]
+pub(crate) struct Walk2 {
+    pub(crate) bounds: Box2,
+    pub(crate) lens: Lens,
+    pub(crate) split: u32,
+    pub(crate) children: [u32; 2],
 }
 
 /// An axis-aligned box: `min` and `max` corners, closed.
@@ -189,7 +200,7 @@ impl HalTree2 {
             root_disc,
             chains: Vec::new(),
             nodes: Vec::with_capacity(n.saturating_sub(2)),
-            boxes: Vec::with_capacity(n.saturating_sub(2)),
+            walk: Vec::with_capacity(n.saturating_sub(2)),
             ordered,
             bounds,
         };
@@ -218,7 +229,12 @@ impl HalTree2 {
             let id = self.nodes.len() as u32;
             let (split, lens, bounds) = self.split(p, s);
             let width = lens.width(self.at(p), self.at(s));
-            self.boxes.push(bounds);
+            self.walk.push(Walk2 {
+                bounds,
+                lens,
+                split,
+                children: [EDGE, EDGE],
+            });
             self.nodes.push(Node2 {
                 first: p,
                 last: s,
@@ -230,6 +246,7 @@ impl HalTree2 {
             });
             if let Some((parent, side)) = parent {
                 self.nodes[parent as usize].children[side] = id;
+                self.walk[parent as usize].children[side] = id;
             }
             // Right part pushed first, so the left is built first (depth first, in order).
             if s - split >= 2 {
@@ -498,7 +515,12 @@ impl HalTree2 {
 
     /// The bounding box of node `id`'s part.
     pub(crate) fn node_box(&self, id: usize) -> &Box2 {
-        &self.boxes[id]
+        &self.walk[id].bounds
+    }
+
+    /// What point inclusion reads of node `id`.
+    pub(crate) fn walk(&self, id: u32) -> &Walk2 {
+        &self.walk[id as usize]
     }
 
     /// The bounding box of every vertex: `(min, max)`.
