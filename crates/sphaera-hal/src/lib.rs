@@ -7,7 +7,11 @@
 //! two discs through the part's ends.
 //!
 //! Status: both halves of the paper. In 2D (section 3, and section 5's point inclusion and
-//! intersection detection), with `sphaera hal` for polygons. In 3D (section 4):
+//! intersection detection, carried on to localisation), with `sphaera hal` for polygons:
+//! single outlines ([`HalTree2`]) and polygons with holes and multipolygons
+//! ([`HalMultiPolygon2`]: a country with its islands and lakes, one tree per ring, one
+//! answer as GEOS gives it), inclusion that says where ([`HalMultiPolygon2::locate`]), the
+//! nearest edge and its distance, and every pair of intersecting edges. In 3D (section 4):
 //! [`GenusZeroSurface`] (validation, the root ball touching three vertices, deterministic
 //! shortest edge paths, the patches they cut) and [`HalTree3`] (Algorithm 2: splits at
 //! `v_q`/`v_r` or at sides below π/4 propagated to the neighbours, Definition 5's balls,
@@ -60,27 +64,39 @@
 //! - **Approximation**: a level, or adaptively only where a part's widths `w₁, w₂`
 //!   (Definition 4) exceed a tolerance.
 //! - **Point inclusion**: the crossing number, with every part whose bounding area does not
-//!   contain the point replaced by its chord.
-//! - **Intersection detection**: pairs of parts whose bounding areas may meet are refined
-//!   down to pairs of edges, tested exactly.
+//!   contain the point replaced by its chord. Each node also keeps its part's bounding box,
+//!   tested first (coordinate comparisons, exact): a part above, below or left of the
+//!   point crosses nothing, one right of it as often as its chord.
+//! - **Intersection detection**: pairs of parts whose bounding areas and boxes may meet are
+//!   refined down to pairs of edges, tested exactly; [`HalTree2::intersecting_edges`]
+//!   returns every such pair. A closed outline is a region, an open one a curve, as in
+//!   GEOS: a polyline inside a polygon intersects it.
+//! - **Localisation**: [`HalTree2::nearest_edge`] by branch and bound, a part's lower bound
+//!   the larger of its distances to its box and to its lens's discs.
+//! - **Several rings** ([`HalMultiPolygon2`]): a box hierarchy over the rings sends a query
+//!   only to the rings whose boxes hold it; `MultiPolygon2::from_rings` takes GeoJSON's
+//!   layout (the `sphaera-io` crate reads GeoJSON and WKT files into it).
 //!
 //! # Errors
 //!
 //! [`HalError`]: too few vertices, NaN or infinite coordinates, point inclusion asked of
-//! an open polyline, unreadable or malformed polygon files.
+//! an open polyline, unreadable or malformed polygon files; for multipolygons, the
+//! polygon and ring at fault ([`HalError::Ring`]), an open ring, no polygon at all.
 //!
 //! # Performance, and where the scheme is weak
 //!
 //! Measured on the Natural Earth outlines (one thread; `cargo run --release -p
-//! sphaera-eval -- --out docs/charts --only hal`): point inclusion is orders of magnitude
-//! faster than the brute-force crossing test and than `geo`'s `contains` on large
-//! outlines, and the build grows about as `N log N`. Ballard's strip tree, measured in
-//! the same run, is faster still, and its strips are far tighter per depth. A lens must
-//! pass through both ends of its chord, so a part that folds back beyond them (a fjord)
-//! forces a large disc. The split rule does not balance the tree either: it grows far
-//! deeper than `log₂ N` on real coastlines. Use a HAL tree for its approximations (the
-//! adaptive one is excellent) and for its cheap disc tests; for pure point location on
-//! real coastlines a strip tree localizes better.
+//! sphaera-eval -- --out docs/charts --only hal`, and against GEOS's prepared geometry,
+//! what shapely and PostGIS run, by `cargo bench -p sphaera-eval --features geos --bench
+//! hal2_vs_geos`): point inclusion is orders of magnitude faster than the brute-force
+//! crossing test and than `geo`'s `contains` on large outlines, and the build grows about
+//! as `N log N`. The lenses alone localise poorly on real coastlines: a lens must pass
+//! through both ends of its chord, so a part that folds back beyond them (a fjord) forces
+//! a large disc, and the split rule grows the tree far deeper than `log₂ N`; Ballard's
+//! strip tree's strips are far tighter per depth. Each node's box makes up for it (the box
+//! alone is twice as slow as box and lens: the lens earns its place). Storage: the
+//! paper's one node per vertex (Theorem 3), each 48 bytes, plus 64 bytes of what a query
+//! reads (box, lens, split, children) and the vertices in outline order.
 //!
 //! In 3D (`cargo bench -p sphaera-eval --bench hal3_vs_parry`): point inclusion is exact
 //! and about as fast as parry3d-f64's (faster on some meshes, slower on a CAD part with
