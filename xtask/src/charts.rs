@@ -86,6 +86,8 @@ const CHARTS: &[(&str, Coverage)] = &[
             "polygons/americas.txt",
         ]),
     ),
+    // Countries kept in the repository (`tests/data/countries`), not in the shared data.
+    ("hal_multipolygon_speed", Coverage::Only(&[])),
     (
         "hal_vs_strip_tree",
         Coverage::Only(&["polygons/netherlands.txt", "polygons/norway.txt"]),

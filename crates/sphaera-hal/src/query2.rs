@@ -150,7 +150,6 @@ impl HalTree2 {
     }
 }
 
-
 thread_local! {
     /// The parts still to visit of a point-inclusion walk: `(first, last, node or EDGE)`,
     /// kept per thread so that a query allocates nothing once warm.

@@ -48,6 +48,8 @@ pub(super) const HAL_OUTLINES: &[(&str, &str)] = &[
 ];
 /// The HAL tree's rows of `hal_query_speed.csv`.
 pub(super) const HAL_TREE: Filter = &[("method", "HAL tree")];
+/// The HAL trees' rows of `hal_multipolygon_speed.csv`.
+pub(super) const HAL_MULTIPOLYGON: Filter = &[("method", "HAL multipolygon")];
 /// Brute force's.
 pub(super) const BRUTE_FORCE: Filter = &[("method", "brute force")];
 /// The uniform levels of `hal_width_vs_size.csv`.

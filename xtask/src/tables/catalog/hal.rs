@@ -61,6 +61,51 @@ pub(super) const TABLES: &[Table] = &[
             .over("microseconds_per_query", HAL_TREE),
         ],
     },
+    // docs/benchmarks.md, "HAL trees", "Multipolygons": per country, µs per query.
+    Table {
+        name: "hal_multipolygon_speed",
+        csv: "hal_multipolygon_speed",
+        key: &["country"],
+        keep: |_| true,
+        columns: &[
+            col("country", "country", ANY, Format::Text),
+            col("polygons", "polygons", ANY, Format::Grouped(0)),
+            col("rings", "rings", ANY, Format::Grouped(0)),
+            col("vertices", "vertices", ANY, Format::Grouped(0)),
+            col(
+                "HAL build ms",
+                "build_seconds",
+                HAL_MULTIPOLYGON,
+                Format::Decimals(2),
+            )
+            .times(1000.0),
+            col(
+                "HAL",
+                "microseconds_per_query",
+                HAL_MULTIPOLYGON,
+                Format::Grouped(2),
+            ),
+            col(
+                "brute force",
+                "microseconds_per_query",
+                BRUTE_FORCE,
+                Format::Grouped(2),
+            ),
+            col(
+                "geo `contains`",
+                "microseconds_per_query",
+                &[("method", "geo contains")],
+                Format::Grouped(2),
+            ),
+            col(
+                "brute / HAL",
+                "microseconds_per_query",
+                BRUTE_FORCE,
+                Format::Times(0),
+            )
+            .over("microseconds_per_query", HAL_MULTIPOLYGON),
+        ],
+    },
     // docs/benchmarks.md, "HAL trees", "Approximation": the 2D outlines' adaptive
     // approximation at 2^-10 of the diagonal.
     Table {

@@ -24,6 +24,9 @@
 //!   node level, strip depth + 1, box-tree depth); an unbounded HAL area (a half-plane on a
 //!   vertex's side, which only a collinear back-track makes) is left out of the sum and
 //!   counted in the CSV.
+//! - **`hal_multipolygon_speed`** ([`multipolygon`]): point inclusion in countries with
+//!   their islands and holes (kept in the repository), the HAL trees per ring against
+//!   brute force and `geo`'s `MultiPolygon` `Contains`.
 //! - **`hal_vs_simplify`** ([`quality`]): the certified Hausdorff distance of 3D HAL
 //!   approximations to the original, against their largest width and against
 //!   `sphaera-simplify` at equal triangle counts.
@@ -31,6 +34,7 @@
 //! Times are single-threaded (the structures have no parallel query path), the best of
 //! [`RUNS`] runs.
 
+mod multipolygon;
 mod peers;
 mod quality;
 
@@ -99,6 +103,7 @@ pub fn run(data: &Path, out: &Path) -> Result<()> {
     width_vs_size(data, &outlines, out)?;
     query_speed(&outlines, out)?;
     strip_tree(&outlines, out)?;
+    multipolygon::multipolygon_speed(out)?;
     quality::versus_simplify(data, out)
 }
 
