@@ -87,7 +87,7 @@
 //!
 //! Measured on the Natural Earth outlines (one thread; `cargo run --release -p
 //! sphaera-eval -- --out docs/charts --only hal`, and against GEOS's prepared geometry,
-//! what shapely and `PostGIS` run, by `cargo bench -p sphaera-eval --features geos --bench
+//! what shapely and PostGIS run, by `cargo bench -p sphaera-eval --features geos --bench
 //! hal2_vs_geos`): point inclusion is orders of magnitude faster than the brute-force
 //! crossing test and than `geo`'s `contains` on large outlines, and the build grows about
 //! as `N log N`. The lenses alone localise poorly on real coastlines: a lens must pass
