@@ -4,6 +4,8 @@ import importlib
 import json
 import os
 import subprocess
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -85,3 +87,34 @@ def cli():
         return json.loads(out.stdout)
 
     return run
+
+
+def share_kept_by_python(call, points):
+    """While `call(points)` runs, another Python thread counts; returns the share of its
+    idle rate it kept (near 0 when the call holds the GIL). `points` doubles until a call
+    lasts long enough to measure, whatever the machine's speed."""
+    ticks = 0
+    done = threading.Event()
+
+    def count():
+        nonlocal ticks
+        while not done.is_set():
+            ticks += 1
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    before, started = ticks, time.perf_counter()
+    time.sleep(0.1)
+    idle_rate = (ticks - before) / (time.perf_counter() - started)
+    for _ in range(10):
+        before, started = ticks, time.perf_counter()
+        call(points)
+        seconds = time.perf_counter() - started
+        during = ticks - before
+        if seconds >= 0.1:
+            break
+        points = np.concatenate([points, points])
+    done.set()
+    counter.join()
+    assert idle_rate > 0
+    return (during / seconds) / idle_rate

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import sphaera
-from conftest import uv_sphere
+from conftest import share_kept_by_python, uv_sphere
 
 
 def even_odd(ring, points):
@@ -180,3 +180,15 @@ def test_multipolygon_bad_input_is_named():
         sphaera.HalMultiPolygon2([[square(0, 1)]]).intersects(3)
     sliver = sphaera.HalMultiPolygon2([[square(0, 4), np.array([[1.0, 1], [2, 2], [1, 1]])]])
     assert sliver.dropped_rings == [(0, 1)]
+
+
+def test_inclusion_releases_the_gil():
+    """While `contains` answers a large array, another Python thread keeps running."""
+    rng = np.random.default_rng(11)
+    points = rng.uniform(-1.1, 1.1, (200_000, 2))
+    tree = sphaera.HalTree2(star(2000))
+    assert share_kept_by_python(tree.contains, points) > 0.05
+    land = sphaera.HalMultiPolygon2([[star(500, 1)], [star(500, 2) * 0.3 + 2]])
+    assert share_kept_by_python(land.contains, points) > 0.05
+    solid = sphaera.HalTree3(sphaera.Mesh(*uv_sphere()))
+    assert share_kept_by_python(solid.contains, rng.uniform(-1.1, 1.1, (100_000, 3))) > 0.05

@@ -1,14 +1,12 @@
 """The numbers against the Rust CLI and brute force; every result pickles exactly."""
 
 import pickle
-import threading
-import time
 
 import numpy as np
 import pytest
 
 import sphaera
-from conftest import uv_sphere
+from conftest import share_kept_by_python, uv_sphere
 
 
 def brute_distances(vertices, faces, points):
@@ -145,32 +143,8 @@ def test_long_calls_release_the_gil(data_dir):
     mesh = sphaera.load(data_dir / "bunny_lowres.obj")
     points = np.random.default_rng(3).uniform(-10, 10, (200_000, 3))
     sphaera.distance(mesh, points[:10])  # the tree is built once, here
-    ticks = 0
-    done = threading.Event()
-
-    def count():
-        nonlocal ticks
-        while not done.is_set():
-            ticks += 1
-
-    counter = threading.Thread(target=count)
-    counter.start()
-    # The counter's rate alone, then while `distance` runs (on more points until the call
-    # lasts long enough to measure, whatever the machine's speed).
-    before, started = ticks, time.perf_counter()
-    time.sleep(0.1)
-    idle_rate = (ticks - before) / (time.perf_counter() - started)
-    for _ in range(8):
-        before, started = ticks, time.perf_counter()
-        sphaera.distance(mesh, points)
-        seconds = time.perf_counter() - started
-        during = ticks - before
-        if seconds >= 0.1:
-            break
-        points = np.concatenate([points, points])
-    done.set()
-    counter.join()
     # With the GIL held the counter would stop for the whole call (a few ticks at most, at
     # the switch into the call); released, it keeps a good share of its idle rate even
     # while the call uses every core.
-    assert idle_rate > 0 and during / seconds > 0.05 * idle_rate, (seconds, during, idle_rate)
+    kept = share_kept_by_python(lambda p: sphaera.distance(mesh, p), points)
+    assert kept > 0.05, kept
