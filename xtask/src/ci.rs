@@ -1,6 +1,6 @@
 //! `cargo xtask test` and `cargo xtask ci`: every test, and every check CI runs.
 
-use std::{process::Command, time::Instant};
+use std::{process::Command, sync::OnceLock, time::Instant};
 
 use anyhow::{Context, Result, bail};
 
@@ -29,9 +29,13 @@ const SEQUENTIAL_DIGEST_TESTS: [&str; 7] = [
 /// sphere-tree, scene and robot crates again without their default `parallel` feature, whose
 /// results must be identical (the digests are compared with the same recorded values both
 /// ways). The sphere-tree's optional `parry` export is tested in the
-/// first run: `sphaera-tests` asks for it, so the workspace's one build has it.
+/// first run: `sphaera-tests` asks for it, so the workspace's one build has it. The
+/// first run also has `sphaera-eval`'s `geos` feature when GEOS is installed
+/// ([`geos_features`]): the test of 2D point inclusion against GEOS.
 pub fn test() -> Result<()> {
-    cargo(&["test", "--workspace", "--locked"])?;
+    let mut args = vec!["test", "--workspace", "--locked"];
+    args.extend(geos_features());
+    cargo(&args)?;
     // One invocation for all of them: one build, its crates compiled in parallel. No
     // dev-dependency of theirs asks for `parallel`, so none of them gets it
     // (`cargo tree -e features` confirms).
@@ -70,15 +74,12 @@ pub fn ci() -> Result<()> {
     let started = Instant::now();
     cargo(&["fmt", "--all", "--check"])?;
     check_single_glam()?;
-    cargo(&[
-        "clippy",
-        "--workspace",
-        "--all-targets",
-        "--locked",
-        "--",
-        "-D",
-        "warnings",
-    ])?;
+    // With the GEOS peer when GEOS is installed: its bench, test and module are linted
+    // too (the feature adds only `geos` and `geos-sys` to the build, a few seconds).
+    let mut args = vec!["clippy", "--workspace", "--all-targets", "--locked"];
+    args.extend(geos_features());
+    args.extend(["--", "-D", "warnings"]);
+    cargo(&args)?;
     // The published crates as docs.rs documents them (every feature), then the whole
     // workspace with default features, as a user's `cargo doc` builds it: a link that
     // resolves only with an optional feature on fails there, and the CLI, the evaluation
@@ -135,4 +136,30 @@ fn check_single_glam() -> Result<()> {
     }
     eprintln!("  (one glam: ok)");
     Ok(())
+}
+
+/// `--features sphaera-eval/geos` when GEOS is installed, else nothing (said once): the
+/// same-run GEOS peer of 2D point inclusion (the `hal2_vs_geos` bench and test) links the
+/// system's libgeos, which a machine without it cannot build. GEOS counts as installed
+/// when `pkg-config --exists geos` succeeds: the `geos-sys` build script looks for it
+/// with pkg-config (and fails without pkg-config), so `geos-config` alone is not enough.
+/// `.ci/run` installs both (Debian's `libgeos-dev` and `pkg-config`).
+pub fn geos_features() -> &'static [&'static str] {
+    static FEATURES: OnceLock<&'static [&'static str]> = OnceLock::new();
+    FEATURES.get_or_init(|| {
+        let found = Command::new("pkg-config")
+            .args(["--exists", "geos"])
+            .status()
+            .is_ok_and(|status| status.success());
+        if found {
+            &["--features", "sphaera-eval/geos"]
+        } else {
+            eprintln!(
+                "GEOS not found (`pkg-config --exists geos` failed): building and testing \
+                 without sphaera-eval's `geos` feature (install libgeos-dev and pkg-config \
+                 for the GEOS peer of 2D point inclusion)"
+            );
+            &[]
+        }
+    })
 }

@@ -27,6 +27,9 @@
 //!                           table of docs/benchmarks.md is not a dated snapshot naming
 //!                           its command (`<!-- snapshot: YYYY-MM-DD; COMMAND -->`)
 //! ```
+//!
+//! `test`, `ci` and `bench` turn on sphaera-eval's `geos` feature (the GEOS peer of 2D
+//! point inclusion) when `pkg-config --exists geos` finds GEOS, and say so when not.
 
 // A command-line tool reports on the terminal.
 #![allow(clippy::print_stderr, clippy::print_stdout)]
@@ -128,7 +131,10 @@ fn target_dir() -> Result<PathBuf> {
 /// helpers' and compile the CLI's whole stack again (90 s on 2 cores), replacing the
 /// binary the tests ran.
 fn built_cli() -> Result<PathBuf> {
-    cargo(&["test", "--workspace", "--locked", "--no-run"])?;
+    // The features of `cargo xtask test`'s first run, or sphaera-eval is compiled again.
+    let mut args = vec!["test", "--workspace", "--locked", "--no-run"];
+    args.extend(ci::geos_features());
+    cargo(&args)?;
     debug_cli()
 }
 
@@ -188,6 +194,8 @@ fn cargo_with_env(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
 }
 fn bench(args: &[String]) -> Result<()> {
     let mut full = vec!["bench", "--workspace", "--locked"];
+    // The GEOS peer's bench too when GEOS is installed.
+    full.extend(ci::geos_features());
     full.extend(args.iter().map(String::as_str));
     cargo(&full)
 }

@@ -41,6 +41,9 @@
 //! - [`sphere_sets`]: exactly N spheres from Sphaera's one-level tree, and another set
 //!   grown until it covers the surface (the `spheres_vs_count` experiment, the
 //!   `spheres_vs_morphit` bench);
+//! - `geos_peer` (with the `geos` feature, which needs the system's libgeos): GEOS
+//!   prepared geometry as the same-run peer of 2D HAL point inclusion, its answers in
+//!   HAL's terms (the `hal2_vs_geos` bench and test);
 //! - [`chart`]: SVG charts (plotters) and the CSV written beside each (every experiment);
 //! - [`experiments`]: one private module per experiment, with [`experiments::NAMES`] and
 //!   [`experiments::run`] (the binary), and the voxel k-means sphere baseline
@@ -73,6 +76,8 @@
 pub mod brute;
 pub mod chart;
 pub mod experiments;
+#[cfg(feature = "geos")]
+pub mod geos_peer;
 pub mod methods;
 pub mod peers;
 pub mod query_sets;
