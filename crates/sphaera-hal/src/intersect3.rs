@@ -271,33 +271,48 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
     }
 }
 
+/// The relative growth of every ball of a bounding volume: its radius is grown by
+/// `BALL_SLACK` times (its centre's largest coordinate plus its radius), which bounds the
+/// rounding of the centre (`origin + offset + k·R·n`, see `Circle`) and of the radius
+/// with a wide margin (a few `2⁻⁵³` of those magnitudes, since the origin, the offset and
+/// `k·R` are each within the ball's reach of its centre). The balls' bulges hold the
+/// patch's vertices for the circle as computed (`HalTree3::bound`), so a ball so grown
+/// holds them for the exact one, whatever the coordinates' magnitude: the slack scales
+/// with the coordinates, never absolute.
+pub(crate) const BALL_SLACK: f64 = 1e-12;
+
 /// The two convex regions whose intersection holds the patch of a node with bound `bound`
 /// over the triangle `corners`: its two balls (or half-spaces) for an intersection; the
 /// ball around both, twice, for a union (which is not convex); everything for a
-/// degenerate triangle.
+/// degenerate triangle. Planes pass through a corner (exact input, where the
+/// circumcentre would be rounded); balls are computed relative to that corner and grown
+/// by [`BALL_SLACK`].
 pub(crate) fn bound_regions(bound: &Bound3, corners: [DVec3; 3]) -> [Region; 2] {
-    let Some((center, radius, normal)) = circle(corners) else {
+    let Some(circle) = circle(corners) else {
         return [Region::Everything, Region::Everything];
     };
+    let (origin, radius, normal) = (circle.origin, circle.radius, circle.normal);
     let region = |k: f64| {
         if k == f64::INFINITY {
-            Region::HalfSpace(center, normal)
+            Region::HalfSpace(origin, normal)
         } else if k == f64::NEG_INFINITY {
-            Region::HalfSpace(center, -normal)
+            Region::HalfSpace(origin, -normal)
         } else if k.abs() > FLAT_BULGE {
             // A ball this flat has a radius too large to compare distances with; the
             // half-space just beyond its cap holds it (twice the cap's depth below the
             // plane, `R / (√(1 + k²) + |k|)`).
             let depth = 2.0 * radius / ((1.0 + k * k).sqrt() + k.abs());
             if k > 0.0 {
-                Region::HalfSpace(center - normal * depth, normal)
+                Region::HalfSpace(origin - normal * depth, normal)
             } else {
-                Region::HalfSpace(center + normal * depth, -normal)
+                Region::HalfSpace(origin + normal * depth, -normal)
             }
         } else {
+            let center = origin + (circle.offset + normal * (k * radius));
+            let reach = radius * (1.0 + k * k).sqrt();
             Region::Ball(
-                center + normal * (k * radius),
-                radius * (1.0 + k * k).sqrt(),
+                center,
+                reach + BALL_SLACK * (center.abs().max_element() + reach),
             )
         }
     };
@@ -395,6 +410,50 @@ mod tests {
                 Self::Everything => true,
                 Self::Ball(c, r) => c.distance(x) <= r + slack,
                 Self::HalfSpace(p, n) => (x - p).dot(n) >= -slack,
+            }
+        }
+    }
+
+    /// The same far from the origin and at tiny and huge scales, with a slack relative
+    /// to the coordinates' magnitude only (`1e-12` of it, where the balls grow by
+    /// [`BALL_SLACK`]).
+    #[test]
+    fn volumes_hold_their_patch_faces_at_any_scale_and_offset() {
+        let shapes = [
+            shapes::sphere(1.0, 12).unwrap(),
+            shapes::cube(1.0, 3).unwrap(),
+            shapes::ellipsoid(DVec3::new(2.0, 1.0, 0.5), 10).unwrap(),
+        ];
+        for mesh in &shapes {
+            for (scale, offset) in [
+                (1e-6, 1.0),
+                (1e-6, 0.0),
+                (1e6, 1e12),
+                (1.0, 1e6),
+                (1e-3, -1e3),
+            ] {
+                let mesh = TriMesh::new(
+                    mesh.positions()
+                        .iter()
+                        .map(|&p| p * scale + DVec3::new(offset, -0.7 * offset, 0.3 * offset))
+                        .collect(),
+                    mesh.triangles().to_vec(),
+                )
+                .unwrap();
+                let diagonal = mesh.bounding_box().diagonal();
+                let tree = HalTree3::build(&mesh).unwrap();
+                for node in tree.nodes() {
+                    let v = volume(node, &mesh, &Similarity::IDENTITY);
+                    for &f in &node.faces {
+                        let [a, b, c] =
+                            mesh.triangles()[f as usize].map(|i| mesh.positions()[i as usize]);
+                        for x in [a, b, c, (a + b + c) / 3.0] {
+                            let slack = 1e-12 * (x.abs().max_element() + diagonal);
+                            let held = v.regions.iter().all(|r| r.holds(x, slack));
+                            assert!(held, "{scale}, {offset}: {x} outside {v:?}");
+                        }
+                    }
+                }
             }
         }
     }
