@@ -145,46 +145,33 @@ pub(crate) enum Region {
 }
 
 impl Region {
-    /// The part `[t0, t1]` of `interval` over which the segment `x + t·d` may be in the
-    /// region (conservative by `slack`, a length), or `None` when it certainly is not.
-    pub(crate) fn clip(
+    /// Whether the ray from `x` along axis `AXIS` (toward `+∞` when `POSITIVE`) may meet
+    /// the region grown by `slack` (false only when it certainly does not: conservative,
+    /// so also for the ray moved infinitesimally off `x`).
+    #[inline]
+    pub(crate) fn meets_axis_ray<const AXIS: usize, const POSITIVE: bool>(
         self,
         x: DVec3,
-        d: DVec3,
-        (t0, t1): (f64, f64),
         slack: f64,
-    ) -> Option<(f64, f64)> {
-        let (lo, hi) = match self {
-            Self::Everything => return Some((t0, t1)),
+    ) -> bool {
+        let (u, v) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
+        match self {
+            Self::Everything => true,
             Self::Ball(c, r) => {
-                // |x + t·d − c|² ≤ (r + slack)²: a·t² + 2b·t + e ≤ 0.
-                let (a, f) = (d.length_squared(), x - c);
-                let (b, e) = (d.dot(f), f.length_squared() - (r + slack) * (r + slack));
-                let discriminant = b * b - a * e;
-                if discriminant < 0.0 || a == 0.0 {
-                    return (a == 0.0 && e <= 0.0).then_some((t0, t1));
-                }
-                let root = discriminant.sqrt();
-                ((-b - root) / a, (-b + root) / a)
+                let (du, dv) = (c[u] - x[u], c[v] - x[v]);
+                let reach = r + slack;
+                let ahead = if POSITIVE {
+                    c[AXIS] - x[AXIS]
+                } else {
+                    x[AXIS] - c[AXIS]
+                };
+                du * du + dv * dv <= reach * reach && ahead >= -reach
             }
             Self::HalfSpace(p, n) => {
-                // (x + t·d − p)·n ≥ −slack.
-                let (start, rate) = ((x - p).dot(n) + slack, d.dot(n));
-                if rate == 0.0 {
-                    return (start >= 0.0).then_some((t0, t1));
-                }
-                let t = -start / rate;
-                if rate > 0.0 {
-                    (t, f64::INFINITY)
-                } else {
-                    (f64::NEG_INFINITY, t)
-                }
+                let rate = if POSITIVE { n[AXIS] } else { -n[AXIS] };
+                rate > 0.0 || (x - p).dot(n) >= -slack
             }
-        };
-        // A relative margin on the parameters for their rounding.
-        let margin = 1e-9;
-        let (lo, hi) = (lo.max(t0) - margin, hi.min(t1) + margin);
-        (lo <= hi).then_some((lo.max(t0), hi.min(t1)))
+        }
     }
 
     /// Whether the two regions may meet (false only when certainly apart).

@@ -19,6 +19,7 @@
 use glam::DVec3;
 use sphaera_mesh::{Aabb, TriMesh};
 
+use crate::tree3::FlatNode;
 use crate::{Containment, HalTree3};
 
 fn coord(p: DVec3) -> robust::Coord3D<f64> {
@@ -109,24 +110,42 @@ fn perturbed_sign(d: f64, a: robust::Coord<f64>, b: robust::Coord<f64>) -> i8 {
 /// lies on the closed triangle, else whether the moved ray crosses it (exact; see
 /// [`AxisRay`]).
 pub(crate) fn crossing(t: [DVec3; 3], x: DVec3, ray: AxisRay) -> Result<bool, OnSurface> {
-    let (u, v) = ray.across();
+    match (ray.axis, ray.positive) {
+        (0, true) => crossing_along::<0, true>(&t, x),
+        (0, false) => crossing_along::<0, false>(&t, x),
+        (1, true) => crossing_along::<1, true>(&t, x),
+        (1, false) => crossing_along::<1, false>(&t, x),
+        (_, true) => crossing_along::<2, true>(&t, x),
+        (_, false) => crossing_along::<2, false>(&t, x),
+    }
+}
+
+/// [`crossing`] for the ray along `AXIS`, toward `+∞` when `POSITIVE`.
+#[inline]
+fn crossing_along<const AXIS: usize, const POSITIVE: bool>(
+    t: &[DVec3; 3],
+    x: DVec3,
+) -> Result<bool, OnSurface> {
+    let (u, v) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
     let flat = |p: DVec3| robust::Coord { x: p[u], y: p[v] };
     let [a, b, c] = t.map(flat);
     let q = flat(x);
-    let d = [
-        robust::orient2d(a, b, q),
-        robust::orient2d(b, c, q),
-        robust::orient2d(c, a, q),
-    ];
+    let d0 = robust::orient2d(a, b, q);
+    let d1 = robust::orient2d(b, c, q);
+    // Mixed strict signs: across the ray, `x` is outside the closed projected triangle,
+    // so the (moved) ray misses it and `x` is not on it.
+    if (d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0) {
+        return Ok(false);
+    }
+    let d2 = robust::orient2d(c, a, q);
+    let d = [d0, d1, d2];
     if d.iter().any(|&s| s > 0.0) && d.iter().any(|&s| s < 0.0) {
-        // Across the ray, `x` is outside the closed projected triangle: the (moved) ray
-        // misses it and `x` is not on it.
         return Ok(false);
     }
     let s = [
-        perturbed_sign(d[0], a, b),
-        perturbed_sign(d[1], b, c),
-        perturbed_sign(d[2], c, a),
+        perturbed_sign(d0, a, b),
+        perturbed_sign(d1, b, c),
+        perturbed_sign(d2, c, a),
     ];
     if s[0] != 0 && s[0] == s[1] && s[1] == s[2] {
         // The moved ray passes through the interior of the projection, whose orientation
@@ -139,12 +158,12 @@ pub(crate) fn crossing(t: [DVec3; 3], x: DVec3, ray: AxisRay) -> Result<bool, On
         }
         // robust's orient3d is `−n·(x − t₀)` for `n = (t₁ − t₀) × (t₂ − t₀)`: positive
         // behind the plane as seen along `n`.
-        let facing = (s[0] > 0) == ray.positive;
+        let facing = (s[0] > 0) == POSITIVE;
         return Ok((o > 0.0) == facing);
     }
     // `x` projects onto the projection's boundary (or the projection is flat): it may lie
     // on an edge, or on a face parallel to the ray.
-    if d.contains(&0.0) && on_triangle(t, x) {
+    if d.contains(&0.0) && on_triangle(*t, x) {
         return Err(OnSurface);
     }
     Ok(false)
@@ -205,9 +224,24 @@ pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Containment {
         return Containment::Outside;
     }
     let ray = AxisRay::shortest(&bounds, x);
+    let (u, v) = ray.across();
     let mut inside = false;
     for t in mesh.triangles() {
         let corners = t.map(|v| mesh.positions()[v as usize]);
+        // The ray misses the triangle's box (coordinates compared, exact): it misses the
+        // triangle, and `x` is not on it.
+        let (lo, hi) = (
+            corners[0].min(corners[1]).min(corners[2]),
+            corners[0].max(corners[1]).max(corners[2]),
+        );
+        let behind = if ray.positive {
+            hi[ray.axis] < x[ray.axis]
+        } else {
+            lo[ray.axis] > x[ray.axis]
+        };
+        if behind || x[u] < lo[u] || x[u] > hi[u] || x[v] < lo[v] || x[v] > hi[v] {
+            continue;
+        }
         match crossing(corners, x, ray) {
             Ok(crossed) => inside ^= crossed,
             Err(OnSurface) => return Containment::Boundary,
@@ -224,11 +258,19 @@ impl HalTree3 {
     /// Point inclusion: the crossing parity of an axis-aligned ray from `x` (the one with
     /// the shortest way out of the mesh's bounding box), moved symbolically off every edge
     /// and vertex (Simulation of Simplicity: the parity is exact for every point off the
-    /// surface, with one ray, whatever the mesh), visiting only the patches whose bounding
-    /// box and bounding volume the ray may meet (each node with the part of the ray inside
-    /// its ancestors' volumes, clipped by its own), with exact orientation tests. Points
-    /// exactly on a face are [`Containment::Boundary`] (decided exactly). Equal to
+    /// surface, with one ray, whatever the mesh), with exact orientation tests on the
+    /// faces of the patches whose bounding box and bounding volume the ray may meet.
+    /// Points exactly on a face are [`Containment::Boundary`] (decided exactly). Equal to
     /// [`contains3_brute`] on every input.
+    ///
+    /// # Performance
+    ///
+    /// The nodes are laid out flat, children next to each other, each with its patch's
+    /// bounding box; an axis-aligned ray meets a box when the point lies within the box's
+    /// two ranges across the ray and before its far side along it, five comparisons, so a
+    /// child is pushed only when its box is met, and the paper's volume (two balls or
+    /// half-spaces) is tested when it is popped. The leaves keep their triangles by value.
+    /// No allocation per query (the stack is the thread's).
     ///
     /// The paper's section 5.1 would also replace a patch by its triangle when `x` is
     /// outside the patch's bounding volume. That needs levels that are closed polyhedra
@@ -264,21 +306,30 @@ impl HalTree3 {
             return Containment::Outside;
         }
         let slack = 1e-9 * (bounds.diagonal() + x.abs().max_element());
-        let ray = AxisRay::shortest(&bounds, x);
-        let mut y = x;
-        y[ray.axis] = if ray.positive {
-            bounds.max[ray.axis] + slack
-        } else {
-            bounds.min[ray.axis] - slack
-        };
-        let d = y - x;
-        // Each node is visited with the part of the ray inside all its ancestors'
-        // volumes, clipped further by its own. The stack is the thread's, kept from
-        // query to query (no allocation per query).
+        // The stack is the thread's, kept from query to query (no allocation per query).
         let mut stack = STACK.with(|s| std::mem::take(&mut *s.borrow_mut()));
-        stack.clear();
-        stack.extend(self.roots().iter().map(|&r| (r, (0.0, 1.0))));
-        let answer = self.cross(&mut stack, x, d, ray, slack);
+        let answer = match AxisRay::shortest(&bounds, x) {
+            AxisRay {
+                axis: 0,
+                positive: true,
+            } => self.cross::<0, true>(&mut stack, x, slack),
+            AxisRay {
+                axis: 0,
+                positive: false,
+            } => self.cross::<0, false>(&mut stack, x, slack),
+            AxisRay {
+                axis: 1,
+                positive: true,
+            } => self.cross::<1, true>(&mut stack, x, slack),
+            AxisRay {
+                axis: 1,
+                positive: false,
+            } => self.cross::<1, false>(&mut stack, x, slack),
+            AxisRay { positive: true, .. } => self.cross::<2, true>(&mut stack, x, slack),
+            AxisRay {
+                positive: false, ..
+            } => self.cross::<2, false>(&mut stack, x, slack),
+        };
         STACK.with(|s| *s.borrow_mut() = stack);
         match answer {
             Ok(true) => Containment::Inside,
@@ -287,71 +338,60 @@ impl HalTree3 {
         }
     }
 
-    /// The crossing parity of the moved ray `ray` from `x` (reaching beyond the mesh at
-    /// `x + d`) with the faces under the nodes on `stack`; `Err` when `x` is on a face.
-    fn cross(
+    /// The crossing parity of the moved ray from `x` along `AXIS` (toward `+∞` when
+    /// `POSITIVE`) with the faces whose patches' boxes and volumes it may meet; `Err` when
+    /// `x` is on a face. A child is pushed only when the ray meets its box (closed
+    /// comparisons of coordinates: exact, and conservative for the moved ray); its volume
+    /// is tested when it is popped.
+    fn cross<const AXIS: usize, const POSITIVE: bool>(
         &self,
-        stack: &mut Vec<(u32, (f64, f64))>,
+        stack: &mut Vec<u32>,
         x: DVec3,
-        d: DVec3,
-        ray: AxisRay,
         slack: f64,
     ) -> Result<bool, OnSurface> {
-        let mesh = self.mesh();
-        let positions = mesh.positions();
-        let mut inside = false;
-        while let Some((n, span)) = stack.pop() {
-            let node = &self.nodes()[n as usize];
-            let mut span = clip_to_box(self.node_box(n), x, d, span, slack);
-            for region in self.node_regions(n) {
-                span = span.and_then(|s| region.clip(x, d, s, slack));
-            }
-            let Some(span) = span else { continue };
-            if node.children.is_empty() {
-                for &f in &node.faces {
-                    let t = mesh.triangles()[f as usize].map(|v| positions[v as usize]);
-                    inside ^= crossing(t, x, ray)?;
+        let layout = self.layout();
+        let (nodes, regions, triangles) = (&layout.nodes, &layout.regions, &layout.triangles);
+        let (u, v) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
+        let p = x.to_array();
+        let hits = |n: &FlatNode| {
+            n.lo[u] <= p[u]
+                && p[u] <= n.hi[u]
+                && n.lo[v] <= p[v]
+                && p[v] <= n.hi[v]
+                && if POSITIVE {
+                    p[AXIS] <= n.hi[AXIS]
+                } else {
+                    n.lo[AXIS] <= p[AXIS]
                 }
-            } else {
-                stack.extend(node.children.iter().map(|&c| (c, span)));
+        };
+        stack.clear();
+        stack.extend((0..layout.root_count).filter(|&r| hits(&nodes[r as usize])));
+        let mut inside = false;
+        while let Some(n) = stack.pop() {
+            let node = &nodes[n as usize];
+            if node.count == 0 {
+                inside ^= crossing_along::<AXIS, POSITIVE>(&triangles[node.first as usize], x)?;
+                continue;
+            }
+            let [r0, r1] = regions[n as usize];
+            if !(r0.meets_axis_ray::<AXIS, POSITIVE>(x, slack)
+                && r1.meets_axis_ray::<AXIS, POSITIVE>(x, slack))
+            {
+                continue;
+            }
+            for c in node.first..node.first + node.count {
+                if hits(&nodes[c as usize]) {
+                    stack.push(c);
+                }
             }
         }
         Ok(inside)
     }
 }
 
-/// The part `(t0, t1)` of `span` where `x + t·d` lies in `bounds` grown by `slack`
-/// (the slab method), or `None` when it does not.
-fn clip_to_box(
-    bounds: &Aabb,
-    x: DVec3,
-    d: DVec3,
-    span: (f64, f64),
-    slack: f64,
-) -> Option<(f64, f64)> {
-    let (mut t0, mut t1) = span;
-    for axis in 0..3 {
-        let (lo, hi) = (bounds.min[axis] - slack, bounds.max[axis] + slack);
-        if d[axis] == 0.0 {
-            if x[axis] < lo || x[axis] > hi {
-                return None;
-            }
-            continue;
-        }
-        let (a, b) = ((lo - x[axis]) / d[axis], (hi - x[axis]) / d[axis]);
-        let (enter, exit) = if a <= b { (a, b) } else { (b, a) };
-        t0 = t0.max(enter);
-        t1 = t1.min(exit);
-        if t0 > t1 {
-            return None;
-        }
-    }
-    Some((t0, t1))
-}
-
 thread_local! {
     /// The node stack of [`HalTree3::contains`], one per thread.
-    static STACK: std::cell::RefCell<Vec<(u32, (f64, f64))>> =
+    static STACK: std::cell::RefCell<Vec<u32>> =
         const { std::cell::RefCell::new(Vec::new()) };
 }
 

@@ -184,3 +184,36 @@ proptest! {
         }
     }
 }
+
+/// The shared genus-0 meshes (fandisk is a CAD part: large flat faces, many on
+/// coordinate planes) at points built from their vertices' coordinates, so that axis
+/// rays run through vertices and along edges: vertices, and points taking each
+/// coordinate from a different vertex, against the reference; the rounded midpoints of
+/// edges (on the surface or within a rounding of it, where the winding number cannot
+/// judge) against the brute force.
+#[test]
+fn real_meshes_at_points_aligned_with_their_vertices_are_exact() {
+    let Some(data) = sphaera_tests::data_dir("real_meshes_at_points_aligned_with_their_vertices_are_exact")
+    else {
+        return;
+    };
+    for file in ["fandisk.obj", "spot.obj", "bunny_lowres.obj"] {
+        let mesh = sphaera_io::load(data.join(file)).expect("a shared mesh");
+        let p = mesh.positions();
+        let mut rng = SplitMix64::new(77);
+        let mut points = Vec::new();
+        for _ in 0..80 {
+            let [a, b, c] = [0; 3].map(|_| p[rng.index(p.len())]);
+            points.push(DVec3::new(a.x, b.y, c.z));
+            points.push(a);
+        }
+        let counts = check(file, &mesh, &points);
+        assert!(counts[0] > 0 && counts[1] > 0 && counts[2] > 0, "{file}: {counts:?}");
+        let tree = HalTree3::build(&mesh).expect("genus 0");
+        for t in mesh.triangles().iter().step_by(37) {
+            let [a, b, _] = t.map(|v| p[v as usize]);
+            let x = (a + b) / 2.0;
+            assert_eq!(tree.contains(x), contains3_brute(&mesh, x), "{file}: {x}");
+        }
+    }
+}
