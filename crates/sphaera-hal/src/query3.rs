@@ -16,7 +16,12 @@
 //! the holes with fans, which is right for a picture and gives no inclusion guarantee. So
 //! here the bounding volumes only cull, and the answer is always the exact one.
 
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
 use glam::DVec3;
+use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
+use sphaera_mesh::heap::TotalF64;
 use sphaera_mesh::{Aabb, TriMesh};
 
 use crate::tree3::FlatNode;
@@ -389,10 +394,135 @@ impl HalTree3 {
     }
 }
 
+/// The face of a [`HalTree3`]'s mesh nearest to a point, as [`HalTree3::nearest_face`]
+/// finds it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearestFace {
+    /// The face: an index into the mesh's triangles.
+    pub face: usize,
+    /// The distance from the point to the face.
+    pub distance: f64,
+    /// The point of the face nearest to the point.
+    pub point: DVec3,
+}
+
+impl HalTree3 {
+    /// The face nearest to `x` (the lowest index among equally near ones), its distance
+    /// and its point nearest to `x`: branch and bound over the tree, best first. A node's
+    /// lower bound is the largest of the distances from `x` to its patch's bounding box
+    /// and to each of its two regions (balls or half-spaces: the patch lies in each, so
+    /// in their intersection), less a slack for rounding relative to the coordinates'
+    /// magnitude; a node is dropped once its bound exceeds the nearest distance found.
+    /// Distances to faces are [`closest_point_on_triangle`]'s, so the answer is exactly
+    /// the brute force's minimum of (squared distance, face index) over every face.
+    /// `None` when `x` is not finite.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::HalTree3;
+    /// use sphaera_mesh::{DVec3, shapes};
+    ///
+    /// let tree = HalTree3::build(&shapes::cube(2.0, 2)?)?;
+    /// let nearest = tree.nearest_face(DVec3::new(3.0, 0.25, 0.5)).expect("a finite point");
+    /// assert_eq!(nearest.distance, 2.0);
+    /// assert_eq!(nearest.point, DVec3::new(1.0, 0.25, 0.5));
+    /// // The face lies on the side x = 1.
+    /// let face = tree.mesh().triangles()[nearest.face];
+    /// assert!(face.iter().all(|&v| tree.mesh().positions()[v as usize].x == 1.0));
+    /// assert!(tree.nearest_face(DVec3::NAN).is_none());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// Visits the nodes whose lower bound is below the nearest distance found: few near
+    /// the surface, more far from it, where many patches are nearly as near. No
+    /// allocation per query (the heap is the thread's).
+    #[must_use]
+    pub fn nearest_face(&self, x: DVec3) -> Option<NearestFace> {
+        if !x.is_finite() {
+            return None;
+        }
+        let layout = self.layout();
+        let slack = 1e-9 * (self.bounding_box().diagonal() + x.abs().max_element());
+        // The best so far: squared distance, face, point.
+        let mut best: Option<(f64, u32, DVec3)> = None;
+        let beyond = |best: &Option<(f64, u32, DVec3)>, lower: f64| {
+            lower > 0.0 && best.is_some_and(|(d2, _, _)| lower * lower > d2)
+        };
+        // A node's lower bound, `None` when it cannot beat `best`: the box first, the
+        // volume only when the box does not decide.
+        let bound = |n: u32, best: &Option<(f64, u32, DVec3)>| {
+            let node = &layout.nodes[n as usize];
+            let (lo, hi) = (DVec3::from_array(node.lo), DVec3::from_array(node.hi));
+            let mut lower = x.distance(x.clamp(lo, hi)) - slack;
+            if beyond(best, lower) {
+                return None;
+            }
+            for region in layout.regions[n as usize] {
+                lower = lower.max(region.distance_outside(x) - slack);
+            }
+            (!beyond(best, lower)).then_some(lower.max(0.0))
+        };
+        let mut heap = HEAP.with(|h| std::mem::take(&mut *h.borrow_mut()));
+        heap.clear();
+        // Leaves are measured as soon as their parent is expanded, nodes wait in the heap.
+        let visit = |n: u32, best: &mut Option<(f64, u32, DVec3)>, heap: &mut BinaryHeap<_>| {
+            let node = &layout.nodes[n as usize];
+            if node.count > 0 {
+                if let Some(lower) = bound(n, best) {
+                    heap.push(Reverse((TotalF64(lower), n)));
+                }
+                return;
+            }
+            let slot = node.first as usize;
+            let [a, b, c] = layout.triangles[slot];
+            let face = layout.faces[slot];
+            let (lo, hi) = (DVec3::from_array(node.lo), DVec3::from_array(node.hi));
+            if beyond(best, x.distance(x.clamp(lo, hi)) - slack) {
+                return;
+            }
+            let hit = closest_point_on_triangle(x, &Triangle::new(a, b, c));
+            let better = best.is_none_or(|(d2, f, _)| {
+                hit.distance_squared
+                    .total_cmp(&d2)
+                    .then(face.cmp(&f))
+                    .is_lt()
+            });
+            if better {
+                *best = Some((hit.distance_squared, face, hit.point));
+            }
+        };
+        for r in 0..layout.root_count {
+            visit(r, &mut best, &mut heap);
+        }
+        while let Some(Reverse((TotalF64(lower), n))) = heap.pop() {
+            if beyond(&best, lower) {
+                // Best first: every node left is at least as far.
+                break;
+            }
+            let node = &layout.nodes[n as usize];
+            for c in node.first..node.first + node.count {
+                visit(c, &mut best, &mut heap);
+            }
+        }
+        HEAP.with(|h| *h.borrow_mut() = heap);
+        best.map(|(d2, face, point)| NearestFace {
+            face: face as usize,
+            distance: d2.sqrt(),
+            point,
+        })
+    }
+}
+
 thread_local! {
     /// The node stack of [`HalTree3::contains`], one per thread.
     static STACK: std::cell::RefCell<Vec<u32>> =
         const { std::cell::RefCell::new(Vec::new()) };
+    /// The node heap of [`HalTree3::nearest_face`], one per thread.
+    static HEAP: std::cell::RefCell<BinaryHeap<Reverse<(TotalF64, u32)>>> =
+        const { std::cell::RefCell::new(BinaryHeap::new()) };
 }
 
 #[cfg(test)]

@@ -193,7 +193,8 @@ proptest! {
 /// judge) against the brute force.
 #[test]
 fn real_meshes_at_points_aligned_with_their_vertices_are_exact() {
-    let Some(data) = sphaera_tests::data_dir("real_meshes_at_points_aligned_with_their_vertices_are_exact")
+    let Some(data) =
+        sphaera_tests::data_dir("real_meshes_at_points_aligned_with_their_vertices_are_exact")
     else {
         return;
     };
@@ -208,7 +209,10 @@ fn real_meshes_at_points_aligned_with_their_vertices_are_exact() {
             points.push(a);
         }
         let counts = check(file, &mesh, &points);
-        assert!(counts[0] > 0 && counts[1] > 0 && counts[2] > 0, "{file}: {counts:?}");
+        assert!(
+            counts[0] > 0 && counts[1] > 0 && counts[2] > 0,
+            "{file}: {counts:?}"
+        );
         let tree = HalTree3::build(&mesh).expect("genus 0");
         for t in mesh.triangles().iter().step_by(37) {
             let [a, b, _] = t.map(|v| p[v as usize]);
