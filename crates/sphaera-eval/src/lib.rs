@@ -36,8 +36,9 @@
 //! - [`rapier_shapes`]: meshes scaled to a size of 1 and sphere sets as rapier colliders
 //!   (the `scene_time_vs_error` experiment, the `scene_vs_rapier` bench);
 //! - [`peers`]: peers run as child processes: cascading-upper-bounds in Python (the
-//!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench) and morphit-rs (the
-//!   `spheres_vs_count` experiment, the `spheres_vs_morphit` bench);
+//!   `hausdorff_gap_vs_time` experiment, the `hausdorff` bench), morphit-rs (the
+//!   `spheres_vs_count` experiment, the `spheres_vs_morphit` bench) and libigl's fast
+//!   winding number (the `hal3_vs_parry` bench);
 //! - [`sphere_sets`]: exactly N spheres from Sphaera's one-level tree, and another set
 //!   grown until it covers the surface (the `spheres_vs_count` experiment, the
 //!   `spheres_vs_morphit` bench);

@@ -10,6 +10,10 @@
 //!   and seed 0. The `spheres_vs_morphit` bench and the `spheres_vs_count` experiment
 //!   both go through [`morphit_python`] and [`run_morphit`]. The interpreter is
 //!   `$SPHAERA_MORPHIT_PYTHON`, else `python3`.
+//! - **libigl** (PyPI `libigl` 2.6), the fast winding number of a triangle mesh (Barill et
+//!   al., SIGGRAPH 2018) on one thread, run by `peers/igl_winding.py`: the 3D
+//!   point-inclusion peer of the `hal3_vs_parry` bench, through [`igl_python`] and
+//!   [`run_igl_winding`]. The interpreter is `$SPHAERA_IGL_PYTHON`, else `python3`.
 //!
 //! Install them with
 //!
@@ -18,6 +22,8 @@
 //! SPHAERA_CUB_PYTHON=env/bin/python cargo bench -p sphaera-eval --bench hausdorff
 //! python3 -m venv env && env/bin/pip install morphit-rs==0.2.0 numpy
 //! SPHAERA_MORPHIT_PYTHON=env/bin/python cargo bench -p sphaera-eval --bench spheres_vs_morphit
+//! python3 -m venv env && env/bin/pip install libigl numpy
+//! SPHAERA_IGL_PYTHON=env/bin/python cargo bench -p sphaera-eval --bench hal3_vs_parry
 //! ```
 
 use std::{
@@ -248,4 +254,100 @@ fn parse_morphit(line: &str) -> Result<MorphitRun> {
             .map(|a| a.iter().filter_map(serde_json::Value::as_f64).collect())
             .unwrap_or_default(),
     })
+}
+
+/// One run of libigl's fast winding number, as `peers/igl_winding.py` reports it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IglRun {
+    /// Seconds spent on the queries alone: the call on every point less the call on one
+    /// point (libigl builds its hierarchy in each call, and its Python binding keeps none).
+    pub seconds: f64,
+    /// Seconds of the call on every point (the build included).
+    pub seconds_all: f64,
+    /// Seconds of the call on the first point alone (the build and the call's overhead).
+    pub seconds_one: f64,
+    /// The queries answered in `seconds_all`: the file's points times the repeats.
+    pub points: u64,
+    /// How many of the file's points have a winding number above 1/2.
+    pub inside: u64,
+}
+
+/// The Python interpreter that imports `igl` (PyPI `libigl`), or `None`, said on the
+/// terminal with `who` (the bench or experiment skipping the peer) and how to install it.
+#[must_use]
+pub fn igl_python(who: &str) -> Option<PathBuf> {
+    python_with(who, "SPHAERA_IGL_PYTHON", "igl", "libigl numpy")
+}
+
+/// Writes `points` to `path` for `peers/igl_winding.py`: one point a line, three numbers
+/// printed so that they read back exactly.
+///
+/// # Errors
+///
+/// When the file cannot be written.
+pub fn write_points(path: &Path, points: &[DVec3]) -> Result<()> {
+    let text: String = points
+        .iter()
+        .map(|p| format!("{:?} {:?} {:?}\n", p.x, p.y, p.z))
+        .collect();
+    std::fs::write(path, text).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Runs libigl's fast winding number on one thread on the mesh file `mesh` (OBJ) at the
+/// points of `points` (written by [`write_points`]) repeated `repeats` times, `runs`
+/// times: one [`IglRun`] per run.
+///
+/// # Errors
+///
+/// When the script cannot start, fails (e.g. a file does not load), or prints something
+/// other than one JSON object per run.
+pub fn run_igl_winding(
+    python: &Path,
+    mesh: &Path,
+    points: &Path,
+    repeats: u64,
+    runs: u64,
+) -> Result<Vec<IglRun>> {
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("peers/igl_winding.py");
+    let output = Command::new(python)
+        .arg(&script)
+        .arg(mesh)
+        .arg(points)
+        .arg(repeats.to_string())
+        .arg(runs.to_string())
+        .output()
+        .with_context(|| format!("cannot run {}", script.display()))?;
+    if !output.status.success() {
+        bail!(
+            "igl_winding.py failed on {}: {}",
+            mesh.display(),
+            String::from_utf8_lossy(&output.stderr)
+        );
+    }
+    let mut out = Vec::new();
+    for line in String::from_utf8_lossy(&output.stdout).lines() {
+        let run: serde_json::Value = serde_json::from_str(line)
+            .with_context(|| format!("igl_winding.py printed {line:?}"))?;
+        let number = |k: &str| {
+            run[k]
+                .as_f64()
+                .with_context(|| format!("igl_winding.py printed no {k:?} in {line:?}"))
+        };
+        let count = |k: &str| {
+            run[k]
+                .as_u64()
+                .with_context(|| format!("igl_winding.py printed no {k:?} in {line:?}"))
+        };
+        out.push(IglRun {
+            seconds: number("seconds")?,
+            seconds_all: number("seconds_all")?,
+            seconds_one: number("seconds_one")?,
+            points: count("points")?,
+            inside: count("inside")?,
+        });
+    }
+    if out.len() as u64 != runs {
+        bail!("igl_winding.py reported {} runs of {runs}", out.len());
+    }
+    Ok(out)
 }

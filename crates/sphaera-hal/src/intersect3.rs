@@ -2,6 +2,8 @@
 //! against the other by a similarity, with exact triangle tests at the leaves; and its
 //! brute-force reference.
 
+use std::ops::ControlFlow;
+
 use glam::DVec3;
 use sphaera_mesh::TriMesh;
 use sphaera_mesh::geometry::Similarity;
@@ -64,7 +66,13 @@ fn coplanar_meet(t: [DVec3; 3], u: [DVec3; 3]) -> bool {
             || (d3 == 0.0 && within(r, s, p))
             || (d4 == 0.0 && within(r, s, q))
     };
+    // A point in a triangle of positive area. A flat one (a segment or a point: the edge
+    // `[p, q, q]` of `segment_meets_triangle`) holds nothing its edges do not: every point
+    // on its line would pass the three orientation tests.
     let inside = |t: [robust::Coord<f64>; 3], q: robust::Coord<f64>| {
+        if o(t[0], t[1], t[2]) == 0.0 {
+            return false;
+        }
         let d = [o(t[0], t[1], q), o(t[1], t[2], q), o(t[2], t[0], q)];
         d.iter().all(|&v| v >= 0.0) || d.iter().all(|&v| v <= 0.0)
     };
@@ -145,46 +153,43 @@ pub(crate) enum Region {
 }
 
 impl Region {
-    /// The part `[t0, t1]` of `interval` over which the segment `x + t·d` may be in the
-    /// region (conservative by `slack`, a length), or `None` when it certainly is not.
-    pub(crate) fn clip(
+    /// How far `x` lies outside the region (negative or zero inside it): a lower bound on
+    /// the distance from `x` to anything the region holds.
+    pub(crate) fn distance_outside(self, x: DVec3) -> f64 {
+        match self {
+            Self::Everything => f64::NEG_INFINITY,
+            Self::Ball(c, r) => x.distance(c) - r,
+            Self::HalfSpace(p, n) => -(x - p).dot(n),
+        }
+    }
+
+    /// Whether the ray from `x` along axis `AXIS` (toward `+∞` when `POSITIVE`) may meet
+    /// the region grown by `slack` (false only when it certainly does not: conservative,
+    /// so also for the ray moved infinitesimally off `x`).
+    #[inline]
+    pub(crate) fn meets_axis_ray<const AXIS: usize, const POSITIVE: bool>(
         self,
         x: DVec3,
-        d: DVec3,
-        (t0, t1): (f64, f64),
         slack: f64,
-    ) -> Option<(f64, f64)> {
-        let (lo, hi) = match self {
-            Self::Everything => return Some((t0, t1)),
+    ) -> bool {
+        let (u, v) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
+        match self {
+            Self::Everything => true,
             Self::Ball(c, r) => {
-                // |x + t·d − c|² ≤ (r + slack)²: a·t² + 2b·t + e ≤ 0.
-                let (a, f) = (d.length_squared(), x - c);
-                let (b, e) = (d.dot(f), f.length_squared() - (r + slack) * (r + slack));
-                let discriminant = b * b - a * e;
-                if discriminant < 0.0 || a == 0.0 {
-                    return (a == 0.0 && e <= 0.0).then_some((t0, t1));
-                }
-                let root = discriminant.sqrt();
-                ((-b - root) / a, (-b + root) / a)
+                let (du, dv) = (c[u] - x[u], c[v] - x[v]);
+                let reach = r + slack;
+                let ahead = if POSITIVE {
+                    c[AXIS] - x[AXIS]
+                } else {
+                    x[AXIS] - c[AXIS]
+                };
+                du * du + dv * dv <= reach * reach && ahead >= -reach
             }
             Self::HalfSpace(p, n) => {
-                // (x + t·d − p)·n ≥ −slack.
-                let (start, rate) = ((x - p).dot(n) + slack, d.dot(n));
-                if rate == 0.0 {
-                    return (start >= 0.0).then_some((t0, t1));
-                }
-                let t = -start / rate;
-                if rate > 0.0 {
-                    (t, f64::INFINITY)
-                } else {
-                    (f64::NEG_INFINITY, t)
-                }
+                let rate = if POSITIVE { n[AXIS] } else { -n[AXIS] };
+                rate > 0.0 || (x - p).dot(n) >= -slack
             }
-        };
-        // A relative margin on the parameters for their rounding.
-        let margin = 1e-9;
-        let (lo, hi) = (lo.max(t0) - margin, hi.min(t1) + margin);
-        (lo <= hi).then_some((lo.max(t0), hi.min(t1)))
+        }
     }
 
     /// Whether the two regions may meet (false only when certainly apart).
@@ -271,33 +276,48 @@ fn volume(node: &Node3, mesh: &TriMesh, map: &Similarity) -> Volume {
     }
 }
 
+/// The relative growth of every ball of a bounding volume: its radius is grown by
+/// `BALL_SLACK` times (its centre's largest coordinate plus its radius), which bounds the
+/// rounding of the centre (`origin + offset + k·R·n`, see `Circle`) and of the radius
+/// with a wide margin (a few `2⁻⁵³` of those magnitudes, since the origin, the offset and
+/// `k·R` are each within the ball's reach of its centre). The balls' bulges hold the
+/// patch's vertices for the circle as computed (`HalTree3::bound`), so a ball so grown
+/// holds them for the exact one, whatever the coordinates' magnitude: the slack scales
+/// with the coordinates, never absolute.
+pub(crate) const BALL_SLACK: f64 = 1e-12;
+
 /// The two convex regions whose intersection holds the patch of a node with bound `bound`
 /// over the triangle `corners`: its two balls (or half-spaces) for an intersection; the
 /// ball around both, twice, for a union (which is not convex); everything for a
-/// degenerate triangle.
+/// degenerate triangle. Planes pass through a corner (exact input, where the
+/// circumcentre would be rounded); balls are computed relative to that corner and grown
+/// by [`BALL_SLACK`].
 pub(crate) fn bound_regions(bound: &Bound3, corners: [DVec3; 3]) -> [Region; 2] {
-    let Some((center, radius, normal)) = circle(corners) else {
+    let Some(circle) = circle(corners) else {
         return [Region::Everything, Region::Everything];
     };
+    let (origin, radius, normal) = (circle.origin, circle.radius, circle.normal);
     let region = |k: f64| {
         if k == f64::INFINITY {
-            Region::HalfSpace(center, normal)
+            Region::HalfSpace(origin, normal)
         } else if k == f64::NEG_INFINITY {
-            Region::HalfSpace(center, -normal)
+            Region::HalfSpace(origin, -normal)
         } else if k.abs() > FLAT_BULGE {
             // A ball this flat has a radius too large to compare distances with; the
             // half-space just beyond its cap holds it (twice the cap's depth below the
             // plane, `R / (√(1 + k²) + |k|)`).
             let depth = 2.0 * radius / ((1.0 + k * k).sqrt() + k.abs());
             if k > 0.0 {
-                Region::HalfSpace(center - normal * depth, normal)
+                Region::HalfSpace(origin - normal * depth, normal)
             } else {
-                Region::HalfSpace(center + normal * depth, -normal)
+                Region::HalfSpace(origin + normal * depth, -normal)
             }
         } else {
+            let center = origin + (circle.offset + normal * (k * radius));
+            let reach = radius * (1.0 + k * k).sqrt();
             Region::Ball(
-                center + normal * (k * radius),
-                radius * (1.0 + k * k).sqrt(),
+                center,
+                reach + BALL_SLACK * (center.abs().max_element() + reach),
             )
         }
     };
@@ -313,15 +333,116 @@ pub(crate) fn bound_regions(bound: &Bound3, corners: [DVec3; 3]) -> [Region; 2] 
 impl HalTree3 {
     /// Intersection detection (section 5.2) with `other` placed by `placement` (mapping
     /// `other`'s coordinates into this tree's): pairs of nodes whose bounding volumes may
-    /// meet (a union bound taken as the ball around its two balls, see below) are refined, the wider first, down to pairs of original faces tested exactly;
-    /// when the surfaces are apart, the solids still intersect if one holds a vertex of the
-    /// other. Equal to [`intersects3_brute`] on `other`'s mesh mapped by `placement`.
+    /// meet (a union bound taken as the ball around its two balls, see below) are
+    /// refined, the wider first, down to pairs of original faces tested exactly; when the
+    /// surfaces are apart, the solids still intersect if one holds a vertex of the other.
+    /// Equal to [`intersects3_brute`] on `other`'s mesh mapped by `placement`.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::HalTree3;
+    /// use sphaera_mesh::geometry::Similarity;
+    /// use sphaera_mesh::{DVec3, shapes};
+    ///
+    /// let ball = HalTree3::build(&shapes::sphere(1.0, 12)?)?;
+    /// let near = Similarity::from_translation(DVec3::new(1.5, 0.0, 0.0))?;
+    /// let far = Similarity::from_translation(DVec3::new(3.0, 0.0, 0.0))?;
+    /// assert!(ball.intersects(&ball, &near));
+    /// assert!(!ball.intersects(&ball, &far));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     #[must_use]
     pub fn intersects(&self, other: &Self, placement: &Similarity) -> bool {
+        let Some(slack) = self.placed_slack(other, placement) else {
+            // Balls apart: neither the surfaces meet nor does one solid hold the other.
+            return false;
+        };
+        if self
+            .meeting_faces(other, placement, slack, |_, _| ControlFlow::Break(()))
+            .is_break()
+        {
+            return true;
+        }
         let (mine, theirs) = (self.mesh(), other.mesh());
-        let identity = Similarity::IDENTITY;
-        // At least the largest coordinate of each placed mesh, in constant time: its root
-        // ball holds it.
+        // Surfaces apart: one solid inside the other? (A tree's mesh was checked closed,
+        // so it has a triangle.)
+        let first = mine.positions()[mine.triangles()[0][0] as usize];
+        let second = placement.point(theirs.positions()[theirs.triangles()[0][0] as usize]);
+        if self.contains(second) != Containment::Outside {
+            return true;
+        }
+        let back = Similarity::new(placement.affine().inverse())
+            .map_or(first, |inverse| inverse.point(first));
+        other.contains(back) != Containment::Outside
+    }
+
+    /// Every pair of faces that meet, this tree's face first and `other`'s (placed by
+    /// `placement`) second, ascending: the pair traversal of [`HalTree3::intersects`]
+    /// carried to the end instead of stopping at the first pair (the paper's section 5.2,
+    /// "the iteration must be continued until all intersecting boundary faces are
+    /// found"), each pair tested exactly by [`triangles_meet`] on `other`'s corners mapped
+    /// by `placement`. Only the surfaces: a solid inside the other without touching it
+    /// gives no pair (where [`HalTree3::intersects`] says true).
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::{HalTree3, triangles_meet};
+    /// use sphaera_mesh::geometry::Similarity;
+    /// use sphaera_mesh::{DVec3, TriMesh};
+    ///
+    /// let tetrahedron = TriMesh::new(
+    ///     vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z],
+    ///     vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    /// )?;
+    /// let tree = HalTree3::build(&tetrahedron)?;
+    /// // A copy moved so that its corner 0 lies inside the first one's bottom face 0.
+    /// let shift = DVec3::new(0.25, 0.25, 0.0);
+    /// let pairs = tree.intersecting_faces(&tree, &Similarity::from_translation(shift)?);
+    /// // Every pair of faces that meet, as testing all pairs finds them.
+    /// let corners = |t: [u32; 3], by: DVec3| t.map(|v| tetrahedron.positions()[v as usize] + by);
+    /// let mut all = Vec::new();
+    /// for (i, &t) in tetrahedron.triangles().iter().enumerate() {
+    ///     for (j, &u) in tetrahedron.triangles().iter().enumerate() {
+    ///         if triangles_meet(corners(t, DVec3::ZERO), corners(u, shift)) {
+    ///             all.push((i, j));
+    ///         }
+    ///     }
+    /// }
+    /// assert_eq!(pairs, all);
+    /// // The two bottoms overlap in their plane; the copy's faces at its corner 0 touch the
+    /// // first one's bottom there.
+    /// assert!(pairs.contains(&(0, 0)) && pairs.contains(&(0, 1)) && pairs.contains(&(0, 2)));
+    /// let apart = Similarity::from_translation(DVec3::new(3.0, 0.0, 0.0))?;
+    /// assert!(tree.intersecting_faces(&tree, &apart).is_empty());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// As [`HalTree3::intersects`] when the surfaces meet nowhere; otherwise every pair of
+    /// nodes whose volumes may meet is refined down to its faces, so the cost grows with
+    /// the length of the intersection curve.
+    #[must_use]
+    pub fn intersecting_faces(&self, other: &Self, placement: &Similarity) -> Vec<(usize, usize)> {
+        let Some(slack) = self.placed_slack(other, placement) else {
+            return Vec::new();
+        };
+        let mut pairs = Vec::new();
+        let _ = self.meeting_faces(other, placement, slack, |a, b| {
+            pairs.push((a as usize, b as usize));
+            ControlFlow::Continue(())
+        });
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    /// The slack of placed comparisons (relative to both placed meshes' largest
+    /// coordinates, from their root balls in constant time), or `None` when the root balls
+    /// are apart.
+    fn placed_slack(&self, other: &Self, placement: &Similarity) -> Option<f64> {
         let (a, b) = (self.root_ball(), other.root_ball());
         let (ca, cb, rb) = (
             a.center,
@@ -330,10 +451,21 @@ impl HalTree3 {
         );
         let reach = |c: DVec3, r: f64| (c.abs().max_element() + r) * (1.0 + 1e-12);
         let slack = 1e-9 * (reach(ca, a.radius) + reach(cb, rb)).max(f64::MIN_POSITIVE);
-        // Balls apart: neither the surfaces meet nor does one solid hold the other.
-        if ca.distance(cb) > a.radius + rb + slack {
-            return false;
-        }
+        (ca.distance(cb) <= a.radius + rb + slack).then_some(slack)
+    }
+
+    /// The pair traversal: pairs of nodes whose volumes may meet are refined, the wider
+    /// first, down to pairs of faces; `meet` is called with each pair of faces that meet
+    /// (this tree's, `other`'s), and the traversal stops when it breaks.
+    fn meeting_faces(
+        &self,
+        other: &Self,
+        placement: &Similarity,
+        slack: f64,
+        mut meet: impl FnMut(u32, u32) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
+        let (mine, theirs) = (self.mesh(), other.mesh());
+        let identity = Similarity::IDENTITY;
         let mut stack: Vec<(u32, u32)> = Vec::new();
         for &a in self.roots() {
             for &b in other.roots() {
@@ -355,7 +487,7 @@ impl HalTree3 {
                             let t =
                                 mine.triangles()[g as usize].map(|v| mine.positions()[v as usize]);
                             if triangles_meet(t, u) {
-                                return true;
+                                meet(g, f)?;
                             }
                         }
                     }
@@ -371,16 +503,7 @@ impl HalTree3 {
                 }
             }
         }
-        // Surfaces apart: one solid inside the other? (A tree's mesh was checked closed,
-        // so it has a triangle.)
-        let first = mine.positions()[mine.triangles()[0][0] as usize];
-        let second = placement.point(theirs.positions()[theirs.triangles()[0][0] as usize]);
-        if self.contains(second) != Containment::Outside {
-            return true;
-        }
-        let back = Similarity::new(placement.affine().inverse())
-            .map_or(first, |inverse| inverse.point(first));
-        other.contains(back) != Containment::Outside
+        ControlFlow::Continue(())
     }
 }
 
@@ -397,6 +520,71 @@ mod tests {
                 Self::HalfSpace(p, n) => (x - p).dot(n) >= -slack,
             }
         }
+    }
+
+    /// The same far from the origin and at tiny and huge scales, with a slack relative
+    /// to the coordinates' magnitude only (`1e-12` of it, where the balls grow by
+    /// [`BALL_SLACK`]).
+    #[test]
+    fn volumes_hold_their_patch_faces_at_any_scale_and_offset() {
+        let shapes = [
+            shapes::sphere(1.0, 12).unwrap(),
+            shapes::cube(1.0, 3).unwrap(),
+            shapes::ellipsoid(DVec3::new(2.0, 1.0, 0.5), 10).unwrap(),
+        ];
+        for mesh in &shapes {
+            for (scale, offset) in [
+                (1e-6, 1.0),
+                (1e-6, 0.0),
+                (1e6, 1e12),
+                (1.0, 1e6),
+                (1e-3, -1e3),
+            ] {
+                let mesh = TriMesh::new(
+                    mesh.positions()
+                        .iter()
+                        .map(|&p| p * scale + DVec3::new(offset, -0.7 * offset, 0.3 * offset))
+                        .collect(),
+                    mesh.triangles().to_vec(),
+                )
+                .unwrap();
+                let diagonal = mesh.bounding_box().diagonal();
+                let tree = HalTree3::build(&mesh).unwrap();
+                for node in tree.nodes() {
+                    let v = volume(node, &mesh, &Similarity::IDENTITY);
+                    for &f in &node.faces {
+                        let [a, b, c] =
+                            mesh.triangles()[f as usize].map(|i| mesh.positions()[i as usize]);
+                        for x in [a, b, c, (a + b + c) / 3.0] {
+                            let slack = 1e-12 * (x.abs().max_element() + diagonal);
+                            let held = v.regions.iter().all(|r| r.holds(x, slack));
+                            assert!(held, "{scale}, {offset}: {x} outside {v:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Regression: an edge of one triangle lying in the other's plane, on the line of one
+    /// of its sides but far from it, was taken as meeting it (the edge, as a flat
+    /// triangle, "held" every point of its line).
+    #[test]
+    fn an_edge_on_the_line_of_a_far_side_does_not_meet() {
+        let t = [
+            DVec3::new(-1.0, -1.0, -1.0),
+            DVec3::new(-1.0, 0.0, -1.0),
+            DVec3::new(0.0, 0.0, -1.0),
+        ];
+        let u = [
+            DVec3::new(1.0, -1.0, -1.0),
+            DVec3::new(2.0, -1.0, -1.0),
+            DVec3::new(2.0, -1.0, 0.0),
+        ];
+        assert!(!triangles_meet(t, u) && !triangles_meet(u, t));
+        // Moved to touch the side's end, it meets.
+        let touching = u.map(|p| p - DVec3::X * 2.0);
+        assert!(triangles_meet(t, touching) && triangles_meet(touching, t));
     }
 
     /// Every point of every face of a patch lies in the node's volume as the

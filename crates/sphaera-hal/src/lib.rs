@@ -145,7 +145,7 @@ pub use query2::{
 /// file, is the workspace's only `Location`).
 #[deprecated(since = "0.2.0", note = "renamed `Containment`")]
 pub type Location = Containment;
-pub use query3::contains3_brute;
+pub use query3::{NearestFace, contains3_brute};
 pub use surface3::{GenusZeroSurface, RootBall};
 pub use svg::approximation_svg;
 pub use tree2::{Approximation, Chain, HalTree2, LevelSummary, Node2};

@@ -1,6 +1,7 @@
-//! Point inclusion for 3D HAL trees: the crossing number of a segment from the point to
-//! beyond the root ball, counting only the faces of patches whose bounding volume the
-//! segment may meet, with exact predicates; and its brute-force reference.
+//! Point inclusion for 3D HAL trees: the crossing parity of an axis-aligned ray from the
+//! point, moved symbolically off every edge and vertex, counting only the faces of patches
+//! whose bounding box and volume the ray may meet, with exact predicates; and its
+//! brute-force reference.
 //!
 //! The paper's section 5.1 goes further: it replaces a patch by its approximating
 //! triangle when the point is outside the patch's bounding volume. That is exact only
@@ -15,20 +16,16 @@
 //! the holes with fans, which is right for a picture and gives no inclusion guarantee. So
 //! here the bounding volumes only cull, and the answer is always the exact one.
 
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
 use glam::DVec3;
+use sphaera_mesh::geometry::{Triangle, closest_point_on_triangle};
+use sphaera_mesh::heap::TotalF64;
 use sphaera_mesh::{Aabb, TriMesh};
 
+use crate::tree3::FlatNode;
 use crate::{Containment, HalTree3};
-
-/// Directions (and their opposites) tried from the shortest way out of the bounding box:
-/// a segment through an edge or a vertex (a zero orientation) is shot again along the
-/// next. Irrational-looking, far from the axes.
-const DIRECTIONS: [[f64; 3]; 4] = [
-    [0.573_849_2, 0.618_033_9, 0.537_617_1],
-    [-0.414_213_6, 0.732_050_8, 0.541_381_3],
-    [0.300_000_7, -0.812_403_8, 0.500_057_3],
-    [-0.661_043_2, -0.329_513_7, -0.674_020_9],
-];
 
 fn coord(p: DVec3) -> robust::Coord3D<f64> {
     robust::Coord3D {
@@ -38,105 +35,169 @@ fn coord(p: DVec3) -> robust::Coord3D<f64> {
     }
 }
 
-/// What one triangle says about the segment `x → y` (`y` far outside the mesh):
-/// `Err(true)` when `x` lies on it, `Err(false)` when the segment passes through an edge,
-/// a vertex or along the plane (shoot again), else whether it crosses the interior.
-fn crossing(t: [DVec3; 3], x: DVec3, y: DVec3) -> Result<bool, bool> {
-    // The boxes of the segment and the triangle apart (coordinates compared, no
-    // arithmetic, so exact): the segment misses the triangle and its edges, and `x` is not
-    // on it.
-    let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
-    if x.min(y).cmpgt(hi).any() || x.max(y).cmplt(lo).any() {
-        return Ok(false);
-    }
-    let [a, b, c] = t.map(coord);
-    let (cx, cy) = (coord(x), coord(y));
-    let sx = robust::orient3d(a, b, c, cx);
-    let sy = robust::orient3d(a, b, c, cy);
-    if sx == 0.0 {
-        if on_triangle(t, x) {
-            return Err(true);
-        }
-        // Starting in the plane off the triangle: along the plane is degenerate, leaving
-        // it misses.
-        return if sy == 0.0 { Err(false) } else { Ok(false) };
-    }
-    // Ending in the plane (far from the triangle), or staying on one side: no crossing.
-    if sy == 0.0 || (sx > 0.0) == (sy > 0.0) {
-        return Ok(false);
-    }
-    let e = [
-        robust::orient3d(cx, cy, a, b),
-        robust::orient3d(cx, cy, b, c),
-        robust::orient3d(cx, cy, c, a),
-    ];
-    let positive = e.iter().all(|&v| v >= 0.0);
-    let negative = e.iter().all(|&v| v <= 0.0);
-    if !(positive || negative) {
-        return Ok(false);
-    }
-    if e.contains(&0.0) {
-        // Through an edge or a vertex.
-        return Err(false);
-    }
-    Ok(true)
+/// The ray of a query: from the point along coordinate axis `axis` (0, 1, 2 for x, y, z),
+/// toward `+∞` when `positive`, else toward `−∞`.
+///
+/// The point is moved symbolically (Simulation of Simplicity) by `(ε, ε²)` along the next
+/// two axes in cyclic order, `u = axis + 1` and `v = axis + 2` (mod 3), for an infinitely
+/// small `ε > 0`: the moved ray is parallel to no face it could cross and passes through
+/// no edge and no vertex, so its crossing parity is the answer for every point off the
+/// surface, whatever the mesh (lattice-aligned CAD parts included). Only signs of exact
+/// determinants and comparisons of coordinates decide it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct AxisRay {
+    pub(crate) axis: usize,
+    pub(crate) positive: bool,
 }
 
-/// Whether `x`, in the plane of `t`, lies on the triangle (exact, in the projection that
-/// drops the normal's largest axis).
-fn on_triangle(t: [DVec3; 3], x: DVec3) -> bool {
-    let normal = (t[1] - t[0]).cross(t[2] - t[0]).abs();
-    let drop = if normal.x >= normal.y && normal.x >= normal.z {
-        0
-    } else if normal.y >= normal.z {
-        1
-    } else {
-        2
+impl AxisRay {
+    /// The axis-aligned ray from `x` (inside the closed box `bounds`) with the shortest way
+    /// out of the box (the lowest axis, then `+`, on ties): the tree and the brute force
+    /// shoot the same one.
+    pub(crate) fn shortest(bounds: &Aabb, x: DVec3) -> Self {
+        let mut best = (
+            f64::INFINITY,
+            Self {
+                axis: 0,
+                positive: true,
+            },
+        );
+        for axis in 0..3 {
+            for positive in [true, false] {
+                let way = if positive {
+                    bounds.max[axis] - x[axis]
+                } else {
+                    x[axis] - bounds.min[axis]
+                };
+                if way < best.0 {
+                    best = (way, Self { axis, positive });
+                }
+            }
+        }
+        best.1
+    }
+
+    /// The two axes across the ray, `(axis + 1, axis + 2)` mod 3 (the projection plane,
+    /// oriented so that its orientation is the normal's component along the ray's axis).
+    pub(crate) fn across(self) -> (usize, usize) {
+        ((self.axis + 1) % 3, (self.axis + 2) % 3)
+    }
+}
+
+/// The point of a query lies on the surface (on a closed face).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct OnSurface;
+
+/// The sign of `orient2d(a, b, q)` for the query point `q` moved to `q + (ε, ε²)`: the
+/// exact sign when it is not zero, else the sign of the perturbation's first non-zero
+/// term (`a.y − b.y` for `ε`, `b.x − a.x` for `ε²`; the determinant is linear in `q`).
+/// Zero only for an edge that projects to a point (parallel to the ray).
+fn perturbed_sign(d: f64, a: robust::Coord<f64>, b: robust::Coord<f64>) -> i8 {
+    let sign = |v: f64| {
+        if v > 0.0 {
+            1
+        } else if v < 0.0 {
+            -1
+        } else {
+            0
+        }
     };
-    let flat = |p: DVec3| {
-        let (u, v) = match drop {
-            0 => (p.y, p.z),
-            1 => (p.z, p.x),
-            _ => (p.x, p.y),
-        };
-        robust::Coord { x: u, y: v }
-    };
+    match sign(d) {
+        0 => match sign(a.y - b.y) {
+            0 => sign(b.x - a.x),
+            s => s,
+        },
+        s => s,
+    }
+}
+
+/// What triangle `t` says about the symbolically moved ray `ray` from `x`: `Err` when `x`
+/// lies on the closed triangle, else whether the moved ray crosses it (exact; see
+/// [`AxisRay`]).
+pub(crate) fn crossing(t: [DVec3; 3], x: DVec3, ray: AxisRay) -> Result<bool, OnSurface> {
+    match (ray.axis, ray.positive) {
+        (0, true) => crossing_along::<0, true>(&t, x),
+        (0, false) => crossing_along::<0, false>(&t, x),
+        (1, true) => crossing_along::<1, true>(&t, x),
+        (1, false) => crossing_along::<1, false>(&t, x),
+        (_, true) => crossing_along::<2, true>(&t, x),
+        (_, false) => crossing_along::<2, false>(&t, x),
+    }
+}
+
+/// [`crossing`] for the ray along `AXIS`, toward `+∞` when `POSITIVE`.
+#[inline]
+fn crossing_along<const AXIS: usize, const POSITIVE: bool>(
+    t: &[DVec3; 3],
+    x: DVec3,
+) -> Result<bool, OnSurface> {
+    let (u, v) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
+    let flat = |p: DVec3| robust::Coord { x: p[u], y: p[v] };
     let [a, b, c] = t.map(flat);
     let q = flat(x);
-    let (d1, d2, d3) = (
-        robust::orient2d(a, b, q),
-        robust::orient2d(b, c, q),
-        robust::orient2d(c, a, q),
-    );
-    (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0)
+    let d0 = robust::orient2d(a, b, q);
+    let d1 = robust::orient2d(b, c, q);
+    // Mixed strict signs: across the ray, `x` is outside the closed projected triangle,
+    // so the (moved) ray misses it and `x` is not on it.
+    if (d0 > 0.0 && d1 < 0.0) || (d0 < 0.0 && d1 > 0.0) {
+        return Ok(false);
+    }
+    let d2 = robust::orient2d(c, a, q);
+    let d = [d0, d1, d2];
+    if d.iter().any(|&s| s > 0.0) && d.iter().any(|&s| s < 0.0) {
+        return Ok(false);
+    }
+    let s = [
+        perturbed_sign(d0, a, b),
+        perturbed_sign(d1, b, c),
+        perturbed_sign(d2, c, a),
+    ];
+    if s[0] != 0 && s[0] == s[1] && s[1] == s[2] {
+        // The moved ray passes through the interior of the projection, whose orientation
+        // (the normal's component along the ray, `s[0]`) is then not zero: it crosses the
+        // plane ahead of `x` when `x` is on the side the ray leaves. On the plane, `x` is
+        // on the triangle (the projection is one-to-one on the plane).
+        let o = robust::orient3d(coord(t[0]), coord(t[1]), coord(t[2]), coord(x));
+        if o == 0.0 {
+            return Err(OnSurface);
+        }
+        // robust's orient3d is `−n·(x − t₀)` for `n = (t₁ − t₀) × (t₂ − t₀)`: positive
+        // behind the plane as seen along `n`.
+        let facing = (s[0] > 0) == POSITIVE;
+        return Ok((o > 0.0) == facing);
+    }
+    // `x` projects onto the projection's boundary (or the projection is flat): it may lie
+    // on an edge, or on a face parallel to the ray.
+    if d.contains(&0.0) && on_triangle(*t, x) {
+        return Err(OnSurface);
+    }
+    Ok(false)
 }
 
-/// The far ends of the segments shot from `x`, a point in the closed box `bounds` (the
-/// mesh's bounding box): along each of the eight directions ([`DIRECTIONS`] and their
-/// opposites), just beyond where the direction leaves the box, the shortest first (the
-/// lowest index on ties). The tree and the brute force shoot the same segments.
-fn far_ends(bounds: &Aabb, x: DVec3) -> [DVec3; 8] {
-    let margin = 1e-9 * bounds.diagonal();
-    let mut ends: [(f64, usize, DVec3); 8] = [(0.0, 0, DVec3::ZERO); 8];
-    for (i, slot) in ends.iter_mut().enumerate() {
-        let sign = if i < 4 { 1.0 } else { -1.0 };
-        let d = DVec3::from_array(DIRECTIONS[i % 4]) * sign;
-        let exit = (0..3)
-            .filter(|&axis| d[axis] != 0.0)
-            .map(|axis| {
-                let wall = if d[axis] > 0.0 {
-                    bounds.max[axis]
-                } else {
-                    bounds.min[axis]
-                };
-                ((wall - x[axis]) / d[axis]).max(0.0)
-            })
-            .fold(f64::INFINITY, f64::min);
-        let reach = exit * (1.0 + 1e-6) + margin;
-        *slot = (reach, i, x + d * reach);
+/// Whether `x` lies on the closed triangle `t`, exactly: on its plane, within its
+/// bounding box, and inside it in each of the three coordinate projections (on the plane,
+/// the projection along the normal's largest axis is one-to-one; for a degenerate
+/// triangle, the three together place `x` on its segment).
+pub(crate) fn on_triangle(t: [DVec3; 3], x: DVec3) -> bool {
+    let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+    if x.cmplt(lo).any() || x.cmpgt(hi).any() {
+        return false;
     }
-    ends.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    ends.map(|(_, _, y)| y)
+    if robust::orient3d(coord(t[0]), coord(t[1]), coord(t[2]), coord(x)) != 0.0 {
+        return false;
+    }
+    (0..3).all(|axis| {
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        let flat = |p: DVec3| robust::Coord { x: p[u], y: p[v] };
+        let [a, b, c] = t.map(flat);
+        let q = flat(x);
+        let d = [
+            robust::orient2d(a, b, q),
+            robust::orient2d(b, c, q),
+            robust::orient2d(c, a, q),
+        ];
+        !(d.iter().any(|&s| s > 0.0) && d.iter().any(|&s| s < 0.0))
+    })
 }
 
 /// Whether `x` lies outside the closed box (so outside the mesh it bounds).
@@ -145,39 +206,76 @@ fn outside_box(bounds: &Aabb, x: DVec3) -> bool {
 }
 
 /// The crossing-number answer over every face: the reference for [`HalTree3::contains`]
-/// (the same segments and exact predicates). `mesh` must be closed.
+/// (the same ray and exact predicates, so exact on every input). `mesh` must be closed.
+///
+/// # Examples
+///
+/// ```
+/// use sphaera_hal::{Containment, contains3_brute};
+/// use sphaera_mesh::{DVec3, shapes};
+///
+/// let cube = shapes::cube(2.0, 1)?;
+/// // From the centre every axis-aligned ray runs into an edge (a face's diagonal): still
+/// // exact.
+/// assert_eq!(contains3_brute(&cube, DVec3::ZERO), Containment::Inside);
+/// assert_eq!(contains3_brute(&cube, DVec3::new(1.0, 0.0, 0.0)), Containment::Boundary);
+/// assert_eq!(contains3_brute(&cube, DVec3::splat(1.5)), Containment::Outside);
+/// # Ok::<(), sphaera_mesh::MeshError>(())
+/// ```
 #[must_use]
 pub fn contains3_brute(mesh: &TriMesh, x: DVec3) -> Containment {
     let bounds = mesh.bounding_box();
     if outside_box(&bounds, x) {
         return Containment::Outside;
     }
-    'directions: for y in far_ends(&bounds, x) {
-        let mut inside = false;
-        for t in mesh.triangles() {
-            let corners = t.map(|v| mesh.positions()[v as usize]);
-            match crossing(corners, x, y) {
-                Ok(crossed) => inside ^= crossed,
-                Err(true) => return Containment::Boundary,
-                Err(false) => continue 'directions,
-            }
-        }
-        return if inside {
-            Containment::Inside
+    let ray = AxisRay::shortest(&bounds, x);
+    let (u, v) = ray.across();
+    let mut inside = false;
+    for t in mesh.triangles() {
+        let corners = t.map(|v| mesh.positions()[v as usize]);
+        // The ray misses the triangle's box (coordinates compared, exact): it misses the
+        // triangle, and `x` is not on it.
+        let (lo, hi) = (
+            corners[0].min(corners[1]).min(corners[2]),
+            corners[0].max(corners[1]).max(corners[2]),
+        );
+        let behind = if ray.positive {
+            hi[ray.axis] < x[ray.axis]
         } else {
-            Containment::Outside
+            lo[ray.axis] > x[ray.axis]
         };
+        if behind || x[u] < lo[u] || x[u] > hi[u] || x[v] < lo[v] || x[v] > hi[v] {
+            continue;
+        }
+        match crossing(corners, x, ray) {
+            Ok(crossed) => inside ^= crossed,
+            Err(OnSurface) => return Containment::Boundary,
+        }
     }
-    Containment::Boundary
+    if inside {
+        Containment::Inside
+    } else {
+        Containment::Outside
+    }
 }
 
 impl HalTree3 {
-    /// Point inclusion: the crossing number of the shortest of eight fixed segments from
-    /// `x` out of the mesh's bounding box, visiting only the patches whose bounding volume the segment may meet (each node
-    /// with the part of the segment inside its ancestors' volumes, clipped by its own), with exact
-    /// orientation tests; a segment through an edge or a vertex is shot again along
-    /// another direction. Equal to [`contains3_brute`] on every input. Points exactly on a
-    /// face are [`Containment::Boundary`].
+    /// Point inclusion: the crossing parity of an axis-aligned ray from `x` (the one with
+    /// the shortest way out of the mesh's bounding box), moved symbolically off every edge
+    /// and vertex (Simulation of Simplicity: the parity is exact for every point off the
+    /// surface, with one ray, whatever the mesh), with exact orientation tests on the
+    /// faces of the patches whose bounding box and bounding volume the ray may meet.
+    /// Points exactly on a face are [`Containment::Boundary`] (decided exactly). Equal to
+    /// [`contains3_brute`] on every input.
+    ///
+    /// # Performance
+    ///
+    /// The nodes are laid out flat, children next to each other, each with its patch's
+    /// bounding box; an axis-aligned ray meets a box when the point lies within the box's
+    /// two ranges across the ray and before its far side along it, five comparisons, so a
+    /// child is pushed only when its box is met, and the paper's volume (two balls or
+    /// half-spaces) is tested when it is popped. The leaves keep their triangles by value.
+    /// No allocation per query (the stack is the thread's).
     ///
     /// The paper's section 5.1 would also replace a patch by its triangle when `x` is
     /// outside the patch's bounding volume. That needs levels that are closed polyhedra
@@ -187,6 +285,20 @@ impl HalTree3 {
     /// folds, a coarse level has more triangles than the mesh, and some folds never
     /// resolve; see the section *HAL trees (`sphaera-hal`, issue 17)* of
     /// `docs/benchmarks.md` in the repository), so the bounds only cull here.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::{Containment, HalTree3};
+    /// use sphaera_mesh::{DVec3, shapes};
+    ///
+    /// let tree = HalTree3::build(&shapes::cube(2.0, 2)?)?;
+    /// // Every axis-aligned ray from the centre runs through a vertex: still exact.
+    /// assert_eq!(tree.contains(DVec3::ZERO), Containment::Inside);
+    /// assert_eq!(tree.contains(DVec3::new(0.0, 1.0, 0.5)), Containment::Boundary);
+    /// assert_eq!(tree.contains(DVec3::new(0.0, 1.5, 0.0)), Containment::Outside);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     #[must_use]
     pub fn contains(&self, x: DVec3) -> Containment {
         let root = self.root_ball();
@@ -199,96 +311,310 @@ impl HalTree3 {
             return Containment::Outside;
         }
         let slack = 1e-9 * (bounds.diagonal() + x.abs().max_element());
-        for y in far_ends(&bounds, x) {
-            let d = y - x;
-            // Each node is visited with the part of the segment inside all its ancestors'
-            // volumes, clipped further by its own. The stack is the thread's, kept from
-            // query to query (no allocation per query).
-            let mut stack = STACK.with(|s| std::mem::take(&mut *s.borrow_mut()));
-            stack.clear();
-            stack.extend(self.roots().iter().map(|&r| (r, (0.0, 1.0))));
-            let answer = self.cross(&mut stack, x, y, d, slack);
-            STACK.with(|s| *s.borrow_mut() = stack);
-            match answer {
-                Ok(inside) => {
-                    return if inside {
-                        Containment::Inside
-                    } else {
-                        Containment::Outside
-                    };
-                }
-                Err(true) => return Containment::Boundary,
-                Err(false) => {}
-            }
+        // The stack is the thread's, kept from query to query (no allocation per query).
+        let mut stack = STACK.with(|s| std::mem::take(&mut *s.borrow_mut()));
+        let answer = match AxisRay::shortest(&bounds, x) {
+            AxisRay {
+                axis: 0,
+                positive: true,
+            } => self.cross::<0, true>(&mut stack, x, slack),
+            AxisRay {
+                axis: 0,
+                positive: false,
+            } => self.cross::<0, false>(&mut stack, x, slack),
+            AxisRay {
+                axis: 1,
+                positive: true,
+            } => self.cross::<1, true>(&mut stack, x, slack),
+            AxisRay {
+                axis: 1,
+                positive: false,
+            } => self.cross::<1, false>(&mut stack, x, slack),
+            AxisRay { positive: true, .. } => self.cross::<2, true>(&mut stack, x, slack),
+            AxisRay {
+                positive: false, ..
+            } => self.cross::<2, false>(&mut stack, x, slack),
+        };
+        STACK.with(|s| *s.borrow_mut() = stack);
+        match answer {
+            Ok(true) => Containment::Inside,
+            Ok(false) => Containment::Outside,
+            Err(OnSurface) => Containment::Boundary,
         }
-        Containment::Boundary
     }
 
-    /// The crossing parity of the segment `x → y` (`d = y − x`) with the faces under the
-    /// nodes on `stack`: `Err(true)` when `x` is on a face, `Err(false)` when the segment
-    /// passes through an edge or a vertex (shoot another).
-    fn cross(
+    /// The crossing parity of the moved ray from `x` along `AXIS` (toward `+∞` when
+    /// `POSITIVE`) with the faces whose patches' boxes and volumes it may meet; `Err` when
+    /// `x` is on a face. A child is pushed only when the ray meets its box (closed
+    /// comparisons of coordinates: exact, and conservative for the moved ray); its volume
+    /// is tested when it is popped.
+    fn cross<const AXIS: usize, const POSITIVE: bool>(
         &self,
-        stack: &mut Vec<(u32, (f64, f64))>,
+        stack: &mut Vec<u32>,
         x: DVec3,
-        y: DVec3,
-        d: DVec3,
         slack: f64,
-    ) -> Result<bool, bool> {
-        let mesh = self.mesh();
-        let positions = mesh.positions();
-        let mut inside = false;
-        while let Some((n, span)) = stack.pop() {
-            let node = &self.nodes()[n as usize];
-            let mut span = clip_to_box(self.node_box(n), x, d, span, slack);
-            for region in self.node_regions(n) {
-                span = span.and_then(|s| region.clip(x, d, s, slack));
-            }
-            let Some(span) = span else { continue };
-            if node.children.is_empty() {
-                for &f in &node.faces {
-                    let t = mesh.triangles()[f as usize].map(|v| positions[v as usize]);
-                    inside ^= crossing(t, x, y)?;
+    ) -> Result<bool, OnSurface> {
+        let layout = self.layout();
+        let (nodes, regions, triangles) = (&layout.nodes, &layout.regions, &layout.triangles);
+        let (u, v) = ((AXIS + 1) % 3, (AXIS + 2) % 3);
+        let p = x.to_array();
+        let hits = |n: &FlatNode| {
+            n.lo[u] <= p[u]
+                && p[u] <= n.hi[u]
+                && n.lo[v] <= p[v]
+                && p[v] <= n.hi[v]
+                && if POSITIVE {
+                    p[AXIS] <= n.hi[AXIS]
+                } else {
+                    n.lo[AXIS] <= p[AXIS]
                 }
-            } else {
-                stack.extend(node.children.iter().map(|&c| (c, span)));
+        };
+        stack.clear();
+        stack.extend((0..layout.root_count).filter(|&r| hits(&nodes[r as usize])));
+        let mut inside = false;
+        while let Some(n) = stack.pop() {
+            let node = &nodes[n as usize];
+            if node.count == 0 {
+                inside ^= crossing_along::<AXIS, POSITIVE>(&triangles[node.first as usize], x)?;
+                continue;
+            }
+            let [r0, r1] = regions[n as usize];
+            if !(r0.meets_axis_ray::<AXIS, POSITIVE>(x, slack)
+                && r1.meets_axis_ray::<AXIS, POSITIVE>(x, slack))
+            {
+                continue;
+            }
+            for c in node.first..node.first + node.count {
+                if hits(&nodes[c as usize]) {
+                    stack.push(c);
+                }
             }
         }
         Ok(inside)
     }
 }
 
-/// The part `(t0, t1)` of `span` where `x + t·d` lies in `bounds` grown by `slack`
-/// (the slab method), or `None` when it does not.
-fn clip_to_box(
-    bounds: &Aabb,
-    x: DVec3,
-    d: DVec3,
-    span: (f64, f64),
-    slack: f64,
-) -> Option<(f64, f64)> {
-    let (mut t0, mut t1) = span;
-    for axis in 0..3 {
-        let (lo, hi) = (bounds.min[axis] - slack, bounds.max[axis] + slack);
-        if d[axis] == 0.0 {
-            if x[axis] < lo || x[axis] > hi {
-                return None;
-            }
-            continue;
-        }
-        let (a, b) = ((lo - x[axis]) / d[axis], (hi - x[axis]) / d[axis]);
-        let (enter, exit) = if a <= b { (a, b) } else { (b, a) };
-        t0 = t0.max(enter);
-        t1 = t1.min(exit);
-        if t0 > t1 {
+/// The face of a [`HalTree3`]'s mesh nearest to a point, as [`HalTree3::nearest_face`]
+/// finds it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NearestFace {
+    /// The face: an index into the mesh's triangles.
+    pub face: usize,
+    /// The distance from the point to the face.
+    pub distance: f64,
+    /// The point of the face nearest to the point.
+    pub point: DVec3,
+}
+
+impl HalTree3 {
+    /// The face nearest to `x` (the lowest index among equally near ones), its distance
+    /// and its point nearest to `x`: branch and bound over the tree, best first. A node's
+    /// lower bound is the largest of the distances from `x` to its patch's bounding box
+    /// and to each of its two regions (balls or half-spaces: the patch lies in each, so
+    /// in their intersection), less a slack for rounding relative to the coordinates'
+    /// magnitude; a node is dropped once its bound exceeds the nearest distance found.
+    /// Distances to faces are [`closest_point_on_triangle`]'s, so the answer is exactly
+    /// the brute force's minimum of (squared distance, face index) over every face.
+    /// `None` when `x` is not finite.
+    ///
+    /// # Examples
+    ///
+    /// ```
+    /// use sphaera_hal::HalTree3;
+    /// use sphaera_mesh::{DVec3, shapes};
+    ///
+    /// let tree = HalTree3::build(&shapes::cube(2.0, 2)?)?;
+    /// let nearest = tree.nearest_face(DVec3::new(3.0, 0.25, 0.5)).expect("a finite point");
+    /// assert_eq!(nearest.distance, 2.0);
+    /// assert_eq!(nearest.point, DVec3::new(1.0, 0.25, 0.5));
+    /// // The face lies on the side x = 1.
+    /// let face = tree.mesh().triangles()[nearest.face];
+    /// assert!(face.iter().all(|&v| tree.mesh().positions()[v as usize].x == 1.0));
+    /// assert!(tree.nearest_face(DVec3::NAN).is_none());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Performance
+    ///
+    /// Visits the nodes whose lower bound is below the nearest distance found: few near
+    /// the surface, more far from it, where many patches are nearly as near. No
+    /// allocation per query (the heap is the thread's).
+    #[must_use]
+    pub fn nearest_face(&self, x: DVec3) -> Option<NearestFace> {
+        if !x.is_finite() {
             return None;
         }
+        let layout = self.layout();
+        let slack = 1e-9 * (self.bounding_box().diagonal() + x.abs().max_element());
+        // The best so far: squared distance, face, point.
+        let mut best: Option<(f64, u32, DVec3)> = None;
+        let beyond = |best: &Option<(f64, u32, DVec3)>, lower: f64| {
+            lower > 0.0 && best.is_some_and(|(d2, _, _)| lower * lower > d2)
+        };
+        // A node's lower bound, `None` when it cannot beat `best`: the box first, the
+        // volume only when the box does not decide.
+        let bound = |n: u32, best: &Option<(f64, u32, DVec3)>| {
+            let node = &layout.nodes[n as usize];
+            let (lo, hi) = (DVec3::from_array(node.lo), DVec3::from_array(node.hi));
+            let mut lower = x.distance(x.clamp(lo, hi)) - slack;
+            if beyond(best, lower) {
+                return None;
+            }
+            for region in layout.regions[n as usize] {
+                lower = lower.max(region.distance_outside(x) - slack);
+            }
+            (!beyond(best, lower)).then_some(lower.max(0.0))
+        };
+        let mut heap = HEAP.with(|h| std::mem::take(&mut *h.borrow_mut()));
+        heap.clear();
+        // Leaves are measured as soon as their parent is expanded, nodes wait in the heap.
+        let visit = |n: u32, best: &mut Option<(f64, u32, DVec3)>, heap: &mut BinaryHeap<_>| {
+            let node = &layout.nodes[n as usize];
+            if node.count > 0 {
+                if let Some(lower) = bound(n, best) {
+                    heap.push(Reverse((TotalF64(lower), n)));
+                }
+                return;
+            }
+            let slot = node.first as usize;
+            let [a, b, c] = layout.triangles[slot];
+            let face = layout.faces[slot];
+            let (lo, hi) = (DVec3::from_array(node.lo), DVec3::from_array(node.hi));
+            if beyond(best, x.distance(x.clamp(lo, hi)) - slack) {
+                return;
+            }
+            let hit = closest_point_on_triangle(x, &Triangle::new(a, b, c));
+            let better = best.is_none_or(|(d2, f, _)| {
+                hit.distance_squared
+                    .total_cmp(&d2)
+                    .then(face.cmp(&f))
+                    .is_lt()
+            });
+            if better {
+                *best = Some((hit.distance_squared, face, hit.point));
+            }
+        };
+        for r in 0..layout.root_count {
+            visit(r, &mut best, &mut heap);
+        }
+        while let Some(Reverse((TotalF64(lower), n))) = heap.pop() {
+            if beyond(&best, lower) {
+                // Best first: every node left is at least as far.
+                break;
+            }
+            let node = &layout.nodes[n as usize];
+            for c in node.first..node.first + node.count {
+                visit(c, &mut best, &mut heap);
+            }
+        }
+        HEAP.with(|h| *h.borrow_mut() = heap);
+        best.map(|(d2, face, point)| NearestFace {
+            face: face as usize,
+            distance: d2.sqrt(),
+            point,
+        })
     }
-    Some((t0, t1))
 }
 
 thread_local! {
     /// The node stack of [`HalTree3::contains`], one per thread.
-    static STACK: std::cell::RefCell<Vec<(u32, (f64, f64))>> =
+    static STACK: std::cell::RefCell<Vec<u32>> =
         const { std::cell::RefCell::new(Vec::new()) };
+    /// The node heap of [`HalTree3::nearest_face`], one per thread.
+    static HEAP: std::cell::RefCell<BinaryHeap<Reverse<(TotalF64, u32)>>> =
+        const { std::cell::RefCell::new(BinaryHeap::new()) };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use sphaera_mesh::shapes;
+
+    /// The faces a moved ray crosses, counted.
+    fn crossings(mesh: &TriMesh, x: DVec3, ray: AxisRay) -> usize {
+        mesh.triangles()
+            .iter()
+            .filter(|t| {
+                crossing(t.map(|v| mesh.positions()[v as usize]), x, ray)
+                    .expect("x off the surface")
+            })
+            .count()
+    }
+
+    /// From the centre of a cube of two triangles per side, every axis-aligned ray runs
+    /// into a side's diagonal (an edge shared by two faces); from the centre of an
+    /// octahedron, into a corner shared by four. The moved ray crosses exactly one face.
+    #[test]
+    fn a_ray_through_an_edge_or_a_vertex_crosses_one_face() {
+        let cube = shapes::cube(2.0, 1).expect("a cube");
+        let octahedron = TriMesh::new(
+            vec![
+                DVec3::X,
+                -DVec3::X,
+                DVec3::Y,
+                -DVec3::Y,
+                DVec3::Z,
+                -DVec3::Z,
+            ],
+            vec![
+                [0, 2, 4],
+                [2, 1, 4],
+                [1, 3, 4],
+                [3, 0, 4],
+                [2, 0, 5],
+                [1, 2, 5],
+                [3, 1, 5],
+                [0, 3, 5],
+            ],
+        )
+        .expect("an octahedron");
+        for mesh in [&cube, &octahedron] {
+            for axis in 0..3 {
+                for positive in [true, false] {
+                    let ray = AxisRay { axis, positive };
+                    // The ray grazes: some face has x on an edge's line across the ray.
+                    let (u, v) = ray.across();
+                    let grazes = mesh.triangles().iter().any(|t| {
+                        let [a, b, c] = t.map(|i| {
+                            let p = mesh.positions()[i as usize];
+                            robust::Coord { x: p[u], y: p[v] }
+                        });
+                        let q = robust::Coord { x: 0.0, y: 0.0 };
+                        [(a, b), (b, c), (c, a)]
+                            .iter()
+                            .any(|&(s, e)| robust::orient2d(s, e, q) == 0.0)
+                    });
+                    assert!(grazes, "{ray:?}");
+                    assert_eq!(crossings(mesh, DVec3::ZERO, ray), 1, "{ray:?}");
+                    // Outside, beyond a corner or an edge along the ray: none or two.
+                    let mut far = DVec3::ZERO;
+                    far[axis] = if positive { -3.0 } else { 3.0 };
+                    assert_eq!(crossings(mesh, far, ray) % 2, 0, "{ray:?}");
+                }
+            }
+        }
+    }
+
+    /// On a face, an edge or a vertex, whichever ray: the surface.
+    #[test]
+    fn points_on_faces_edges_and_vertices_are_on_the_surface() {
+        let cube = shapes::cube(2.0, 1).expect("a cube");
+        for x in [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(0.25, -1.0, 0.5),
+        ] {
+            for axis in 0..3 {
+                for positive in [true, false] {
+                    let ray = AxisRay { axis, positive };
+                    let on = cube.triangles().iter().any(|t| {
+                        crossing(t.map(|v| cube.positions()[v as usize]), x, ray).is_err()
+                    });
+                    assert!(on, "{x} {ray:?}");
+                }
+            }
+            assert_eq!(contains3_brute(&cube, x), Containment::Boundary, "{x}");
+        }
+    }
 }

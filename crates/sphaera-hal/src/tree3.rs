@@ -4,18 +4,19 @@
 
 mod bound;
 mod gaps;
+mod layout;
 mod placement;
 mod refine;
 
-use sphaera_mesh::{Aabb, DVec3, Sphere, TriMesh};
+use sphaera_mesh::{Aabb, Sphere, TriMesh};
 
 use crate::HalError;
-use crate::intersect3::{Region, bound_regions};
 use crate::surface3::{GenusZeroSurface, RootBall};
 
 pub use bound::Bound3;
 pub(crate) use bound::circle;
 use gaps::close_gaps;
+pub(crate) use layout::{FlatNode, Layout};
 
 /// Angles below this are not split: such a triangle is split at its sides instead (the
 /// paper's "arbitrarily set to π/4").
@@ -58,14 +59,12 @@ pub struct HalTree3 {
     /// The root triangles (one or two).
     roots: Vec<u32>,
     sides: Vec<Side>,
-    /// Per node, the two convex regions holding its patch (everything for a leaf), for
-    /// point inclusion.
-    regions: Vec<[Region; 2]>,
     /// The mesh's bounding box, kept so that no query scans the mesh.
     bounds: Aabb,
-    /// Per node, the bounding box of its patch's vertices: a cheap, tight first cull for
-    /// point inclusion before the bounding volume's.
-    boxes: Vec<Aabb>,
+    /// The nodes laid out for queries: per node its patch's bounding box (a cheap, tight
+    /// first cull before the bounding volume's) and its volume, children contiguous, the
+    /// leaves' triangles by value.
+    layout: Layout,
 }
 
 impl HalTree3 {
@@ -85,9 +84,8 @@ impl HalTree3 {
             nodes: Vec::new(),
             roots: Vec::new(),
             sides: Vec::new(),
-            regions: Vec::new(),
             bounds,
-            boxes: Vec::new(),
+            layout: Layout::default(),
         };
         let ij = tree.new_side(tree.surface.shortest_path(i, j));
         let jk = tree.new_side(tree.surface.shortest_path(j, k));
@@ -100,38 +98,13 @@ impl HalTree3 {
         while !frontier.is_empty() {
             frontier = tree.refine(&frontier);
         }
-        let positions = tree.surface.mesh().positions();
-        tree.regions = tree
-            .nodes
-            .iter()
-            .map(|node| {
-                node.bound.map_or([Region::Everything; 2], |bound| {
-                    bound_regions(&bound, node.corners.map(|v| positions[v as usize]))
-                })
-            })
-            .collect();
-        let mesh = tree.surface.mesh();
-        tree.boxes = tree
-            .nodes
-            .iter()
-            .map(|node| {
-                let (lo, hi) = node
-                    .faces
-                    .iter()
-                    .flat_map(|&f| mesh.triangles()[f as usize])
-                    .map(|v| positions[v as usize])
-                    .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
-                        (lo.min(p), hi.max(p))
-                    });
-                Aabb { min: lo, max: hi }
-            })
-            .collect();
+        tree.layout = Layout::new(&tree);
         Ok(tree)
     }
 
-    /// The bounding box of node `n`'s patch.
-    pub(crate) fn node_box(&self, n: u32) -> &Aabb {
-        &self.boxes[n as usize]
+    /// The query layout.
+    pub(crate) fn layout(&self) -> &Layout {
+        &self.layout
     }
 
     fn new_side(&mut self, path: Vec<u32>) -> u32 {
@@ -159,11 +132,6 @@ impl HalTree3 {
     #[must_use]
     pub fn nodes(&self) -> &[Node3] {
         &self.nodes
-    }
-
-    /// The two convex regions holding node `n`'s patch.
-    pub(crate) fn node_regions(&self, n: u32) -> [Region; 2] {
-        self.regions[n as usize]
     }
 
     /// The root triangles (one or two: the three root paths may leave one patch).

@@ -6,22 +6,24 @@ use super::{HalTree3, Node3, SMALLEST_SPLIT_ANGLE, circle};
 impl HalTree3 {
     /// The vertex Algorithm 2 splits a patch at: `v_q` or `v_r`, whichever ball has the
     /// larger signed radius (the first of the patch's inner vertices if none is off the
-    /// plane).
+    /// plane, or if the corners are collinear).
     fn split_vertex(&self, node: &Node3) -> Option<u32> {
         let positions = self.surface.mesh().positions();
         let points = node.corners.map(|v| positions[v as usize]);
         let inner = self.inner_vertices(node.corners, &node.faces);
         let bound = node.bound?;
-        let (center, radius, normal) = circle(points)?;
+        let Some(circle) = circle(points) else {
+            return inner.first().copied();
+        };
         let mut best: Option<(f64, u32)> = None;
         let want_above = bound.above > -bound.below;
         for &v in &inner {
-            let x = positions[v as usize];
-            let h = (x - center).dot(normal);
+            let ph = circle.power_and_height(positions[v as usize]);
+            let h = ph.height;
             if h == 0.0 || (h > 0.0) != want_above {
                 continue;
             }
-            let k = (x.distance_squared(center) - radius * radius) / (2.0 * radius * h);
+            let k = ph.power / (2.0 * circle.radius * h);
             let key = if want_above { k } else { -k };
             if best.is_none_or(|(b, _)| key > b) {
                 best = Some((key, v));
