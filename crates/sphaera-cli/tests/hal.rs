@@ -384,3 +384,60 @@ fn a_closed_stdout_is_not_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(output.status.code(), Some(141), "{stderr}");
 }
+
+/// Two balls, overlapping and apart: `--intersect` between meshes says whether the solids
+/// meet and lists every pair of faces that do, each pair checked exactly.
+#[test]
+fn meshes_intersect_with_their_face_pairs() {
+    use sphaera::mesh::{io, shapes};
+    let dir = tempfile::tempdir().unwrap();
+    let ball = shapes::sphere(1.0, 10).unwrap();
+    let a = dir.path().join("a.obj");
+    io::save(&a, &ball).unwrap();
+    let moved = |dx: f64| {
+        let positions = ball
+            .positions()
+            .iter()
+            .map(|&p| p + sphaera::mesh::glam::DVec3::X * dx)
+            .collect();
+        sphaera::mesh::TriMesh::new(positions, ball.triangles().to_vec()).unwrap()
+    };
+    let (near, far) = (dir.path().join("near.obj"), dir.path().join("far.obj"));
+    io::save(&near, &moved(1.5)).unwrap();
+    io::save(&far, &moved(3.0)).unwrap();
+    let report = json(&sphaera(&[
+        "hal",
+        a.to_str().unwrap(),
+        "--intersect",
+        near.to_str().unwrap(),
+        "--json",
+    ]));
+    let intersect = &report["intersect"];
+    assert_eq!(intersect["intersects"], true);
+    let pairs = intersect["face_pairs"].as_array().unwrap();
+    assert!(!pairs.is_empty());
+    let shifted = moved(1.5);
+    for pair in pairs {
+        let (i, j) = (
+            pair[0].as_u64().unwrap() as usize,
+            pair[1].as_u64().unwrap() as usize,
+        );
+        let corners = |m: &sphaera::mesh::TriMesh, t: usize| {
+            let t = m.triangle(t).unwrap();
+            [t.a, t.b, t.c]
+        };
+        assert!(
+            sphaera::hal::triangles_meet(corners(&ball, i), corners(&shifted, j)),
+            "faces {i} and {j}"
+        );
+    }
+    let report = json(&sphaera(&[
+        "hal",
+        a.to_str().unwrap(),
+        "--intersect",
+        far.to_str().unwrap(),
+        "--json",
+    ]));
+    assert_eq!(report["intersect"]["intersects"], false);
+    assert_eq!(report["intersect"]["pairs"], 0);
+}

@@ -238,6 +238,51 @@ impl HalTree3 {
         py.detach(|| self.inner.intersects(&other.inner, &Similarity::IDENTITY))
     }
 
+    /// Every pair of faces that meet, `(k, 2)` `int64` rows: a face of this mesh, one of
+    /// `other`'s.
+    fn intersecting_faces<'py>(
+        &self,
+        py: Python<'py>,
+        other: &HalTree3,
+    ) -> Bound<'py, numpy::PyArray2<i64>> {
+        let pairs = py.detach(|| {
+            self.inner
+                .intersecting_faces(&other.inner, &Similarity::IDENTITY)
+        });
+        let flat: Vec<i64> = pairs
+            .into_iter()
+            .flat_map(|(i, j)| [i as i64, j as i64])
+            .collect();
+        arrays::rows(py, flat, 2)
+    }
+
+    /// The nearest face to every row of `points` (`(m, 3)`): `(distance, face, point)`
+    /// arrays (`float64`, `int64`, `(m, 3)`).
+    fn nearest_face<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<NearestArrays<'py>> {
+        let queries = arrays::points(points, "points", true)?;
+        let tree = &self.inner;
+        let nearest: Option<Vec<_>> = py.detach(|| {
+            queries
+                .iter()
+                .map(|&x| tree.nearest_face(x))
+                .collect::<Option<Vec<_>>>()
+        });
+        // The points are finite (checked above), so every query has an answer.
+        let nearest = nearest.ok_or_else(|| value_error("points: not finite"))?;
+        let distance: Vec<f64> = nearest.iter().map(|n| n.distance).collect();
+        let face: Vec<i64> = nearest.iter().map(|n| n.face as i64).collect();
+        let point: Vec<f64> = nearest.iter().flat_map(|n| n.point.to_array()).collect();
+        Ok((
+            arrays::vector(py, distance),
+            arrays::vector(py, face),
+            arrays::rows(py, point, 3),
+        ))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "HalTree3({} triangles, depth {})",

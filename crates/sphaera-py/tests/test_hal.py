@@ -192,3 +192,22 @@ def test_inclusion_releases_the_gil():
     assert share_kept_by_python(land.contains, points) > 0.05
     solid = sphaera.HalTree3(sphaera.Mesh(*uv_sphere()))
     assert share_kept_by_python(solid.contains, rng.uniform(-1.1, 1.1, (100_000, 3))) > 0.05
+
+
+def test_3d_nearest_face_and_intersecting_faces():
+    vertices, faces = uv_sphere()
+    tree = sphaera.HalTree3(sphaera.Mesh(vertices, faces))
+    points = np.array([[0.0, 0.0, 3.0], [0.2, 0.1, -0.1], [2.0, 0.0, 0.0]])
+    distance, face, nearest = tree.nearest_face(points)
+    assert distance.shape == (3,) and face.dtype == np.int64 and nearest.shape == (3, 3)
+    # Brute force over the faces' vertices bounds the answer from above; the nearest
+    # point lies on the surface's polyhedron, at most the radius away.
+    np.testing.assert_allclose(np.linalg.norm(nearest - points, axis=1), distance)
+    assert np.all(distance <= np.min(np.linalg.norm(vertices[None] - points[:, None], axis=2), axis=1) + 1e-12)
+    assert 1.9 < distance[0] <= 2.0 and 0.0 < distance[2] <= 1.0
+    near = sphaera.HalTree3(sphaera.Mesh(vertices + [1.5, 0, 0], faces))
+    far = sphaera.HalTree3(sphaera.Mesh(vertices + [3.0, 0, 0], faces))
+    pairs = tree.intersecting_faces(near)
+    assert pairs.shape[1] == 2 and len(pairs) > 0
+    assert tree.intersects(near) and not tree.intersects(far)
+    assert tree.intersecting_faces(far).shape == (0, 2)

@@ -43,7 +43,9 @@ pub struct HalArgs {
 
     /// Intersect with this outline (a text file of `x y` lines read as a polygon, or
     /// GeoJSON or WKT polygons and lines): whether they meet, as GEOS's `intersects` (a
-    /// line inside a polygon meets it), and every pair of crossing or touching edges.
+    /// line inside a polygon meets it), and every pair of crossing or touching edges. For
+    /// a mesh, another closed genus-0 mesh: whether the solids meet, and every pair of
+    /// faces that do.
     #[arg(long, value_name = "OTHER")]
     pub intersect: Option<PathBuf>,
 

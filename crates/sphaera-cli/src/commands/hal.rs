@@ -343,8 +343,23 @@ struct MeshReport {
     approximation: Option<MeshApproximation>,
     /// Point inclusion of `--contains`, if given.
     contains: Option<Contains>,
+    /// Intersection with `--intersect`, if given.
+    intersect: Option<MeshIntersect>,
     output: Option<String>,
     seconds: Seconds,
+}
+
+/// What `--intersect OTHER_MESH` reports.
+#[derive(Debug, Serialize)]
+struct MeshIntersect {
+    file: String,
+    /// Whether the solids meet: surfaces cross or touch, or one holds the other.
+    intersects: bool,
+    /// Pairs of intersecting faces.
+    pairs: usize,
+    /// Every pair: a face of the first mesh, one of the other.
+    face_pairs: Vec<[usize; 2]>,
+    seconds: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -430,6 +445,10 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
         Some(path) => Some(locate3(&tree, path)?),
         None => None,
     };
+    let intersect = match &args.intersect {
+        Some(path) => Some(intersect3(&tree, path)?),
+        None => None,
+    };
     let report = MeshReport {
         mesh: args.polygon.display().to_string(),
         triangles: mesh.triangle_count(),
@@ -440,6 +459,7 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
         levels,
         approximation,
         contains,
+        intersect,
         output: args.output.as_ref().map(|p| p.display().to_string()),
         seconds: Seconds { load, build },
     };
@@ -476,8 +496,49 @@ fn run_mesh(args: &HalArgs) -> Result<()> {
     if let Some(c) = &report.contains {
         print_contains(c);
     }
+    if let Some(i) = &report.intersect {
+        println!(
+            "{} {}: {} pairs of faces meet, in {:.4} s",
+            if i.intersects {
+                "intersects"
+            } else {
+                "does not intersect"
+            },
+            i.file,
+            thousands(i.pairs),
+            i.seconds
+        );
+        for [a, b] in i.face_pairs.iter().take(10) {
+            println!("  face {a} meets face {b}");
+        }
+        if i.pairs > 10 {
+            println!("  … {} more (--json lists them all)", i.pairs - 10);
+        }
+    }
     if let Some(output) = &report.output {
         println!("wrote {output}");
     }
     Ok(())
+}
+
+/// Intersection of `tree`'s solid with the closed genus-0 mesh of `path`.
+fn intersect3(tree: &HalTree3, path: &Path) -> Result<MeshIntersect> {
+    let other = sphaera::mesh::io::read_with(path, &crate::input::file_policy())?.mesh;
+    let other =
+        HalTree3::build(&other).with_context(|| format!("no HAL tree for {}", path.display()))?;
+    let started = Instant::now();
+    let identity = sphaera::mesh::geometry::Similarity::IDENTITY;
+    let intersects = tree.intersects(&other, &identity);
+    let face_pairs: Vec<[usize; 2]> = tree
+        .intersecting_faces(&other, &identity)
+        .into_iter()
+        .map(|(a, b)| [a, b])
+        .collect();
+    Ok(MeshIntersect {
+        file: path.display().to_string(),
+        intersects,
+        pairs: face_pairs.len(),
+        face_pairs,
+        seconds: started.elapsed().as_secs_f64(),
+    })
 }
