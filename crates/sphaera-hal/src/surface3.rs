@@ -221,17 +221,18 @@ impl GenusZeroSurface {
     }
 
     /// Dijkstra from the lower of `a`, `b` over the edges `usable` accepts, as the path
-    /// from `a` to `b`.
+    /// from `a` to `b`. Its state is kept for the vertices it reaches only (a map, not an
+    /// array over the mesh), so a path inside a small patch costs the patch, not the
+    /// mesh: the build's many short paths stay near the paper's bound.
     fn dijkstra(&self, a: u32, b: u32, usable: impl Fn(u32, u32) -> bool) -> Vec<u32> {
         let (from, to) = (a.min(b), a.max(b));
-        let n = self.neighbours.len();
-        let mut distance = vec![f64::INFINITY; n];
-        let mut previous = vec![u32::MAX; n];
+        // Per reached vertex: its distance so far and its predecessor (none for `from`).
+        let mut reached: HashMap<u32, (f64, u32)> = HashMap::new();
         let mut heap = BinaryHeap::new();
-        distance[from as usize] = 0.0;
+        reached.insert(from, (0.0, u32::MAX));
         heap.push(std::cmp::Reverse((TotalF64(0.0), from)));
         while let Some(std::cmp::Reverse((TotalF64(d), v))) = heap.pop() {
-            if d > distance[v as usize] {
+            if reached.get(&v).is_some_and(|&(best, _)| d > best) {
                 continue;
             }
             if v == to {
@@ -242,17 +243,17 @@ impl GenusZeroSurface {
                     continue;
                 }
                 let next = d + length;
-                if next < distance[w as usize] {
-                    distance[w as usize] = next;
-                    previous[w as usize] = v;
+                if reached.get(&w).is_none_or(|&(best, _)| next < best) {
+                    reached.insert(w, (next, v));
                     heap.push(std::cmp::Reverse((TotalF64(next), w)));
                 }
             }
         }
+        let previous = |v: u32| reached.get(&v).map_or(u32::MAX, |&(_, p)| p);
         let mut path = vec![to];
         let mut v = to;
-        while v != from && previous[v as usize] != u32::MAX {
-            v = previous[v as usize];
+        while v != from && previous(v) != u32::MAX {
+            v = previous(v);
             path.push(v);
         }
         // From `to` back to `from`: reverse when the caller asked from the lower index.
