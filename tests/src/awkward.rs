@@ -7,6 +7,8 @@
 //! closed parts are fine for the winding-number inside test every method uses.
 
 use sphaera_mesh::glam::{DQuat, DVec3};
+
+use crate::random::SplitMix64;
 use sphaera_mesh::{TriMesh, shapes};
 
 /// One awkward mesh with a name for assertion messages.
@@ -254,4 +256,39 @@ pub fn star_of_spikes(spikes: usize) -> TriMesh {
         ));
     }
     join(&parts)
+}
+
+/// A ball of `resolution` with its radius bumped by up to `bump` (a fraction) by three
+/// random waves, then scaled by `scale` and moved by `offset`: genus 0, closed, star
+/// shaped (so never self-intersecting for `bump < 1`).
+pub fn bumpy_ball(resolution: usize, bump: f64, seed: u64, scale: f64, offset: DVec3) -> TriMesh {
+    let ball = shapes::sphere(1.0, resolution).expect("a valid sphere");
+    let mut rng = SplitMix64::new(seed);
+    let waves: Vec<(DVec3, f64)> = (0..3)
+        .map(|_| {
+            (
+                DVec3::new(
+                    rng.range(-5.0, 5.0),
+                    rng.range(-5.0, 5.0),
+                    rng.range(-5.0, 5.0),
+                ),
+                rng.range(0.0, 6.3),
+            )
+        })
+        .collect();
+    TriMesh::new(
+        ball.positions()
+            .iter()
+            .map(|&p| {
+                let n = p.normalize();
+                let wave: f64 = waves
+                    .iter()
+                    .map(|&(k, phase)| (k.dot(n) + phase).sin())
+                    .sum();
+                n * (1.0 + bump * wave / 3.0) * scale + offset
+            })
+            .collect(),
+        ball.triangles().to_vec(),
+    )
+    .expect("a mesh")
 }

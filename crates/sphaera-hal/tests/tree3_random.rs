@@ -7,43 +7,13 @@ use proptest::prelude::*;
 use sphaera_hal::{Containment, HalTree3};
 use sphaera_mesh::geometry::Similarity;
 use sphaera_mesh::glam::{DAffine3, DQuat, EulerRot};
-use sphaera_mesh::{DVec3, TriMesh, shapes};
+use sphaera_mesh::{DVec3, TriMesh};
 use sphaera_tests::random::SplitMix64;
 use sphaera_tests::regions::{self, Side};
 
-/// A ball of `resolution` with its radius bumped by up to `bump` (a fraction) by three
-/// random waves, then scaled by `scale` and moved by `offset`: genus 0, closed, star
-/// shaped (so never self-intersecting for `bump < 1`).
+/// A bumpy genus-0 ball ([`sphaera_tests::awkward::bumpy_ball`]).
 fn bumpy(resolution: usize, bump: f64, seed: u64, scale: f64, offset: DVec3) -> TriMesh {
-    let ball = shapes::sphere(1.0, resolution).expect("a valid sphere");
-    let mut rng = SplitMix64::new(seed);
-    let waves: Vec<(DVec3, f64)> = (0..3)
-        .map(|_| {
-            (
-                DVec3::new(
-                    rng.range(-5.0, 5.0),
-                    rng.range(-5.0, 5.0),
-                    rng.range(-5.0, 5.0),
-                ),
-                rng.range(0.0, 6.3),
-            )
-        })
-        .collect();
-    TriMesh::new(
-        ball.positions()
-            .iter()
-            .map(|&p| {
-                let n = p.normalize();
-                let wave: f64 = waves
-                    .iter()
-                    .map(|&(k, phase)| (k.dot(n) + phase).sin())
-                    .sum();
-                n * (1.0 + bump * wave / 3.0) * scale + offset
-            })
-            .collect(),
-        ball.triangles().to_vec(),
-    )
-    .expect("a mesh")
+    sphaera_tests::awkward::bumpy_ball(resolution, bump, seed, scale, offset)
 }
 
 fn side(c: Containment) -> Side {

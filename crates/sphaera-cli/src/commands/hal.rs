@@ -259,15 +259,29 @@ fn contains_report(path: &Path, answers: &[Containment], seconds: f64) -> Contai
     }
 }
 
+/// The first line of a `--contains` report: the file, the counts and the time.
+pub(super) fn contains_summary(
+    file: &str,
+    [points, inside, outside, boundary]: [usize; 4],
+    seconds: f64,
+) -> String {
+    format!(
+        "{file}: {} points, {} inside, {} outside, {} on the boundary, in {seconds:.4} s",
+        thousands(points),
+        thousands(inside),
+        thousands(outside),
+        thousands(boundary),
+    )
+}
+
 fn print_contains(c: &Contains) {
     println!(
-        "{}: {} points, {} inside, {} outside, {} on the boundary, in {:.4} s",
-        c.file,
-        thousands(c.points),
-        thousands(c.inside),
-        thousands(c.outside),
-        thousands(c.boundary),
-        c.seconds
+        "{}",
+        contains_summary(
+            &c.file,
+            [c.points, c.inside, c.outside, c.boundary],
+            c.seconds
+        )
     );
     for answer in &c.answers {
         println!("{answer}");

@@ -397,13 +397,12 @@ pub fn run_shapes(args: &HalArgs) -> Result<()> {
     }
     if let Some(c) = &report.contains {
         println!(
-            "{}: {} points, {} inside, {} outside, {} on the boundary, in {:.4} s",
-            c.file,
-            thousands(c.points),
-            thousands(c.inside),
-            thousands(c.outside),
-            thousands(c.boundary),
-            c.seconds
+            "{}",
+            super::hal::contains_summary(
+                &c.file,
+                [c.points, c.inside, c.outside, c.boundary],
+                c.seconds
+            )
         );
         for w in &c.answers {
             let ring = match w.ring {
