@@ -547,27 +547,7 @@ mod tests {
     #[test]
     fn a_ray_through_an_edge_or_a_vertex_crosses_one_face() {
         let cube = shapes::cube(2.0, 1).expect("a cube");
-        let octahedron = TriMesh::new(
-            vec![
-                DVec3::X,
-                -DVec3::X,
-                DVec3::Y,
-                -DVec3::Y,
-                DVec3::Z,
-                -DVec3::Z,
-            ],
-            vec![
-                [0, 2, 4],
-                [2, 1, 4],
-                [1, 3, 4],
-                [3, 0, 4],
-                [2, 0, 5],
-                [1, 2, 5],
-                [3, 1, 5],
-                [0, 3, 5],
-            ],
-        )
-        .expect("an octahedron");
+        let octahedron = shapes::fixtures::octahedron();
         for mesh in [&cube, &octahedron] {
             for axis in 0..3 {
                 for positive in [true, false] {

@@ -18,31 +18,6 @@ fn side(c: Containment) -> Side {
     }
 }
 
-/// The octahedron with corners `±size` on each axis.
-fn octahedron(size: f64) -> TriMesh {
-    TriMesh::new(
-        vec![
-            DVec3::X * size,
-            -DVec3::X * size,
-            DVec3::Y * size,
-            -DVec3::Y * size,
-            DVec3::Z * size,
-            -DVec3::Z * size,
-        ],
-        vec![
-            [0, 2, 4],
-            [2, 1, 4],
-            [1, 3, 4],
-            [3, 0, 4],
-            [2, 0, 5],
-            [1, 2, 5],
-            [3, 1, 5],
-            [0, 3, 5],
-        ],
-    )
-    .expect("an octahedron")
-}
-
 /// `mesh` scaled by `scale` and moved by `offset` (powers of two keep lattices exact).
 fn moved(mesh: &TriMesh, scale: f64, offset: DVec3) -> TriMesh {
     TriMesh::new(
@@ -81,7 +56,7 @@ fn axis_points_of_a_cube_and_an_octahedron_are_exact() {
     let shapes_ = [
         ("cube, 12 triangles", shapes::cube(2.0, 1).expect("a cube")),
         ("cube, 4 per side", shapes::cube(2.0, 2).expect("a cube")),
-        ("octahedron", octahedron(1.0)),
+        ("octahedron", shapes::fixtures::octahedron()),
     ];
     for (name, mesh) in &shapes_ {
         for (scale, offset) in [
