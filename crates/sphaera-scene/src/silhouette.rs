@@ -93,8 +93,10 @@ pub struct SilhouetteChoice {
     pub interior_measured: f64,
     /// With a tolerance in pixels (and [`SilhouetteDetailOptions::check_outline`]): the
     /// most pixels the chosen mesh's outline lies from the instance's own, both drawn at
-    /// the camera's pixels (so in whole pixels, within one of the true distance); `None`
-    /// otherwise, or when part of the instance is at or behind the camera. This checks the
+    /// the camera's pixels (so in whole pixels, within one of the true distance), over the
+    /// pixels within the frame's half-diagonal cone (what is drawn beyond the frame does
+    /// not count: 0 for an instance beside it); `None` otherwise, or when part of the
+    /// instance is at or behind the camera. This checks the
     /// claim of the contour region's certified error, which bounds only the triangles the
     /// labels put in the region.
     pub outline_pixels: Option<f64>,
@@ -330,7 +332,8 @@ fn choose_silhouette(
 /// The most pixels the outline of `chosen` (the instance's mesh simplified, in the
 /// model's frame) lies from the instance's own outline on `camera`'s image, both drawn
 /// at the camera's pixels (whole pixels: a pixel either side of a true sub-pixel move),
-/// or `None` when some vertex is at or behind the eye plane.
+/// over the pixels within the frame's half-diagonal cone (`Some(0.0)` for an instance
+/// beside the frame), or `None` when some vertex is at or behind the eye plane.
 fn outline_moved(
     instance: &Instance,
     camera: &Camera,
@@ -371,7 +374,20 @@ fn outline_moved(
         sphaera_silhouette::coverage_of_projection(&to_window(points), mesh.triangles(), resolution)
     };
     let (a, b) = (draw(ours, original)?, draw(theirs, chosen)?);
-    Ok(sphaera_silhouette::contour_displacement(&a, &b, resolution).map(|d| d * pixels_per_cell))
+    // Only what the camera shows counts: cells whose centre lies within the frame's
+    // half-diagonal angle of the axis (the cone the measures bound; an instance beside
+    // the frame shows no outline to move).
+    let frame = camera.focal_pixels() * camera.half_diagonal_angle().tan();
+    let seen: Vec<bool> = (0..resolution * resolution)
+        .map(|cell| {
+            let at = glam::DVec2::new((cell % resolution) as f64, (cell / resolution) as f64);
+            (lo + (at + 0.5) * pixels_per_cell).length() <= frame
+        })
+        .collect();
+    Ok(
+        sphaera_silhouette::contour_displacement_seen(&a, &b, resolution, &seen)
+            .map(|d| d * pixels_per_cell),
+    )
 }
 
 /// The direction from the instance towards the camera, in the model's frame (a mirror

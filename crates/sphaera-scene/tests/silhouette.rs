@@ -334,3 +334,20 @@ fn an_instance_out_of_view_is_coarsest() {
     assert!(!choice.visible && choice.meets);
     assert_eq!(choice.triangles, torus().mesh_levels()[0].triangles);
 }
+
+/// In front of the eye but outside the frame (a case proptest found): the instance is
+/// coarsest, and drawing it finds nothing of its outline on the image to have moved.
+#[test]
+fn an_instance_beside_the_frame_shows_no_outline() {
+    for angle in [0.0, 0.7, 2.1, 4.4] {
+        let pose = common::pose(DVec3::new(0.0, -3.89, 3.83), DVec3::X, angle, 0.3);
+        let scene = common::scene(&[(0, pose)]);
+        let camera = camera(DVec3::new(0.0, 0.0, 6.76));
+        let report = scene
+            .silhouette_detail(&camera, Tolerance::Pixels(0.3), &options(1.0))
+            .expect("report");
+        let choice = &report.instances[0];
+        assert!(!choice.visible && choice.meets, "{choice:?}");
+        assert_eq!(choice.outline_pixels, Some(0.0), "{angle}: {choice:?}");
+    }
+}

@@ -179,16 +179,61 @@ pub fn contour_displacement(a: &[bool], b: &[bool], resolution: usize) -> Option
         n == Some(a.len()) && n == Some(b.len()),
         "two images of resolution² cells"
     );
-    match (a.contains(&true), b.contains(&true)) {
-        (false, false) => return Some(0.0),
-        (true, false) | (false, true) => return None,
-        (true, true) => {}
-    }
-    Some(one_way(a, b, resolution).max(one_way(b, a, resolution)))
+    displacement(a, b, resolution, |_| true)
 }
 
-/// The farthest a cell of `a` outside `b` lies from `b`'s nearest cell.
-fn one_way(a: &[bool], b: &[bool], resolution: usize) -> f64 {
+/// [`contour_displacement`] over the cells a viewer sees: the farthest a cell covered by
+/// one image (and not the other) *where `seen` is true* lies from the nearest cell
+/// covered by the other, seen or not (what is shown moved at most this far; a part
+/// drawn beyond the frame does not count, the frame cutting the silhouettes adds
+/// nothing). `Some(0.0)` when neither image covers a seen cell, `None` when one covers a
+/// seen cell and the other nothing at all.
+///
+/// # Panics
+///
+/// If the images and `seen` are not all `resolution²` cells.
+#[must_use]
+pub fn contour_displacement_seen(
+    a: &[bool],
+    b: &[bool],
+    resolution: usize,
+    seen: &[bool],
+) -> Option<f64> {
+    let n = resolution.checked_mul(resolution);
+    assert!(
+        n == Some(a.len()) && n == Some(b.len()) && n == Some(seen.len()),
+        "two images and a mask of resolution² cells"
+    );
+    displacement(a, b, resolution, |cell| seen[cell])
+}
+
+/// The farthest a cell where `counts` holds, covered by one of `a` and `b` and not the
+/// other, lies from the other's nearest covered cell.
+fn displacement(
+    a: &[bool],
+    b: &[bool],
+    resolution: usize,
+    counts: impl Fn(usize) -> bool + Copy,
+) -> Option<f64> {
+    let shows = |image: &[bool]| (0..image.len()).any(|c| image[c] && counts(c));
+    match (shows(a), shows(b)) {
+        (false, false) => return Some(0.0),
+        (true, _) if !b.contains(&true) => return None,
+        (_, true) if !a.contains(&true) => return None,
+        _ => {}
+    }
+    Some(one_way(a, b, resolution, counts).max(one_way(b, a, resolution, counts)))
+}
+
+/// The farthest a cell of `a` outside `b` where `counts` holds lies from `b`'s nearest
+/// cell (`b` covers at least one cell when such a cell exists).
+fn one_way(a: &[bool], b: &[bool], resolution: usize, counts: impl Fn(usize) -> bool) -> f64 {
+    let mut cells = (0..a.len())
+        .filter(|&c| a[c] && !b[c] && counts(c))
+        .peekable();
+    if cells.peek().is_none() {
+        return 0.0;
+    }
     // Distances to the nearest cell of `b`, or to the ring of cells around the image when
     // that is nearer (the transform counts it as background): below the distance to that
     // ring the answer is exact, at it `b`'s cells are searched directly.
@@ -196,7 +241,7 @@ fn one_way(a: &[bool], b: &[bool], resolution: usize) -> f64 {
     let distance = DistanceTransform::Euclidean.apply(&outside_b, resolution, resolution);
     let mut boundary: Option<Vec<(f64, f64)>> = None;
     let mut worst = 0.0_f64;
-    for cell in (0..a.len()).filter(|&c| a[c] && !b[c]) {
+    for cell in cells {
         let (i, j) = (cell % resolution, cell / resolution);
         let ring = (i.min(j).min(resolution - 1 - i).min(resolution - 1 - j) + 1) as f64;
         let d = f64::from(distance[cell]);

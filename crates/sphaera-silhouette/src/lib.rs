@@ -14,7 +14,8 @@
 //! `sphaera-simplify`'s progressive hierarchy, coherently from one view to the next, with
 //! the certified error bound of each region ([`ViewDependent`]); or per-vertex weights for
 //! the static simplifier ([`contour_weights`]). To judge the result: the image-space
-//! silhouette error ([`coverage`], [`silhouette_difference`], [`contour_displacement`])
+//! silhouette error ([`coverage`], [`silhouette_difference`], [`contour_displacement`],
+//! [`contour_displacement_seen`] for what a frame shows)
 //! and pictures made by code ([`shaded_picture`], the paper's Fig. 3, and
 //! [`overlay_picture`]). Labels are saved to and loaded from versioned label files
 //! checked against the mesh they belong to ([`Labels::save`], [`Labels::load`]). The
@@ -195,7 +196,8 @@ pub use caps::{MAX_FACE_GRID_ENTRIES, MAX_LABELS, MAX_RESOLUTION, MAX_VIEWS};
 #[deprecated(since = "0.2.0", note = "renamed `ViewCamera`")]
 pub type Camera = ViewCamera;
 pub use coverage::{
-    bounding_sphere, contour_displacement, coverage, coverage_of_projection, silhouette_difference,
+    bounding_sphere, contour_displacement, contour_displacement_seen, coverage,
+    coverage_of_projection, silhouette_difference,
 };
 pub use distance::DistanceTransform;
 pub use error::{LabelFileProblem, SilhouetteError};

@@ -7,22 +7,30 @@ use proptest::prelude::*;
 use sphaera_mesh::{DVec3, shapes};
 use sphaera_silhouette::{
     Contours, DistanceTransform, Projection, SilhouetteError, bounding_sphere,
-    contour_displacement, coverage, label_view, overlay_picture, shaded_picture,
+    contour_displacement, contour_displacement_seen, coverage, label_view, overlay_picture,
+    shaded_picture,
 };
 
 /// The farthest a cell of one image outside the other lies from the other's nearest
 /// cell, both ways, by trying every pair.
 fn brute_displacement(a: &[bool], b: &[bool], n: usize) -> Option<f64> {
-    let cells = |x: &[bool]| -> Vec<(f64, f64)> {
+    brute_displacement_seen(a, b, n, &vec![true; n * n])
+}
+
+/// The same from the cells `seen` only, to the other's nearest cell seen or not.
+fn brute_displacement_seen(a: &[bool], b: &[bool], n: usize, seen: &[bool]) -> Option<f64> {
+    let cells = |x: &[bool], only_seen: bool| -> Vec<(f64, f64)> {
         (0..n * n)
-            .filter(|&c| x[c])
+            .filter(|&c| x[c] && (seen[c] || !only_seen))
             .map(|c| ((c % n) as f64, (c / n) as f64))
             .collect()
     };
-    let (ca, cb) = (cells(a), cells(b));
-    match (ca.is_empty(), cb.is_empty()) {
+    let (sa, sb) = (cells(a, true), cells(b, true));
+    let (ca, cb) = (cells(a, false), cells(b, false));
+    match (sa.is_empty(), sb.is_empty()) {
         (true, true) => return Some(0.0),
-        (true, false) | (false, true) => return None,
+        (false, _) if cb.is_empty() => return None,
+        (_, false) if ca.is_empty() => return None,
         _ => {}
     }
     let one_way = |from: &[(f64, f64)], to: &[(f64, f64)]| {
@@ -34,7 +42,7 @@ fn brute_displacement(a: &[bool], b: &[bool], n: usize) -> Option<f64> {
             })
             .fold(0.0, f64::max)
     };
-    Some(one_way(&ca, &cb).max(one_way(&cb, &ca)))
+    Some(one_way(&sa, &cb).max(one_way(&sb, &ca)))
 }
 
 fn image_pair() -> impl Strategy<Value = (usize, Vec<bool>, Vec<bool>)> {
@@ -52,6 +60,20 @@ proptest! {
     fn displacement_equals_brute_force((n, a, b) in image_pair()) {
         let fast = contour_displacement(&a, &b, n);
         let brute = brute_displacement(&a, &b, n);
+        match (fast, brute) {
+            (Some(x), Some(y)) => prop_assert!((x - y).abs() < 1e-4, "{x} vs {y}"),
+            (x, y) => prop_assert_eq!(x, y),
+        }
+    }
+
+    #[test]
+    fn displacement_seen_equals_brute_force(
+        ((n, a, b), seen) in image_pair().prop_flat_map(|(n, a, b)| {
+            (Just((n, a, b)), prop::collection::vec(prop::bool::weighted(0.6), n * n))
+        })
+    ) {
+        let fast = contour_displacement_seen(&a, &b, n, &seen);
+        let brute = brute_displacement_seen(&a, &b, n, &seen);
         match (fast, brute) {
             (Some(x), Some(y)) => prop_assert!((x - y).abs() < 1e-4, "{x} vs {y}"),
             (x, y) => prop_assert_eq!(x, y),
