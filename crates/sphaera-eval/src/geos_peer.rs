@@ -19,9 +19,9 @@ use anyhow::{Context, Result, bail};
 use geos::{CoordSeq, Geometry, PreparedGeometry};
 use sphaera::hal::{Containment, Polyline2};
 use sphaera::mesh::glam::DVec2;
-use sphaera_tests::random::SplitMix64;
 
-/// The seed of [`box_queries`] in the bench and the test.
+/// The seed of the query points ([`crate::query_sets::box_points`],
+/// [`crate::query_sets::near_outline_points`]) in the bench and the test.
 pub const QUERY_SEED: u64 = 41;
 
 /// Every outline of `data/polygons/*.txt`, sorted by file name, with its name (the file
@@ -56,17 +56,6 @@ pub fn outlines(data: &Path) -> Result<Vec<(String, Polyline2)>> {
                 .with_context(|| format!("cannot read the outline {}", path.display()))?;
             Ok((name, outline))
         })
-        .collect()
-}
-
-/// `n` points uniform in the outline's bounding box, from [`SplitMix64`] seeded with
-/// `seed`: the same outline, `n` and seed give the same points.
-#[must_use]
-pub fn box_queries(outline: &Polyline2, n: usize, seed: u64) -> Vec<DVec2> {
-    let (lo, hi) = outline.bounds();
-    let mut rng = SplitMix64::new(seed);
-    (0..n)
-        .map(|_| DVec2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y)))
         .collect()
 }
 

@@ -1,6 +1,11 @@
-//! The closest-point query sets, shared by the `sweep_throughput` experiment and the
-//! `sweep_vs_parry` bench, so both measure the same points.
+//! The query sets shared by experiments and benches, so both measure the same points.
 //!
+//! In 2D (point inclusion: the `hal` experiment, the `hal2_vs_geos` bench and test), two
+//! sets of seeded points ([`SplitMix64`]): [`box_points`], uniform in the outline's
+//! bounding box, and [`near_outline_points`], within an edge's length of the outline.
+//!
+//! In 3D, the closest-point sets of the `sweep_throughput` experiment and the
+//! `sweep_vs_parry` bench:
 //! Three sets, each of `n` points and seeded (the same mesh and `n` give the same points):
 //! - `uniform`: points uniform in the bounding box scaled 1.5× about its centre;
 //! - `near`: points within 1 % of the diagonal of the surface (a uniform surface sample
@@ -11,8 +16,10 @@
 //!   (fewer points walk part of the loop).
 
 use anyhow::{Context, Result};
+use sphaera::hal::Polyline2;
+use sphaera::mesh::glam::DVec2;
 use sphaera::mesh::{DVec3, TriMesh, sampling};
-use sphaera_tests::random::Lcg64;
+use sphaera_tests::random::{Lcg64, SplitMix64};
 
 /// Steps of the `path` set per full turn of its curve.
 pub const PATH_STEPS_PER_LOOP: usize = 2_000;
@@ -58,6 +65,38 @@ pub fn query_sets(mesh: &TriMesh, n: usize) -> Result<Vec<(&'static str, Vec<DVe
     ])
 }
 
+/// `n` points uniform in the outline's bounding box, from [`SplitMix64`] seeded with
+/// `seed`: the same outline, `n` and seed give the same points.
+#[must_use]
+pub fn box_points(outline: &Polyline2, n: usize, seed: u64) -> Vec<DVec2> {
+    let (lo, hi) = outline.bounds();
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|_| DVec2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y)))
+        .collect()
+}
+
+/// `n` points near the outline, where point inclusion is hardest: each on a random edge
+/// (uniform over the edges, so dense where the vertices are), moved across it by up to
+/// the edge's length either way; seeded as [`box_points`]. Empty for an outline without
+/// edges.
+#[must_use]
+pub fn near_outline_points(outline: &Polyline2, n: usize, seed: u64) -> Vec<DVec2> {
+    let edges = outline.edge_count();
+    if edges == 0 {
+        return Vec::new();
+    }
+    let mut rng = SplitMix64::new(seed);
+    (0..n)
+        .map(|_| {
+            let k = ((rng.range(0.0, 1.0) * edges as f64) as usize).min(edges - 1);
+            let (a, b) = outline.edge(k);
+            let along = a + (b - a) * rng.range(0.0, 1.0);
+            along + (b - a).perp() * rng.range(-1.0, 1.0)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use sphaera::mesh::shapes;
@@ -90,5 +129,34 @@ mod tests {
         assert_eq!(fewer[2].1[..], sets[2].1[..10]);
         // Deterministic.
         assert_eq!(query_sets(&sphere, 100).unwrap(), sets);
+    }
+
+    #[test]
+    fn outline_points_are_where_they_say() {
+        let square = Polyline2::polygon(vec![
+            DVec2::ZERO,
+            DVec2::new(4.0, 0.0),
+            DVec2::new(4.0, 4.0),
+            DVec2::new(0.0, 4.0),
+        ])
+        .unwrap();
+        let spread = box_points(&square, 200, 3);
+        assert!(
+            spread
+                .iter()
+                .all(|p| p.cmpge(DVec2::ZERO).all() && p.cmple(DVec2::splat(4.0)).all())
+        );
+        assert_eq!(spread, box_points(&square, 200, 3));
+        let near = near_outline_points(&square, 200, 3);
+        // Within an edge's length (4) of the outline: of its nearest side's line.
+        assert!(near.iter().all(|p| {
+            let to_side =
+                p.x.abs()
+                    .min((p.x - 4.0).abs())
+                    .min(p.y.abs())
+                    .min((p.y - 4.0).abs());
+            to_side <= 4.0
+        }));
+        assert_ne!(near, spread);
     }
 }

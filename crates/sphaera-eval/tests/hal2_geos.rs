@@ -1,6 +1,8 @@
 //! 2D point inclusion of the HAL tree against GEOS prepared geometry on every shared
-//! outline (`shared/data/polygons/*.txt`): random points in the bounding box, every
-//! vertex, every edge midpoint, and points an ulp and a little more beside the outline.
+//! outline (`shared/data/polygons/*.txt`): random points in the bounding box and within
+//! an edge's length of the outline, every vertex, every edge midpoint, and points an ulp
+//! and a little more beside the outline. HAL's answer (through its cell grid) is also its
+//! hierarchy's walk alone at every point.
 //! HAL's `Inside` must be GEOS's `contains`, `Inside | Boundary` its `intersects`
 //! (`sphaera_eval::geos_peer`). Needs the `geos` feature (`required-features`); skipped
 //! with a message when the data is absent, failing under `SPHAERA_REQUIRE_DATA=1`.
@@ -8,9 +10,8 @@
 use geos::{Geom, Geometry, PreparedGeometry};
 use sphaera::hal::{Containment, HalTree2, Polyline2, contains_brute, ray_crossing};
 use sphaera::mesh::glam::DVec2;
-use sphaera_eval::geos_peer::{
-    QUERY_SEED, box_queries, geos_containment, geos_points, geos_polygon, outlines,
-};
+use sphaera_eval::geos_peer::{QUERY_SEED, geos_containment, geos_points, geos_polygon, outlines};
+use sphaera_eval::query_sets::{box_points, near_outline_points};
 
 /// Random points per outline.
 const RANDOM_POINTS: usize = 2_000;
@@ -28,9 +29,19 @@ struct Case<'a> {
 }
 
 impl Case<'_> {
-    /// HAL's answer at `x`.
+    /// HAL's answer at `x`, checked against the hierarchy's walk alone.
     fn hal(&self, x: DVec2) -> Containment {
-        self.tree.contains(x).expect("a closed outline")
+        let answer = self.tree.contains(x).expect("a closed outline");
+        let walk = self
+            .tree
+            .contains_by_hierarchy(x)
+            .expect("a closed outline");
+        assert_eq!(
+            answer, walk,
+            "{}: the grid and the walk differ at {x:?}",
+            self.name
+        );
+        answer
     }
 
     /// GEOS's answer at each of `points`, in HAL's terms.
@@ -85,8 +96,10 @@ fn check_outline(case: &Case<'_>) {
     let n = outline.edge_count();
 
     // Random points in the bounding box (the bench's points, and more).
-    let random = box_queries(outline, RANDOM_POINTS, QUERY_SEED);
+    let random = box_points(outline, RANDOM_POINTS, QUERY_SEED);
     case.assert_agree("random points", &random);
+    let near = near_outline_points(outline, RANDOM_POINTS, QUERY_SEED);
+    case.assert_agree("random points near the outline", &near);
     assert!(
         random.iter().any(|&x| case.hal(x) == Containment::Inside)
             && random.iter().any(|&x| case.hal(x) == Containment::Outside),

@@ -68,7 +68,12 @@
 //! - **Point inclusion**: the crossing number, with every part whose bounding area does not
 //!   contain the point replaced by its chord. Each node also keeps its part's bounding box,
 //!   tested first (coordinate comparisons, exact): a part above, below or left of the
-//!   point crosses nothing, one right of it as often as its chord.
+//!   point crosses nothing, one right of it as often as its chord. In front of the
+//!   hierarchy, a cell grid over the ring (about 4 cells per edge) answers most queries:
+//!   a cell no edge touches is wholly inside or outside, and in a cell a few edges cross,
+//!   the crossings of the segment from the cell's centre decide, with exact
+//!   orientations; whatever the grid cannot decide exactly goes to the hierarchy
+//!   ([`HalTree2::contains_by_hierarchy`] is the paper's method alone).
 //! - **Intersection detection**: pairs of parts whose bounding areas and boxes may meet are
 //!   refined down to pairs of edges, tested exactly; [`HalTree2::intersecting_edges`]
 //!   returns every such pair. A closed outline is a region, an open one a curve, as in
@@ -120,6 +125,7 @@
 //! `sphaera-cli`. The paper: R. C. Veltkamp, *Hierarchical approximation and
 //! localization* (Utrecht University).
 
+mod cell_grid;
 mod error;
 mod intersect3;
 mod lens;

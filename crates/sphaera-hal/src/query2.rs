@@ -74,8 +74,39 @@ pub fn contains_brute(polygon: &Polyline2, x: DVec2) -> Result<Containment, HalE
 }
 
 impl HalTree2 {
-    /// Point inclusion (section 5.1): the crossing number of a ray from `x`, with every
-    /// part of the outline whose bounding area does not contain `x` replaced by its chord.
+    /// Point inclusion: whether `x` is inside the polygon, outside, or exactly on its
+    /// outline. The fastest exact method: the tree's cell grid first, the hierarchy's
+    /// walk ([`HalTree2::contains_by_hierarchy`]) where the grid cannot decide.
+    ///
+    /// The grid (built with the tree, about 4 cells per edge) answers a point in a cell
+    /// no edge touches at once, and in a cell a few edges cross by counting the edges
+    /// that cross the segment from the cell's centre (whose answer the walk gave at
+    /// build) to `x`, with exact orientations; a point on an edge's line, a segment
+    /// through a vertex, a centre on the outline or a crowded cell go to the walk. So the
+    /// answer is always the walk's, and equals [`contains_brute`]'s on every input.
+    /// Points exactly on an edge or at a vertex are [`Containment::Boundary`].
+    ///
+    /// # Errors
+    ///
+    /// [`HalError::OpenPolyline`] for an open polyline.
+    ///
+    /// # Performance
+    ///
+    /// A point in a cell no edge touches costs one cell lookup (most points spread over
+    /// the bounding box); one next to the outline a few exact orientations more. Against
+    /// GEOS prepared geometry and HAL's hierarchy alone, on points spread and near the
+    /// outline, in the same run: *HAL trees* in `docs/benchmarks.md` in the repository.
+    pub fn contains(&self, x: DVec2) -> Result<Containment, HalError> {
+        if !self.polyline().is_closed() {
+            return Err(HalError::OpenPolyline);
+        }
+        Ok(self.ring_containment(x))
+    }
+
+    /// Point inclusion by the paper's method alone (section 5.1): the crossing number
+    /// of a ray from `x`, with every part of the outline whose bounding area does not
+    /// contain `x` replaced by its chord, without the cell grid of
+    /// [`HalTree2::contains`] (the same answers, slower; for comparison).
     ///
     /// The answer equals [`contains_brute`]'s on every input: the same half-open crossing
     /// rule and exact orientation tests are used, a chord is used only for a part whose
@@ -87,24 +118,39 @@ impl HalTree2 {
     /// # Errors
     ///
     /// [`HalError::OpenPolyline`] for an open polyline.
-    pub fn contains(&self, x: DVec2) -> Result<Containment, HalError> {
+    pub fn contains_by_hierarchy(&self, x: DVec2) -> Result<Containment, HalError> {
         if !self.polyline().is_closed() {
             return Err(HalError::OpenPolyline);
         }
-        Ok(self.ring_containment(x))
+        if !self.bounds().holds(x) {
+            return Ok(Containment::Outside);
+        }
+        Ok(self.walk_containment(x))
     }
 
-    /// [`HalTree2::contains`] of a closed ring, without the check.
+    /// [`HalTree2::contains`] of a closed ring, without the check: the grid, then the
+    /// walk.
+    pub(crate) fn ring_containment(&self, x: DVec2) -> Containment {
+        if !self.bounds().holds(x) {
+            return Containment::Outside;
+        }
+        if let Some(answer) = self
+            .grid()
+            .and_then(|grid| grid.containment(self.ordered(), x))
+        {
+            return answer;
+        }
+        self.walk_containment(x)
+    }
+
+    /// The walk of [`HalTree2::contains_by_hierarchy`] for `x` in the bounding box.
     ///
     /// A part is replaced by its chord when `x` lies outside its bounding box or its
     /// bounding area. With the horizontal ray, the box often decides more: a part wholly
     /// above, below or left of `x` crosses nothing, and one wholly right of it crosses as
     /// often (mod 2) as its ends lie on different sides of `x`'s height; these are
     /// coordinate comparisons, exact, and agree with the exact orientation tests.
-    pub(crate) fn ring_containment(&self, x: DVec2) -> Containment {
-        if !self.bounds().holds(x) {
-            return Containment::Outside;
-        }
+    pub(crate) fn walk_containment(&self, x: DVec2) -> Containment {
         PART_STACK.with_borrow_mut(|stack| {
             stack.clear();
             let mut inside = false;

@@ -199,6 +199,10 @@ fn open_polylines_have_a_chord_root_and_no_inside() {
         tree.contains(DVec2::ZERO),
         Err(HalError::OpenPolyline)
     ));
+    assert!(matches!(
+        tree.contains_by_hierarchy(DVec2::ZERO),
+        Err(HalError::OpenPolyline)
+    ));
     let zigzag: Vec<DVec2> = (0..9)
         .map(|i| DVec2::new(f64::from(i), f64::from(i % 2)))
         .collect();
@@ -293,6 +297,7 @@ proptest! {
             // Half-grid queries: on vertices, on edge midpoints, between.
             let x = DVec2::new(f64::from(qx) * 0.5, f64::from(qy) * 0.5);
             prop_assert_eq!(tree.contains(x).unwrap(), reference(&outline, x));
+            prop_assert_eq!(tree.contains_by_hierarchy(x).unwrap(), reference(&outline, x));
         }
     }
 
@@ -312,6 +317,7 @@ proptest! {
         for (x, y) in queries {
             let x = DVec2::new(x, y);
             prop_assert_eq!(tree.contains(x).unwrap(), reference(&outline, x));
+            prop_assert_eq!(tree.contains_by_hierarchy(x).unwrap(), reference(&outline, x));
         }
     }
 }
@@ -346,6 +352,12 @@ fn real_outlines_answer_as_brute_force() {
             };
             assert_eq!(
                 tree.contains(x).unwrap(),
+                reference(&outline, x),
+                "{}: {x}",
+                file.display()
+            );
+            assert_eq!(
+                tree.contains_by_hierarchy(x).unwrap(),
                 reference(&outline, x),
                 "{}: {x}",
                 file.display()
@@ -541,6 +553,7 @@ proptest! {
             let p = origin + DVec2::new(x, 0.0);
             let x = DVec2::new(p.x, p.y + f64::from(k) * ulp(p.y));
             prop_assert_eq!(tree.contains(x).unwrap(), reference(&polygon, x), "{}", x);
+            prop_assert_eq!(tree.contains_by_hierarchy(x).unwrap(), reference(&polygon, x), "{}", x);
         }
         // A copy moved by a fraction along the run and a few ulps across it.
         let moved = DVec2::new(shift.0, f64::from(shift.1) * ulp(origin.y));

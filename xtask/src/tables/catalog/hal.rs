@@ -6,60 +6,21 @@ use super::filters::*;
 
 /// The tables of this group.
 pub(super) const TABLES: &[Table] = &[
-    // docs/benchmarks.md, "HAL trees", "Point inclusion": per outline, µs per query.
+    // docs/benchmarks.md, "HAL trees", "Point inclusion": per outline, µs per query, on
+    // points spread over the bounding box and on points near the outline.
     Table {
         name: "hal_query_speed",
         csv: "hal_query_speed",
         key: &["polygon"],
-        keep: |_| true,
-        columns: &[
-            col("outline", "polygon", ANY, Format::Label(HAL_OUTLINES)),
-            col("vertices", "vertices", ANY, Format::Grouped(0)),
-            col(
-                "HAL build ms",
-                "build_seconds",
-                HAL_TREE,
-                Format::Decimals(2),
-            )
-            .times(1000.0),
-            col(
-                "HAL",
-                "microseconds_per_query",
-                HAL_TREE,
-                Format::Grouped(2),
-            ),
-            col(
-                "strip tree",
-                "microseconds_per_query",
-                &[("method", "strip tree")],
-                Format::Grouped(2),
-            ),
-            col(
-                "box tree",
-                "microseconds_per_query",
-                &[("method", "box tree")],
-                Format::Grouped(2),
-            ),
-            col(
-                "brute force",
-                "microseconds_per_query",
-                BRUTE_FORCE,
-                Format::Grouped(2),
-            ),
-            col(
-                "geo `contains`",
-                "microseconds_per_query",
-                &[("method", "geo contains")],
-                Format::Grouped(2),
-            ),
-            col(
-                "brute / HAL",
-                "microseconds_per_query",
-                BRUTE_FORCE,
-                Format::Times(0),
-            )
-            .over("microseconds_per_query", HAL_TREE),
-        ],
+        keep: |row| row.get("points") == Some("box"),
+        columns: QUERY_SPEED_COLUMNS,
+    },
+    Table {
+        name: "hal_query_speed_near",
+        csv: "hal_query_speed",
+        key: &["polygon"],
+        keep: |row| row.get("points") == Some("near"),
+        columns: QUERY_SPEED_COLUMNS,
     },
     // docs/benchmarks.md, "HAL trees", "Multipolygons": per country, µs per query.
     Table {
@@ -203,4 +164,60 @@ pub(super) const TABLES: &[Table] = &[
             ),
         ],
     },
+];
+
+/// The columns of both point-inclusion tables.
+const QUERY_SPEED_COLUMNS: &[super::super::spec::Column] = &[
+    col("outline", "polygon", ANY, Format::Label(HAL_OUTLINES)),
+    col("vertices", "vertices", ANY, Format::Grouped(0)),
+    col(
+        "HAL build ms",
+        "build_seconds",
+        HAL_TREE,
+        Format::Decimals(2),
+    )
+    .times(1000.0),
+    col(
+        "HAL",
+        "microseconds_per_query",
+        HAL_TREE,
+        Format::Grouped(3),
+    ),
+    col(
+        "HAL hierarchy",
+        "microseconds_per_query",
+        &[("method", "HAL hierarchy")],
+        Format::Grouped(3),
+    ),
+    col(
+        "strip tree",
+        "microseconds_per_query",
+        &[("method", "strip tree")],
+        Format::Grouped(3),
+    ),
+    col(
+        "box tree",
+        "microseconds_per_query",
+        &[("method", "box tree")],
+        Format::Grouped(3),
+    ),
+    col(
+        "brute force",
+        "microseconds_per_query",
+        BRUTE_FORCE,
+        Format::Grouped(2),
+    ),
+    col(
+        "geo `contains`",
+        "microseconds_per_query",
+        &[("method", "geo contains")],
+        Format::Grouped(2),
+    ),
+    col(
+        "brute / HAL",
+        "microseconds_per_query",
+        BRUTE_FORCE,
+        Format::Times(0),
+    )
+    .over("microseconds_per_query", HAL_TREE),
 ];

@@ -8,12 +8,15 @@
 //!   Figs. 6, 13, 14), on the Netherlands, Norway and the Americas, and in 3D (triangles,
 //!   Definition 6's widths) on the genus-0 meshes of [`MESHES_3D`].
 //! - **`hal_query_speed`**: microseconds per point-in-polygon query against the vertex
-//!   count, for the HAL tree, Ballard's strip tree and an axis-aligned box tree over the
-//!   edges ([`peers`]), the brute-force crossing test and `geo`'s `Contains`, on every
+//!   count, for the HAL tree (`HalTree2::contains`: its cell grid, then the hierarchy),
+//!   the hierarchy alone (`contains_by_hierarchy`, the paper's method), Ballard's strip
+//!   tree and an axis-aligned box tree over the edges ([`peers`]), the brute-force
+//!   crossing test and `geo`'s `Contains`, on every
 //!   outline and on the Americas refined to about a million vertices (every edge cut into
 //!   16, each inserted point moved across the edge by up to 2 % of its length, seeded: a
 //!   coastline-like outline, not necessarily simple, which the even–odd rule handles).
-//!   [`QUERIES`] random points in the bounding box (seed [`SEED`]); the linear-time
+//!   [`QUERIES`] random points in the bounding box and as many within an edge's length of
+//!   the outline (seed [`SEED`], `crate::query_sets`), one panel each; the linear-time
 //!   methods answer a prefix of them (at most [`LINEAR_WORK`] vertex visits in all). Every
 //!   structure's answers are checked against brute force on that prefix (geo's only off
 //!   the boundary, where it says "not contained"), and against the HAL tree's on all.
@@ -46,6 +49,8 @@ use geo::{Contains, LineString, Point, Polygon};
 use sphaera::hal::{Containment, HalTree2, HalTree3, Polyline2, contains_brute};
 use sphaera::mesh::glam::DVec2;
 use sphaera_tests::random::SplitMix64;
+
+use crate::query_sets::{box_points, near_outline_points};
 
 use crate::chart::{
     ChartSpec, LegendEntry, Marker, Series, Style, StyledPanel, StyledSeries, XAxis, palette,
@@ -305,109 +310,68 @@ fn time_queries<T>(points: &[DVec2], mut f: impl FnMut(DVec2) -> T) -> (f64, Vec
     (1e6 * best / points.len().max(1) as f64, answers)
 }
 
-/// `hal_query_speed`.
-fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
-    let methods = [
-        "HAL tree",
-        "strip tree",
-        "box tree",
-        "brute force",
-        "geo contains",
-    ];
-    let mut series: Vec<Series> = methods.iter().map(|m| Series::new(m)).collect();
-    let mut rows = Vec::new();
-    for (name, polygon) in outlines {
-        let n = polygon.points().len();
-        let (lo, hi) = polygon.bounds();
-        let mut rng = SplitMix64::new(SEED);
-        let points: Vec<DVec2> = (0..QUERIES)
-            .map(|_| DVec2::new(rng.range(lo.x, hi.x), rng.range(lo.y, hi.y)))
-            .collect();
-        let linear = (LINEAR_WORK / n).clamp(50, QUERIES);
-        let started = Instant::now();
-        let hal = HalTree2::build(polygon)?;
-        let hal_build = started.elapsed().as_secs_f64();
-        let started = Instant::now();
-        let strip = StripTree::build(&hal);
-        let strip_build = started.elapsed().as_secs_f64();
-        let started = Instant::now();
-        let boxes = EdgeBoxTree::build(polygon)?;
-        let box_build = started.elapsed().as_secs_f64();
-        let geo_polygon = Polygon::new(
-            LineString::from(
-                polygon
-                    .points()
-                    .iter()
-                    .map(|p| (p.x, p.y))
-                    .collect::<Vec<_>>(),
-            ),
-            vec![],
-        );
+/// The methods of `hal_query_speed`, in its CSV's and chart's order.
+const QUERY_METHODS: [&str; 6] = [
+    "HAL tree",
+    "HAL hierarchy",
+    "strip tree",
+    "box tree",
+    "brute force",
+    "geo contains",
+];
 
-        let (hal_us, hal_answers) = time_queries(&points, |p| hal.contains(p));
-        let hal_answers: Vec<Containment> = hal_answers.into_iter().collect::<Result<_, _>>()?;
-        let as_option = |l: &Containment| match l {
-            Containment::Inside => Some(true),
-            Containment::Outside => Some(false),
-            Containment::Boundary => None,
-        };
-        let (strip_us, strip_answers) = time_queries(&points, |p| strip.contains(p));
-        let (box_us, box_answers) = time_queries(&points, |p| boxes.contains(p));
-        let prefix = &points[..linear];
-        let (brute_us, brute_answers) = time_queries(prefix, |p| contains_brute(polygon, p));
-        let (geo_us, geo_answers) =
-            time_queries(prefix, |p| geo_polygon.contains(&Point::new(p.x, p.y)));
-        for (k, brute) in brute_answers.iter().enumerate() {
-            let brute = brute.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
-            if *brute != hal_answers[k] {
-                bail!(
-                    "{name}: HAL says {:?}, brute force {brute:?} at {}",
-                    hal_answers[k],
-                    points[k]
-                );
+/// `hal_query_speed`: both point sets, one panel each.
+fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
+    let sets = [
+        ("box", "random points in the bounding box"),
+        (
+            "near",
+            "random points within an edge's length of the outline",
+        ),
+    ];
+    let mut rows = Vec::new();
+    let mut all_series = Vec::new();
+    for (set, _) in sets {
+        let mut series: Vec<Series> = QUERY_METHODS.iter().map(|m| Series::new(m)).collect();
+        for (name, polygon) in outlines {
+            let points = match set {
+                "box" => box_points(polygon, QUERIES, SEED),
+                _ => near_outline_points(polygon, QUERIES, SEED),
+            };
+            let measured = query_speed_of(name, polygon, &points)?;
+            let n = polygon.points().len();
+            for (i, &(us, queries, build)) in measured.iter().enumerate() {
+                series[i].points.push((n as f64, us));
+                rows.push(vec![
+                    name.clone(),
+                    n.to_string(),
+                    set.to_owned(),
+                    QUERY_METHODS[i].into(),
+                    format!("{build:.6}"),
+                    queries.to_string(),
+                    format!("{us:.4}"),
+                ]);
             }
-            if *brute != Containment::Boundary && geo_answers[k] != (*brute == Containment::Inside)
-            {
-                bail!("{name}: geo disagrees with brute force at {}", points[k]);
-            }
+            eprintln!(
+                "{name:<28} {n:>9} vertices, {set:<4} µs/query: HAL {:.3} (build {:.3} s), hierarchy {:.3}, strip {:.3}, box {:.3}, brute {:.2}, geo {:.2}; brute/HAL {:.0}×",
+                measured[0].0,
+                measured[0].2,
+                measured[1].0,
+                measured[2].0,
+                measured[3].0,
+                measured[4].0,
+                measured[5].0,
+                measured[4].0 / measured[0].0
+            );
         }
-        for (k, hal_answer) in hal_answers.iter().enumerate() {
-            let expected = as_option(hal_answer);
-            if strip_answers[k] != expected || box_answers[k] != expected {
-                bail!(
-                    "{name}: strip or box tree disagrees with HAL at {}",
-                    points[k]
-                );
-            }
-        }
-        let measured = [
-            (hal_us, QUERIES, hal_build),
-            (strip_us, QUERIES, strip_build),
-            (box_us, QUERIES, box_build),
-            (brute_us, linear, 0.0),
-            (geo_us, linear, 0.0),
-        ];
-        for (i, &(us, queries, build)) in measured.iter().enumerate() {
-            series[i].points.push((n as f64, us));
-            rows.push(vec![
-                name.clone(),
-                n.to_string(),
-                methods[i].into(),
-                format!("{build:.6}"),
-                queries.to_string(),
-                format!("{us:.4}"),
-            ]);
-        }
-        eprintln!(
-            "{name:<28} {n:>9} vertices  µs/query: HAL {hal_us:.3} (build {hal_build:.3} s), strip {strip_us:.3}, box {box_us:.3}, brute {brute_us:.2}, geo {geo_us:.2}; brute/HAL {:.0}×",
-            brute_us / hal_us
-        );
+        all_series.push(series);
     }
     write_csv(
         &out.join("hal_query_speed.csv"),
         &[
             "polygon",
             "vertices",
+            "points",
             "method",
             "build_seconds",
             "queries",
@@ -417,17 +381,23 @@ fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
     )?;
     let markers = [
         Marker::Circle,
+        Marker::Triangle,
         Marker::Square,
         Marker::Triangle,
         Marker::Circle,
         Marker::Square,
     ];
-    let styled: Vec<StyledSeries> = series
+    let styled: Vec<Vec<StyledSeries>> = all_series
         .into_iter()
-        .enumerate()
-        .map(|(i, s)| StyledSeries::new(s, style(i, markers[i], true)))
+        .map(|series| {
+            series
+                .into_iter()
+                .enumerate()
+                .map(|(i, s)| StyledSeries::new(s, style(i, markers[i], true)))
+                .collect()
+        })
         .collect();
-    let legend: Vec<LegendEntry> = methods
+    let legend: Vec<LegendEntry> = QUERY_METHODS
         .iter()
         .enumerate()
         .map(|(i, m)| LegendEntry {
@@ -435,22 +405,104 @@ fn query_speed(outlines: &[(String, Polyline2)], out: &Path) -> Result<()> {
             style: style(i, markers[i], true),
         })
         .collect();
-    let panel = StyledPanel {
-        spec: ChartSpec {
-            title: "point in polygon, random points in the bounding box",
-            x_label: "polygon vertices",
-            y_label: "microseconds per query (one thread)",
-        },
-        x_axis: XAxis::Log,
-        series: &styled,
-        notes: &[],
-    };
+    let panels: Vec<StyledPanel<'_>> = sets
+        .iter()
+        .zip(&styled)
+        .map(|(&(_, title), series)| StyledPanel {
+            spec: ChartSpec {
+                title,
+                x_label: "polygon vertices",
+                y_label: "microseconds per query (one thread)",
+            },
+            x_axis: XAxis::Log,
+            series,
+            notes: &[],
+        })
+        .collect();
     titled_panels(
         &out.join("hal_query_speed.svg"),
-        "Point inclusion: HAL tree against a strip tree, a box tree, brute force and geo (same run)",
-        &[panel],
+        "Point inclusion: the HAL tree (cell grid, then hierarchy) and its hierarchy alone against a strip tree, a box tree, brute force and geo (same run)",
+        &panels,
         &legend,
     )
+}
+
+/// Each of [`QUERY_METHODS`] on `points`: microseconds per query, the queries answered
+/// and the build's seconds; every answer checked (see the module docs).
+fn query_speed_of(
+    name: &str,
+    polygon: &Polyline2,
+    points: &[DVec2],
+) -> Result<[(f64, usize, f64); 6]> {
+    let n = polygon.points().len();
+    let linear = (LINEAR_WORK / n).clamp(50, points.len());
+    let started = Instant::now();
+    let hal = HalTree2::build(polygon)?;
+    let hal_build = started.elapsed().as_secs_f64();
+    let started = Instant::now();
+    let strip = StripTree::build(&hal);
+    let strip_build = started.elapsed().as_secs_f64();
+    let started = Instant::now();
+    let boxes = EdgeBoxTree::build(polygon)?;
+    let box_build = started.elapsed().as_secs_f64();
+    let geo_polygon = Polygon::new(
+        LineString::from(
+            polygon
+                .points()
+                .iter()
+                .map(|p| (p.x, p.y))
+                .collect::<Vec<_>>(),
+        ),
+        vec![],
+    );
+
+    let (hal_us, hal_answers) = time_queries(points, |p| hal.contains(p));
+    let hal_answers: Vec<Containment> = hal_answers.into_iter().collect::<Result<_, _>>()?;
+    let (walk_us, walk_answers) = time_queries(points, |p| hal.contains_by_hierarchy(p));
+    let as_option = |l: &Containment| match l {
+        Containment::Inside => Some(true),
+        Containment::Outside => Some(false),
+        Containment::Boundary => None,
+    };
+    let (strip_us, strip_answers) = time_queries(points, |p| strip.contains(p));
+    let (box_us, box_answers) = time_queries(points, |p| boxes.contains(p));
+    let prefix = &points[..linear];
+    let (brute_us, brute_answers) = time_queries(prefix, |p| contains_brute(polygon, p));
+    let (geo_us, geo_answers) =
+        time_queries(prefix, |p| geo_polygon.contains(&Point::new(p.x, p.y)));
+    for (k, brute) in brute_answers.iter().enumerate() {
+        let brute = brute.as_ref().map_err(|e| anyhow::anyhow!("{e}"))?;
+        if *brute != hal_answers[k] {
+            bail!(
+                "{name}: HAL says {:?}, brute force {brute:?} at {}",
+                hal_answers[k],
+                points[k]
+            );
+        }
+        if *brute != Containment::Boundary && geo_answers[k] != (*brute == Containment::Inside) {
+            bail!("{name}: geo disagrees with brute force at {}", points[k]);
+        }
+    }
+    for (k, hal_answer) in hal_answers.iter().enumerate() {
+        let expected = as_option(hal_answer);
+        let walk = walk_answers[k]
+            .as_ref()
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+        if walk != hal_answer || strip_answers[k] != expected || box_answers[k] != expected {
+            bail!(
+                "{name}: the hierarchy, strip or box tree disagrees with HAL at {}",
+                points[k]
+            );
+        }
+    }
+    Ok([
+        (hal_us, points.len(), hal_build),
+        (walk_us, points.len(), hal_build),
+        (strip_us, points.len(), strip_build),
+        (box_us, points.len(), box_build),
+        (brute_us, linear, 0.0),
+        (geo_us, linear, 0.0),
+    ])
 }
 
 /// `hal_vs_strip_tree`.
