@@ -6,9 +6,11 @@
 //! The answer is exact: cells are closed boxes between stored grid lines, located with
 //! coordinate comparisons; an edge is listed in every cell it touches (decided with
 //! exact orientations); the centres' answers come from the tree's walk; and a crossing
-//! is counted only when all four orientations are non-zero. Anything else (a centre on
-//! the outline, a query on an edge's line or a segment through a vertex, a cell with many
-//! edges) is left to the walk, so the grid's answer is always the walk's.
+//! is counted only when all four orientations are non-zero. A crowded cell (more than 8
+//! edges, where coastlines bunch up) gets a grid of its own over its box and its edges,
+//! one level deep, from a budget shared over the ring. Anything else (a centre on the
+//! outline, a query on an edge's line or a segment through a vertex, a crowded cell of a
+//! cell's grid) is left to the walk, so the grid's answer is always the walk's.
 //!
 //! The idea is a planar form of the cell index of Google's S2 geometry library (cells
 //! that keep their edges, clipped, and whether their centre is inside).
@@ -27,24 +29,30 @@ pub(crate) const MAX_CELLS: usize = 1 << 22;
 /// Rings with fewer edges go straight to the walk.
 const MIN_EDGES: usize = 8;
 
-/// Cells with more edges than this are left to the walk.
+/// Cells with more edges than this get a grid of their own (one level deep).
+const SUBDIVIDE_ABOVE: usize = 8;
+
+/// Cells with more edges than this, and no grid of their own, are left to the walk.
 const MAX_CELL_EDGES: usize = 32;
 
 /// The most cell–edge incidences per edge (a budget against long diagonal edges); a grid
 /// over budget is rebuilt four times coarser, and after a few tries not built at all.
 const INCIDENCES_PER_EDGE: usize = 12;
 
-/// The most bytes a grid holds per edge: 4 cells of 4 bytes, 12 incidences of 4 bytes
-/// and as many mixed cells of 32 bytes (a bound, far above what outlines need), plus
-/// the lines.
+/// The most bytes a grid holds per edge, the crowded cells' grids included (they share
+/// one more budget of as many cells and incidences): 4 cells of 4 bytes, 12 incidences of
+/// 4 bytes and as many mixed cells of 32 bytes, twice (a bound, far above what outlines
+/// need), plus the lines.
 #[cfg(test)]
 const MAX_BYTES_PER_EDGE: usize =
-    CELLS_PER_EDGE * 4 + INCIDENCES_PER_EDGE * (4 + size_of::<MixedCell>());
+    2 * (CELLS_PER_EDGE * 4 + INCIDENCES_PER_EDGE * (4 + size_of::<MixedCell>()));
 
-/// Cell codes: no edge touches the cell and it is outside, or inside; or the walk answers.
+/// Cell codes: no edge touches the cell and it is outside, or inside; or the walk answers;
+/// or (with this bit) the cell has a grid of its own, the index in the other bits.
 const OUTSIDE: u32 = u32::MAX;
 const INSIDE: u32 = u32::MAX - 1;
 const WALK: u32 = u32::MAX - 2;
+const SUBGRID: u32 = 1 << 31;
 
 /// A cell some edges touch: its centre, the centre's answer, its edges' range.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,6 +77,15 @@ pub(crate) struct CellGrid {
     mixed: Vec<MixedCell>,
     /// The edges of the mixed cells: the position `p` of the edge `p → p + 1`.
     edges: Vec<u32>,
+    /// The grids of crowded cells (top level only).
+    subgrids: Vec<CellGrid>,
+}
+
+/// What the grids of crowded cells may still spend, over the whole ring: cells and
+/// cell–edge pairs.
+struct Budget {
+    cells: usize,
+    incidences: usize,
 }
 
 impl CellGrid {
@@ -85,13 +102,31 @@ impl CellGrid {
             .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| {
                 (lo.min(p), hi.max(p))
             });
+        let mut budget = Budget {
+            cells: CELLS_PER_EDGE * edges,
+            incidences: INCIDENCES_PER_EDGE * edges,
+        };
+        Self::over(ordered, None, (lo, hi), &walk, Some(&mut budget))
+    }
+
+    /// The grid over the box `lo..hi` of the edges `subset` (every edge for `None`); the
+    /// crowded cells get grids of their own from `budget` (none for `None`).
+    fn over(
+        ordered: &[DVec2],
+        subset: Option<&[u32]>,
+        (lo, hi): (DVec2, DVec2),
+        walk: &impl Fn(DVec2) -> Containment,
+        budget: Option<&mut Budget>,
+    ) -> Option<Self> {
+        let edges = subset.map_or(ordered.len() - 1, <[u32]>::len);
         let mut target = (CELLS_PER_EDGE * edges).min(MAX_CELLS);
         for _ in 0..3 {
             let (columns, rows) = shape(hi - lo, target);
             let xs = lines(lo.x, hi.x, columns);
             let ys = lines(lo.y, hi.y, rows);
-            if let Some(touching) = incidences(ordered, &xs, &ys, INCIDENCES_PER_EDGE * edges) {
-                return Some(Self::classify(xs, ys, &touching, &walk));
+            let limit = INCIDENCES_PER_EDGE * edges;
+            if let Some(touching) = incidences(ordered, subset, &xs, &ys, limit) {
+                return Some(Self::classify(ordered, xs, ys, &touching, walk, budget));
             }
             target /= 4;
         }
@@ -100,10 +135,12 @@ impl CellGrid {
 
     /// The cells' codes from the (cell, edge) pairs sorted by cell.
     fn classify(
+        ordered: &[DVec2],
         xs: Vec<f64>,
         ys: Vec<f64>,
         touching: &[(u32, u32)],
         walk: &impl Fn(DVec2) -> Containment,
+        mut budget: Option<&mut Budget>,
     ) -> Self {
         let (columns, rows) = (xs.len() - 1, ys.len() - 1);
         let per_unit = DVec2::new(
@@ -117,10 +154,30 @@ impl CellGrid {
         let mut cells = vec![OUTSIDE; columns * rows];
         let mut mixed = Vec::new();
         let mut edges = Vec::new();
+        let mut subgrids = Vec::new();
         let mut empty = vec![true; columns * rows];
+        let mut positions = Vec::new();
         for group in touching.chunk_by(|a, b| a.0 == b.0) {
             let cell = group[0].0 as usize;
             empty[cell] = false;
+            if group.len() > SUBDIVIDE_ABOVE
+                && let Some(budget) = budget.as_deref_mut()
+                && budget.cells >= CELLS_PER_EDGE * group.len()
+                && budget.incidences >= INCIDENCES_PER_EDGE * group.len()
+            {
+                let (i, j) = (cell % columns, cell / columns);
+                let corners = (DVec2::new(xs[i], ys[j]), DVec2::new(xs[i + 1], ys[j + 1]));
+                positions.clear();
+                positions.extend(group.iter().map(|&(_, p)| p));
+                if let Some(grid) = Self::over(ordered, Some(&positions), corners, walk, None) {
+                    // A grid's shape may round a few cells past its target.
+                    budget.cells = budget.cells.saturating_sub(grid.cells.len());
+                    budget.incidences = budget.incidences.saturating_sub(grid.edges.len());
+                    cells[cell] = SUBGRID | subgrids.len() as u32;
+                    subgrids.push(grid);
+                    continue;
+                }
+            }
             if group.len() > MAX_CELL_EDGES {
                 cells[cell] = WALK;
                 continue;
@@ -183,6 +240,7 @@ impl CellGrid {
             cells,
             mixed,
             edges,
+            subgrids,
         }
     }
 
@@ -198,6 +256,9 @@ impl CellGrid {
             OUTSIDE => return Some(Containment::Outside),
             INSIDE => return Some(Containment::Inside),
             WALK => return None,
+            sub if sub & SUBGRID != 0 => {
+                return self.subgrids[(sub & !SUBGRID) as usize].containment(ordered, x);
+            }
             m => &self.mixed[m as usize],
         };
         let c = coord(cell.centre);
@@ -233,6 +294,7 @@ impl CellGrid {
             + self.cells.len() * size_of::<u32>()
             + self.mixed.len() * size_of::<MixedCell>()
             + self.edges.len() * size_of::<u32>()
+            + self.subgrids.iter().map(CellGrid::bytes).sum::<usize>()
     }
 }
 
@@ -309,15 +371,26 @@ fn span(lines: &[f64], per: f64, lo: f64, hi: f64) -> (usize, usize) {
     (first, end.max(first))
 }
 
-/// Every (cell, edge) pair whose closed cell the edge touches, sorted; `None` beyond
-/// `budget` pairs.
-fn incidences(ordered: &[DVec2], xs: &[f64], ys: &[f64], budget: usize) -> Option<Vec<(u32, u32)>> {
+/// Every (cell, edge) pair whose closed cell the edge touches (of the edges `subset`, or
+/// all), sorted; `None` beyond `budget` pairs.
+fn incidences(
+    ordered: &[DVec2],
+    subset: Option<&[u32]>,
+    xs: &[f64],
+    ys: &[f64],
+    budget: usize,
+) -> Option<Vec<(u32, u32)>> {
     let (columns, rows) = (xs.len() - 1, ys.len() - 1);
     let per_x = per_unit(xs[0], xs[columns], columns);
     let per_y = per_unit(ys[0], ys[rows], rows);
+    let every = 0..ordered.len() as u32 - 1;
+    let positions: Box<dyn Iterator<Item = u32>> = match subset {
+        Some(subset) => Box::new(subset.iter().copied()),
+        None => Box::new(every),
+    };
     let mut out = Vec::new();
-    for (p, pair) in ordered.windows(2).enumerate() {
-        let (a, b) = (pair[0], pair[1]);
+    for p in positions {
+        let (a, b) = (ordered[p as usize], ordered[p as usize + 1]);
         let (lo, hi) = (a.min(b), a.max(b));
         let (i0, i1) = span(xs, per_x, lo.x, hi.x);
         let (j0, j1) = span(ys, per_y, lo.y, hi.y);
@@ -342,7 +415,7 @@ fn incidences(ordered: &[DVec2], xs: &[f64], ys: &[f64], budget: usize) -> Optio
             for j in r0.max(j0)..=r1.min(j1) {
                 let (min, max) = (DVec2::new(xs[i], ys[j]), DVec2::new(xs[i + 1], ys[j + 1]));
                 if touches(a, b, min, max) {
-                    out.push(((j * columns + i) as u32, p as u32));
+                    out.push(((j * columns + i) as u32, p));
                     if out.len() > budget {
                         return None;
                     }
@@ -450,6 +523,9 @@ mod tests {
                     ));
                 }
             }
+        }
+        for sub in &grid.subgrids {
+            out.extend(probes(sub, &[]));
         }
         for pair in ordered.windows(2) {
             out.push(pair[0]);
@@ -563,10 +639,10 @@ mod tests {
         check(sliver);
     }
 
-    /// A spiral crowding many edges into few cells: crowded cells go to the walk, the
-    /// answers stay right.
+    /// A spiral crowding many edges into few cells: crowded cells get grids of their own,
+    /// whose crowded cells go to the walk; the answers stay right.
     #[test]
-    fn crowded_cells_are_left_to_the_walk() {
+    fn crowded_cells_get_grids_of_their_own() {
         // Turns packed ever closer towards the centre, out and back.
         let (turns, n) = (30.0, 600);
         let out: Vec<DVec2> = (0..n)
@@ -579,7 +655,9 @@ mod tests {
         let points: Vec<DVec2> = out.into_iter().chain(back).collect();
         let outline = Polyline2::polygon(points.clone()).expect("a polygon");
         let tree = HalTree2::build(&outline).expect("a tree");
-        assert!(tree.grid().expect("a grid").cells.contains(&WALK));
+        let grid = tree.grid().expect("a grid");
+        assert!(!grid.subgrids.is_empty());
+        assert!(grid.subgrids.iter().any(|sub| sub.cells.contains(&WALK)));
         check(points);
     }
 

@@ -81,8 +81,9 @@ impl HalTree2 {
     /// The grid (built with the tree, about 4 cells per edge) answers a point in a cell
     /// no edge touches at once, and in a cell a few edges cross by counting the edges
     /// that cross the segment from the cell's centre (whose answer the walk gave at
-    /// build) to `x`, with exact orientations; a point on an edge's line, a segment
-    /// through a vertex, a centre on the outline or a crowded cell go to the walk. So the
+    /// build) to `x`, with exact orientations; a crowded cell has a grid of its own. A
+    /// point on an edge's line, a segment through a vertex, a centre on the outline or a
+    /// cell still crowded go to the walk. So the
     /// answer is always the walk's, and equals [`contains_brute`]'s on every input.
     /// Points exactly on an edge or at a vertex are [`Containment::Boundary`].
     ///

@@ -69,8 +69,9 @@ pub struct Chain {
 /// (16 bytes each): point inclusion and intersection test the box first, with coordinate
 /// comparisons only, and use the lens where the box cannot decide. A closed ring of at
 /// least 8 edges also gets a cell grid for [`HalTree2::contains`] (about 4 cells per
-/// edge, at most 2²² cells and 12 cell–edge pairs per edge: a few dozen bytes per edge,
-/// built in time linear in the cells and pairs plus one walk per crossed cell).
+/// edge, at most 2²² cells and 12 cell–edge pairs per edge, and as many again for the
+/// grids of crowded cells: a few dozen bytes per edge, built in time linear in the cells
+/// and pairs plus one walk per crossed cell).
 ///
 /// # Examples
 ///
