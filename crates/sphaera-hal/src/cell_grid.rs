@@ -5,12 +5,14 @@
 //!
 //! The answer is exact: cells are closed boxes between stored grid lines, located with
 //! coordinate comparisons; an edge is listed in every cell it touches (decided with
-//! exact orientations); the centres' answers come from the tree's walk; and a crossing
-//! is counted only when all four orientations are non-zero. A crowded cell (more than 8
-//! edges, where coastlines bunch up) gets a grid of its own over its box and its edges,
-//! one level deep, from a budget shared over the ring. Anything else (a centre on the
-//! outline, a query on an edge's line or a segment through a vertex, a crowded cell of a
-//! cell's grid) is left to the walk, so the grid's answer is always the walk's.
+//! exact orientations); a crossing is counted only when all four orientations are
+//! non-zero; and the centres' answers are found at build by stepping from centre to
+//! centre the same way, from one answer of the tree's walk (the walk again wherever a
+//! step cannot decide). A crowded cell (more than 8 edges, where coastlines bunch up)
+//! gets a grid of its own over its box and its edges, one level deep, from a budget
+//! shared over the ring. Anything else (a centre on the outline, a query on an edge's
+//! line or a segment through a vertex, a crowded cell of a cell's grid) is left to the
+//! walk, so the grid's answer is always the walk's.
 //!
 //! The idea is a planar form of the cell index of Google's S2 geometry library (cells
 //! that keep their edges, clipped, and whether their centre is inside).
@@ -151,15 +153,18 @@ impl CellGrid {
             let (i, j) = (cell % columns, cell / columns);
             DVec2::new(midpoint(xs[i], xs[i + 1]), midpoint(ys[j], ys[j + 1]))
         };
-        let mut cells = vec![OUTSIDE; columns * rows];
+        let answers = centre_answers(ordered, (columns, rows), &centre, touching, walk);
+        // Cells no edge touches take their centre's answer (never on the outline).
+        let mut cells: Vec<u32> = answers
+            .iter()
+            .map(|&a| if a == Some(true) { INSIDE } else { OUTSIDE })
+            .collect();
         let mut mixed = Vec::new();
         let mut edges = Vec::new();
         let mut subgrids = Vec::new();
-        let mut empty = vec![true; columns * rows];
         let mut positions = Vec::new();
         for group in touching.chunk_by(|a, b| a.0 == b.0) {
             let cell = group[0].0 as usize;
-            empty[cell] = false;
             if group.len() > SUBDIVIDE_ABOVE
                 && let Some(budget) = budget.as_deref_mut()
                 && budget.cells >= CELLS_PER_EDGE * group.len()
@@ -183,13 +188,10 @@ impl CellGrid {
                 continue;
             }
             let c = centre(cell);
-            let inside = match walk(c) {
-                Containment::Inside => true,
-                Containment::Outside => false,
-                Containment::Boundary => {
-                    cells[cell] = WALK;
-                    continue;
-                }
+            let Some(inside) = answers[cell] else {
+                // The centre is on the outline.
+                cells[cell] = WALK;
+                continue;
             };
             let start = edges.len() as u32;
             edges.extend(group.iter().map(|&(_, p)| p));
@@ -200,38 +202,6 @@ impl CellGrid {
                 start,
                 end: edges.len() as u32,
             });
-        }
-        // Cells no edge touches: two such cells side by side form a box no edge touches,
-        // so one answer holds for each region of them (flooded from one walk).
-        let mut queue = Vec::new();
-        for seed in 0..cells.len() {
-            if !empty[seed] {
-                continue;
-            }
-            // No edge touches the cell, so its centre is not on the outline.
-            let code = if walk(centre(seed)) == Containment::Inside {
-                INSIDE
-            } else {
-                OUTSIDE
-            };
-            empty[seed] = false;
-            queue.push(seed);
-            while let Some(cell) = queue.pop() {
-                cells[cell] = code;
-                let (i, j) = (cell % columns, cell / columns);
-                let neighbours = [
-                    (i > 0).then(|| cell - 1),
-                    (i + 1 < columns).then_some(cell + 1),
-                    (j > 0).then(|| cell - columns),
-                    (j + 1 < rows).then_some(cell + columns),
-                ];
-                for next in neighbours.into_iter().flatten() {
-                    if empty[next] {
-                        empty[next] = false;
-                        queue.push(next);
-                    }
-                }
-            }
         }
         Self {
             xs,
@@ -265,20 +235,7 @@ impl CellGrid {
         let q = coord(x);
         let mut inside = cell.inside;
         for &p in &self.edges[cell.start as usize..cell.end as usize] {
-            let (a, b) = (coord(ordered[p as usize]), coord(ordered[p as usize + 1]));
-            let (o1, o2) = (robust::orient2d(a, b, c), robust::orient2d(a, b, q));
-            if (o1 > 0.0 && o2 > 0.0) || (o1 < 0.0 && o2 < 0.0) {
-                continue;
-            }
-            let (o3, o4) = (robust::orient2d(c, q, a), robust::orient2d(c, q, b));
-            if (o3 > 0.0 && o4 > 0.0) || (o3 < 0.0 && o4 < 0.0) {
-                continue;
-            }
-            if o1 == 0.0 || o2 == 0.0 || o3 == 0.0 || o4 == 0.0 {
-                // On an edge's line, or the segment through a vertex.
-                return None;
-            }
-            inside = !inside;
+            inside ^= crosses(ordered, p, c, q)?;
         }
         Some(if inside {
             Containment::Inside
@@ -296,6 +253,98 @@ impl CellGrid {
             + self.edges.len() * size_of::<u32>()
             + self.subgrids.iter().map(CellGrid::bytes).sum::<usize>()
     }
+}
+
+/// Whether the edge `p → p + 1` crosses the segment `c → q` (in its interior, at one
+/// point), with exact orientations; `None` when that cannot be told so simply: `c` or `q`
+/// on the edge's line, or the segment through one of its ends.
+#[inline]
+fn crosses(
+    ordered: &[DVec2],
+    p: u32,
+    c: robust::Coord<f64>,
+    q: robust::Coord<f64>,
+) -> Option<bool> {
+    let (a, b) = (coord(ordered[p as usize]), coord(ordered[p as usize + 1]));
+    let (o1, o2) = (robust::orient2d(a, b, c), robust::orient2d(a, b, q));
+    if (o1 > 0.0 && o2 > 0.0) || (o1 < 0.0 && o2 < 0.0) {
+        return Some(false);
+    }
+    let (o3, o4) = (robust::orient2d(c, q, a), robust::orient2d(c, q, b));
+    if (o3 > 0.0 && o4 > 0.0) || (o3 < 0.0 && o4 < 0.0) {
+        return Some(false);
+    }
+    if o1 == 0.0 || o2 == 0.0 || o3 == 0.0 || o4 == 0.0 {
+        return None;
+    }
+    Some(true)
+}
+
+/// Every cell centre's answer (`None`: on the outline), found by stepping from centre to
+/// centre — up the first column, then along each row — and counting the edges that cross
+/// each step (a step stays inside its two cells, so their edges are all it can cross);
+/// the walk answers the first centre, and any centre a step cannot decide simply.
+fn centre_answers(
+    ordered: &[DVec2],
+    (columns, rows): (usize, usize),
+    centre: &impl Fn(usize) -> DVec2,
+    touching: &[(u32, u32)],
+    walk: &impl Fn(DVec2) -> Containment,
+) -> Vec<Option<bool>> {
+    let count = columns * rows;
+    // Each cell's edges: `touching[starts[cell]..starts[cell + 1]]`, sorted by position.
+    let mut starts = vec![0_usize; count + 1];
+    for &(cell, _) in touching {
+        starts[cell as usize + 1] += 1;
+    }
+    for k in 0..count {
+        starts[k + 1] += starts[k];
+    }
+    let edges_of = |cell: usize| &touching[starts[cell]..starts[cell + 1]];
+    let step = |from: usize, to: usize, inside: bool| -> Option<bool> {
+        let (c, q) = (coord(centre(from)), coord(centre(to)));
+        let (mut x, mut y) = (edges_of(from), edges_of(to));
+        let mut inside = inside;
+        // The two cells' edges merged, each edge once.
+        loop {
+            let p = match (x.first(), y.first()) {
+                (None, None) => return Some(inside),
+                (Some(&(_, p)), None) => {
+                    x = &x[1..];
+                    p
+                }
+                (None, Some(&(_, p))) => {
+                    y = &y[1..];
+                    p
+                }
+                (Some(&(_, p)), Some(&(_, r))) => {
+                    if p <= r {
+                        x = &x[1..];
+                    }
+                    if r <= p {
+                        y = &y[1..];
+                    }
+                    p.min(r)
+                }
+            };
+            inside ^= crosses(ordered, p, c, q)?;
+        }
+    };
+    let mut answers: Vec<Option<bool>> = vec![None; count];
+    for cell in 0..count {
+        let before = if cell % columns == 0 {
+            cell.checked_sub(columns)
+        } else {
+            Some(cell - 1)
+        };
+        let stepped = before.and_then(|b| answers[b].and_then(|inside| step(b, cell, inside)));
+        answers[cell] = stepped.or_else(|| match walk(centre(cell)) {
+            Containment::Inside => Some(true),
+            Containment::Outside => Some(false),
+            Containment::Boundary => None,
+        });
+    }
+    answers
 }
 
 /// Columns and rows for about `target` cells of about square shape over `extent`.
