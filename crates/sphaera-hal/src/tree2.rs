@@ -71,7 +71,7 @@ pub struct Chain {
 /// least 8 edges also gets a cell grid for [`HalTree2::contains`] (about 4 cells per
 /// edge, at most 2²² cells and 12 cell–edge pairs per edge, and as many again for the
 /// grids of crowded cells: a few dozen bytes per edge, built in time linear in the cells
-/// and pairs plus one walk per crossed cell).
+/// and pairs, with one walk of the tree per grid and per degenerate step).
 ///
 /// # Examples
 ///
