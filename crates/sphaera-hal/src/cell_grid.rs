@@ -69,6 +69,8 @@ struct MixedCell {
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct CellGrid {
     /// The grid's vertical lines, left to right (`columns + 1`), and horizontal ones.
+    /// Invariant: at least two of each (`shape` gives at least one column and one row),
+    /// so `len() - 1`, `len() - 2` and `[0]` below never underflow or go out of bounds.
     xs: Vec<f64>,
     ys: Vec<f64>,
     /// Cells per unit, to guess a query's column and row before the exact check.
@@ -120,6 +122,7 @@ impl CellGrid {
         walk: &impl Fn(DVec2) -> Containment,
         budget: Option<&mut Budget>,
     ) -> Option<Self> {
+        // `build` only calls this for rings of at least `MIN_EDGES` edges.
         let edges = subset.map_or(ordered.len() - 1, <[u32]>::len);
         let mut target = (CELLS_PER_EDGE * edges).min(MAX_CELLS);
         for _ in 0..3 {
@@ -164,6 +167,7 @@ impl CellGrid {
         let mut subgrids = Vec::new();
         let mut positions = Vec::new();
         for group in touching.chunk_by(|a, b| a.0 == b.0) {
+            // `chunk_by` yields non-empty groups.
             let cell = group[0].0 as usize;
             if group.len() > SUBDIVIDE_ABOVE
                 && let Some(budget) = budget.as_deref_mut()
